@@ -1,0 +1,116 @@
+# libsky: make | make run | make test | make install PREFIX=... | make textures
+#
+# Outputs go to build/ only. `make run` and `make test` first install the
+# Debian packages they need when missing (tools/deps.sh).
+
+CC      ?= cc
+PREFIX  ?= /usr/local
+BUILD   := build
+WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+CFLAGS  ?= -O2 -g
+ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
+LDLIBS_M := -lm
+
+SKY_SRC := sky/sky.c sky/sun.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/gl/gl.c sky/gl/image.c
+SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
+TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png
+SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
+SKY_HDR := sky/sky.h sky/sky_internal.h sky/gl/glapi.h
+
+BIN := $(BUILD)/bin
+LIB := $(BUILD)/lib
+TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
+
+.PHONY: all deps run test install textures screenshots clean
+all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo
+
+deps:
+	@sh tools/deps.sh
+
+# ---- library ------------------------------------------------------------
+$(BIN)/embed: tools/embed.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $<
+
+$(BUILD)/gen/sky_blobs.c: $(BIN)/embed $(SHADERS) $(TEXTURES)
+	@mkdir -p $(@D)
+	$(BIN)/embed $@ $(SHADERS) $(TEXTURES)
+
+$(BUILD)/obj/gen/sky_blobs.o: $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -Wno-missing-prototypes -c -o $@ $<
+
+$(BUILD)/obj/%.o: %.c $(SKY_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+$(LIB)/libsky.a: $(SKY_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(LIB)/libsky.so: $(SKY_OBJ)
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-soname,libsky.so.0 -o $@ $^ $(LDLIBS_M)
+
+$(BUILD)/include/sky.h: sky/sky.h
+	@mkdir -p $(@D)
+	cp $< $@
+
+# ---- programs -------------------------------------------------------------
+DEMO_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE -Isky -Idemo
+CLI_SRC := demo/cli.c demo/osmesa_ctx.c
+CLI_HDR := demo/cli.h demo/osmesa_ctx.h sky/sky.h
+
+$(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/render.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+
+$(BIN)/sky-demo: demo/demo.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lOSMesa $(LDLIBS_M)
+
+$(BIN)/texgen: tools/texgen.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
+
+# ---- run, test ----------------------------------------------------------------
+run: deps all
+	@sh tools/run.sh
+
+TEST_SRC := $(wildcard tests/*.c)
+$(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(SKY_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+
+# The leak check links the library with LeakSanitizer in its own build dir.
+$(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -Wno-missing-prototypes -D_DEFAULT_SOURCE -fsanitize=leak -Idemo -o $@ \
+	    tests/leaks/leaks.c demo/osmesa_ctx.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa $(LDLIBS_M)
+
+test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks
+	@SKY_BIN=$(BIN) sh tests/run.sh
+
+# ---- install ----------------------------------------------------------------------
+install: all
+	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
+	install -m 644 sky/sky.h $(DESTDIR)$(PREFIX)/include/sky.h
+	install -m 644 $(LIB)/libsky.a $(DESTDIR)$(PREFIX)/lib/libsky.a
+	install -m 755 $(LIB)/libsky.so $(DESTDIR)$(PREFIX)/lib/libsky.so.0
+	ln -sf libsky.so.0 $(DESTDIR)$(PREFIX)/lib/libsky.so
+	install -m 755 $(BIN)/sky-render $(BIN)/sky-demo $(DESTDIR)$(PREFIX)/bin/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|0.1.0|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
+
+# ---- assets ---------------------------------------------------------------------------
+# Rebuilds textures/ from their origins (see textures/README.md). Needs
+# Debian's stellarium-data, which it downloads and unpacks into build/.
+textures: $(BIN)/texgen
+	@sh tools/fetch-stellarium.sh $(BUILD)/stellarium
+	$(BIN)/texgen --out textures --photo $(BUILD)/stellarium/usr/share/stellarium/textures/earth-clouds.png --crop 0,20,176
+
+# The README's pictures, rendered by sky-render.
+screenshots: all
+	@sh tools/screenshots.sh
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,331 @@
+/*
+ * Command-line parsing shared by sky-render and sky-demo. Every bad value
+ * is an error naming the option and its accepted range (exit status 2).
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static int fail(char *err, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static int fail(char *err, size_t len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, len, fmt, ap);
+    va_end(ap);
+    return SKY_CLI_USAGE;
+}
+
+/* A finite number in [lo, hi], the whole string consumed. */
+static int parse_number(const char *s, double lo, double hi, double *out)
+{
+    if (!s || !*s) return 0;
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || *end != '\0' || !isfinite(v) || v < lo || v > hi) return 0;
+    *out = v;
+    return 1;
+}
+
+static int parse_features(const char *s, unsigned *out, char *err, size_t len)
+{
+    static const struct {
+        const char *name;
+        unsigned bit;
+    } names[] = {{"clouds", SKY_CLOUDS}, {"sun", SKY_SUN},         {"moon", SKY_MOON},
+                 {"stars", SKY_STARS},   {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
+                 {"eclipse", SKY_ECLIPSE}};
+    if (!strcmp(s, "none")) {
+        *out = SKY_FEATURES_NONE;
+        return SKY_CLI_OK;
+    }
+    unsigned mask = 0;
+    const char *p = s;
+    while (*p) {
+        size_t n = strcspn(p, ",");
+        int found = 0;
+        for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+            if (strlen(names[i].name) == n && !strncmp(p, names[i].name, n)) {
+                if (!(names[i].bit & SKY_FEATURES_AVAILABLE))
+                    return fail(err, len, "--features: '%s' is not available yet in this build", names[i].name);
+                mask |= names[i].bit;
+                found = 1;
+            }
+        if (!found)
+            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,flicker or none)", (int)n,
+                        p);
+        p += n;
+        if (*p == ',') {
+            p++;
+            if (!*p) return fail(err, len, "--features: trailing comma in '%s'", s);
+        }
+    }
+    if (!mask) return fail(err, len, "--features: empty list (use 'none' for an empty sky)");
+    *out = mask;
+    return SKY_CLI_OK;
+}
+
+void sky_cli_usage(FILE *out, const char *prog, int is_demo)
+{
+    fprintf(out,
+            "usage: %s [options]\n"
+            "  --size WxH               image size (default 1280x720)\n"
+            "  --cover F --height F --density F --sunset F --speed F --time F\n"
+            "                           the six sliders, each 0..1\n"
+            "  --seconds S              elapsed animation time, S >= 0\n"
+            "  --yaw DEG --pitch DEG --fov DEG | --fisheye\n"
+            "                           view azimuth (from north through east), altitude\n"
+            "                           (-90..90), vertical field of view (1..179)\n"
+            "  --atmosphere gradient    atmosphere path\n"
+            "  --features LIST          comma list of clouds,sun,flicker (or none)\n"
+            "  --gl auto|core|compat    GL profile\n"
+            "  --preset noon|overcast|sunset|starry|minimal\n"
+            "  --frames N               render N frames, 1/30 s apart\n",
+            prog);
+    if (is_demo)
+        fprintf(out, "  --screenshot FILE.png    with --frames: save the last frame and quit\n");
+    else
+        fprintf(out, "  --out FILE.png           8-bit sRGB image (with --frames: FILE_0001.png ...)\n"
+                     "  --out-pfm FILE.pfm       linear float RGB, luminance in kcd/m^2\n"
+                     "  --stats                  print JSON statistics after rendering\n");
+}
+
+/* Presets: the features and sliders a game would use for a scene. Options
+ * given explicitly win over the preset, whatever their order. */
+static int apply_preset(sky_cli *cli, const char *name, const int *given, char *err, size_t len)
+{
+    struct preset {
+        const char *name;
+        unsigned features;
+        sky_gl_profile gl;
+        float cover, height, density, sunset, speed, time;
+    };
+    static const struct preset presets[] = {
+        {"noon", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f},
+        {"overcast", SKY_CLOUDS, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f},
+        {"sunset", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f},
+        {"starry", SKY_FLICKER_STARS | SKY_CLOUDS, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f},
+        {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f, 0.2f, 0.45f},
+    };
+    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; i++) {
+        const struct preset *p = &presets[i];
+        if (strcmp(p->name, name)) continue;
+        if (!given[0]) cli->features = p->features;
+        if (!given[1]) cli->gl = p->gl;
+        float *dst[6] = {&cli->params.cover, &cli->params.height, &cli->params.density,
+                         &cli->params.sunset, &cli->params.speed, &cli->params.time};
+        const float src[6] = {p->cover, p->height, p->density, p->sunset, p->speed, p->time};
+        for (int k = 0; k < 6; k++)
+            if (!given[2 + k]) *dst[k] = src[k];
+        return SKY_CLI_OK;
+    }
+    if (!strcmp(name, "moonlit") || !strcmp(name, "eclipse"))
+        return fail(err, len, "--preset: '%s' is not available yet (it needs the moon)", name);
+    return fail(err, len, "--preset: unknown preset '%s' (accepted: noon, overcast, sunset, starry, minimal)", name);
+}
+
+int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, size_t len)
+{
+    memset(cli, 0, sizeof *cli);
+    cli->width = 1280;
+    cli->height = 720;
+    cli->params = sky_default_params();
+    cli->yaw = 180.0;  /* facing south, where the sun culminates */
+    cli->pitch = 20.0;
+    cli->fov = 60.0;
+    cli->frames = 1;
+    static const char *const sliders[6] = {"--cover", "--height", "--density", "--sunset", "--speed", "--time"};
+    static const char *const later[] = {"--date", "--lat", "--lon", "--alt", "--hip"};
+    /* given[]: features, gl, six sliders; seen[] catches duplicates */
+    int given[8] = {0};
+    const char *seen[64];
+    int seen_count = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *opt = argv[i];
+        if (!strcmp(opt, "--help") || !strcmp(opt, "-h")) return SKY_CLI_HELP;
+        if (strncmp(opt, "--", 2))
+            return fail(err, len, "unexpected argument '%s' (options start with --; see --help)", opt);
+        for (int k = 0; k < seen_count; k++)
+            if (!strcmp(seen[k], opt)) return fail(err, len, "%s: given more than once", opt);
+        if (seen_count < 64) seen[seen_count++] = opt;
+        /* flags without a value */
+        if (!strcmp(opt, "--fisheye")) {
+            cli->fisheye = 1;
+            continue;
+        }
+        if (!is_demo && !strcmp(opt, "--stats")) {
+            cli->stats = 1;
+            continue;
+        }
+        if (!strcmp(opt, "--query"))
+            return fail(err, len, "--query: not available yet (the astronomy module has not landed)");
+        /* options with a value */
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        int known = 1;
+        double v = 0.0;
+        int slider = -1;
+        for (int k = 0; k < 6; k++)
+            if (!strcmp(opt, sliders[k])) slider = k;
+        for (size_t k = 0; k < sizeof later / sizeof later[0]; k++)
+            if (!strcmp(opt, later[k]))
+                return fail(err, len, "%s: not available yet (the astronomy module has not landed)", opt);
+        if (slider >= 0) {
+            if (!parse_number(val, 0.0, 1.0, &v))
+                return fail(err, len, "%s: expected a number in 0..1, got '%s'", opt, val ? val : "(nothing)");
+            float *dst[6] = {&cli->params.cover, &cli->params.height, &cli->params.density,
+                             &cli->params.sunset, &cli->params.speed, &cli->params.time};
+            *dst[slider] = (float)v;
+            given[2 + slider] = 1;
+        } else if (!strcmp(opt, "--size")) {
+            int w = 0, h = 0;
+            char tail = 0;
+            if (!val || sscanf(val, "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+                return fail(err, len, "--size: expected WxH with 1..16384 each, got '%s'", val ? val : "(nothing)");
+            cli->width = w;
+            cli->height = h;
+        } else if (!strcmp(opt, "--seconds")) {
+            if (!parse_number(val, 0.0, 1e12, &v))
+                return fail(err, len, "--seconds: expected a number in 0..1e12, got '%s'", val ? val : "(nothing)");
+            cli->seconds = v;
+        } else if (!strcmp(opt, "--yaw")) {
+            if (!parse_number(val, -360.0, 360.0, &v))
+                return fail(err, len, "--yaw: expected degrees in -360..360, got '%s'", val ? val : "(nothing)");
+            cli->yaw = v;
+        } else if (!strcmp(opt, "--pitch")) {
+            if (!parse_number(val, -90.0, 90.0, &v))
+                return fail(err, len, "--pitch: expected degrees in -90..90, got '%s'", val ? val : "(nothing)");
+            cli->pitch = v;
+        } else if (!strcmp(opt, "--fov")) {
+            if (!parse_number(val, 1.0, 179.0, &v))
+                return fail(err, len, "--fov: expected degrees in 1..179, got '%s'", val ? val : "(nothing)");
+            cli->fov = v;
+        } else if (!strcmp(opt, "--frames")) {
+            if (!parse_number(val, 1.0, 1e6, &v) || v != floor(v))
+                return fail(err, len, "--frames: expected a whole number in 1..1000000, got '%s'",
+                            val ? val : "(nothing)");
+            cli->frames = (int)v;
+        } else if (!strcmp(opt, "--features")) {
+            if (!val) return fail(err, len, "--features: expected a list such as clouds,sun");
+            int rc = parse_features(val, &cli->features, err, len);
+            if (rc) return rc;
+            given[0] = 1;
+        } else if (!strcmp(opt, "--gl")) {
+            if (val && !strcmp(val, "auto"))
+                cli->gl = SKY_GL_AUTO;
+            else if (val && !strcmp(val, "core"))
+                cli->gl = SKY_GL_CORE33;
+            else if (val && !strcmp(val, "compat"))
+                cli->gl = SKY_GL_COMPAT20;
+            else
+                return fail(err, len, "--gl: expected auto, core or compat, got '%s'", val ? val : "(nothing)");
+            given[1] = 1;
+        } else if (!strcmp(opt, "--atmosphere")) {
+            if (val && !strcmp(val, "gradient"))
+                cli->atmosphere = SKY_ATMOSPHERE_GRADIENT;
+            else if (val && (!strcmp(val, "preetham") || !strcmp(val, "rayleigh") || !strcmp(val, "hillaire") ||
+                             !strcmp(val, "blend")))
+                return fail(err, len, "--atmosphere: '%s' is not available yet (only gradient is built)", val);
+            else
+                return fail(err, len, "--atmosphere: expected gradient|preetham|rayleigh|hillaire|blend, got '%s'",
+                            val ? val : "(nothing)");
+        } else if (!strcmp(opt, "--preset")) {
+            if (!val) return fail(err, len, "--preset: expected a preset name");
+            cli->preset = val;
+        } else if (!is_demo && !strcmp(opt, "--out")) {
+            if (!val || !*val) return fail(err, len, "--out: expected a file name");
+            cli->out_png = val;
+        } else if (!is_demo && !strcmp(opt, "--out-pfm")) {
+            if (!val || !*val) return fail(err, len, "--out-pfm: expected a file name");
+            cli->out_pfm = val;
+        } else if (is_demo && !strcmp(opt, "--screenshot")) {
+            if (!val || !*val) return fail(err, len, "--screenshot: expected a file name");
+            cli->screenshot = val;
+        } else {
+            known = 0;
+        }
+        if (!known) return fail(err, len, "unknown option '%s' (see --help)", opt);
+        i++; /* consumed the value */
+    }
+    if (cli->preset) {
+        int rc = apply_preset(cli, cli->preset, given, err, len);
+        if (rc) return rc;
+    }
+    return SKY_CLI_OK;
+}
+
+void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16])
+{
+    double az = cli->yaw * PI / 180.0, alt = cli->pitch * PI / 180.0;
+    /* horizon frame: +x east, +y up, +z south; azimuth from north (-z)
+     * through east (+x) */
+    double f[3] = {sin(az) * cos(alt), sin(alt), -cos(az) * cos(alt)};
+    double r[3] = {cos(az), 0.0, sin(az)}; /* right: east when facing north */
+    double u[3] = {r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]};
+    memset(view, 0, 16 * sizeof(float));
+    for (int c = 0; c < 3; c++) {
+        view[c * 4 + 0] = (float)r[c];
+        view[c * 4 + 1] = (float)u[c];
+        view[c * 4 + 2] = (float)-f[c];
+    }
+    view[15] = 1.0f;
+    double aspect = (double)cli->width / cli->height, n = 0.1, far = 1000.0;
+    double t = 1.0 / tan(cli->fov * PI / 360.0);
+    memset(proj, 0, 16 * sizeof(float));
+    proj[0] = (float)(t / aspect);
+    proj[5] = (float)t;
+    proj[10] = (float)((far + n) / (n - far));
+    proj[11] = -1.0f;
+    proj[14] = (float)(2.0 * far * n / (n - far));
+}
+
+static const char *profile_name(sky_gl_profile p) { return p == SKY_GL_CORE33 ? "core" : "compat"; }
+
+void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
+{
+    static const struct {
+        const char *name;
+        unsigned bit;
+    } feats[] = {{"clouds", SKY_CLOUDS}, {"sun", SKY_SUN}, {"moon", SKY_MOON}, {"stars", SKY_STARS},
+                 {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP}, {"eclipse", SKY_ECLIPSE}};
+    fprintf(out, "{\"gl_version\":\"");
+    for (const char *p = st->gl_version ? st->gl_version : ""; *p; p++)
+        if (*p == '"' || *p == '\\')
+            fprintf(out, "\\%c", *p);
+        else if ((unsigned char)*p >= 0x20)
+            fputc(*p, out);
+    fprintf(out, "\", \"profile\":\"%s\", \"features\":[", profile_name(st->profile));
+    int first = 1;
+    for (size_t i = 0; i < sizeof feats / sizeof feats[0]; i++)
+        if (st->features & feats[i].bit) {
+            fprintf(out, "%s\"%s\"", first ? "" : ",", feats[i].name);
+            first = 0;
+        }
+    fprintf(out, "], \"frame_ms\":%.4f, \"lut_ms\":%.4f, \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "
+                 "\"draws_per_frame\":%d, \"layers\":{",
+            frame_ms, st->lut_ms, st->gpu_bytes, st->textures, st->programs, st->draws_per_frame);
+    first = 1;
+    for (int l = 0; l < SKY_LAYER_COUNT; l++) {
+        const sky_layer_stats *ls = &st->layers[l];
+        if (!ls->enabled) continue;
+        fprintf(out, "%s\"%s\":{\"ms\":", first ? "" : ", ", sky_layer_name((sky_layer)l));
+        if (ls->ms >= 0.0)
+            fprintf(out, "%.4f", ls->ms);
+        else
+            fprintf(out, "null");
+        fprintf(out, ", \"draws\":%d, \"drawn\":%s, \"bytes\":%zu}", ls->draws, ls->drawn ? "true" : "false",
+                ls->bytes);
+        first = 0;
+    }
+    fprintf(out, "}}\n");
+}

@@ -1,0 +1,43 @@
+/*
+ * The command line shared by sky-render and sky-demo (DESIGN.md's
+ * contract): parsing, presets and the camera it describes.
+ */
+#ifndef SKY_CLI_H
+#define SKY_CLI_H
+
+#include "sky.h"
+
+#include <stdio.h>
+
+enum { SKY_CLI_OK = 0, SKY_CLI_RUNTIME = 1, SKY_CLI_USAGE = 2, SKY_CLI_HELP = 3 };
+
+typedef struct sky_cli {
+    int width, height;
+    sky_params params;
+    double seconds;
+    double yaw, pitch, fov; /* degrees */
+    int fisheye;
+    unsigned features;      /* sky_config.features (0 = default)  */
+    sky_gl_profile gl;
+    sky_atmosphere_path atmosphere;
+    const char *preset;
+    const char *out_png, *out_pfm;
+    int frames;
+    int stats;
+    /* sky-demo only */
+    const char *screenshot;
+} sky_cli;
+
+/* Parses argv into cli. Returns SKY_CLI_OK, SKY_CLI_HELP (usage printed to
+ * out), or SKY_CLI_USAGE with a message naming the argument in err. */
+int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, size_t err_len);
+void sky_cli_usage(FILE *out, const char *prog, int is_demo);
+
+/* Column-major view and projection matrices for --yaw/--pitch/--fov. */
+void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
+
+/* Prints sky_get_stats as the JSON object of DESIGN.md. frame_ms overrides
+ * the sky's own figure (sky-render passes a median). */
+void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms);
+
+#endif

@@ -1,0 +1,37 @@
+/*
+ * A headless GL context through OSMesa (Mesa's llvmpipe, or softpipe with
+ * GALLIUM_DRIVER=softpipe): what sky-render, the tests and a display-less
+ * sky-demo draw into.
+ */
+#ifndef SKY_OSMESA_CTX_H
+#define SKY_OSMESA_CTX_H
+
+#include "sky.h"
+
+#include <stddef.h>
+
+typedef struct sky_osmesa {
+    void *ctx;       /* OSMesaContext */
+    void *pixels;    /* w*h RGBA, bottom row first; bytes or floats */
+    int width, height;
+    int is_float;
+    int is_core;     /* the context is a 3.3 core profile */
+} sky_osmesa;
+
+/* want: SKY_GL_CORE33 asks for a 3.3 core context, SKY_GL_COMPAT20 for a
+ * legacy one, SKY_GL_AUTO tries core first. is_float: a float RGBA colour
+ * buffer (for linear HDR output). Returns 0, or -1 with err. */
+int sky_osmesa_create(sky_osmesa *o, int width, int height, sky_gl_profile want, int is_float, char *err,
+                      size_t err_len);
+void sky_osmesa_destroy(sky_osmesa *o);
+sky_get_proc_address_fn sky_osmesa_loader(void);
+/* Waits for rendering to finish. */
+void sky_osmesa_finish(sky_osmesa *o);
+
+/* Writes the buffer as an 8-bit PNG (top row first). Returns 0 or -1. */
+int sky_osmesa_write_png(const sky_osmesa *o, const char *path);
+/* Writes a float buffer as a PFM (RGB, little-endian, bottom row first as
+ * the format wants). Returns 0 or -1. */
+int sky_osmesa_write_pfm(const sky_osmesa *o, const char *path);
+
+#endif

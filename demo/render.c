@@ -1,0 +1,135 @@
+/*
+ * sky-render: the sky without a window. Renders through OSMesa into a PNG
+ * (8-bit sRGB after exposure, tone map and dither) and/or a PFM (linear
+ * float RGB, luminance in kcd/m^2), and prints statistics as JSON.
+ * Exit status: 0 success, 2 bad arguments, 1 runtime failure.
+ */
+#include "cli.h"
+#include "osmesa_ctx.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* FILE.png -> FILE_0007.png for frame 7 of several. */
+static void frame_path(char *dst, size_t len, const char *path, int frame, int frames)
+{
+    if (frames <= 1) {
+        snprintf(dst, len, "%s", path);
+        return;
+    }
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    if (!dot || (slash && dot < slash)) dot = path + strlen(path);
+    snprintf(dst, len, "%.*s_%04d%s", (int)(dot - path), path, frame, dot);
+}
+
+/* Renders all frames into one buffer kind; writes files; fills stats. */
+static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_stats)
+{
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, cli->width, cli->height, cli->gl, hdr, err, sizeof err)) {
+        fprintf(stderr, "sky-render: %s\n", err);
+        return 1;
+    }
+    sky_config cfg = {0};
+    cfg.features = cli->features;
+    cfg.gl_profile = cli->gl;
+    cfg.atmosphere = cli->atmosphere;
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
+    cfg.profile_layers = cli->stats;
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        fprintf(stderr, "sky-render: %s\n", err);
+        sky_osmesa_destroy(&ctx);
+        return 1;
+    }
+    int rc = 0;
+    if (sky_set_params(s, &cli->params) < 0 || sky_set_elapsed(s, cli->seconds) < 0) {
+        fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
+        rc = 1;
+    }
+    float view[16], proj[16];
+    sky_cli_camera(cli, view, proj);
+    double *times = calloc((size_t)cli->frames, sizeof(double));
+    if (!times) rc = 1;
+    /* One untimed frame first: shader compilation happens on first use. */
+    if (!rc && cli->stats) {
+        sky_result r = cli->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj);
+        if (r < 0) {
+            fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
+            rc = 1;
+        }
+    }
+    for (int f = 0; !rc && f < cli->frames; f++) {
+        if (f > 0 && sky_update(s, 1.0 / 30.0) < 0) rc = 1;
+        double t0 = now_ms();
+        sky_result r = cli->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj);
+        sky_osmesa_finish(&ctx);
+        times[f] = now_ms() - t0;
+        if (r < 0) {
+            fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
+            rc = 1;
+            break;
+        }
+        if (out) {
+            char path[4096];
+            frame_path(path, sizeof path, out, f + 1, cli->frames);
+            int w = hdr ? sky_osmesa_write_pfm(&ctx, path) : sky_osmesa_write_png(&ctx, path);
+            if (w) {
+                fprintf(stderr, "sky-render: cannot write %s\n", path);
+                rc = 1;
+            }
+        }
+        if (cli->frames > 1) fprintf(stderr, "\rsky-render: frame %d/%d", f + 1, cli->frames);
+    }
+    if (cli->frames > 1) fprintf(stderr, "\n");
+    if (!rc && print_stats) {
+        sky_stats st;
+        sky_get_stats(s, &st);
+        qsort(times, (size_t)cli->frames, sizeof(double), cmp_double);
+        sky_cli_print_stats(stdout, &st, times[cli->frames / 2]);
+    }
+    free(times);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    sky_cli cli;
+    char err[512];
+    int rc = sky_cli_parse(&cli, argc, argv, 0, err, sizeof err);
+    if (rc == SKY_CLI_HELP) {
+        sky_cli_usage(stdout, "sky-render", 0);
+        return 0;
+    }
+    if (rc) {
+        fprintf(stderr, "sky-render: %s\n", err);
+        return 2;
+    }
+    /* The PFM needs a float buffer and a linear sky, the PNG an 8-bit one:
+     * one pass each. Statistics come from the PNG pass when there is one.
+     * With neither output, render anyway (a smoke test of GL). */
+    int png_pass = cli.out_png || !cli.out_pfm;
+    if (cli.out_pfm && (rc = render_pass(&cli, 1, cli.out_pfm, cli.stats && !png_pass))) return rc;
+    if (png_pass && (rc = render_pass(&cli, 0, cli.out_png, cli.stats))) return rc;
+    return 0;
+}

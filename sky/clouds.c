@@ -1,0 +1,79 @@
+/*
+ * Roden & Parberry's clouds (sec. 3): one packed RGBA texture, two primary
+ * layers drifting in slightly different directions and speeds, a detail
+ * layer and a thin stretched upper layer. The shader is clouds.glsl; this
+ * file owns the texture, the drift and the uniforms.
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+
+#define SKY_CLOUD_TEXTURE_SIZE 512
+
+static const sky_uniform_desc cloud_uniforms[] = {
+    SKY_UT("u_clouds_tex", SKY_TEX_CLOUDS),
+    SKY_UF("u_cover", SKY_U_F1, cover),
+    SKY_UF("u_density", SKY_U_F1, density),
+    SKY_UF("u_sunset", SKY_U_F1, sunset),
+    SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
+    SKY_UF("u_cloud_offset0", SKY_U_F2, cloud_offset0),
+    SKY_UF("u_cloud_offset1", SKY_U_F2, cloud_offset1),
+    SKY_UF("u_cloud_offset_detail", SKY_U_F2, cloud_offset_detail),
+    SKY_UF("u_cloud_offset_upper", SKY_U_F2, cloud_offset_upper),
+    SKY_UF("u_cloud_light", SKY_U_F3, cloud_light),
+    SKY_UF("u_sunset_color", SKY_U_F3, sunset_color),
+};
+const sky_snippet sky_clouds_snippet = {"SKY_HAS_CLOUDS", "clouds.glsl", cloud_uniforms,
+                                        (int)(sizeof cloud_uniforms / sizeof cloud_uniforms[0])};
+
+/* Drift of each layer in texture periods per second at speed 1. The two
+ * primary layers differ by about 13 degrees and 20 % in speed (R-P 3.2), so
+ * their sum changes shape as they slide apart. */
+const double sky_cloud_velocity[4][2] = {
+    {0.0200, 0.0060},  /* layer 0: photo          */
+    {0.0165, 0.0088},  /* layer 1: noise          */
+    {0.0300, 0.0100},  /* detail                  */
+    {0.0120, 0.0015},  /* thin upper layer        */
+};
+
+int sky_clouds_create(sky *s, char *err, size_t err_len)
+{
+    return sky_texture_load(s, SKY_TEX_CLOUDS, SKY_LAYER_CLOUDS, "clouds.png", SKY_CLOUD_TEXTURE_SIZE,
+                            SKY_CLOUD_TEXTURE_SIZE, 1, err, err_len);
+}
+
+void sky_clouds_advance(sky *s, double dt)
+{
+    /* The texture repeats with period 1, so wrapping each offset into [0, 1)
+     * changes nothing on screen while keeping float uniforms exact after
+     * any amount of running time. */
+    for (int l = 0; l < 4; l++)
+        for (int i = 0; i < 2; i++)
+            s->cloud_offsets[l][i] = sky_wrap(s->cloud_offsets[l][i] + s->params.speed * sky_cloud_velocity[l][i] * dt, 1.0);
+}
+
+void sky_clouds_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    const sky_params *p = &s->params;
+    f->cover = p->cover;
+    f->density = p->density;
+    f->sunset = p->sunset;
+    /* height: high clouds (1) look smaller, so more texture periods fit
+     * across the dome (R-P 3.1: height scales the texture coordinates). */
+    f->cloud_uv_scale = (float)(0.15 * pow(4.0, p->height));
+    float *offsets[4] = {f->cloud_offset0, f->cloud_offset1, f->cloud_offset_detail, f->cloud_offset_upper};
+    for (int l = 0; l < 4; l++)
+        for (int i = 0; i < 2; i++) offsets[l][i] = (float)s->cloud_offsets[l][i];
+    /* R-P line 28's amount of sunlight, in luminance: half of the day sky's
+     * scale as skylight plus the direct sun through the atmosphere; at night
+     * clouds are lit by the night sky only, so they hide the stars. */
+    for (int i = 0; i < 3; i++)
+        f->cloud_light[i] = f->sky_luminance * (0.45f + 1.1f * f->daylight * f->sun_transmittance[i]) +
+                            0.6f * f->night_luminance;
+    f->sunset_color[0] = 1.0f;
+    f->sunset_color[1] = 0.42f;
+    f->sunset_color[2] = 0.18f;
+}
+
+int sky_clouds_visible(const sky *s) { return (s->features & SKY_CLOUDS) && s->params.cover > 0.0f; }

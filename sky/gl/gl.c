@@ -1,0 +1,489 @@
+/*
+ * GL backend: function loading through the host's getProcAddress, profile
+ * detection, program building with a version prologue, texture and buffer
+ * helpers, and saving/restoring the host's GL state around sky_draw.
+ */
+#include "../sky_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void set_err(char *err, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static void set_err(char *err, size_t len, const char *fmt, ...)
+{
+    if (!err || len == 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, len, fmt, ap);
+    va_end(ap);
+}
+
+/* Parses "M.m..." after any leading non-digits ("OpenGL ES 3.0", "4.5 (Core
+ * Profile) Mesa"). Returns major*10+minor, or 0 when the string is unusable. */
+static int parse_version(const char *v)
+{
+    if (!v) return 0;
+    while (*v && (*v < '0' || *v > '9')) v++;
+    int major = 0, minor = 0;
+    if (sscanf(v, "%d.%d", &major, &minor) != 2 || major < 1 || minor < 0) return 0;
+    if (minor > 9) minor = 9;
+    return major * 10 + minor;
+}
+
+static int has_extension_string(const char *list, const char *name)
+{
+    if (!list) return 0;
+    size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)) != NULL; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return 1;
+    return 0;
+}
+
+int sky_gl_init(sky *s, char *err, size_t err_len)
+{
+    sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
+    /* Every pointer is stored through its own member type; a missing entry
+     * point is reported by name. */
+#define SKY_GL_LOAD(ret, name, params)                                                   \
+    s->gl.name = (ret(SKY_APIENTRY *) params)gpa(#name);                                 \
+    if (!s->gl.name) {                                                                   \
+        set_err(err, err_len, "the GL context lacks %s (OpenGL 2.0 is the minimum)", #name); \
+        return -1;                                                                       \
+    }
+    SKY_GL_FUNCS_20(SKY_GL_LOAD)
+#undef SKY_GL_LOAD
+#define SKY_GL_LOAD_OPT(ret, name, params) s->gl.name = (ret(SKY_APIENTRY *) params)gpa(#name);
+    SKY_GL_FUNCS_30(SKY_GL_LOAD_OPT)
+#undef SKY_GL_LOAD_OPT
+
+    const sky_gl *gl = &s->gl;
+    while (gl->glGetError() != GL_NO_ERROR) {} /* the host's old errors are not ours */
+    const char *version = (const char *)gl->glGetString(GL_VERSION);
+    int gl_ver = parse_version(version);
+    if (gl_ver == 0) {
+        set_err(err, err_len, "no usable GL context is current (GL_VERSION is %s)", version ? version : "NULL");
+        return -1;
+    }
+    if (gl_ver < 20) {
+        set_err(err, err_len, "OpenGL %s is too old: libsky needs at least 2.0", version);
+        return -1;
+    }
+    snprintf(s->gl_version, sizeof s->gl_version, "%s", version);
+    /* Only a 3.3 context can run GLSL 330, so below that the string is not
+     * asked for (Mesa under version overrides complains on stderr when it
+     * is). Some drivers without GLSL return NULL: treated as GLSL 1.10. */
+    int glsl_ver = gl_ver >= 33 ? parse_version((const char *)gl->glGetString(GL_SHADING_LANGUAGE_VERSION)) : 11;
+    while (gl->glGetError() != GL_NO_ERROR) {}
+
+    int is_core_context = 0;
+    if (gl_ver >= 32) {
+        GLint mask = 0;
+        gl->glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+        is_core_context = (mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
+        while (gl->glGetError() != GL_NO_ERROR) {}
+    }
+    int can_core = gl_ver >= 33 && glsl_ver >= 33 && gl->glGenVertexArrays && gl->glBindVertexArray &&
+                   gl->glDeleteVertexArrays;
+
+    sky_gl_profile want = s->cfg.gl_profile;
+    if (want == SKY_GL_AUTO) want = can_core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
+    if (want == SKY_GL_CORE33 && !can_core) {
+        set_err(err, err_len, "CORE33 asked for, but the context offers OpenGL %s with GLSL %d.%d", version,
+                glsl_ver / 10, glsl_ver % 10);
+        return -1;
+    }
+    if (want == SKY_GL_COMPAT20 && is_core_context) {
+        set_err(err, err_len, "COMPAT20 needs a compatibility context; this one is a %s core profile", version);
+        return -1;
+    }
+    if (want == SKY_GL_COMPAT20) {
+        GLint units = 0;
+        gl->glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+        if (units < 4) {
+            set_err(err, err_len, "the context has %d texture units; libsky needs 4", (int)units);
+            return -1;
+        }
+    }
+    s->profile = want;
+    (void)has_extension_string; /* kept for extension checks of later layers */
+    return 0;
+}
+
+/* ---- programs ------------------------------------------------------------ */
+
+/* The version prologue: one GLSL source per stage serves both profiles. */
+static const char *prologue(const sky *s, int fragment)
+{
+    if (s->profile == SKY_GL_CORE33)
+        return fragment ? "#version 330 core\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
+                          "#define SKY_TEX2D texture\nout vec4 sky_frag_color;\n#define SKY_FRAG_COLOR sky_frag_color\n"
+                        : "#version 330 core\n#define SKY_CORE 1\n#define SKY_ATTR in\n#define SKY_OUT out\n";
+    return fragment ? "#version 110\n#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_TEX2D texture2D\n"
+                      "#define SKY_FRAG_COLOR gl_FragColor\n"
+                    : "#version 110\n#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
+}
+
+static GLuint compile(sky *s, GLenum type, const char *const *parts, int count, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    GLuint sh = gl->glCreateShader(type);
+    if (!sh) {
+        set_err(err, err_len, "glCreateShader failed");
+        return 0;
+    }
+    gl->glShaderSource(sh, count, parts, NULL);
+    gl->glCompileShader(sh);
+    GLint ok = 0;
+    gl->glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[512] = "";
+        gl->glGetShaderInfoLog(sh, (GLsizei)sizeof log, NULL, log);
+        set_err(err, err_len, "%s shader failed to compile: %s", type == GL_VERTEX_SHADER ? "vertex" : "fragment",
+                log);
+        gl->glDeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+static const char *blob_text(const char *name, char *err, size_t err_len)
+{
+    const sky_blob *b = sky_find_blob(name);
+    if (!b) set_err(err, err_len, "embedded shader %s is missing from this build", name);
+    return b ? (const char *)b->data : NULL;
+}
+
+int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char *frag_main,
+                      const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    memset(p, 0, sizeof *p);
+    if (snippet_count > SKY_MAX_SNIPPETS) {
+        set_err(err, err_len, "too many shader snippets (%d)", snippet_count);
+        return -1;
+    }
+    /* prologue, feature defines, common code, snippets, main */
+    const char *parts[3 + SKY_MAX_SNIPPETS + 2];
+    char defines[256] = "";
+    size_t used = 0;
+    for (int i = 0; i < snippet_count; i++)
+        if (snippets[i]->define) {
+            int n = snprintf(defines + used, sizeof defines - used, "#define %s 1\n", snippets[i]->define);
+            if (n > 0 && (size_t)n < sizeof defines - used) used += (size_t)n;
+        }
+    GLuint shaders[2] = {0, 0};
+    for (int stage = 0; stage < 2; stage++) {
+        int n = 0;
+        parts[n++] = prologue(s, stage);
+        parts[n++] = defines;
+        if (!(parts[n++] = blob_text(sky_common_snippet.source, err, err_len))) goto fail;
+        if (stage == 1)
+            for (int i = 0; i < snippet_count; i++)
+                if (snippets[i]->source && !(parts[n++] = blob_text(snippets[i]->source, err, err_len))) goto fail;
+        if (!(parts[n++] = blob_text(stage ? frag_main : vert_main, err, err_len))) goto fail;
+        shaders[stage] = compile(s, stage ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER, parts, n, err, err_len);
+        if (!shaders[stage]) goto fail;
+    }
+    p->id = gl->glCreateProgram();
+    gl->glAttachShader(p->id, shaders[0]);
+    gl->glAttachShader(p->id, shaders[1]);
+    gl->glBindAttribLocation(p->id, 0, "a_pos");
+    gl->glBindAttribLocation(p->id, 1, "a_dir");
+    gl->glLinkProgram(p->id);
+    gl->glDeleteShader(shaders[0]); /* flagged; freed with the program */
+    gl->glDeleteShader(shaders[1]);
+    shaders[0] = shaders[1] = 0;
+    GLint ok = 0;
+    gl->glGetProgramiv(p->id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[512] = "";
+        gl->glGetProgramInfoLog(p->id, (GLsizei)sizeof log, NULL, log);
+        set_err(err, err_len, "shader program failed to link: %s", log);
+        goto fail;
+    }
+    /* Uniform rows: common first, then each snippet's. Rows the compiler
+     * optimised away get location -1 and are skipped by glUniform. */
+    const sky_snippet *all[SKY_MAX_SNIPPETS + 1];
+    all[0] = &sky_common_snippet;
+    for (int i = 0; i < snippet_count; i++) all[i + 1] = snippets[i];
+    for (int i = 0; i <= snippet_count; i++)
+        for (int u = 0; u < all[i]->uniform_count; u++) {
+            if (p->uniform_count == SKY_MAX_UNIFORMS) {
+                set_err(err, err_len, "too many uniforms in one program");
+                goto fail;
+            }
+            p->uniforms[p->uniform_count] = &all[i]->uniforms[u];
+            p->locations[p->uniform_count] = gl->glGetUniformLocation(p->id, all[i]->uniforms[u].name);
+            p->uniform_count++;
+        }
+    s->program_count++;
+    return 0;
+fail:
+    for (int i = 0; i < 2; i++)
+        if (shaders[i]) gl->glDeleteShader(shaders[i]);
+    if (p->id) gl->glDeleteProgram(p->id);
+    memset(p, 0, sizeof *p);
+    return -1;
+}
+
+void sky_program_destroy(sky *s, sky_program *p)
+{
+    if (p->id) {
+        s->gl.glDeleteProgram(p->id);
+        s->program_count--;
+    }
+    memset(p, 0, sizeof *p);
+}
+
+void sky_program_apply(sky *s, const sky_program *p)
+{
+    const sky_gl *gl = &s->gl;
+    const unsigned char *base = (const unsigned char *)&s->frame;
+    int unit = 0;
+    gl->glUseProgram(p->id);
+    for (int i = 0; i < p->uniform_count; i++) {
+        const sky_uniform_desc *u = p->uniforms[i];
+        GLint loc = p->locations[i];
+        if (loc < 0) continue;
+        const float *v = (const float *)(const void *)(base + u->offset);
+        switch (u->type) {
+        case SKY_U_F1: gl->glUniform1f(loc, v[0]); break;
+        case SKY_U_F2: gl->glUniform2f(loc, v[0], v[1]); break;
+        case SKY_U_F3: gl->glUniform3f(loc, v[0], v[1], v[2]); break;
+        case SKY_U_M4: gl->glUniformMatrix4fv(loc, 1, GL_FALSE, v); break;
+        case SKY_U_TEX:
+            gl->glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+            gl->glBindTexture(GL_TEXTURE_2D, s->textures[u->offset].id);
+            gl->glUniform1i(loc, unit);
+            unit++;
+            break;
+        }
+    }
+}
+
+/* ---- textures and buffers ------------------------------------------------- */
+
+static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
+                       int repeat, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    if (!is_pow2(w) || !is_pow2(h)) {
+        /* COMPAT20 has no NPOT textures; keeping one rule for both profiles
+         * makes the compat path the tested path. */
+        set_err(err, err_len, "texture %dx%d is not a power of two", w, h);
+        return -1;
+    }
+    sky_texture *t = &s->textures[id];
+    gl->glGenTextures(1, &t->id);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_2D, t->id);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    /* No mipmap chain: it would cost a third more memory and take the
+     * minimal path past its 1.5 MiB budget. The cloud shader fades detail by
+     * its screen-space footprint instead (clouds.glsl). */
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    GLint wrap = repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    GLenum e = gl->glGetError();
+    if (e != GL_NO_ERROR) {
+        gl->glDeleteTextures(1, &t->id);
+        t->id = 0;
+        set_err(err, err_len, "uploading a %dx%d texture failed (GL error 0x%04x)", w, h, e);
+        return -1;
+    }
+    t->width = w;
+    t->height = h;
+    t->bytes = (size_t)w * (size_t)h * 4u;
+    t->owner = owner;
+    return 0;
+}
+
+/* Reads an override file with a hard size cap: hostile files never cause a
+ * large allocation. Returns NULL if absent. */
+static unsigned char *read_override(const char *dir, const char *name, size_t *size, char *err, size_t err_len,
+                                    int *failed)
+{
+    enum { MAX_FILE = 16 << 20 };
+    char path[1024];
+    *failed = 0;
+    if (!dir) return NULL;
+    int n = snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (n < 0 || (size_t)n >= sizeof path) {
+        set_err(err, err_len, "texture override path too long: %s/%s", dir, name);
+        *failed = 1;
+        return NULL;
+    }
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL; /* no override for this one */
+    unsigned char *buf = malloc(MAX_FILE);
+    size_t got = buf ? fread(buf, 1, MAX_FILE, f) : 0;
+    int too_big = buf && got == MAX_FILE && fgetc(f) != EOF;
+    fclose(f);
+    if (!buf || too_big || got == 0) {
+        set_err(err, err_len, "%s: %s", path, !buf ? "out of memory" : too_big ? "larger than 16 MiB" : "empty file");
+        free(buf);
+        *failed = 1;
+        return NULL;
+    }
+    *size = got;
+    return buf;
+}
+
+int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
+                     int repeat, char *err, size_t err_len)
+{
+    size_t size = 0;
+    int failed = 0;
+    unsigned char *file = read_override(s->cfg.texture_dir, name, &size, err, err_len, &failed);
+    if (failed) return -1;
+    const unsigned char *data = file;
+    if (!file) {
+        const sky_blob *b = sky_find_blob(name);
+        if (!b) {
+            set_err(err, err_len, "texture %s is not embedded in this build", name);
+            return -1;
+        }
+        data = b->data;
+        size = b->size;
+    }
+    const char *origin = file ? "override" : "embedded";
+    int w = 0, h = 0, rc = -1;
+    if (!sky_png_info(data, size, &w, &h)) {
+        set_err(err, err_len, "%s texture %s is not a readable PNG", origin, name);
+    } else if (w != expect_w || h != expect_h) {
+        set_err(err, err_len, "%s texture %s is %dx%d; expected %dx%d", origin, name, w, h, expect_w, expect_h);
+    } else {
+        const char *why = "";
+        unsigned char *rgba = sky_png_decode_rgba(data, size, &w, &h, &why);
+        if (!rgba)
+            set_err(err, err_len, "%s texture %s: %s", origin, name, why);
+        else
+            rc = sky_texture_create(s, id, owner, rgba, w, h, repeat, err, err_len);
+        sky_png_free(rgba);
+    }
+    free(file);
+    return rc;
+}
+
+void sky_texture_destroy(sky *s, sky_texture_id id)
+{
+    sky_texture *t = &s->textures[id];
+    if (t->id) s->gl.glDeleteTextures(1, &t->id);
+    memset(t, 0, sizeof *t);
+}
+
+GLuint sky_buffer_create(sky *s, const void *data, size_t bytes, GLenum usage)
+{
+    const sky_gl *gl = &s->gl;
+    GLuint b = 0;
+    gl->glGenBuffers(1, &b);
+    if (!b) return 0;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, b);
+    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, data, usage);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+    s->buffer_count++;
+    s->buffer_bytes += bytes;
+    return b;
+}
+
+/* ---- host state ------------------------------------------------------------ */
+
+void sky_gl_state_save(sky *s, sky_gl_state *st)
+{
+    const sky_gl *gl = &s->gl;
+    memset(st, 0, sizeof *st);
+    gl->glGetIntegerv(GL_CURRENT_PROGRAM, &st->program);
+    gl->glGetIntegerv(GL_ACTIVE_TEXTURE, &st->active_texture);
+    for (int i = 0; i < 4; i++) {
+        gl->glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        gl->glGetIntegerv(GL_TEXTURE_BINDING_2D, &st->textures[i]);
+    }
+    gl->glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &st->array_buffer);
+    if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
+    gl->glGetIntegerv(GL_VIEWPORT, st->viewport);
+    st->blend = gl->glIsEnabled(GL_BLEND);
+    st->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
+    st->cull_face = gl->glIsEnabled(GL_CULL_FACE);
+    st->scissor_test = gl->glIsEnabled(GL_SCISSOR_TEST);
+    st->stencil_test = gl->glIsEnabled(GL_STENCIL_TEST);
+    gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
+    gl->glGetBooleanv(GL_COLOR_WRITEMASK, st->color_mask);
+    gl->glGetIntegerv(GL_BLEND_SRC_RGB, &st->blend_src_rgb);
+    gl->glGetIntegerv(GL_BLEND_DST_RGB, &st->blend_dst_rgb);
+    gl->glGetIntegerv(GL_BLEND_SRC_ALPHA, &st->blend_src_alpha);
+    gl->glGetIntegerv(GL_BLEND_DST_ALPHA, &st->blend_dst_alpha);
+    gl->glGetIntegerv(GL_BLEND_EQUATION_RGB, &st->blend_eq_rgb);
+    gl->glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &st->blend_eq_alpha);
+    if (s->profile == SKY_GL_COMPAT20) {
+        /* No VAO: the attribute arrays we use are global state. */
+        for (GLuint i = 0; i < 2; i++) {
+            gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &st->attrib_enabled[i]);
+            gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_SIZE, &st->attrib_size[i]);
+            gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_TYPE, &st->attrib_type[i]);
+            gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_NORMALIZED, &st->attrib_norm[i]);
+            gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_STRIDE, &st->attrib_stride[i]);
+            gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING, &st->attrib_buffer[i]);
+            gl->glGetVertexAttribPointerv(i, GL_VERTEX_ATTRIB_ARRAY_POINTER, &st->attrib_pointer[i]);
+        }
+    }
+}
+
+static void set_cap(const sky_gl *gl, GLenum cap, GLboolean on)
+{
+    if (on)
+        gl->glEnable(cap);
+    else
+        gl->glDisable(cap);
+}
+
+void sky_gl_state_restore(sky *s, const sky_gl_state *st)
+{
+    const sky_gl *gl = &s->gl;
+    if (s->profile == SKY_GL_COMPAT20) {
+        for (GLuint i = 0; i < 2; i++) {
+            gl->glBindBuffer(GL_ARRAY_BUFFER, (GLuint)st->attrib_buffer[i]);
+            /* A pointer set while no buffer was bound is a client-memory
+             * pointer; GL accepts it back only in compatibility contexts,
+             * which is the only place this path runs. */
+            gl->glVertexAttribPointer(i, st->attrib_size[i], (GLenum)st->attrib_type[i],
+                                      (GLboolean)st->attrib_norm[i], st->attrib_stride[i], st->attrib_pointer[i]);
+            if (st->attrib_enabled[i])
+                gl->glEnableVertexAttribArray(i);
+            else
+                gl->glDisableVertexAttribArray(i);
+        }
+    } else {
+        gl->glBindVertexArray((GLuint)st->vao);
+    }
+    gl->glBindBuffer(GL_ARRAY_BUFFER, (GLuint)st->array_buffer);
+    for (int i = 3; i >= 0; i--) {
+        gl->glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        gl->glBindTexture(GL_TEXTURE_2D, (GLuint)st->textures[i]);
+    }
+    gl->glActiveTexture((GLenum)st->active_texture);
+    gl->glUseProgram((GLuint)st->program);
+    gl->glViewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
+    set_cap(gl, GL_BLEND, st->blend);
+    set_cap(gl, GL_DEPTH_TEST, st->depth_test);
+    set_cap(gl, GL_CULL_FACE, st->cull_face);
+    set_cap(gl, GL_SCISSOR_TEST, st->scissor_test);
+    set_cap(gl, GL_STENCIL_TEST, st->stencil_test);
+    gl->glDepthMask(st->depth_mask);
+    gl->glColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
+    gl->glBlendFuncSeparate((GLenum)st->blend_src_rgb, (GLenum)st->blend_dst_rgb, (GLenum)st->blend_src_alpha,
+                            (GLenum)st->blend_dst_alpha);
+    gl->glBlendEquationSeparate((GLenum)st->blend_eq_rgb, (GLenum)st->blend_eq_alpha);
+}

@@ -1,0 +1,42 @@
+/*
+ * PNG decoding for textures (embedded or override), through stb_image kept
+ * private to this file: STB_IMAGE_STATIC so a host that links its own copy
+ * of stb_image sees no clash, and only the PNG decoder compiled in.
+ */
+#include "../sky_internal.h"
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_NO_STDIO
+#define STBI_NO_LINEAR
+#define STBI_NO_HDR
+#define STBI_MAX_DIMENSIONS 4096 /* refuse absurd headers before allocating */
+/* stb declares static helpers this file does not call; the warning about
+ * them is reported at the end of the file, so it is silenced file-wide in
+ * this file, which holds nothing but the wrappers below. */
+#if defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wunused-function"
+#endif
+#include <stb/stb_image.h>
+
+int sky_png_info(const unsigned char *data, size_t size, int *w, int *h)
+{
+    int comp = 0;
+    if (size == 0 || size > (size_t)0x7fffffff) return 0;
+    return stbi_info_from_memory(data, (int)size, w, h, &comp);
+}
+
+unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why)
+{
+    int comp = 0;
+    if (size == 0 || size > (size_t)0x7fffffff) {
+        *why = "bad size";
+        return NULL;
+    }
+    unsigned char *rgba = stbi_load_from_memory(data, (int)size, w, h, &comp, 4);
+    if (!rgba) *why = stbi_failure_reason();
+    return rgba;
+}
+
+void sky_png_free(unsigned char *rgba) { stbi_image_free(rgba); }

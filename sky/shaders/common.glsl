@@ -1,0 +1,55 @@
+/* common.glsl: shared by every libsky program (both stages). The version
+ * prologue before it defines SKY_IN/SKY_OUT/SKY_ATTR, SKY_TEX2D and
+ * SKY_FRAG_COLOR so one source serves GLSL 110 and GLSL 330. */
+uniform float u_exposure;    /* LDR: scale from kcd/m^2 to tone-map input       */
+uniform float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither    */
+uniform float u_fisheye;     /* 1: equidistant all-sky mapping                   */
+uniform vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
+uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
+
+const float SKY_PI = 3.14159265;
+
+/* Equidistant fisheye: zenith at the centre, horizon at radius 1, north up,
+ * east on the left (looking up). p is the aspect-corrected ndc, |p| <= 1. */
+vec3 sky_fisheye_dir(vec2 p)
+{
+    float r = length(p);
+    float theta = r * 0.5 * SKY_PI;
+    vec2 h = r > 1e-6 ? -p / r : vec2(0.0, -1.0);
+    return vec3(sin(theta) * h.x, cos(theta), sin(theta) * h.y);
+}
+
+/* The inverse of sky_fisheye_dir, for vertices (sun quad). */
+vec2 sky_fisheye_ndc(vec3 d)
+{
+    float theta = acos(clamp(d.y, -1.0, 1.0));
+    float hl = length(d.xz);
+    vec2 h = hl > 1e-6 ? d.xz / hl : vec2(0.0, -1.0);
+    return -h * theta / (0.5 * SKY_PI);
+}
+
+#ifdef SKY_FRAGMENT
+/* Ordered-looking but unstructured noise in [0,1) from the pixel position:
+ * the dither that keeps 8-bit gradients from banding. */
+float sky_hash(vec2 p)
+{
+    vec3 q = fract(vec3(p.xyx) * 0.1031);
+    q += dot(q, q.yzx + 33.33);
+    return fract((q.x + q.y) * q.z);
+}
+
+/* Linear luminance (kcd/m^2) to the output: linear for HDR hosts; else
+ * exposure, an exponential tone map, sRGB encoding and a triangular dither
+ * of one 8-bit step applied after the tone map. */
+vec4 sky_output(vec3 L, float alpha)
+{
+    L = max(L, vec3(0.0));
+    if (u_output_hdr > 0.5) return vec4(L, alpha);
+    vec3 x = vec3(1.0) - exp(-L * u_exposure);
+    vec3 lo = x * 12.92;
+    vec3 hi = 1.055 * pow(max(x, vec3(0.0031308)), vec3(1.0 / 2.4)) - 0.055;
+    vec3 srgb = mix(lo, hi, step(vec3(0.0031308), x));
+    float n = sky_hash(gl_FragCoord.xy) + sky_hash(gl_FragCoord.yx + 17.0) - 1.0;
+    return vec4(srgb + n / 255.0, alpha);
+}
+#endif /* SKY_FRAGMENT */

@@ -1,0 +1,43 @@
+/* gradient.glsl: Roden-Parberry's day sky (sec. 2, fig. 1 inset): a blue
+ * gradient by elevation, scaled by the daylight luminance for the sun's
+ * altitude, with a forward-scattering aureole tinted by the sunlight that
+ * reaches it and a faint night floor. */
+uniform sampler2D u_gradient_tex;
+uniform float u_sky_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
+uniform float u_night_luminance;  /* kcd/m^2 of the moonless night sky      */
+uniform vec3 u_sun_transmittance;
+
+/* Elevation sine of a direction, with the ground mirrored to the horizon
+ * colour so a host's terrain gap shows haze rather than black. */
+float sky_gradient_elevation(vec3 d) { return clamp(d.y, 0.0, 1.0); }
+
+vec3 sky_atmosphere(vec3 d)
+{
+    float e = sky_gradient_elevation(d);
+    /* sqrt spends more of the 256 texels near the horizon, where it changes. */
+    vec3 day = SKY_TEX2D(u_gradient_tex, vec2(sqrt(e) * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb;
+    float mu = max(dot(d, u_sun_dir), 0.0);
+    float mu2 = mu * mu, mu4 = mu2 * mu2, mu8 = mu4 * mu4;
+    /* aureole: a broad and a narrow lobe, strongest near the horizon where
+     * the path is long */
+    float aureole = (0.25 * mu8 + 0.6 * mu8 * mu8 * mu8 * mu8) * (1.0 + 1.5 * (1.0 - e));
+    /* Low sun: the horizon takes the colour of the light that reaches it
+     * (square root of the direct beam's transmittance, normalised), most
+     * strongly on the sun's side. */
+    vec3 tint = sqrt(u_sun_transmittance / max(u_sun_transmittance.r, 1e-6));
+    float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
+    vec3 L = u_sky_luminance * (day * mix(vec3(1.0), tint, low) + aureole * u_sun_transmittance);
+    L += u_night_luminance * vec3(0.55, 0.7, 1.0) * (1.0 + (1.0 - e));
+    if (d.y < 0.0) L *= 1.0 / (1.0 - 4.0 * d.y); /* darken below the horizon */
+    return L;
+}
+
+/* Transmittance toward space for light from behind the atmosphere (stars):
+ * extinction with a Kasten-Young-like air mass that stays finite at and
+ * below the horizon. */
+float sky_atmosphere_transmittance(vec3 d)
+{
+    float s = max(d.y, 0.0);
+    float airmass = 1.0 / (s + 0.025 * exp(-11.0 * s));
+    return d.y < 0.0 ? 0.0 : exp(-0.25 * airmass);
+}

@@ -1,0 +1,604 @@
+/*
+ * libsky: lifecycle, parameters, per-frame composition and feature
+ * selection. Each phenomenon lives in its own file; this one decides which
+ * exist, computes the frame state they share, and draws them back to front.
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* ---- helpers ------------------------------------------------------------- */
+
+double sky_wrap(double x, double period)
+{
+    double r = fmod(x, period);
+    if (r < 0.0) r += period;
+    return r >= period ? 0.0 : r; /* fmod of -tiny + period rounds to period */
+}
+
+double sky_smoothstep(double e0, double e1, double x)
+{
+    double t = sky_clampd((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(s->error, sizeof s->error, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+static void err_printf(char *err, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static void err_printf(char *err, size_t len, const char *fmt, ...)
+{
+    if (!err || len == 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, len, fmt, ap);
+    va_end(ap);
+}
+
+const char *sky_last_error(const sky *s) { return s ? s->error : "sky is NULL"; }
+
+const char *sky_layer_name(sky_layer layer)
+{
+    static const char *const names[SKY_LAYER_COUNT] = {"starmap", "stars", "flicker", "moon",
+                                                       "atmosphere", "sun", "clouds"};
+    return (unsigned)layer < SKY_LAYER_COUNT ? names[layer] : "unknown";
+}
+
+sky_params sky_default_params(void)
+{
+    sky_params p = {0.45f, 0.5f, 0.3f, 0.1f, 0.2f, 0.45f};
+    return p;
+}
+
+/* ---- common uniforms ------------------------------------------------------ */
+
+static const sky_uniform_desc common_uniforms[] = {
+    SKY_UF("u_exposure", SKY_U_F1, exposure),
+    SKY_UF("u_output_hdr", SKY_U_F1, output_hdr),
+    SKY_UF("u_fisheye", SKY_U_F1, fisheye),
+    SKY_UF("u_aspect", SKY_U_F2, aspect),
+    SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
+};
+const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
+                                        (int)(sizeof common_uniforms / sizeof common_uniforms[0])};
+
+/* ---- frame state ----------------------------------------------------------- */
+
+/* Everything that depends on the sliders, not on the camera. */
+static void compute_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    sky_sun_position(s, s->params.time, f->sun_dir, &f->sun_altitude);
+    double sin_alt = sin(f->sun_altitude);
+    /* R-P's "amount of sunlight" from the time of day: full above 10
+     * degrees, none below -6 (end of civil twilight). */
+    f->daylight = (float)sky_smoothstep(sin(-6.0 * SKY_PI / 180.0), sin(10.0 * SKY_PI / 180.0), sin_alt);
+    /* Mueller sec. 5: star intensity x (1 + (s_z + 1.14)^32)^(-1/2), s_z the
+     * sun's up component; the power is taken of a clamped base so it stays
+     * finite for every s_z in [-1, 1]. */
+    double base = sky_clampd(sin_alt + 1.14, 0.0, 2.14);
+    f->night = (float)(1.0 / sqrt(1.0 + pow(base, 32.0)));
+    sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
+    sky_gradient_frame(s);
+    if (s->features & SKY_SUN) sky_sun_frame(s);
+    if (s->features & SKY_CLOUDS) sky_clouds_frame(s);
+    if (s->features & SKY_FLICKER_STARS) sky_flicker_frame(s);
+    /* Automatic exposure from the scene's own brightness: half the day
+     * sky's scale by day; at night a floor about seventy times the dark sky,
+     * so the sky stays dark blue and the stars bright. */
+    f->exposure = (float)(1.0 / (0.5 * f->sky_luminance + 1.5e-5));
+    /* Leave out what adds nothing: a star layer whose brightest texel would
+     * not reach a quarter of an 8-bit step is not evaluated at all. */
+    if (f->star_luminance * f->exposure < 1.0f / 1024.0f) f->star_luminance = 0.0f;
+    f->output_hdr = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : 0.0f;
+}
+
+/* ---- lifecycle ------------------------------------------------------------- */
+
+static int check_rotation(const float m[9])
+{
+    for (int i = 0; i < 9; i++)
+        if (!isfinite(m[i])) return 0;
+    /* columns orthonormal within float tolerance */
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            double dot = 0.0;
+            for (int i = 0; i < 3; i++) dot += (double)m[a * 3 + i] * m[b * 3 + i];
+            if (fabs(dot - (a == b ? 1.0 : 0.0)) > 1e-3) return 0;
+        }
+    return 1;
+}
+
+sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
+{
+    if (err && err_len) err[0] = '\0';
+    if (!cfg) {
+        err_printf(err, err_len, "sky_create: config is NULL (a zeroed sky_config with get_proc_address set is enough)");
+        return NULL;
+    }
+    if (!cfg->get_proc_address) {
+        err_printf(err, err_len, "sky_create: get_proc_address is NULL; pass the host's GL loader");
+        return NULL;
+    }
+    if ((unsigned)cfg->atmosphere > SKY_ATMOSPHERE_BLEND || (unsigned)cfg->gl_profile > SKY_GL_COMPAT20 ||
+        (unsigned)cfg->output > SKY_OUTPUT_HDR) {
+        err_printf(err, err_len, "sky_create: atmosphere %d, gl_profile %d or output %d is out of range",
+                   (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
+        return NULL;
+    }
+    if (cfg->atmosphere != SKY_ATMOSPHERE_DEFAULT && cfg->atmosphere != SKY_ATMOSPHERE_GRADIENT) {
+        err_printf(err, err_len, "sky_create: atmosphere path %d is not built yet (only GRADIENT is)",
+                   (int)cfg->atmosphere);
+        return NULL;
+    }
+    unsigned features = cfg->features == 0 ? SKY_FEATURES_DEFAULT
+                        : (cfg->features & SKY_FEATURES_NONE) ? 0u : cfg->features;
+    if (features & ~(unsigned)SKY_FEATURES_AVAILABLE) {
+        err_printf(err, err_len, "sky_create: features 0x%x are not built yet (available: 0x%x)",
+                   features & ~(unsigned)SKY_FEATURES_AVAILABLE, (unsigned)SKY_FEATURES_AVAILABLE);
+        return NULL;
+    }
+    int identity = 1;
+    for (int i = 0; i < 9; i++)
+        if (cfg->horizon_to_world[i] != 0.0f) identity = 0;
+    if (!identity && !check_rotation(cfg->horizon_to_world)) {
+        err_printf(err, err_len, "sky_create: horizon_to_world is not a rotation (columns must be orthonormal)");
+        return NULL;
+    }
+
+    sky *s = calloc(1, sizeof *s);
+    if (!s) {
+        err_printf(err, err_len, "sky_create: out of memory");
+        return NULL;
+    }
+    s->cfg = *cfg; /* texture_dir is the caller's string: used during create only */
+    s->features = features;
+    s->world_is_identity = identity;
+    for (int i = 0; i < 9; i++) s->horizon_to_world[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : cfg->horizon_to_world[i];
+    s->params = sky_default_params();
+
+    if (sky_gl_init(s, err, err_len)) goto fail;
+    const sky_gl *gl = &s->gl;
+    if (s->profile == SKY_GL_CORE33) {
+        gl->glGenVertexArrays(1, &s->vao);
+        gl->glBindVertexArray(s->vao);
+    }
+    float zero[4 * 5] = {0};
+    s->quad_buffer = sky_buffer_create(s, zero, sizeof zero, GL_DYNAMIC_DRAW);
+    if (!s->quad_buffer) {
+        err_printf(err, err_len, "sky_create: glGenBuffers failed");
+        goto fail;
+    }
+    if (sky_gradient_create(s, err, err_len)) goto fail;
+    if ((features & SKY_CLOUDS) && sky_clouds_create(s, err, err_len)) goto fail;
+    if ((features & SKY_FLICKER_STARS) && sky_flicker_create(s, err, err_len)) goto fail;
+    if ((features & SKY_SUN) && sky_sun_create(s, err, err_len)) goto fail;
+    s->cfg.texture_dir = NULL;
+
+    /* The dome program holds only the snippets of enabled features. */
+    const sky_snippet *dome_snippets[SKY_MAX_SNIPPETS];
+    int n = 0;
+    dome_snippets[n++] = &sky_gradient_snippet;
+    if (features & SKY_FLICKER_STARS) dome_snippets[n++] = &sky_flicker_snippet;
+    if (features & SKY_CLOUDS) dome_snippets[n++] = &sky_clouds_snippet;
+    if (sky_program_build(s, &s->dome, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
+    if (features & SKY_SUN) {
+        const sky_snippet *sun_snippets[2];
+        int m = 0;
+        if (features & SKY_CLOUDS) sun_snippets[m++] = &sky_clouds_snippet;
+        sun_snippets[m++] = &sky_sun_snippet;
+        if (sky_program_build(s, &s->sun, "sun.vert", "sun.frag", sun_snippets, m, err, err_len)) goto fail;
+    }
+    if (s->profile == SKY_GL_CORE33) gl->glBindVertexArray(0);
+    GLenum e = gl->glGetError();
+    if (e != GL_NO_ERROR) {
+        err_printf(err, err_len, "sky_create: GL error 0x%04x while creating resources", e);
+        goto fail;
+    }
+    compute_frame(s);
+    return s;
+fail:
+    s->cfg.texture_dir = NULL;
+    sky_destroy(s);
+    return NULL;
+}
+
+void sky_destroy(sky *s)
+{
+    if (!s) return;
+    const sky_gl *gl = &s->gl;
+    if (gl->glDeleteTextures) { /* NULL when sky_gl_init failed early */
+        for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(s, (sky_texture_id)i);
+        sky_program_destroy(s, &s->dome);
+        sky_program_destroy(s, &s->sun);
+        GLuint buffers[2] = {s->quad_buffer, s->sun_buffer};
+        gl->glDeleteBuffers(2, buffers);
+        if (s->vao) gl->glDeleteVertexArrays(1, &s->vao);
+    }
+    free(s);
+}
+
+/* ---- parameters and time ----------------------------------------------------- */
+
+sky_result sky_set_params(sky *s, const sky_params *p)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!p) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_params: params is NULL");
+    const float in[6] = {p->cover, p->height, p->density, p->sunset, p->speed, p->time};
+    static const char *const names[6] = {"cover", "height", "density", "sunset", "speed", "time"};
+    float out[6];
+    sky_result rc = SKY_OK;
+    for (int i = 0; i < 6; i++) {
+        if (isnan(in[i])) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_params: %s is NaN", names[i]);
+        out[i] = sky_clampf(in[i], 0.0f, 1.0f); /* also takes +-Inf to 1 / 0 */
+        if (out[i] != in[i])
+            rc = sky_fail(s, SKY_CLAMPED, "sky_set_params: %s = %g clamped to %g (range 0..1)", names[i],
+                          (double)in[i], (double)out[i]);
+    }
+    s->params.cover = out[0];
+    s->params.height = out[1];
+    s->params.density = out[2];
+    s->params.sunset = out[3];
+    s->params.speed = out[4];
+    s->params.time = out[5];
+    compute_frame(s);
+    return rc;
+}
+
+sky_result sky_get_params(const sky *s, sky_params *p)
+{
+    if (!s || !p) return SKY_ERR_INVALID_ARGUMENT;
+    *p = s->params;
+    return SKY_OK;
+}
+
+sky_result sky_update(sky *s, double dt)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!isfinite(dt) || dt < 0.0)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_update: dt = %g must be finite and >= 0", dt);
+    s->elapsed += dt;
+    if (s->features & SKY_CLOUDS) sky_clouds_advance(s, dt);
+    if (s->features & SKY_FLICKER_STARS) sky_flicker_advance(s, dt);
+    compute_frame(s);
+    return SKY_OK;
+}
+
+sky_result sky_set_elapsed(sky *s, double seconds)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!isfinite(seconds) || seconds < 0.0)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_elapsed: %g must be finite and >= 0", seconds);
+    s->elapsed = 0.0;
+    memset(s->cloud_offsets, 0, sizeof s->cloud_offsets);
+    s->flicker_phase = 0.0;
+    return sky_update(s, seconds);
+}
+
+/* ---- camera ------------------------------------------------------------------- */
+
+/* Inverts a 4x4 column-major matrix in double. Returns 0 if singular. */
+static int invert4(const double m[16], double out[16])
+{
+    double inv[16];
+    inv[0] = m[5] * m[10] * m[15] - m[5] * m[11] * m[14] - m[9] * m[6] * m[15] + m[9] * m[7] * m[14] +
+             m[13] * m[6] * m[11] - m[13] * m[7] * m[10];
+    inv[4] = -m[4] * m[10] * m[15] + m[4] * m[11] * m[14] + m[8] * m[6] * m[15] - m[8] * m[7] * m[14] -
+             m[12] * m[6] * m[11] + m[12] * m[7] * m[10];
+    inv[8] = m[4] * m[9] * m[15] - m[4] * m[11] * m[13] - m[8] * m[5] * m[15] + m[8] * m[7] * m[13] +
+             m[12] * m[5] * m[11] - m[12] * m[7] * m[9];
+    inv[12] = -m[4] * m[9] * m[14] + m[4] * m[10] * m[13] + m[8] * m[5] * m[14] - m[8] * m[6] * m[13] -
+              m[12] * m[5] * m[10] + m[12] * m[6] * m[9];
+    inv[1] = -m[1] * m[10] * m[15] + m[1] * m[11] * m[14] + m[9] * m[2] * m[15] - m[9] * m[3] * m[14] -
+             m[13] * m[2] * m[11] + m[13] * m[3] * m[10];
+    inv[5] = m[0] * m[10] * m[15] - m[0] * m[11] * m[14] - m[8] * m[2] * m[15] + m[8] * m[3] * m[14] +
+             m[12] * m[2] * m[11] - m[12] * m[3] * m[10];
+    inv[9] = -m[0] * m[9] * m[15] + m[0] * m[11] * m[13] + m[8] * m[1] * m[15] - m[8] * m[3] * m[13] -
+             m[12] * m[1] * m[11] + m[12] * m[3] * m[9];
+    inv[13] = m[0] * m[9] * m[14] - m[0] * m[10] * m[13] - m[8] * m[1] * m[14] + m[8] * m[2] * m[13] +
+              m[12] * m[1] * m[10] - m[12] * m[2] * m[9];
+    inv[2] = m[1] * m[6] * m[15] - m[1] * m[7] * m[14] - m[5] * m[2] * m[15] + m[5] * m[3] * m[14] +
+             m[13] * m[2] * m[7] - m[13] * m[3] * m[6];
+    inv[6] = -m[0] * m[6] * m[15] + m[0] * m[7] * m[14] + m[4] * m[2] * m[15] - m[4] * m[3] * m[14] -
+             m[12] * m[2] * m[7] + m[12] * m[3] * m[6];
+    inv[10] = m[0] * m[5] * m[15] - m[0] * m[7] * m[13] - m[4] * m[1] * m[15] + m[4] * m[3] * m[13] +
+              m[12] * m[1] * m[7] - m[12] * m[3] * m[5];
+    inv[14] = -m[0] * m[5] * m[14] + m[0] * m[6] * m[13] + m[4] * m[1] * m[14] - m[4] * m[2] * m[13] -
+              m[12] * m[1] * m[6] + m[12] * m[2] * m[5];
+    inv[3] = -m[1] * m[6] * m[11] + m[1] * m[7] * m[10] + m[5] * m[2] * m[11] - m[5] * m[3] * m[10] -
+             m[9] * m[2] * m[7] + m[9] * m[3] * m[6];
+    inv[7] = m[0] * m[6] * m[11] - m[0] * m[7] * m[10] - m[4] * m[2] * m[11] + m[4] * m[3] * m[10] +
+             m[8] * m[2] * m[7] - m[8] * m[3] * m[6];
+    inv[11] = -m[0] * m[5] * m[11] + m[0] * m[7] * m[9] + m[4] * m[1] * m[11] - m[4] * m[3] * m[9] -
+              m[8] * m[1] * m[7] + m[8] * m[3] * m[5];
+    inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] +
+              m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
+    double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
+    double scale = 0.0;
+    for (int i = 0; i < 16; i++) scale = fmax(scale, fabs(m[i]));
+    if (!isfinite(det) || fabs(det) <= 1e-12 * pow(scale, 4.0)) return 0;
+    for (int i = 0; i < 16; i++) out[i] = inv[i] / det;
+    return 1;
+}
+
+/* The rotation from the horizon frame to the camera: the view's 3x3 made
+ * orthonormal (a scaled or slightly skewed view still means a direction),
+ * times horizon_to_world. Returns 0 for a degenerate view. */
+static int camera_rotation(const sky *s, const float view[16], double rot[9])
+{
+    double r[3][3]; /* rows of the view's rotation: camera axes in world */
+    for (int row = 0; row < 3; row++)
+        for (int c = 0; c < 3; c++) r[row][c] = view[c * 4 + row];
+    /* Gram-Schmidt on forward (row 2), then up (row 1); right = up x fwd. */
+    double *f = r[2], *u = r[1];
+    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    if (!(fl > 1e-12)) return 0;
+    for (int i = 0; i < 3; i++) f[i] /= fl;
+    double d = u[0] * f[0] + u[1] * f[1] + u[2] * f[2];
+    for (int i = 0; i < 3; i++) u[i] -= d * f[i];
+    double ul = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (!(ul > 1e-9 * fl)) return 0;
+    for (int i = 0; i < 3; i++) u[i] /= ul;
+    double x[3] = {u[1] * f[2] - u[2] * f[1], u[2] * f[0] - u[0] * f[2], u[0] * f[1] - u[1] * f[0]};
+    /* keep the view's handedness for the x axis */
+    if (x[0] * r[0][0] + x[1] * r[0][1] + x[2] * r[0][2] < 0.0)
+        for (int i = 0; i < 3; i++) x[i] = -x[i];
+    double cam[3][3] = {{x[0], x[1], x[2]}, {u[0], u[1], u[2]}, {f[0], f[1], f[2]}};
+    /* rot = cam * H (H maps horizon to world), stored row-major */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double acc = 0.0;
+            for (int k = 0; k < 3; k++) acc += cam[i][k] * s->horizon_to_world[j * 3 + k];
+            rot[i * 3 + j] = acc;
+        }
+    return 1;
+}
+
+/* Fills the dome quad (ndc + view ray per corner) and u_view_proj. */
+static sky_result setup_camera(sky *s, const float view[16], const float proj[16])
+{
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(view[i]) || !isfinite(proj[i]))
+            return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: %s[%d] is not finite",
+                            !isfinite(view[i]) ? "view" : "proj", i);
+    double rot[9];
+    if (!camera_rotation(s, view, rot))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: the view matrix has a degenerate rotation");
+    double p[16], pinv[16];
+    for (int i = 0; i < 16; i++) p[i] = proj[i];
+    if (!invert4(p, pinv)) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: the projection is singular");
+    static const float ndc[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    float v[4 * 5];
+    for (int c = 0; c < 4; c++) {
+        double q[4] = {ndc[c][0], ndc[c][1], -1.0, 1.0}, e[4];
+        for (int i = 0; i < 4; i++) e[i] = pinv[i] * q[0] + pinv[4 + i] * q[1] + pinv[8 + i] * q[2] + pinv[12 + i] * q[3];
+        /* the near-plane point seen from the eye at the origin */
+        if (!(fabs(e[3]) > 1e-30))
+            return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: the projection is not a perspective");
+        for (int i = 0; i < 3; i++) e[i] /= e[3];
+        v[c * 5 + 0] = ndc[c][0];
+        v[c * 5 + 1] = ndc[c][1];
+        for (int j = 0; j < 3; j++) /* camera -> horizon: transpose of rot */
+            v[c * 5 + 2 + j] = (float)(rot[0 * 3 + j] * e[0] + rot[1 * 3 + j] * e[1] + rot[2 * 3 + j] * e[2]);
+    }
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, s->quad_buffer);
+    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+    /* u_view_proj = proj * [rot 0; 0 1], column-major */
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double acc = 0.0;
+            for (int k = 0; k < 4; k++) {
+                double m = (k < 3 && col < 3) ? rot[k * 3 + col] : (k == 3 && col == 3 ? 1.0 : 0.0);
+                acc += p[k * 4 + row] * m;
+            }
+            s->frame.view_proj[col * 4 + row] = (float)acc;
+        }
+    s->frame.fisheye = 0.0f;
+    return SKY_OK;
+}
+
+static void setup_fisheye(sky *s, const GLint viewport[4])
+{
+    static const float ndc[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    float v[4 * 5] = {0};
+    for (int c = 0; c < 4; c++) {
+        v[c * 5 + 0] = ndc[c][0];
+        v[c * 5 + 1] = ndc[c][1];
+    }
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, s->quad_buffer);
+    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+    double w = viewport[2] > 0 ? viewport[2] : 1, h = viewport[3] > 0 ? viewport[3] : 1;
+    s->frame.aspect[0] = (float)(w > h ? w / h : 1.0);
+    s->frame.aspect[1] = (float)(h > w ? h / w : 1.0);
+    s->frame.fisheye = 1.0f;
+}
+
+/* ---- drawing --------------------------------------------------------------------- */
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static void bind_corners(sky *s, GLuint buffer)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)0);
+    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)(2 * sizeof(float)));
+    gl->glEnableVertexAttribArray(0);
+    gl->glEnableVertexAttribArray(1);
+}
+
+static void reset_layer_stats(sky *s)
+{
+    for (int l = 0; l < SKY_LAYER_COUNT; l++) {
+        s->stats.layers[l].drawn = 0;
+        s->stats.layers[l].draws = 0;
+        s->stats.layers[l].ms = -1.0;
+    }
+    s->stats.draws_per_frame = 0;
+}
+
+static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint buffer)
+{
+    const sky_gl *gl = &s->gl;
+    int timed = s->cfg.profile_layers;
+    double t0 = 0.0;
+    if (timed) {
+        gl->glFinish();
+        t0 = now_ms();
+    }
+    sky_program_apply(s, prog);
+    bind_corners(s, buffer);
+    gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    if (timed) {
+        gl->glFinish();
+        s->stats.layers[layer].ms = now_ms() - t0;
+    }
+    s->stats.layers[layer].drawn = 1;
+    s->stats.layers[layer].draws++;
+    s->stats.draws_per_frame++;
+}
+
+static sky_result draw_frame(sky *s, const sky_gl_state *host)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glDisable(GL_STENCIL_TEST);
+    gl->glDepthMask(GL_FALSE);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glDisable(GL_BLEND);
+    if (s->profile == SKY_GL_CORE33) gl->glBindVertexArray(s->vao);
+
+    /* 1. the dome: atmosphere, with flicker stars behind it and clouds in
+     * front, in one full-screen pass */
+    draw_layer(s, SKY_LAYER_ATMOSPHERE, &s->dome, s->quad_buffer);
+    if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = s->frame.star_luminance > 0.0f;
+    if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);
+
+    /* 2. the sun quad, added over the dome (it hides behind the clouds by
+     * evaluating them itself) */
+    if (sky_sun_visible(s)) {
+        sky_sun_update_quad(s);
+        gl->glEnable(GL_BLEND);
+        gl->glBlendEquation(GL_FUNC_ADD);
+        gl->glBlendFunc(GL_ONE, GL_ONE);
+        draw_layer(s, SKY_LAYER_SUN, &s->sun, s->sun_buffer);
+    }
+    if (s->profile == SKY_GL_COMPAT20) {
+        gl->glDisableVertexAttribArray(0);
+        gl->glDisableVertexAttribArray(1);
+    }
+    (void)host;
+    GLenum e = gl->glGetError();
+    if (e != GL_NO_ERROR) return sky_fail(s, SKY_ERR_GL, "sky_draw: GL error 0x%04x", e);
+    return SKY_OK;
+}
+
+static sky_result draw_with(sky *s, const float *view, const float *proj)
+{
+    double t0 = now_ms();
+    sky_gl_state host;
+    const sky_gl *gl = &s->gl;
+    while (gl->glGetError() != GL_NO_ERROR) {} /* the host's errors are not ours */
+    sky_gl_state_save(s, &host);
+    reset_layer_stats(s);
+    sky_result rc = view ? setup_camera(s, view, proj) : (setup_fisheye(s, host.viewport), SKY_OK);
+    if (rc == SKY_OK) rc = draw_frame(s, &host);
+    sky_gl_state_restore(s, &host);
+    if (s->cfg.profile_layers) gl->glFinish();
+    s->stats.frame_ms = now_ms() - t0;
+    return rc;
+}
+
+sky_result sky_draw(sky *s, const float view[16], const float proj[16])
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!view || !proj) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: view or proj is NULL");
+    return draw_with(s, view, proj);
+}
+
+sky_result sky_draw_fisheye(sky *s)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    return draw_with(s, NULL, NULL);
+}
+
+/* ---- queries ----------------------------------------------------------------------- */
+
+sky_result sky_get_stats(const sky *s, sky_stats *out)
+{
+    if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
+    *out = s->stats;
+    out->gl_version = s->gl_version;
+    out->profile = s->profile;
+    out->features = s->features;
+    out->lut_ms = 0.0;
+    out->textures = 0;
+    out->gpu_bytes = s->buffer_bytes;
+    for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layers[l].bytes = 0;
+    for (int i = 0; i < SKY_TEX_COUNT; i++)
+        if (s->textures[i].id) {
+            out->textures++;
+            out->gpu_bytes += s->textures[i].bytes;
+            out->layers[s->textures[i].owner].bytes += s->textures[i].bytes;
+        }
+    out->layers[SKY_LAYER_ATMOSPHERE].bytes += 4 * 5 * sizeof(float); /* the dome quad */
+    if (s->sun_buffer) out->layers[SKY_LAYER_SUN].bytes += 4 * 5 * sizeof(float);
+    out->programs = s->program_count;
+    out->buffers = s->buffer_count;
+    static const unsigned layer_feature[SKY_LAYER_COUNT] = {SKY_STARMAP, SKY_STARS, SKY_FLICKER_STARS, SKY_MOON,
+                                                            0, SKY_SUN, SKY_CLOUDS};
+    for (int l = 0; l < SKY_LAYER_COUNT; l++)
+        out->layers[l].enabled = l == SKY_LAYER_ATMOSPHERE || (s->features & layer_feature[l]) != 0;
+    return SKY_OK;
+}
+
+static void to_world(const sky *s, const float h[3], float w[3])
+{
+    for (int i = 0; i < 3; i++)
+        w[i] = s->horizon_to_world[0 * 3 + i] * h[0] + s->horizon_to_world[1 * 3 + i] * h[1] +
+               s->horizon_to_world[2 * 3 + i] * h[2];
+}
+
+sky_result sky_get_lighting(const sky *s, sky_lighting *out)
+{
+    if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
+    const sky_frame *f = &s->frame;
+    memset(out, 0, sizeof *out);
+    to_world(s, f->sun_dir, out->sun_direction);
+    out->sun_altitude_deg = (float)(f->sun_altitude * 180.0 / SKY_PI);
+    /* Solar illuminance above the atmosphere, 128 klx, through the
+     * atmosphere; zero once the disc has set. */
+    float above = f->sun_altitude > -4.65e-3f ? 1.0f : 0.0f;
+    for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
+    /* Sky irradiance on an upward surface: pi times a mean sky luminance of
+     * about 0.35 of the gradient's scale (blue-weighted), plus the night sky. */
+    static const float sky_tint[3] = {0.55f, 0.75f, 1.0f};
+    for (int i = 0; i < 3; i++) {
+        out->ambient_color[i] = (float)SKY_PI * (0.35f * f->sky_luminance + f->night_luminance) * sky_tint[i];
+        out->fog_color[i] = (0.8f * f->sky_luminance + f->night_luminance) * (0.75f + 0.25f * sky_tint[i]);
+    }
+    out->daylight = f->daylight;
+    return SKY_OK;
+}

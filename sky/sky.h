@@ -1,0 +1,221 @@
+/*
+ * libsky: a procedural sky for games and simulators on low-end OpenGL.
+ *
+ * The only header a game includes. One sky object per GL context; no global
+ * state, no printing, no abort: every failure is a return value plus text
+ * (sky_last_error, or the err buffer of sky_create).
+ *
+ *   sky_config cfg = {0};                      // zero = sensible defaults
+ *   cfg.get_proc_address = glfwGetProcAddress;  // the host owns the context
+ *   char err[256];
+ *   sky *s = sky_create(&cfg, err, sizeof err);
+ *   ...each frame:
+ *   sky_update(s, dt);
+ *   sky_draw(s, view, proj);                    // first thing after glClear
+ *   ...
+ *   sky_destroy(s);
+ *
+ * Coordinates (the horizon frame): +x east, +y up (zenith), +z south, so a
+ * camera looking down -z faces north. Matrices are column-major, as OpenGL
+ * expects. A Z-up engine passes sky_config.horizon_to_world.
+ */
+#ifndef SKY_H
+#define SKY_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SKY_VERSION_MAJOR 0
+#define SKY_VERSION_MINOR 1
+#define SKY_VERSION_PATCH 0
+
+/* Symbols the shared library exports; everything else stays hidden. */
+#if defined(_WIN32) && defined(SKY_SHARED_BUILD)
+#define SKY_API __declspec(dllexport)
+#elif defined(__GNUC__)
+#define SKY_API __attribute__((visibility("default")))
+#else
+#define SKY_API
+#endif
+
+typedef struct sky sky;
+
+/* Results. Negative values are errors (nothing was changed); SKY_CLAMPED
+ * means the call succeeded after clamping an out-of-range input, and
+ * sky_last_error names which one. */
+typedef enum sky_result {
+    SKY_OK = 0,
+    SKY_CLAMPED = 1,
+    SKY_ERR_INVALID_ARGUMENT = -1,
+    SKY_ERR_GL = -2,          /* the context cannot do what was asked     */
+    SKY_ERR_ASSET = -3,       /* an embedded or override asset is broken  */
+    SKY_ERR_OUT_OF_MEMORY = -4,
+    SKY_ERR_UNSUPPORTED = -5  /* asked for a feature that is not built    */
+} sky_result;
+
+/* Feature mask: what the scene contains. Nothing outside the mask is ever
+ * created (no texture, buffer or shader code). 0 means SKY_FEATURES_DEFAULT;
+ * an empty sky (atmosphere only) is SKY_FEATURES_NONE. */
+typedef enum sky_feature {
+    SKY_CLOUDS        = 1u << 0, /* Roden-Parberry cloud layers             */
+    SKY_SUN           = 1u << 1, /* limb-darkened sun disc                  */
+    SKY_MOON          = 1u << 2, /* Mueller moon (not built yet)            */
+    SKY_STARS         = 1u << 3, /* catalogue star billboards (not yet)     */
+    SKY_FLICKER_STARS = 1u << 4, /* Roden-Parberry flicker stars + galaxy   */
+    SKY_STARMAP       = 1u << 5, /* Milky Way star map (not yet)            */
+    SKY_ECLIPSE       = 1u << 6, /* lunar eclipses (not yet)                */
+    SKY_FEATURES_NONE = 1u << 31
+} sky_feature;
+
+#define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
+/* The features this build can render; asking for others is
+ * SKY_ERR_UNSUPPORTED from sky_create. */
+#define SKY_FEATURES_AVAILABLE (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
+
+typedef enum sky_atmosphere_path {
+    SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
+    SKY_ATMOSPHERE_GRADIENT,    /* Roden-Parberry day gradient texture      */
+    SKY_ATMOSPHERE_PREETHAM,    /* (not built yet)                          */
+    SKY_ATMOSPHERE_RAYLEIGH,    /* (not built yet)                          */
+    SKY_ATMOSPHERE_HILLAIRE,    /* (not built yet)                          */
+    SKY_ATMOSPHERE_BLEND        /* (not built yet)                          */
+} sky_atmosphere_path;
+
+typedef enum sky_gl_profile {
+    SKY_GL_AUTO = 0,   /* CORE33 when the context offers it, else COMPAT20 */
+    SKY_GL_CORE33,     /* OpenGL 3.3 core, GLSL 330                         */
+    SKY_GL_COMPAT20    /* OpenGL 2.0, GLSL 110, RGBA8 power-of-two only     */
+} sky_gl_profile;
+
+typedef enum sky_output {
+    SKY_OUTPUT_LDR = 0, /* exposure, tone map, sRGB encode and dither built in */
+    SKY_OUTPUT_HDR      /* linear RGB, luminance in kcd/m^2 (sRGB primaries), for
+                           a float render target and the host's own tone map  */
+} sky_output;
+
+/* The host's GL loader: glfwGetProcAddress, OSMesaGetProcAddress, or a
+ * wrapper around SDL_GL_GetProcAddress. */
+typedef void (*sky_gl_proc)(void);
+typedef sky_gl_proc (*sky_get_proc_address_fn)(const char *name);
+
+typedef struct sky_config {
+    unsigned features;                 /* sky_feature mask; 0 = default       */
+    sky_atmosphere_path atmosphere;
+    sky_gl_profile gl_profile;
+    sky_get_proc_address_fn get_proc_address; /* required                     */
+    sky_output output;
+    /* Optional directory whose PNG files replace the embedded textures of the
+     * same name (clouds.png, flicker.png, galaxy.png, gradient.png). NULL =
+     * embedded only. */
+    const char *texture_dir;
+    /* Non-zero: sky_draw waits for the GPU around each layer so sky_get_stats
+     * can report per-layer milliseconds. Costs a pipeline stall; for tools. */
+    int profile_layers;
+    /* Optional rotation (column-major 3x3) from the horizon frame above to
+     * the host's world frame; all zero = identity (y up). */
+    float horizon_to_world[9];
+} sky_config;
+
+/* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,
+ * NaN is rejected).
+ *   cover   amount of cloud cover (0 = clear)
+ *   height  how high the clouds are: scales their texture coordinates, low
+ *           clouds look bigger and closer
+ *   density dense clouds are smoother and darker
+ *   sunset  strength of the red sunset tint on the clouds
+ *   speed   wind speed: rate at which the cloud layers drift
+ *   time    local solar time of day: 0 = midnight, 0.25 = 6h, 0.5 = noon */
+typedef struct sky_params {
+    float cover, height, density, sunset, speed, time;
+} sky_params;
+
+/* The values sky_create starts with. */
+SKY_API sky_params sky_default_params(void);
+
+SKY_API sky *sky_create(const sky_config *cfg, char *err, size_t err_len);
+SKY_API void sky_destroy(sky *s); /* NULL is fine; needs the creating context current */
+
+/* Text of the most recent non-OK result of this sky ("" if none). */
+SKY_API const char *sky_last_error(const sky *s);
+
+SKY_API sky_result sky_set_params(sky *s, const sky_params *p);
+SKY_API sky_result sky_get_params(const sky *s, sky_params *p);
+
+/* Advances animation time (cloud drift, star flicker) by dt seconds. dt must
+ * be finite and >= 0. Time is kept in double and wrapped, so a game may run
+ * for years without the clouds stuttering. */
+SKY_API sky_result sky_update(sky *s, double dt_seconds);
+/* Sets the animation clock to an absolute value (seconds >= 0). */
+SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
+
+/* Draws the sky into the current framebuffer and viewport. view and proj are
+ * column-major; only the rotation part of view is used (the sky is
+ * centred on the viewer). Depth is neither tested nor written; all GL state
+ * that the call changes is restored before it returns. */
+SKY_API sky_result sky_draw(sky *s, const float view[16], const float proj[16]);
+/* Draws an equidistant all-sky image into the viewport: zenith at the
+ * centre, horizon on the inscribed circle, north at the top, east on the
+ * left (as seen looking up). Outside the circle is black. */
+SKY_API sky_result sky_draw_fisheye(sky *s);
+
+/* Layers, for per-layer statistics. */
+typedef enum sky_layer {
+    SKY_LAYER_STARMAP = 0,
+    SKY_LAYER_STARS,
+    SKY_LAYER_FLICKER,
+    SKY_LAYER_MOON,
+    SKY_LAYER_ATMOSPHERE,
+    SKY_LAYER_SUN,
+    SKY_LAYER_CLOUDS,
+    SKY_LAYER_COUNT
+} sky_layer;
+SKY_API const char *sky_layer_name(sky_layer layer); /* "starmap", "stars", ... */
+
+typedef struct sky_layer_stats {
+    int enabled;      /* created (in the feature mask)                       */
+    int drawn;        /* contributed to the last frame                       */
+    int draws;        /* draw calls of its own in the last frame            */
+    double ms;        /* GPU time in the last frame (profile_layers only, else
+                         -1). Layers evaluated inside another layer's pass
+                         report that pass's time in the pass owner only.   */
+    size_t bytes;     /* GPU memory of its textures and buffers             */
+} sky_layer_stats;
+
+typedef struct sky_stats {
+    const char *gl_version;   /* GL_VERSION of the context; valid while the sky lives */
+    sky_gl_profile profile;   /* the profile in use (never AUTO)              */
+    unsigned features;        /* the feature mask in use                      */
+    double frame_ms;          /* CPU wall time of the last sky_draw (with
+                                 profile_layers: including GPU completion)   */
+    double lut_ms;            /* time spent building lookup tables, last frame */
+    size_t gpu_bytes;         /* all textures and buffers                     */
+    int textures, programs, buffers;
+    int draws_per_frame;
+    sky_layer_stats layers[SKY_LAYER_COUNT];
+} sky_stats;
+
+SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
+
+/* What a game needs to light its scene, for the current state. Directions
+ * are unit vectors in the world frame (horizon_to_world applied);
+ * colours are linear RGB, sRGB primaries. */
+typedef struct sky_lighting {
+    float sun_direction[3];
+    float sun_color[3];        /* illuminance on a surface facing the sun, klx
+                                  per channel, after atmospheric extinction   */
+    float sun_altitude_deg;    /* geometric altitude of the sun's centre       */
+    float ambient_color[3];    /* sky irradiance on an upward surface, klx     */
+    float fog_color[3];        /* horizon sky luminance, kcd/m^2               */
+    float daylight;            /* 0 (night) .. 1 (full day): Roden-Parberry's
+                                  amount of sunlight                          */
+} sky_lighting;
+
+SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SKY_H */

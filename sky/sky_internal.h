@@ -1,0 +1,211 @@
+/*
+ * libsky internals shared by the per-phenomenon files. Not installed.
+ */
+#ifndef SKY_INTERNAL_H
+#define SKY_INTERNAL_H
+
+#include "sky.h"
+#include "gl/glapi.h"
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#define SKY_PI 3.14159265358979323846
+
+/* ---- small numeric guards (named, so a reader sees the intent) ---------- */
+static inline double sky_clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+static inline float sky_clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
+/* Wraps x into [0, period): long-running offsets stay small enough for
+ * float uniforms. fmod keeps the full double precision of x. */
+double sky_wrap(double x, double period);
+double sky_smoothstep(double e0, double e1, double x);
+
+/* ---- embedded assets (generated at build time by tools/embed) ----------- */
+typedef struct sky_blob {
+    const char *name;
+    const unsigned char *data;
+    size_t size;
+} sky_blob;
+const sky_blob *sky_find_blob(const char *name); /* NULL if not embedded */
+
+/* ---- PNG decoding (gl/image.c) ----------------------------------------- */
+int sky_png_info(const unsigned char *data, size_t size, int *w, int *h);
+unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why);
+void sky_png_free(unsigned char *rgba);
+
+/* ---- textures ----------------------------------------------------------- */
+typedef enum sky_texture_id {
+    SKY_TEX_CLOUDS = 0, /* RGBA: photo, noise, detail, sunset gradient (R-P sec. 3) */
+    SKY_TEX_FLICKER,    /* RGBA: intensity, rate, variance, phase (R-P sec. 4)      */
+    SKY_TEX_GALAXY,     /* monochrome galaxy in all four channels (R-P sec. 4)       */
+    SKY_TEX_GRADIENT,   /* day sky colour by elevation (R-P fig. 1 inset)            */
+    SKY_TEX_COUNT
+} sky_texture_id;
+
+typedef struct sky_texture {
+    GLuint id;
+    int width, height;
+    size_t bytes;
+    sky_layer owner;
+} sky_texture;
+
+/* ---- per-frame state: everything the shaders read ------------------------ */
+typedef struct sky_frame {
+    /* common */
+    float sun_dir[3];        /* horizon frame, unit                              */
+    float sun_altitude;      /* radians, geometric                               */
+    float daylight;          /* R-P "amount of sunlight", 0..1                   */
+    float night;             /* visibility of night layers, 0..1                 */
+    float sun_transmittance[3]; /* direct sunlight through the atmosphere       */
+    float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
+    float sun_radius;        /* angular radius of the drawn disc, radians        */
+    float sky_luminance;     /* kcd/m^2: scale of the day gradient               */
+    float night_luminance;   /* kcd/m^2: scale of the night sky background       */
+    float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
+    float output_hdr;        /* 1 = linear out, 0 = tone mapped                 */
+    float fisheye;           /* 1 = equidistant all-sky mapping                 */
+    float aspect[2];         /* fisheye: ndc scale so the circle is round        */
+    float frame_index;       /* dither seed                                     */
+    float view_proj[16];     /* horizon direction -> clip (sun quad)             */
+    /* clouds (R-P sec. 3.1) */
+    float cover, density, sunset;
+    float cloud_uv_scale;    /* from height                                      */
+    float cloud_offset0[2], cloud_offset1[2], cloud_offset_detail[2], cloud_offset_upper[2];
+    float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
+    float sunset_color[3];
+    /* flicker stars (R-P sec. 4) */
+    float flicker_phase;     /* flicker time in rate units, wrapped             */
+    float star_luminance;    /* kcd/m^2 of a full-intensity star texel          */
+} sky_frame;
+
+/* ---- programs and the uniform table ------------------------------------- */
+typedef enum sky_uniform_type { SKY_U_F1, SKY_U_F2, SKY_U_F3, SKY_U_M4, SKY_U_TEX } sky_uniform_type;
+
+/* One row per uniform: the GLSL name, its type, and where its value lives
+ * (an offset into sky_frame, or a texture id). Each phenomenon file owns its
+ * rows; a program built from several snippets sets the rows of each. */
+typedef struct sky_uniform_desc {
+    const char *name;
+    sky_uniform_type type;
+    size_t offset;           /* into sky_frame; texture id for SKY_U_TEX      */
+} sky_uniform_desc;
+#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field) }
+#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex) }
+
+/* A snippet: the GLSL functions of one phenomenon plus its uniform rows. */
+typedef struct sky_snippet {
+    const char *define;      /* e.g. "SKY_HAS_CLOUDS"                          */
+    const char *source;      /* embedded GLSL file name; NULL = uniform rows only */
+    const sky_uniform_desc *uniforms;
+    int uniform_count;
+} sky_snippet;
+
+#define SKY_MAX_SNIPPETS 6
+#define SKY_MAX_UNIFORMS 48
+typedef struct sky_program {
+    GLuint id;
+    int uniform_count;
+    const sky_uniform_desc *uniforms[SKY_MAX_UNIFORMS];
+    GLint locations[SKY_MAX_UNIFORMS];
+} sky_program;
+
+/* ---- the sky ------------------------------------------------------------ */
+struct sky {
+    sky_config cfg;
+    sky_gl gl;
+    sky_gl_profile profile;
+    unsigned features;
+    char gl_version[128];         /* copy of GL_VERSION                        */
+    char error[256];
+
+    sky_params params;
+    double elapsed;               /* seconds, for callers that ask            */
+    double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */
+    double flicker_phase;         /* wrapped (see flicker.c)                   */
+    float horizon_to_world[9];
+    int world_is_identity;
+
+    sky_texture textures[SKY_TEX_COUNT];
+    sky_program dome;             /* full-screen pass: atmosphere+flicker+clouds */
+    sky_program sun;              /* sun quad                                  */
+    GLuint quad_buffer;           /* 4 corners: ndc.xy, direction.xyz          */
+    GLuint sun_buffer;            /* 4 corners: direction.xyz, disc uv         */
+    GLuint vao;                   /* CORE33 only                               */
+    int program_count, buffer_count;
+    size_t buffer_bytes;
+
+    sky_frame frame;
+    sky_stats stats;
+};
+
+/* ---- error text --------------------------------------------------------- */
+sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* ---- gl/gl.c ------------------------------------------------------------ */
+/* Loads the function table and picks the profile. Returns 0 or writes err. */
+int sky_gl_init(sky *s, char *err, size_t err_len);
+/* Compiles and links a program from the common prologue, the given snippets
+ * and a vertex and fragment main file. Attribute 0 = a_pos, 1 = a_dir. */
+int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char *frag_main,
+                      const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len);
+void sky_program_destroy(sky *s, sky_program *p);
+/* Sets every uniform of the program from s->frame and binds its textures. */
+void sky_program_apply(sky *s, const sky_program *p);
+/* Uploads an RGBA8 image. repeat: wrap mode. Power-of-two sizes only. */
+int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
+                       int repeat, char *err, size_t err_len);
+/* Loads a texture by file name: the override directory first, then the
+ * embedded copy. Checks size and channel count against what is expected. */
+int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
+                     int repeat, char *err, size_t err_len);
+void sky_texture_destroy(sky *s, sky_texture_id id);
+GLuint sky_buffer_create(sky *s, const void *data, size_t bytes, GLenum usage);
+
+/* Host GL state that sky_draw changes, saved and restored around it. */
+typedef struct sky_gl_state {
+    GLint program, active_texture, array_buffer, vao, viewport[4];
+    GLint textures[4];
+    GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
+    GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
+    GLint attrib_enabled[2], attrib_size[2], attrib_type[2], attrib_norm[2], attrib_stride[2], attrib_buffer[2];
+    void *attrib_pointer[2];
+} sky_gl_state;
+void sky_gl_state_save(sky *s, sky_gl_state *st);
+void sky_gl_state_restore(sky *s, const sky_gl_state *st);
+
+/* ---- phenomena ---------------------------------------------------------- */
+extern const sky_snippet sky_common_snippet;
+extern const sky_snippet sky_gradient_snippet;
+extern const sky_snippet sky_clouds_snippet;
+extern const sky_snippet sky_flicker_snippet;
+extern const sky_snippet sky_sun_snippet;
+
+int sky_gradient_create(sky *s, char *err, size_t err_len);
+void sky_gradient_frame(sky *s);
+/* Drift of each cloud layer (0, 1, detail, upper) in texture periods per
+ * second at speed 1. */
+extern const double sky_cloud_velocity[4][2];
+int sky_clouds_create(sky *s, char *err, size_t err_len);
+void sky_clouds_advance(sky *s, double dt);
+void sky_clouds_frame(sky *s);
+int sky_clouds_visible(const sky *s);
+int sky_flicker_create(sky *s, char *err, size_t err_len);
+void sky_flicker_advance(sky *s, double dt);
+void sky_flicker_frame(sky *s);
+int sky_sun_create(sky *s, char *err, size_t err_len);
+void sky_sun_frame(sky *s);
+int sky_sun_visible(const sky *s);
+/* Fills the sun quad's corner directions for the current frame. */
+void sky_sun_update_quad(sky *s);
+
+/* Sun direction and sunlight from the time slider (sun.c). */
+void sky_sun_position(const sky *s, double time_of_day, float dir[3], float *altitude);
+/* Direct-beam transmittance for a ray at the given altitude (radians),
+ * Kasten-Young air mass times a Rayleigh+aerosol optical depth. */
+void sky_sun_transmittance(double altitude, float out[3]);
+
+#endif /* SKY_INTERNAL_H */

@@ -1,0 +1,109 @@
+/*
+ * The sun: where the time slider puts it, how much of its light comes
+ * through the atmosphere, and the camera-facing quad that draws its
+ * limb-darkened disc (Roden & Parberry sec. 2; Schneegans et al. eq. 1).
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Until the astronomy module lands, the sun follows a fixed day: the
+ * equinox (declination 0) seen from latitude 40 N, so time 0.25 is sunrise
+ * in the east, 0.5 is noon in the south at 50 degrees, 0.75 is sunset. */
+#define SKY_DEFAULT_LATITUDE_DEG 40.0
+#define SKY_DEFAULT_DECLINATION_DEG 0.0
+
+/* Drawn disc: the true mean angular radius, 959.63 arcsec. */
+#define SKY_SUN_RADIUS_RAD 4.6524e-3
+/* Disc-centre luminance of the sun above the atmosphere, about 2.0e9 cd/m^2
+ * (mean disc luminance 1.6e9 cd/m^2 divided by the mean of the u = 0.6
+ * limb-darkening profile, 0.8). In kcd/m^2. */
+#define SKY_SUN_LUMINANCE 2.0e6
+/* The quad reaches 16 radii: the glare is windowed to zero there. */
+#define SKY_SUN_QUAD_RADII 16.0
+
+static const sky_uniform_desc sun_uniforms[] = {
+    SKY_UF("u_view_proj", SKY_U_M4, view_proj),
+    SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
+    SKY_UF("u_sun_luminance", SKY_U_F1, sun_luminance),
+    SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
+};
+/* Uniform rows only: sun.frag is the program's main, not a snippet. */
+const sky_snippet sky_sun_snippet = {NULL, NULL, sun_uniforms, (int)(sizeof sun_uniforms / sizeof sun_uniforms[0])};
+
+void sky_sun_position(const sky *s, double time_of_day, float dir[3], float *altitude)
+{
+    (void)s;
+    const double deg = SKY_PI / 180.0;
+    double lat = SKY_DEFAULT_LATITUDE_DEG * deg, dec = SKY_DEFAULT_DECLINATION_DEG * deg;
+    double hour_angle = (time_of_day - 0.5) * 2.0 * SKY_PI;
+    double east = -cos(dec) * sin(hour_angle);
+    double north = cos(lat) * sin(dec) - sin(lat) * cos(dec) * cos(hour_angle);
+    double up = sin(lat) * sin(dec) + cos(lat) * cos(dec) * cos(hour_angle);
+    double n = sqrt(east * east + north * north + up * up);
+    dir[0] = (float)(east / n);
+    dir[1] = (float)(up / n);
+    dir[2] = (float)(-north / n); /* +z is south */
+    *altitude = (float)asin(sky_clampd(up / n, -1.0, 1.0));
+}
+
+void sky_sun_transmittance(double altitude, float out[3])
+{
+    /* Zenith optical depths at 680, 550, 440 nm: Rayleigh (Bruneton's
+     * coefficients times an 8 km scale height) plus aerosol of optical
+     * depth 0.1 at 550 nm with Angstrom exponent 1.3. */
+    static const double tau[3] = {0.046 + 0.076, 0.108 + 0.100, 0.265 + 0.134};
+    /* Kasten & Young (1989) air mass; its pole sits at -6.08 degrees, so the
+     * altitude is held at -5 degrees, where the beam is already gone. */
+    double h_deg = sky_clampd(altitude * 180.0 / SKY_PI, -5.0, 90.0);
+    double airmass = 1.0 / (sin(h_deg * SKY_PI / 180.0) + 0.50572 * pow(h_deg + 6.07995, -1.6364));
+    for (int i = 0; i < 3; i++) out[i] = (float)exp(-tau[i] * airmass);
+}
+
+int sky_sun_create(sky *s, char *err, size_t err_len)
+{
+    /* corners: disc uv (2) + direction (3), rewritten each frame */
+    float zero[4 * 5] = {0};
+    (void)err;
+    (void)err_len;
+    s->sun_buffer = sky_buffer_create(s, zero, sizeof zero, GL_DYNAMIC_DRAW);
+    return s->sun_buffer ? 0 : -1;
+}
+
+void sky_sun_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    f->sun_radius = (float)SKY_SUN_RADIUS_RAD;
+    f->sun_luminance = (float)SKY_SUN_LUMINANCE;
+}
+
+int sky_sun_visible(const sky *s)
+{
+    /* The whole quad, glare included, below the horizon: nothing to draw. */
+    return (s->features & SKY_SUN) &&
+           s->frame.sun_altitude > -(float)(SKY_SUN_QUAD_RADII * SKY_SUN_RADIUS_RAD);
+}
+
+void sky_sun_update_quad(sky *s)
+{
+    const float *d = s->frame.sun_dir;
+    /* Tangent basis around the sun: any vector not parallel to d. */
+    float a[3] = {0.0f, 1.0f, 0.0f};
+    if (fabsf(d[1]) > 0.9f) a[0] = 1.0f, a[1] = 0.0f;
+    float t[3] = {a[1] * d[2] - a[2] * d[1], a[2] * d[0] - a[0] * d[2], a[0] * d[1] - a[1] * d[0]};
+    float tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    for (int i = 0; i < 3; i++) t[i] /= tl;
+    float b[3] = {d[1] * t[2] - d[2] * t[1], d[2] * t[0] - d[0] * t[2], d[0] * t[1] - d[1] * t[0]};
+    float k = (float)tan(SKY_SUN_QUAD_RADII * SKY_SUN_RADIUS_RAD);
+    static const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    float v[4 * 5];
+    for (int c = 0; c < 4; c++) {
+        v[c * 5 + 0] = corners[c][0];
+        v[c * 5 + 1] = corners[c][1];
+        for (int i = 0; i < 3; i++) v[c * 5 + 2 + i] = d[i] + k * (corners[c][0] * t[i] + corners[c][1] * b[i]);
+    }
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, s->sun_buffer);
+    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+}

@@ -1,0 +1,73 @@
+/*
+ * The test runner's small harness. A test is a function; CHECK records a
+ * failure with its reason and the test goes on, so one run shows every
+ * broken property. The runner prints "N passed, N failed" last.
+ */
+#ifndef SKY_TEST_H
+#define SKY_TEST_H
+
+#include "sky.h"
+#include "osmesa_ctx.h"
+
+#include <stdio.h>
+
+typedef struct test_case {
+    const char *name;
+    void (*fn)(void);
+} test_case;
+
+extern int test_failures; /* failures within the running test */
+
+#define CHECK(cond, ...)                                                   \
+    do {                                                                   \
+        if (!(cond)) {                                                     \
+            test_failures++;                                               \
+            printf("    %s:%d: check failed: %s\n      ", __FILE__, __LINE__, #cond); \
+            printf(__VA_ARGS__);                                           \
+            printf("\n");                                                  \
+        }                                                                  \
+    } while (0)
+
+/* Prints a measurement that belongs in the test log. */
+#define NOTE(...)            \
+    do {                     \
+        printf("    note: "); \
+        printf(__VA_ARGS__); \
+        printf("\n");        \
+    } while (0)
+
+/* ---- shared fixtures (test_main.c) ---------------------------------------- */
+
+/* An image read back from a render: linear floats (HDR) or 8-bit sRGB
+ * values scaled to 0..1; rows top first; 3 channels. */
+typedef struct image {
+    int w, h;
+    float *px;
+} image;
+
+typedef struct scene {
+    sky_config cfg;     /* get_proc_address and output are filled in   */
+    sky_params params;
+    double seconds;
+    int fisheye;
+    double yaw, pitch, fov;
+    int w, h;
+} scene;
+
+scene scene_default(void);
+/* Renders a scene in a fresh OSMesa context. hdr: float buffer + linear
+ * output. want: the context kind. Returns 0, or -1 (message printed). */
+int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out);
+void image_free(image *im);
+float image_luminance(const image *im, int x, int y);
+/* The camera of a scene as sky-render builds it. */
+void scene_camera(const scene *sc, float view[16], float proj[16]);
+
+/* Path of a built program (SKY_BIN or build/bin). */
+const char *bin_path(const char *name, char *buf, size_t len);
+/* Runs a shell command, returns its exit status; output into buf. */
+int run_command(const char *cmd, char *buf, size_t len);
+/* Reads a PNG/PFM written by sky-render. */
+int image_load_png(const char *path, image *out);
+
+#endif

@@ -1,0 +1,449 @@
+/*
+ * API tests: defaults, input validation, lifecycle, GL hygiene.
+ */
+#define GL_GLEXT_PROTOTYPES 1
+#include "test.h"
+#include "sky_internal.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void test_api_zero_config_renders(void);
+void test_api_rejects_null_and_bad_config(void);
+void test_api_sliders_clamp_and_reject_nan(void);
+void test_api_update_time_validation(void);
+void test_api_draw_rejects_bad_matrices(void);
+void test_api_lighting_and_stats(void);
+void test_api_gl_objects_deleted(void);
+void test_api_leaks_1000_cycles(void);
+void test_gl_state_restored_core(void);
+void test_gl_state_restored_compat(void);
+
+/* A context and a default sky in it. */
+typedef struct fixture {
+    sky_osmesa ctx;
+    sky *s;
+} fixture;
+
+static int fixture_open(fixture *f, sky_gl_profile profile, const sky_config *base)
+{
+    char err[512];
+    memset(f, 0, sizeof *f);
+    if (sky_osmesa_create(&f->ctx, 64, 48, profile, 0, err, sizeof err)) {
+        printf("    %s\n", err);
+        return -1;
+    }
+    sky_config cfg;
+    if (base)
+        cfg = *base;
+    else
+        memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.gl_profile = profile;
+    f->s = sky_create(&cfg, err, sizeof err);
+    if (!f->s) {
+        printf("    sky_create: %s\n", err);
+        sky_osmesa_destroy(&f->ctx);
+        return -1;
+    }
+    return 0;
+}
+
+static void fixture_close(fixture *f)
+{
+    sky_destroy(f->s);
+    sky_osmesa_destroy(&f->ctx);
+}
+
+static void default_camera(float view[16], float proj[16])
+{
+    scene sc = scene_default();
+    scene_camera(&sc, view, proj);
+}
+
+void test_api_zero_config_renders(void)
+{
+    fixture f;
+    sky_config zero;
+    memset(&zero, 0, sizeof zero); /* zero = defaults; only the loader is added */
+    CHECK(fixture_open(&f, SKY_GL_AUTO, &zero) == 0, "a zeroed config must create a sky");
+    if (!f.s) return;
+    float view[16], proj[16];
+    default_camera(view, proj);
+    CHECK(sky_draw(f.s, view, proj) == SKY_OK, "draw: %s", sky_last_error(f.s));
+    CHECK(glGetError() == GL_NO_ERROR, "no GL error after a draw");
+    sky_stats st;
+    sky_get_stats(f.s, &st);
+    CHECK(st.features == SKY_FEATURES_DEFAULT, "default features, got 0x%x", st.features);
+    CHECK(st.profile == SKY_GL_CORE33, "AUTO on a core context picks CORE33");
+    fixture_close(&f);
+}
+
+void test_api_rejects_null_and_bad_config(void)
+{
+    char err[256];
+    CHECK(sky_create(NULL, err, sizeof err) == NULL && strstr(err, "NULL"), "NULL config: %s", err);
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "get_proc_address"), "no loader: %s", err);
+    CHECK(sky_create(NULL, NULL, 0) == NULL, "NULL err buffer is fine");
+
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 32, 32, SKY_GL_AUTO, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.atmosphere = (sky_atmosphere_path)99;
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "out of range"), "bad path: %s", err);
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "not built yet"), "unbuilt path: %s", err);
+    cfg.atmosphere = SKY_ATMOSPHERE_DEFAULT;
+    cfg.features = SKY_MOON;
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "not built yet"), "unbuilt feature: %s", err);
+    cfg.features = 0;
+    cfg.horizon_to_world[0] = 2.0f; /* not a rotation */
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "rotation"), "bad rotation: %s", err);
+    memset(cfg.horizon_to_world, 0, sizeof cfg.horizon_to_world);
+    cfg.gl_profile = SKY_GL_COMPAT20; /* a core context cannot run GLSL 110 */
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "compatibility"), "compat on core: %s", err);
+    cfg.gl_profile = SKY_GL_AUTO;
+    cfg.texture_dir = "/nonexistent/dir"; /* no overrides there: embedded used */
+    sky *s = sky_create(&cfg, err, sizeof err);
+    CHECK(s != NULL, "a missing override directory falls back to embedded: %s", err);
+    sky_destroy(s);
+    sky_destroy(NULL); /* must be harmless */
+
+    /* NULL sky and NULL outputs */
+    sky_params p = sky_default_params();
+    CHECK(sky_set_params(NULL, &p) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_update(NULL, 0.1) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_draw(NULL, NULL, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_draw_fisheye(NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_get_stats(NULL, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_get_lighting(NULL, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_get_params(NULL, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(strlen(sky_last_error(NULL)) > 0, "last error of NULL says so");
+    CHECK(!strcmp(sky_layer_name((sky_layer)42), "unknown"), "bad layer name");
+    sky_osmesa_destroy(&ctx);
+}
+
+void test_api_sliders_clamp_and_reject_nan(void)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_params p = {0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f}, got;
+    CHECK(sky_set_params(f.s, &p) == SKY_OK, "in-range sliders are accepted");
+    sky_get_params(f.s, &got);
+    CHECK(!memcmp(&p, &got, sizeof p), "sliders read back unchanged");
+
+    sky_params wild = {-0.5f, 1.5f, INFINITY, -INFINITY, 2.0f, 0.5f};
+    CHECK(sky_set_params(f.s, &wild) == SKY_CLAMPED, "out of range clamps");
+    CHECK(strstr(sky_last_error(f.s), "clamped") != NULL, "message: %s", sky_last_error(f.s));
+    sky_get_params(f.s, &got);
+    CHECK(got.cover == 0.0f && got.height == 1.0f && got.density == 1.0f && got.sunset == 0.0f && got.speed == 1.0f,
+          "clamped to 0..1: %g %g %g %g %g", got.cover, got.height, got.density, got.sunset, got.speed);
+
+    sky_params nan_p = got;
+    nan_p.time = NAN;
+    nan_p.cover = 0.9f;
+    CHECK(sky_set_params(f.s, &nan_p) == SKY_ERR_INVALID_ARGUMENT, "NaN is rejected");
+    CHECK(strstr(sky_last_error(f.s), "time") != NULL, "message names the slider: %s", sky_last_error(f.s));
+    sky_params after;
+    sky_get_params(f.s, &after);
+    CHECK(!memcmp(&after, &got, sizeof after), "a rejected call changes nothing");
+    CHECK(sky_set_params(f.s, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL params");
+
+    /* every slider at its extremes draws a finite frame */
+    float view[16], proj[16];
+    default_camera(view, proj);
+    for (int corner = 0; corner < 64; corner++) {
+        sky_params q = {(float)(corner & 1), (float)((corner >> 1) & 1), (float)((corner >> 2) & 1),
+                        (float)((corner >> 3) & 1), (float)((corner >> 4) & 1), (float)((corner >> 5) & 1)};
+        sky_set_params(f.s, &q);
+        if (sky_draw(f.s, view, proj) != SKY_OK) {
+            CHECK(0, "corner %d: %s", corner, sky_last_error(f.s));
+            break;
+        }
+    }
+    fixture_close(&f);
+}
+
+void test_api_update_time_validation(void)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    CHECK(sky_update(f.s, 0.0) == SKY_OK, "dt 0 is fine");
+    CHECK(sky_update(f.s, -1.0) == SKY_ERR_INVALID_ARGUMENT, "negative dt is rejected");
+    CHECK(sky_update(f.s, NAN) == SKY_ERR_INVALID_ARGUMENT, "NaN dt is rejected");
+    CHECK(sky_update(f.s, INFINITY) == SKY_ERR_INVALID_ARGUMENT, "infinite dt is rejected");
+    CHECK(sky_set_elapsed(f.s, -5.0) == SKY_ERR_INVALID_ARGUMENT, "negative elapsed is rejected");
+    CHECK(sky_update(f.s, 1e9) == SKY_OK, "a billion seconds at once is fine");
+    CHECK(sky_update(f.s, 1e-300) == SKY_OK, "a denormal-sized step is fine");
+    /* wrapped offsets stay in [0, 1) */
+    for (int l = 0; l < 4; l++)
+        for (int i = 0; i < 2; i++)
+            CHECK(f.s->cloud_offsets[l][i] >= 0.0 && f.s->cloud_offsets[l][i] < 1.0, "offset %d.%d = %g", l, i,
+                  f.s->cloud_offsets[l][i]);
+    CHECK(f.s->flicker_phase >= 0.0 && f.s->flicker_phase < 1.0, "flicker clock %g", f.s->flicker_phase);
+    fixture_close(&f);
+}
+
+void test_api_draw_rejects_bad_matrices(void)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    float view[16], proj[16], bad[16];
+    default_camera(view, proj);
+    CHECK(sky_draw(f.s, NULL, proj) == SKY_ERR_INVALID_ARGUMENT, "NULL view");
+    memcpy(bad, view, sizeof bad);
+    bad[5] = NAN;
+    CHECK(sky_draw(f.s, bad, proj) == SKY_ERR_INVALID_ARGUMENT, "NaN view");
+    memset(bad, 0, sizeof bad);
+    CHECK(sky_draw(f.s, bad, proj) == SKY_ERR_INVALID_ARGUMENT, "zero view: %s", sky_last_error(f.s));
+    CHECK(sky_draw(f.s, view, bad) == SKY_ERR_INVALID_ARGUMENT, "singular proj: %s", sky_last_error(f.s));
+    /* a scaled, translated view still means the same directions */
+    memcpy(bad, view, sizeof bad);
+    for (int i = 0; i < 12; i++) bad[i] *= 3.0f;
+    bad[12] = 100.0f;
+    bad[13] = -50.0f;
+    CHECK(sky_draw(f.s, bad, proj) == SKY_OK, "scaled view is accepted: %s", sky_last_error(f.s));
+    /* looking straight up and straight down */
+    scene sc = scene_default();
+    for (int k = 0; k < 2; k++) {
+        sc.pitch = k ? 90.0 : -90.0;
+        scene_camera(&sc, view, proj);
+        CHECK(sky_draw(f.s, view, proj) == SKY_OK, "pitch %g: %s", sc.pitch, sky_last_error(f.s));
+    }
+    CHECK(glGetError() == GL_NO_ERROR, "no GL error left behind");
+    fixture_close(&f);
+}
+
+void test_api_lighting_and_stats(void)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_params p = sky_default_params();
+    sky_lighting noon, night;
+    p.time = 0.5f;
+    sky_set_params(f.s, &p);
+    sky_get_lighting(f.s, &noon);
+    p.time = 0.0f;
+    sky_set_params(f.s, &p);
+    sky_get_lighting(f.s, &night);
+    double len = sqrt(noon.sun_direction[0] * noon.sun_direction[0] + noon.sun_direction[1] * noon.sun_direction[1] +
+                      noon.sun_direction[2] * noon.sun_direction[2]);
+    CHECK(fabs(len - 1.0) < 1e-5, "sun direction is a unit vector (%g)", len);
+    CHECK(noon.sun_direction[1] > 0.5f && noon.sun_direction[2] > 0.5f, "noon sun high in the south (+z)");
+    CHECK(night.sun_direction[1] < -0.5f, "midnight sun below");
+    CHECK(noon.sun_color[1] > 50.0f && night.sun_color[1] == 0.0f, "sunlight %g klx at noon, %g at night",
+          noon.sun_color[1], night.sun_color[1]);
+    CHECK(noon.ambient_color[2] > noon.ambient_color[0], "skylight is bluish");
+    CHECK(noon.ambient_color[1] > 1000.0f * night.ambient_color[1], "day ambient >> night ambient");
+    CHECK(noon.daylight == 1.0f && night.daylight == 0.0f, "daylight %g / %g", noon.daylight, night.daylight);
+    CHECK(sky_get_lighting(f.s, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL out");
+
+    sky_stats st;
+    CHECK(sky_get_stats(f.s, &st) == SKY_OK, "stats");
+    CHECK(st.textures == 4 && st.programs == 2, "4 textures and 2 programs by default, got %d and %d", st.textures,
+          st.programs);
+    CHECK(st.layers[SKY_LAYER_MOON].enabled == 0 && st.layers[SKY_LAYER_CLOUDS].enabled == 1, "layer flags");
+    size_t sum = 0;
+    for (int l = 0; l < SKY_LAYER_COUNT; l++) sum += st.layers[l].bytes;
+    CHECK(sum == st.gpu_bytes, "per-layer bytes add up to gpu_bytes (%zu vs %zu)", sum, st.gpu_bytes);
+    fixture_close(&f);
+}
+
+void test_api_gl_objects_deleted(void)
+{
+    char err[256];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 32, 32, SKY_GL_AUTO, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        CHECK(0, "%s", err);
+        sky_osmesa_destroy(&ctx);
+        return;
+    }
+    float view[16], proj[16];
+    default_camera(view, proj);
+    sky_draw(s, view, proj);
+    GLuint tex[SKY_TEX_COUNT], prog[2] = {s->dome.id, s->sun.id}, buf[2] = {s->quad_buffer, s->sun_buffer},
+                                vao = s->vao;
+    int live = 0;
+    for (int i = 0; i < SKY_TEX_COUNT; i++) {
+        tex[i] = s->textures[i].id;
+        live += glIsTexture(tex[i]) == GL_TRUE;
+    }
+    for (int i = 0; i < 2; i++) live += (glIsProgram(prog[i]) == GL_TRUE) + (glIsBuffer(buf[i]) == GL_TRUE);
+    live += glIsVertexArray(vao) == GL_TRUE;
+    CHECK(live == SKY_TEX_COUNT + 5, "all objects live before destroy (%d)", live);
+    sky_destroy(s);
+    int left = 0;
+    for (int i = 0; i < SKY_TEX_COUNT; i++) left += glIsTexture(tex[i]) == GL_TRUE;
+    for (int i = 0; i < 2; i++) left += (glIsProgram(prog[i]) == GL_TRUE) + (glIsBuffer(buf[i]) == GL_TRUE);
+    left += glIsVertexArray(vao) == GL_TRUE;
+    CHECK(left == 0, "%d GL objects survive sky_destroy", left);
+    sky_osmesa_destroy(&ctx);
+}
+
+void test_api_leaks_1000_cycles(void)
+{
+    char path[512], out[4096];
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "LSAN_OPTIONS=suppressions=tests/leaks/lsan.supp:print_suppressions=0 %s 1000 2>&1",
+             bin_path("sky-leaks", path, sizeof path));
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "LeakSanitizer run exited %d:\n%s", rc, out);
+    char *line = strstr(out, "cycles");
+    if (line) NOTE("%.*s", (int)strcspn(line, "\n"), line);
+}
+
+/* ---- GL state ---------------------------------------------------------------- */
+
+typedef struct gl_snapshot {
+    GLint program, active, array_buffer, vao, viewport[4], tex[4];
+    GLboolean blend, depth, cull, scissor, stencil, depth_mask, color_mask[4];
+    GLint bsrc, bdst, bsrca, bdsta, beq, beqa, depth_func;
+    GLint attrib_enabled[2], attrib_size[2], attrib_stride[2], attrib_buffer[2];
+} gl_snapshot;
+
+static void snapshot(gl_snapshot *g, int core)
+{
+    memset(g, 0, sizeof *g);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &g->program);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &g->active);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &g->array_buffer);
+    if (core) glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
+    glGetIntegerv(GL_VIEWPORT, g->viewport);
+    GLint active;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    for (int i = 0; i < 4; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &g->tex[i]);
+    }
+    glActiveTexture((GLenum)active);
+    g->blend = glIsEnabled(GL_BLEND);
+    g->depth = glIsEnabled(GL_DEPTH_TEST);
+    g->cull = glIsEnabled(GL_CULL_FACE);
+    g->scissor = glIsEnabled(GL_SCISSOR_TEST);
+    g->stencil = glIsEnabled(GL_STENCIL_TEST);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &g->depth_mask);
+    glGetBooleanv(GL_COLOR_WRITEMASK, g->color_mask);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &g->bsrc);
+    glGetIntegerv(GL_BLEND_DST_RGB, &g->bdst);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &g->bsrca);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &g->bdsta);
+    glGetIntegerv(GL_BLEND_EQUATION_RGB, &g->beq);
+    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &g->beqa);
+    glGetIntegerv(GL_DEPTH_FUNC, &g->depth_func);
+    for (GLuint i = 0; i < 2; i++) {
+        glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &g->attrib_enabled[i]);
+        glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_SIZE, &g->attrib_size[i]);
+        glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_STRIDE, &g->attrib_stride[i]);
+        glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING, &g->attrib_buffer[i]);
+    }
+}
+
+static GLuint host_program(int core)
+{
+    const char *vs = core ? "#version 330 core\nin vec4 p;\nvoid main(){gl_Position=p;}\n"
+                          : "#version 110\nattribute vec4 p;\nvoid main(){gl_Position=p;}\n";
+    const char *fs = core ? "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n"
+                          : "#version 110\nvoid main(){gl_FragColor=vec4(1.0);}\n";
+    GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER), p = glCreateProgram();
+    glShaderSource(v, 1, &vs, NULL);
+    glShaderSource(f, 1, &fs, NULL);
+    glCompileShader(v);
+    glCompileShader(f);
+    glAttachShader(p, v);
+    glAttachShader(p, f);
+    glLinkProgram(p);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    return p;
+}
+
+static void state_restored(sky_gl_profile profile)
+{
+    fixture f;
+    if (fixture_open(&f, profile, NULL)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    int core = profile == SKY_GL_CORE33;
+    /* an unusual host state */
+    GLuint prog = host_program(core), vao = 0, buf = 0, tex[4];
+    if (core) {
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+    }
+    glGenBuffers(1, &buf);
+    glBindBuffer(GL_ARRAY_BUFFER, buf);
+    glBufferData(GL_ARRAY_BUFFER, 64, NULL, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, (const void *)0);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 20, (const void *)0);
+    glGenTextures(4, tex);
+    for (int i = 0; i < 4; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+    }
+    glActiveTexture(GL_TEXTURE2);
+    glUseProgram(prog);
+    glViewport(3, 4, 50, 40);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
+    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+    gl_snapshot before, after;
+    snapshot(&before, core);
+    float view[16], proj[16];
+    default_camera(view, proj);
+    CHECK(sky_draw(f.s, view, proj) == SKY_OK, "draw: %s", sky_last_error(f.s));
+    snapshot(&after, core);
+    CHECK(!memcmp(&before, &after, sizeof before), "GL state differs after sky_draw");
+    CHECK(sky_draw_fisheye(f.s) == SKY_OK, "fisheye: %s", sky_last_error(f.s));
+    snapshot(&after, core);
+    CHECK(!memcmp(&before, &after, sizeof before), "GL state differs after sky_draw_fisheye");
+    if (memcmp(&before, &after, sizeof before)) {
+        const GLint *a = (const GLint *)(const void *)&before, *b = (const GLint *)(const void *)&after;
+        for (size_t i = 0; i < sizeof before / sizeof(GLint); i++)
+            if (a[i] != b[i]) NOTE("word %zu: %d -> %d", i, a[i], b[i]);
+    }
+    CHECK(glGetError() == GL_NO_ERROR, "no GL error");
+    glUseProgram(0);
+    glDeleteProgram(prog);
+    glDeleteTextures(4, tex);
+    glDeleteBuffers(1, &buf);
+    if (core) glDeleteVertexArrays(1, &vao);
+    fixture_close(&f);
+}
+
+void test_gl_state_restored_core(void) { state_restored(SKY_GL_CORE33); }
+void test_gl_state_restored_compat(void) { state_restored(SKY_GL_COMPAT20); }

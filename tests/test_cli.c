@@ -1,0 +1,258 @@
+/*
+ * Command-line and whole-program tests: sky-render's contract, the emulated
+ * old GPU, the texture budget and the committed textures.
+ */
+#include "test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stb/stb_image.h>
+#include <unistd.h>
+
+void test_profiles_compat_on_emulated_2004_gpu(void);
+void test_texture_budget_minimal_path(void);
+void test_textures_tile_without_seams(void);
+void test_cli_exit_codes_and_messages(void);
+void test_flicker_texture_neighbourhoods(void);
+void test_cli_outputs_png_pfm_stats(void);
+
+double image_psnr(const image *a, const image *b);
+
+/* Mesa pretending to be a 2004-class GPU (DESIGN.md, GL profiles). */
+#define OLD_GPU                                                                                  \
+    "MESA_GL_VERSION_OVERRIDE=2.0 MESA_GLSL_VERSION_OVERRIDE=110 MESA_EXTENSION_MAX_YEAR=2004 " \
+    "MESA_EXTENSION_OVERRIDE='-GL_ARB_texture_float -GL_ARB_framebuffer_object "               \
+    "-GL_ARB_texture_non_power_of_two' "
+
+static const char *tmp_path(const char *name, char *buf, size_t len)
+{
+    const char *dir = getenv("TMPDIR");
+    snprintf(buf, len, "%s/sky-test-%d-%s", dir ? dir : "/tmp", (int)getpid(), name);
+    return buf;
+}
+
+/* Integer value of "key":N in a JSON text, or -1. */
+static double json_number(const char *json, const char *key)
+{
+    char pat[64];
+    snprintf(pat, sizeof pat, "\"%s\":", key);
+    const char *p = strstr(json, pat);
+    return p ? atof(p + strlen(pat)) : -1.0;
+}
+
+void test_profiles_compat_on_emulated_2004_gpu(void)
+{
+    char render[512], core_png[512], old_png[512], soft_png[512], cmd[2048], out[8192];
+    bin_path("sky-render", render, sizeof render);
+    tmp_path("core.png", core_png, sizeof core_png);
+    tmp_path("old.png", old_png, sizeof old_png);
+    tmp_path("soft.png", soft_png, sizeof soft_png);
+    const char *scenes[3] = {"--preset noon", "--preset sunset --yaw 270 --pitch 10", "--preset starry"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(cmd, sizeof cmd, "%s --size 320x180 %s --gl core --out %s 2>&1", render, scenes[k], core_png);
+        int rc1 = run_command(cmd, out, sizeof out);
+        snprintf(cmd, sizeof cmd, OLD_GPU "%s --size 320x180 %s --out %s --stats 2>&1", render, scenes[k], old_png);
+        int rc2 = run_command(cmd, out, sizeof out);
+        CHECK(rc1 == 0 && rc2 == 0, "renders exit 0 (%d, %d): %s", rc1, rc2, out);
+        CHECK(strstr(out, "\"profile\":\"compat\"") != NULL, "AUTO picks COMPAT20 on the old GPU: %s", out);
+        CHECK(strstr(out, "\"gl_version\":\"2.0") != NULL, "the context really is GL 2.0: %.80s", out);
+        image a, b;
+        if (image_load_png(core_png, &a) || image_load_png(old_png, &b)) {
+            CHECK(0, "cannot read the rendered PNGs");
+            return;
+        }
+        double psnr = image_psnr(&a, &b);
+        NOTE("%s: CORE33 vs emulated GL 2.0 PSNR %.1f dB", scenes[k], psnr);
+        CHECK(psnr >= 35.0, "old GPU image must agree with CORE33 (%.1f dB)", psnr);
+        image_free(&a);
+        image_free(&b);
+    }
+    /* softpipe: a far slower rasteriser, as a worst case */
+    snprintf(cmd, sizeof cmd, OLD_GPU "GALLIUM_DRIVER=softpipe %s --size 160x90 --out %s --stats 2>&1", render,
+             soft_png);
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0 && strstr(out, "\"profile\":\"compat\""), "softpipe under the old-GPU overrides: %s", out);
+    NOTE("softpipe 160x90 frame_ms %.1f", json_number(out, "frame_ms"));
+    remove(core_png);
+    remove(old_png);
+    remove(soft_png);
+}
+
+void test_texture_budget_minimal_path(void)
+{
+    char render[512], cmd[1024], out[8192];
+    snprintf(cmd, sizeof cmd, OLD_GPU "%s --size 64x64 --preset minimal --stats 2>&1",
+             bin_path("sky-render", render, sizeof render));
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "minimal preset renders: %s", out);
+    double bytes = json_number(out, "gpu_bytes");
+    NOTE("minimal path on COMPAT20: %.0f bytes of GPU memory (%.3f MiB), %g textures", bytes, bytes / 1048576.0,
+         json_number(out, "textures"));
+    CHECK(bytes > 0 && bytes <= 1.5 * 1048576.0, "minimal path must fit 1.5 MiB (%.0f bytes)", bytes);
+}
+
+/* Seam check: the jump across a tile's wrap must look like any other step
+ * between neighbouring texels. */
+void test_textures_tile_without_seams(void)
+{
+    const char *files[1] = {"textures/clouds.png"};
+    for (int f = 0; f < 1; f++) {
+        image im;
+        if (image_load_png(files[f], &im)) {
+            CHECK(0, "cannot read %s", files[f]);
+            continue;
+        }
+        int channels = 3; /* R photo, G noise, B detail tile; A is the sunset ramp */
+        for (int c = 0; c < channels; c++)
+            for (int axis = 0; axis < 2; axis++) {
+                double inner = 0, wrap = 0;
+                int n = axis ? im.w : im.h, m = axis ? im.h : im.w;
+                for (int i = 0; i < m; i++) {
+                    for (int j = 0; j + 1 < n; j++) {
+                        int x0 = axis ? i : j, y0 = axis ? j : i, x1 = axis ? i : j + 1, y1 = axis ? j + 1 : i;
+                        inner += fabs(im.px[3 * (y0 * im.w + x0) + c] - im.px[3 * (y1 * im.w + x1) + c]);
+                    }
+                    int xa = axis ? i : n - 1, ya = axis ? n - 1 : i;
+                    wrap += fabs(im.px[3 * (ya * im.w + xa) + c] - im.px[3 * ((axis ? 0 : i) * im.w + (axis ? i : 0)) + c]);
+                }
+                inner /= (double)m * (n - 1);
+                wrap /= m;
+                CHECK(wrap < 2.0 * inner + 1e-3, "%s channel %d axis %d: seam step %.4f vs typical %.4f", files[f], c,
+                      axis, wrap, inner);
+            }
+        image_free(&im);
+    }
+}
+
+/* The flicker texture's stars carry their rate, variance and phase into
+ * their 3x3 neighbourhood, so linear filtering never mixes two stars'
+ * parameters (flicker.glsl relies on it). */
+void test_flicker_texture_neighbourhoods(void)
+{
+    int w, h, n;
+    unsigned char *p = stbi_load("textures/flicker.png", &w, &h, &n, 4);
+    if (!p) {
+        CHECK(0, "cannot read textures/flicker.png");
+        return;
+    }
+    int stars = 0, mixed = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const unsigned char *c = p + 4 * (y * w + x);
+            if (!c[0]) continue;
+            stars++;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    const unsigned char *q = p + 4 * (((y + dy + h) % h) * w + (x + dx + w) % w);
+                    mixed += memcmp(q + 1, c + 1, 3) != 0 || ((dx || dy) && q[0] != 0);
+                }
+        }
+    NOTE("%d stars per 256x256 tile", stars);
+    CHECK(stars > 150, "the tile holds many stars (%d)", stars);
+    CHECK(mixed == 0, "%d neighbour texels disagree with their star", mixed);
+    stbi_image_free(p);
+}
+
+void test_cli_exit_codes_and_messages(void)
+{
+    struct {
+        const char *args;
+        int status;
+        const char *message; /* must appear in stderr */
+    } cases[] = {
+        {"--cover 1.5", 2, "--cover"},
+        {"--cover", 2, "--cover"},
+        {"--cover abc", 2, "--cover"},
+        {"--cover nan", 2, "--cover"},
+        {"--time -0.1", 2, "--time"},
+        {"--size 0x10", 2, "--size"},
+        {"--size 100", 2, "--size"},
+        {"--fov 0", 2, "--fov"},
+        {"--pitch 91", 2, "--pitch"},
+        {"--frames 0", 2, "--frames"},
+        {"--frames 2.5", 2, "--frames"},
+        {"--gl metal", 2, "--gl"},
+        {"--features clouds,rain", 2, "rain"},
+        {"--features clouds,", 2, "--features"},
+        {"--atmosphere fog", 2, "--atmosphere"},
+        {"--atmosphere hillaire", 2, "not available yet"},
+        {"--preset beach", 2, "--preset"},
+        {"--date 2011-06-15T20:12:37Z", 2, "not available yet"},
+        {"--query", 2, "not available yet"},
+        {"--bogus", 2, "--bogus"},
+        {"stray", 2, "stray"},
+        {"--cover 0.2 --cover 0.3", 2, "more than once"},
+        {"--seconds -1", 2, "--seconds"},
+        {"--out /nonexistent-dir/x.png --size 8x8", 1, "/nonexistent-dir/x.png"},
+        {"--size 8x8 --cover 0 --cover-typo 1", 2, "--cover-typo"},
+        {"--help", 0, ""},
+        {"--size 16x8 --preset overcast --cover 0.1", 0, ""},
+    };
+    char render[512], cmd[1024], out[4096];
+    bin_path("sky-render", render, sizeof render);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(cmd, sizeof cmd, "%s %s 2>&1 >/dev/null", render, cases[i].args);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == cases[i].status, "'%s' exits %d, expected %d (%s)", cases[i].args, rc, cases[i].status, out);
+        CHECK(strstr(out, cases[i].message) != NULL, "'%s': message '%s' should name '%s'", cases[i].args, out,
+              cases[i].message);
+    }
+    CHECK(access("/nonexistent-dir/x.png", F_OK) != 0, "no partial file");
+}
+
+void test_cli_outputs_png_pfm_stats(void)
+{
+    char render[512], png[512], pfm[512], seq[512], cmd[2048], out[8192];
+    bin_path("sky-render", render, sizeof render);
+    tmp_path("o.png", png, sizeof png);
+    tmp_path("o.pfm", pfm, sizeof pfm);
+    tmp_path("seq.png", seq, sizeof seq);
+    snprintf(cmd, sizeof cmd, "%s --size 64x32 --out %s --out-pfm %s --stats", render, png, pfm);
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "render exits 0");
+    static const char *keys[] = {"\"gl_version\":", "\"profile\":", "\"features\":[", "\"frame_ms\":", "\"lut_ms\":",
+                                 "\"gpu_bytes\":", "\"textures\":", "\"programs\":", "\"draws_per_frame\":",
+                                 "\"layers\":{", "\"atmosphere\":{\"ms\":"};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
+        CHECK(strstr(out, keys[k]) != NULL, "stats JSON has %s: %s", keys[k], out);
+    image im;
+    CHECK(image_load_png(png, &im) == 0 && im.w == 64 && im.h == 32, "PNG of the asked size");
+    image_free(&im);
+    FILE *f = fopen(pfm, "rb");
+    CHECK(f != NULL, "PFM written");
+    if (f) {
+        int w = 0, h = 0;
+        double scale = 0;
+        char magic[3] = "";
+        CHECK(fscanf(f, "%2s %d %d %lf", magic, &w, &h, &scale) == 4 && !strcmp(magic, "PF") && w == 64 && h == 32 &&
+                  scale < 0,
+              "PFM header: %s %d %d %g", magic, w, h, scale);
+        fgetc(f);
+        float px[3 * 64];
+        int finite = 1;
+        double ymax = 0;
+        for (int y = 0; y < h; y++) {
+            if (fread(px, sizeof(float), 3 * 64, f) != 3 * 64) {
+                finite = 0;
+                break;
+            }
+            for (int i = 0; i < 3 * 64; i++) finite &= isfinite(px[i]) && px[i] >= 0.0f;
+            for (int x = 0; x < 64; x++) ymax = fmax(ymax, 0.2126 * px[3 * x] + 0.7152 * px[3 * x + 1] + 0.0722 * px[3 * x + 2]);
+        }
+        fclose(f);
+        CHECK(finite, "PFM values finite and non-negative");
+        CHECK(ymax > 1.0 && ymax < 1e7, "PFM is linear kcd/m^2 (max %.3g)", ymax);
+    }
+    snprintf(cmd, sizeof cmd, "%s --size 16x16 --frames 3 --out %s 2>&1", render, seq);
+    rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0 && strstr(out, "frame 3/3"), "--frames reports progress on stderr: %s", out);
+    for (int i = 1; i <= 3; i++) {
+        char name[600];
+        snprintf(name, sizeof name, "%.*s_%04d.png", (int)(strlen(seq) - 4), seq, i);
+        CHECK(access(name, F_OK) == 0, "frame file %s", name);
+        remove(name);
+    }
+    remove(png);
+    remove(pfm);
+}

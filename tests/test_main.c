@@ -1,0 +1,206 @@
+/*
+ * libsky's test runner: runs every test (or those whose name contains
+ * argv[1]) and ends with the line "N passed, N failed".
+ */
+#include "test.h"
+#include "cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+/* The test program's own PNG reader (the library keeps its copy private). */
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
+
+int test_failures;
+
+#define TESTS(X)                                 \
+    X(api_zero_config_renders)                   \
+    X(api_rejects_null_and_bad_config)           \
+    X(api_sliders_clamp_and_reject_nan)          \
+    X(api_update_time_validation)                \
+    X(api_draw_rejects_bad_matrices)             \
+    X(api_lighting_and_stats)                    \
+    X(api_gl_objects_deleted)                    \
+    X(api_leaks_1000_cycles)                     \
+    X(gl_state_restored_core)                    \
+    X(gl_state_restored_compat)                  \
+    X(render_cover_zero_has_no_clouds)           \
+    X(render_full_cover_hides_sky)               \
+    X(render_density_darkens_clouds)             \
+    X(render_day_bright_night_dark_with_stars)   \
+    X(render_no_star_work_at_noon)               \
+    X(render_flicker_changes_with_seconds)       \
+    X(render_clouds_drift_by_expected_offset)    \
+    X(render_drift_stays_smooth_after_years)     \
+    X(render_height_changes_cloud_scale)         \
+    X(render_sun_where_direction_projects)       \
+    X(render_sun_in_fisheye)                     \
+    X(render_hdr_finite_everywhere)              \
+    X(profiles_core_and_compat_agree)            \
+    X(profiles_compat_on_emulated_2004_gpu)      \
+    X(texture_budget_minimal_path)               \
+    X(textures_tile_without_seams)               \
+    X(flicker_texture_neighbourhoods)            \
+    X(cli_exit_codes_and_messages)               \
+    X(cli_outputs_png_pfm_stats)
+
+#define DECLARE(name) void test_##name(void);
+TESTS(DECLARE)
+#undef DECLARE
+
+/* ---- fixtures ------------------------------------------------------------- */
+
+scene scene_default(void)
+{
+    scene sc;
+    memset(&sc, 0, sizeof sc);
+    sc.params = sky_default_params();
+    sc.yaw = 180.0;
+    sc.pitch = 20.0;
+    sc.fov = 60.0;
+    sc.w = 320;
+    sc.h = 180;
+    return sc;
+}
+
+void scene_camera(const scene *sc, float view[16], float proj[16])
+{
+    sky_cli cli;
+    memset(&cli, 0, sizeof cli);
+    cli.width = sc->w;
+    cli.height = sc->h;
+    cli.yaw = sc->yaw;
+    cli.pitch = sc->pitch;
+    cli.fov = sc->fov;
+    sky_cli_camera(&cli, view, proj);
+}
+
+int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
+{
+    char err[512];
+    sky_osmesa ctx;
+    memset(out, 0, sizeof *out);
+    sky_gl_profile ctx_kind = want == SKY_GL_COMPAT20 ? SKY_GL_COMPAT20 : want;
+    if (sky_osmesa_create(&ctx, sc->w, sc->h, ctx_kind, hdr, err, sizeof err)) {
+        printf("    render_scene: %s\n", err);
+        return -1;
+    }
+    sky_config cfg = sc->cfg;
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
+    cfg.gl_profile = want;
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        printf("    render_scene: %s\n", err);
+        sky_osmesa_destroy(&ctx);
+        return -1;
+    }
+    int rc = 0;
+    if (sky_set_params(s, &sc->params) < 0 || sky_set_elapsed(s, sc->seconds) < 0) rc = -1;
+    float view[16], proj[16];
+    scene_camera(sc, view, proj);
+    if (!rc && (sc->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) < 0) {
+        printf("    render_scene: %s\n", sky_last_error(s));
+        rc = -1;
+    }
+    sky_osmesa_finish(&ctx);
+    if (!rc) {
+        out->w = sc->w;
+        out->h = sc->h;
+        out->px = malloc(sizeof(float) * 3u * (size_t)sc->w * (size_t)sc->h);
+        for (int y = 0; y < sc->h; y++)
+            for (int x = 0; x < sc->w; x++)
+                for (int c = 0; c < 3; c++) {
+                    size_t src = ((size_t)(sc->h - 1 - y) * (size_t)sc->w + (size_t)x) * 4u + (size_t)c;
+                    float v = hdr ? ((const float *)ctx.pixels)[src] : ((const unsigned char *)ctx.pixels)[src] / 255.0f;
+                    out->px[((size_t)y * (size_t)sc->w + (size_t)x) * 3u + (size_t)c] = v;
+                }
+    }
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return rc;
+}
+
+void image_free(image *im)
+{
+    free(im->px);
+    im->px = NULL;
+}
+
+float image_luminance(const image *im, int x, int y)
+{
+    const float *p = im->px + ((size_t)y * (size_t)im->w + (size_t)x) * 3u;
+    return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+}
+
+int image_load_png(const char *path, image *out)
+{
+    int w, h, n;
+    memset(out, 0, sizeof *out);
+    unsigned char *p = stbi_load(path, &w, &h, &n, 3);
+    if (!p) return -1;
+    out->w = w;
+    out->h = h;
+    out->px = malloc(sizeof(float) * 3u * (size_t)w * (size_t)h);
+    for (size_t i = 0; i < 3u * (size_t)w * (size_t)h; i++) out->px[i] = p[i] / 255.0f;
+    stbi_image_free(p);
+    return 0;
+}
+
+const char *bin_path(const char *name, char *buf, size_t len)
+{
+    const char *dir = getenv("SKY_BIN");
+    snprintf(buf, len, "%s/%s", dir ? dir : "build/bin", name);
+    return buf;
+}
+
+int run_command(const char *cmd, char *buf, size_t len)
+{
+    FILE *p = popen(cmd, "r");
+    if (!p) return -1;
+    size_t used = 0;
+    if (buf && len) buf[0] = '\0';
+    char chunk[512];
+    size_t n;
+    while ((n = fread(chunk, 1, sizeof chunk, p)) > 0)
+        if (buf && used + 1 < len) {
+            size_t k = n < len - 1 - used ? n : len - 1 - used;
+            memcpy(buf + used, chunk, k);
+            used += k;
+            buf[used] = '\0';
+        }
+    int status = pclose(p);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* ---- runner ----------------------------------------------------------------- */
+
+int main(int argc, char **argv)
+{
+    static const test_case tests[] = {
+#define ENTRY(name) {#name, test_##name},
+        TESTS(ENTRY)
+#undef ENTRY
+    };
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    int passed = 0, failed = 0;
+    for (size_t i = 0; i < sizeof tests / sizeof tests[0]; i++) {
+        if (argc > 1 && !strstr(tests[i].name, argv[1])) continue;
+        test_failures = 0;
+        printf("  %s\n", tests[i].name);
+        tests[i].fn();
+        if (test_failures) {
+            printf("FAIL %s\n", tests[i].name);
+            failed++;
+        } else {
+            printf("ok   %s\n", tests[i].name);
+            passed++;
+        }
+    }
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}

@@ -1,0 +1,605 @@
+/*
+ * Render tests: properties of images, never golden files. Linear (HDR)
+ * renders are read as luminance in kcd/m^2; LDR renders as 0..1 sRGB.
+ */
+#include "test.h"
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void test_render_cover_zero_has_no_clouds(void);
+void test_render_full_cover_hides_sky(void);
+void test_render_density_darkens_clouds(void);
+void test_render_day_bright_night_dark_with_stars(void);
+void test_render_no_star_work_at_noon(void);
+void test_render_flicker_changes_with_seconds(void);
+void test_render_clouds_drift_by_expected_offset(void);
+void test_render_drift_stays_smooth_after_years(void);
+void test_render_height_changes_cloud_scale(void);
+void test_render_sun_where_direction_projects(void);
+void test_render_sun_in_fisheye(void);
+void test_render_hdr_finite_everywhere(void);
+void test_profiles_core_and_compat_agree(void);
+
+#define PI 3.14159265358979323846
+
+/* Largest relative difference of two linear images. */
+static double max_rel_diff(const image *a, const image *b)
+{
+    double worst = 0.0;
+    for (size_t i = 0; i < 3u * (size_t)a->w * (size_t)a->h; i++) {
+        double d = fabs((double)a->px[i] - b->px[i]) / (fabs((double)b->px[i]) + 1e-6);
+        if (d > worst) worst = d;
+    }
+    return worst;
+}
+
+double image_psnr(const image *a, const image *b);
+double image_psnr(const image *a, const image *b)
+{
+    double se = 0.0;
+    size_t n = 3u * (size_t)a->w * (size_t)a->h;
+    for (size_t i = 0; i < n; i++) se += ((double)a->px[i] - b->px[i]) * ((double)a->px[i] - b->px[i]);
+    double mse = se / (double)n;
+    return mse > 0.0 ? 10.0 * log10(1.0 / mse) : 99.0;
+}
+
+/* Pixels brighter than every 8-neighbour by at least `contrast`: stars.
+ * Only inside the fisheye circle (radius 0.95), away from its black rim. */
+static int count_point_sources(const image *im, float contrast)
+{
+    int n = 0;
+    double r_max = 0.95 * 0.5 * (im->w < im->h ? im->w : im->h);
+    for (int y = 1; y < im->h - 1; y++)
+        for (int x = 1; x < im->w - 1; x++) {
+            if (hypot(x + 0.5 - 0.5 * im->w, y + 0.5 - 0.5 * im->h) > r_max) continue;
+            float c = image_luminance(im, x, y), brightest = 0.0f;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++)
+                    if (dx || dy) {
+                        float v = image_luminance(im, x + dx, y + dy);
+                        if (v > brightest) brightest = v;
+                    }
+            /* a star is a local maximum standing above the local background */
+            float bg = 0.25f * (image_luminance(im, x - 1, y - 1) + image_luminance(im, x + 1, y - 1) +
+                                image_luminance(im, x - 1, y + 1) + image_luminance(im, x + 1, y + 1));
+            if (c >= brightest && c - bg > contrast) n++;
+        }
+    return n;
+}
+
+static scene sky_only(unsigned features)
+{
+    scene sc = scene_default();
+    sc.cfg.features = features;
+    sc.pitch = 45.0; /* nothing but sky in view */
+    return sc;
+}
+
+void test_render_cover_zero_has_no_clouds(void)
+{
+    scene with = sky_only(SKY_CLOUDS | SKY_SUN), without = sky_only(SKY_SUN);
+    with.params.cover = without.params.cover = 0.0f;
+    image a, b;
+    if (render_scene(&with, 1, SKY_GL_AUTO, &a) || render_scene(&without, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double d = max_rel_diff(&a, &b);
+    NOTE("cover 0 vs no cloud layer: max relative difference %.2e", d);
+    CHECK(d < 1e-4, "cover 0 must leave no cloud pixel (max relative difference %g)", d);
+    image_free(&a);
+    image_free(&b);
+}
+
+/* Fraction of pixels whose colour differs by more than 5 %. */
+static double changed_fraction(const image *a, const image *b)
+{
+    int changed = 0;
+    for (int y = 0; y < a->h; y++)
+        for (int x = 0; x < a->w; x++) {
+            const float *p = a->px + 3 * ((size_t)y * (size_t)a->w + (size_t)x);
+            const float *q = b->px + 3 * ((size_t)y * (size_t)a->w + (size_t)x);
+            double dl = 0;
+            for (int c = 0; c < 3; c++) dl = fmax(dl, fabs((double)p[c] - q[c]) / (fabs((double)q[c]) + 1e-6));
+            changed += dl > 0.05;
+        }
+    return (double)changed / (a->w * a->h);
+}
+
+void test_render_full_cover_hides_sky(void)
+{
+    scene clouds = sky_only(SKY_CLOUDS), clear = sky_only(SKY_FEATURES_NONE);
+    clouds.params.cover = 1.0f;
+    clouds.params.density = 1.0f;
+    image a, b;
+    if (render_scene(&clouds, 1, SKY_GL_AUTO, &a) || render_scene(&clear, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double f = changed_fraction(&a, &b);
+    NOTE("cover 1, density 1: %.1f %% of the sky changed by the clouds", 100.0 * f);
+    CHECK(f > 0.8, "full cover must hide most of the sky (%.2f)", f);
+    image_free(&a);
+    image_free(&b);
+}
+
+static double mean_luminance(const image *im)
+{
+    double s = 0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) s += image_luminance(im, x, y);
+    return s / (im->w * im->h);
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* The q-quantile of an image's luminance. */
+static double luminance_quantile(const image *im, double q)
+{
+    size_t n = (size_t)im->w * (size_t)im->h;
+    float *l = malloc(n * sizeof(float));
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) l[(size_t)y * (size_t)im->w + (size_t)x] = image_luminance(im, x, y);
+    qsort(l, n, sizeof(float), cmp_float);
+    double v = l[(size_t)(q * (double)(n - 1))];
+    free(l);
+    return v;
+}
+
+void test_render_density_darkens_clouds(void)
+{
+    /* R-P lines 20-24: dense clouds get darker where they are thick */
+    scene thin = sky_only(SKY_CLOUDS), dense = sky_only(SKY_CLOUDS);
+    thin.params.cover = dense.params.cover = 1.0f;
+    thin.params.sunset = dense.params.sunset = 0.0f;
+    thin.params.density = 0.2f;
+    dense.params.density = 1.0f;
+    image a, b;
+    if (render_scene(&thin, 1, SKY_GL_AUTO, &a) || render_scene(&dense, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double la = luminance_quantile(&a, 0.1), lb = luminance_quantile(&b, 0.1);
+    NOTE("darkest tenth of the sky at cover 1: density 0.2 -> %.3f, density 1 -> %.3f kcd/m^2", la, lb);
+    CHECK(lb < 0.85 * la, "dense clouds must have darker cores (%.3f vs %.3f)", lb, la);
+    image_free(&a);
+    image_free(&b);
+}
+
+void test_render_day_bright_night_dark_with_stars(void)
+{
+    scene day = sky_only(SKY_FLICKER_STARS), night = sky_only(SKY_FLICKER_STARS);
+    day.params.time = 0.5f;
+    night.params.time = 0.0f;
+    day.params.cover = night.params.cover = 0.0f;
+    day.fisheye = night.fisheye = 1;
+    day.w = day.h = night.w = night.h = 256;
+    image dh, nh, dl, nl;
+    if (render_scene(&day, 1, SKY_GL_AUTO, &dh) || render_scene(&night, 1, SKY_GL_AUTO, &nh) ||
+        render_scene(&day, 0, SKY_GL_AUTO, &dl) || render_scene(&night, 0, SKY_GL_AUTO, &nl)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double zd = image_luminance(&dh, 128, 128), zn = image_luminance(&nh, 128, 128);
+    NOTE("zenith luminance: day %.3g, night %.3g kcd/m^2", zd, zn);
+    CHECK(zd > 1.0 && zd < 20.0, "clear noon zenith %.3g kcd/m^2 should be a few kcd/m^2", zd);
+    CHECK(zd > 1e5 * zn, "night zenith must be far darker than day (%.3g vs %.3g)", zn, zd);
+    int stars_night = count_point_sources(&nl, 0.15f), stars_day = count_point_sources(&dl, 0.15f);
+    NOTE("point sources in the LDR image: %d at night, %d at noon", stars_night, stars_day);
+    /* the 256x256 fisheye minifies the star tiles about eight times, so
+     * only the brighter stars survive as separate points */
+    CHECK(stars_night > 150, "a clear night shows many stars (%d)", stars_night);
+    CHECK(stars_day == 0, "no star at noon (%d)", stars_day);
+    CHECK(mean_luminance(&nl) < 0.25, "the night image is dark (mean %.3f)", mean_luminance(&nl));
+    CHECK(mean_luminance(&dl) > 0.5, "the day image is bright (mean %.3f)", mean_luminance(&dl));
+    image_free(&dh);
+    image_free(&nh);
+    image_free(&dl);
+    image_free(&nl);
+}
+
+void test_render_no_star_work_at_noon(void)
+{
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 64, 64, SKY_GL_AUTO, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        CHECK(0, "%s", err);
+        sky_osmesa_destroy(&ctx);
+        return;
+    }
+    sky_params p = sky_default_params();
+    sky_stats st;
+    p.time = 0.5f;
+    sky_set_params(s, &p);
+    sky_draw_fisheye(s);
+    sky_get_stats(s, &st);
+    CHECK(!st.layers[SKY_LAYER_FLICKER].drawn, "flicker stars must be skipped at noon");
+    CHECK(s->frame.star_luminance == 0.0f, "the star term is switched off, not just dim");
+    p.time = 0.0f;
+    sky_set_params(s, &p);
+    sky_draw_fisheye(s);
+    sky_get_stats(s, &st);
+    CHECK(st.layers[SKY_LAYER_FLICKER].drawn, "flicker stars are drawn at midnight");
+    CHECK(!st.layers[SKY_LAYER_SUN].drawn, "no sun at midnight");
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+
+    /* skipping changes nothing visible: noon with and without the layer */
+    scene with = sky_only(SKY_FLICKER_STARS), without = sky_only(SKY_FEATURES_NONE);
+    with.params.time = without.params.time = 0.5f;
+    image a, b;
+    if (render_scene(&with, 1, SKY_GL_AUTO, &a) || render_scene(&without, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double d = max_rel_diff(&a, &b);
+    CHECK(d < 1e-4, "noon with the star layer equals noon without it (%g)", d);
+    image_free(&a);
+    image_free(&b);
+}
+
+void test_render_flicker_changes_with_seconds(void)
+{
+    scene a_sc = sky_only(SKY_FLICKER_STARS), b_sc;
+    a_sc.params.time = 0.0f;
+    a_sc.params.cover = 0.0f;
+    b_sc = a_sc;
+    b_sc.seconds = 0.3;
+    image a, b;
+    if (render_scene(&a_sc, 1, SKY_GL_AUTO, &a) || render_scene(&b_sc, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    /* the background is the median; stars and their filtered halos stand
+     * above it, the plain sky between them does not */
+    double bg = luminance_quantile(&a, 0.5);
+    int star_px = 0, star_changed = 0, bg_px = 0, bg_changed = 0;
+    double sum_a = 0, sum_b = 0;
+    for (int y = 0; y < a.h; y++)
+        for (int x = 0; x < a.w; x++) {
+            float la = image_luminance(&a, x, y), lb = image_luminance(&b, x, y);
+            if (la > 4.0 * bg || lb > 4.0 * bg) {
+                star_px++;
+                star_changed += fabs((double)la - lb) > 0.05 * fmax(la, lb);
+                sum_a += la;
+                sum_b += lb;
+            } else if (la < 1.02 * bg && lb < 1.02 * bg) {
+                bg_px++;
+                bg_changed += fabs((double)la - lb) > 1e-4 * fmax(la, lb);
+            }
+        }
+    NOTE("%d star pixels, %d changed by > 5 %% in 0.3 s; brightness sum ratio %.3f", star_px, star_changed,
+         sum_b / sum_a);
+    CHECK(star_px > 100, "stars found (%d)", star_px);
+    CHECK(star_changed > star_px / 4, "stars flicker: %d of %d changed", star_changed, star_px);
+    /* a few faint halo texels of filtered stars fall under the threshold */
+    CHECK(bg_px > a.w * a.h / 3 && bg_changed < bg_px / 200, "the sky between stars does not flicker (%d of %d changed)",
+          bg_changed, bg_px);
+    CHECK(sum_b / sum_a > 0.7 && sum_b / sum_a < 1.4, "flicker keeps the mean brightness (%g)", sum_b / sum_a);
+    image_free(&a);
+    image_free(&b);
+}
+
+/* Normalised cross-correlation of a centred window of a with b shifted by
+ * (dx, dy) (b(x+dx, y+dy) against a(x, y)). */
+static double ncc(const image *a, const image *b, int half, double dx, double dy)
+{
+    int cx = a->w / 2, cy = a->h / 2;
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    int n = 0;
+    for (int y = cy - half; y < cy + half; y++)
+        for (int x = cx - half; x < cx + half; x++) {
+            int bx = x + (int)lround(dx), by = y + (int)lround(dy);
+            double va = image_luminance(a, x, y), vb = image_luminance(b, bx, by);
+            sa += va;
+            sb += vb;
+            saa += va * va;
+            sbb += vb * vb;
+            sab += va * vb;
+            n++;
+        }
+    double cov = sab / n - (sa / n) * (sb / n);
+    double var = (saa / n - (sa / n) * (sa / n)) * (sbb / n - (sb / n) * (sb / n));
+    return var > 0 ? cov / sqrt(var) : 0.0;
+}
+
+/* Pixel motion (right, down) of a pattern fixed to one cloud layer in a
+ * fisheye image of size n near the zenith, for offset change d (texture
+ * periods). m: the layer's 2x2 texture-coordinate matrix (row-major),
+ * uv = m p + offset; s: the uv scale from the height slider. */
+static void layer_motion(const double d[2], const double m[4], double k, double s, int n, double out[2])
+{
+    /* p moves by -(k m)^-1 d; m is a rotation, so its inverse is m^T */
+    double dp[2] = {-(m[0] * d[0] + m[2] * d[1]) / k, -(m[1] * d[0] + m[3] * d[1]) / k};
+    /* d.xz = p / s near the zenith; image x = -d.x, image down = +d.z */
+    out[0] = -dp[0] / s * n / PI;
+    out[1] = dp[1] / s * n / PI;
+}
+
+void test_render_clouds_drift_by_expected_offset(void)
+{
+    scene sc = scene_default();
+    sc.cfg.features = SKY_CLOUDS;
+    sc.fisheye = 1;
+    sc.w = sc.h = 256;
+    sc.params.cover = 0.6f;
+    sc.params.density = 1.0f;
+    sc.params.height = 0.5f;
+    sc.params.speed = 1.0f;
+    sc.params.time = 0.5f;
+    sc.seconds = 10.0;
+    const double dt = 2.0;
+    scene later = sc;
+    later.seconds = sc.seconds + dt;
+    image a, b;
+    if (render_scene(&sc, 1, SKY_GL_AUTO, &a) || render_scene(&later, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    /* search the shift that best maps frame a onto frame b */
+    double best = -2, bx = 0, by = 0;
+    for (int dy = -16; dy <= 16; dy++)
+        for (int dx = -16; dx <= 16; dx++) {
+            double c = ncc(&a, &b, 40, dx, dy);
+            if (c > best) best = c, bx = dx, by = dy;
+        }
+    /* sub-pixel: parabola through the neighbours */
+    double cxm = ncc(&a, &b, 40, bx - 1, by), cxp = ncc(&a, &b, 40, bx + 1, by);
+    double cym = ncc(&a, &b, 40, bx, by - 1), cyp = ncc(&a, &b, 40, bx, by + 1);
+    double sx = bx + 0.5 * (cxm - cxp) / (cxm - 2 * best + cxp), sy = by + 0.5 * (cym - cyp) / (cym - 2 * best + cyp);
+    /* expected: each primary layer's own motion; the blend moves between */
+    double s = 0.15 * pow(4.0, 0.5);
+    const double id[4] = {1, 0, 0, 1}, rot[4] = {0.96, -0.28, 0.28, 0.96};
+    double d0[2] = {sky_cloud_velocity[0][0] * dt, sky_cloud_velocity[0][1] * dt};
+    double d1[2] = {sky_cloud_velocity[1][0] * dt, sky_cloud_velocity[1][1] * dt};
+    double m0[2], m1[2];
+    layer_motion(d0, id, 1.0, s, sc.w, m0);
+    layer_motion(d1, rot, 1.15, s, sc.w, m1);
+    NOTE("measured shift (%.2f, %.2f) px, correlation %.3f; layer 0 (%.2f, %.2f), layer 1 (%.2f, %.2f)", sx, sy, best,
+         m0[0], m0[1], m1[0], m1[1]);
+    double lo_x = fmin(m0[0], m1[0]) - 1.5, hi_x = fmax(m0[0], m1[0]) + 1.5;
+    double lo_y = fmin(m0[1], m1[1]) - 1.5, hi_y = fmax(m0[1], m1[1]) + 1.5;
+    CHECK(best > 0.8, "the shifted frames correlate (%.3f)", best);
+    CHECK(sx >= lo_x && sx <= hi_x && sy >= lo_y && sy <= hi_y,
+          "cloud motion (%.2f, %.2f) px outside the layers' range [%.2f..%.2f]x[%.2f..%.2f]", sx, sy, lo_x, hi_x, lo_y,
+          hi_y);
+    image_free(&a);
+    image_free(&b);
+}
+
+static double mean_abs_diff(const image *a, const image *b)
+{
+    double s = 0;
+    size_t n = 3u * (size_t)a->w * (size_t)a->h;
+    for (size_t i = 0; i < n; i++) s += fabs((double)a->px[i] - b->px[i]);
+    return s / (double)n;
+}
+
+void test_render_drift_stays_smooth_after_years(void)
+{
+    /* frame-to-frame change after 3 years of running equals that at start */
+    double diffs[2];
+    const double starts[2] = {5.0, 1e8};
+    for (int k = 0; k < 2; k++) {
+        scene sc = sky_only(SKY_CLOUDS | SKY_FLICKER_STARS);
+        sc.params.speed = 0.6f;
+        sc.params.time = 0.2f; /* dawn: stars and clouds both visible */
+        sc.seconds = starts[k];
+        scene next = sc;
+        next.seconds += 1.0 / 30.0;
+        image a, b;
+        if (render_scene(&sc, 0, SKY_GL_AUTO, &a) || render_scene(&next, 0, SKY_GL_AUTO, &b)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        diffs[k] = mean_abs_diff(&a, &b);
+        image_free(&a);
+        image_free(&b);
+    }
+    NOTE("mean frame-to-frame change: %.5f at t = 5 s, %.5f at t = 1e8 s", diffs[0], diffs[1]);
+    CHECK(diffs[1] < 2.0 * diffs[0] + 1e-4 && diffs[1] > 0.5 * diffs[0],
+          "motion after 1e8 s (%.5f) must look like motion at the start (%.5f)", diffs[1], diffs[0]);
+}
+
+static double mean_gradient(const image *im, int half)
+{
+    double s = 0;
+    int n = 0, cx = im->w / 2, cy = im->h / 2;
+    for (int y = cy - half; y < cy + half; y++)
+        for (int x = cx - half; x < cx + half; x++) {
+            double l = image_luminance(im, x, y);
+            s += fabs(image_luminance(im, x + 1, y) - l) + fabs(image_luminance(im, x, y + 1) - l);
+            n++;
+        }
+    return s / n;
+}
+
+void test_render_height_changes_cloud_scale(void)
+{
+    scene low = scene_default();
+    low.cfg.features = SKY_CLOUDS;
+    low.fisheye = 1;
+    low.w = low.h = 256;
+    low.params.cover = 0.7f;
+    low.params.density = 0.5f;
+    low.params.height = 0.0f;
+    scene high = low;
+    high.params.height = 1.0f;
+    image a, b;
+    if (render_scene(&low, 1, SKY_GL_AUTO, &a) || render_scene(&high, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double ga = mean_gradient(&a, 50), gb = mean_gradient(&b, 50);
+    NOTE("mean luminance gradient near the zenith: height 0 -> %.4f, height 1 -> %.4f", ga, gb);
+    CHECK(gb > 1.6 * ga, "high clouds must have finer features (%.4f vs %.4f)", gb, ga);
+    image_free(&a);
+    image_free(&b);
+}
+
+/* Luminance-weighted centroid of the pixels above half the maximum. */
+static void bright_centroid(const image *im, double *cx, double *cy, double *peak)
+{
+    double mx = 0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) mx = fmax(mx, image_luminance(im, x, y));
+    double sx = 0, sy = 0, sw = 0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) {
+            double l = image_luminance(im, x, y);
+            if (l > 0.5 * mx) {
+                sx += l * (x + 0.5);
+                sy += l * (y + 0.5);
+                sw += l;
+            }
+        }
+    *cx = sw > 0 ? sx / sw : -1;
+    *cy = sw > 0 ? sy / sw : -1;
+    *peak = mx;
+}
+
+static int sun_direction(const scene *sc, double dir[3])
+{
+    char err[256];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 8, 8, SKY_GL_AUTO, 0, err, sizeof err)) return -1;
+    sky_config cfg = sc->cfg;
+    cfg.get_proc_address = sky_osmesa_loader();
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        sky_osmesa_destroy(&ctx);
+        return -1;
+    }
+    sky_set_params(s, &sc->params);
+    sky_lighting l;
+    sky_get_lighting(s, &l);
+    for (int i = 0; i < 3; i++) dir[i] = l.sun_direction[i];
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return 0;
+}
+
+void test_render_sun_where_direction_projects(void)
+{
+    const double yaws[3] = {180.0, 165.0, 200.0}, pitches[3] = {40.0, 30.0, 55.0};
+    for (int k = 0; k < 3; k++) {
+        scene sc = scene_default();
+        sc.cfg.features = SKY_SUN;
+        sc.params.time = 0.45f;
+        sc.yaw = yaws[k];
+        sc.pitch = pitches[k];
+        sc.w = 320;
+        sc.h = 240;
+        double d[3];
+        image im;
+        if (sun_direction(&sc, d) || render_scene(&sc, 1, SKY_GL_AUTO, &im)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        float view[16], proj[16];
+        scene_camera(&sc, view, proj);
+        double e[4], c[4];
+        for (int r = 0; r < 4; r++) e[r] = view[r] * d[0] + view[4 + r] * d[1] + view[8 + r] * d[2];
+        e[3] = 0.0;
+        for (int r = 0; r < 4; r++) c[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2] + proj[12 + r] * e[3];
+        double px = (c[0] / c[3] + 1.0) * 0.5 * sc.w, py = (1.0 - c[1] / c[3]) * 0.5 * sc.h;
+        double mx, my, peak;
+        bright_centroid(&im, &mx, &my, &peak);
+        double err = hypot(mx - px, my - py);
+        NOTE("yaw %.0f pitch %.0f: sun expected at (%.2f, %.2f), found at (%.2f, %.2f): %.2f px", sc.yaw, sc.pitch, px,
+             py, mx, my, err);
+        CHECK(err <= 2.0, "sun %.2f px from where its direction projects", err);
+        CHECK(peak > 1e5, "the disc is as bright as the sun (%.3g kcd/m^2)", peak);
+        image_free(&im);
+    }
+}
+
+void test_render_sun_in_fisheye(void)
+{
+    scene sc = scene_default();
+    sc.cfg.features = SKY_SUN;
+    sc.fisheye = 1;
+    sc.w = sc.h = 400;
+    sc.params.time = 0.32f; /* morning, in the east: left of centre */
+    double d[3];
+    image im;
+    if (sun_direction(&sc, d) || render_scene(&sc, 1, SKY_GL_AUTO, &im)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double theta = acos(d[1]), hl = hypot(d[0], d[2]);
+    double r = theta / (PI / 2);
+    double px = (1.0 - r * d[0] / hl) * 0.5 * sc.w; /* east (+x) to the left  */
+    double py = (1.0 + r * d[2] / hl) * 0.5 * sc.h; /* north (-z) to the top  */
+    double mx, my, peak;
+    bright_centroid(&im, &mx, &my, &peak);
+    double err = hypot(mx - px, my - py);
+    NOTE("fisheye: sun expected at (%.2f, %.2f), found at (%.2f, %.2f): %.2f px", px, py, mx, my, err);
+    CHECK(err <= 2.0, "fisheye sun %.2f px off", err);
+    CHECK(mx < sc.w / 2, "morning sun on the east (left) side");
+    image_free(&im);
+}
+
+void test_render_hdr_finite_everywhere(void)
+{
+    const float times[6] = {0.0f, 0.24f, 0.25f, 0.2501f, 0.5f, 0.76f};
+    int bad = 0, frames = 0;
+    for (int t = 0; t < 6; t++)
+        for (int fish = 0; fish < 2; fish++) {
+            scene sc = scene_default();
+            sc.cfg.features = SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS;
+            sc.params.time = times[t];
+            sc.params.cover = (float)(t % 2);
+            sc.params.density = (float)(t % 3 == 0);
+            sc.params.height = (float)(t % 2 == 0);
+            sc.params.sunset = 1.0f;
+            sc.fisheye = fish;
+            sc.pitch = fish ? 0.0 : 5.0; /* horizon in view */
+            image im;
+            if (render_scene(&sc, 1, SKY_GL_AUTO, &im)) {
+                CHECK(0, "render failed");
+                return;
+            }
+            frames++;
+            for (size_t i = 0; i < 3u * (size_t)im.w * (size_t)im.h; i++)
+                if (!isfinite(im.px[i]) || im.px[i] < 0.0f) bad++;
+            image_free(&im);
+        }
+    CHECK(bad == 0, "%d non-finite or negative values in %d linear frames", bad, frames);
+}
+
+void test_profiles_core_and_compat_agree(void)
+{
+    const float times[3] = {0.45f, 0.735f, 0.02f};
+    for (int k = 0; k < 3; k++) {
+        scene sc = scene_default();
+        sc.params.time = times[k];
+        sc.params.cover = 0.5f;
+        sc.yaw = k == 1 ? 270.0 : 180.0;
+        image core, compat;
+        if (render_scene(&sc, 0, SKY_GL_CORE33, &core) || render_scene(&sc, 0, SKY_GL_COMPAT20, &compat)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        double psnr = image_psnr(&core, &compat);
+        NOTE("time %.3f: CORE33 vs COMPAT20 PSNR %.1f dB", times[k], psnr);
+        CHECK(psnr >= 40.0, "the two profiles must agree (PSNR %.1f dB)", psnr);
+        image_free(&core);
+        image_free(&compat);
+    }
+}

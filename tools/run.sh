@@ -1,0 +1,5 @@
+#!/bin/sh
+# make run: the sky in a window when there is a display; without one,
+# sky-demo says so and renders build/sky.png headless.
+cd "$(dirname "$0")/.." || exit 1
+exec build/bin/sky-demo "$@"
