@@ -21,8 +21,8 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run test install textures screenshots clean
-all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo
+.PHONY: all deps run test install textures screenshots bench clean
+all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench
 
 deps:
 	@sh tools/deps.sh
@@ -68,6 +68,13 @@ $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 $(BIN)/sky-demo: demo/demo.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lOSMesa $(LDLIBS_M)
+
+$(BIN)/sky-bench: tools/bench.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+
+bench: all
+	$(BIN)/sky-bench
 
 $(BIN)/texgen: tools/texgen.c
 	@mkdir -p $(@D)
