@@ -1,7 +1,8 @@
 /*
  * Roden & Parberry's night sky (sec. 4): the 256x256 flicker-star texture
- * tiled over the dome and the 128x128 galaxy texture stretched over it. The
- * shader is flicker.glsl; this file owns the textures and the flicker clock.
+ * tiled over the dome and the 128x128 galaxy image stretched over it (baked
+ * into the dome's vertices). The shader is flicker.glsl; this file owns the
+ * star texture, the galaxy lookup and the flicker clock.
  */
 #include "sky_internal.h"
 
@@ -13,7 +14,6 @@
 
 static const sky_uniform_desc flicker_uniforms[] = {
     SKY_UT("u_flicker_tex", SKY_TEX_FLICKER),
-    SKY_UT("u_galaxy_tex", SKY_TEX_GALAXY),
     SKY_UF("u_flicker_phase", SKY_U_F1, flicker_phase),
     SKY_UF("u_star_luminance", SKY_U_F1, star_luminance),
 };
@@ -22,8 +22,26 @@ const sky_snippet sky_flicker_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", flic
 
 int sky_flicker_create(sky *s, char *err, size_t err_len)
 {
-    if (sky_texture_load(s, SKY_TEX_FLICKER, SKY_LAYER_FLICKER, "flicker.png", 256, 256, 1, err, err_len)) return -1;
-    return sky_texture_load(s, SKY_TEX_GALAXY, SKY_LAYER_FLICKER, "galaxy.png", 128, 128, 0, err, err_len);
+    /* the galaxy is not a GPU texture: dome.c bakes it into the dome's
+     * vertices through sky_flicker_galaxy_vertex */
+    return sky_texture_load(s, SKY_TEX_FLICKER, SKY_LAYER_FLICKER, "flicker.png", 256, 256, 1, err, err_len);
+}
+
+float sky_flicker_galaxy_vertex(const unsigned char *galaxy, const float d[3])
+{
+    if (d[1] <= 0.0f) return 0.0f;
+    /* the stereographic dome coordinate of flicker.glsl, stretched so the
+     * horizon circle fills the 128x128 image; bilinear, clamped at edges */
+    double u = (d[0] / (1.0 + d[1]) * 0.5 + 0.5) * 128.0 - 0.5;
+    double v = (d[2] / (1.0 + d[1]) * 0.5 + 0.5) * 128.0 - 0.5;
+    u = sky_clampd(u, 0.0, 127.0);
+    v = sky_clampd(v, 0.0, 127.0);
+    int x0 = (int)u, y0 = (int)v, x1 = x0 < 127 ? x0 + 1 : 127, y1 = y0 < 127 ? y0 + 1 : 127;
+    double fx = u - x0, fy = v - y0;
+#define GAL(x, y) (galaxy[4 * ((y) * 128 + (x))] / 255.0)
+    double g = (GAL(x0, y0) * (1 - fx) + GAL(x1, y0) * fx) * (1 - fy) + (GAL(x0, y1) * (1 - fx) + GAL(x1, y1) * fx) * fy;
+#undef GAL
+    return (float)g;
 }
 
 void sky_flicker_advance(sky *s, double dt)

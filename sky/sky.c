@@ -72,6 +72,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_fisheye", SKY_U_F1, fisheye),
     SKY_UF("u_aspect", SKY_U_F2, aspect),
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
+    SKY_UF("u_view_proj", SKY_U_M4, view_proj),
 };
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
                                         (int)(sizeof common_uniforms / sizeof common_uniforms[0])};
@@ -97,10 +98,11 @@ static void compute_frame(sky *s)
     if (s->features & SKY_SUN) sky_sun_frame(s);
     if (s->features & SKY_CLOUDS) sky_clouds_frame(s);
     if (s->features & SKY_FLICKER_STARS) sky_flicker_frame(s);
-    /* Automatic exposure from the scene's own brightness: half the day
-     * sky's scale by day; at night a floor about seventy times the dark sky,
-     * so the sky stays dark blue and the stars bright. */
-    f->exposure = (float)(1.0 / (0.5 * f->sky_luminance + 1.5e-5));
+    /* Automatic exposure from the scene's own brightness: the day sky's
+     * scale maps to the filmic curve's shoulder (common.glsl); at night a
+     * floor about seventy times the dark sky keeps the sky dark blue and
+     * the stars bright. */
+    f->exposure = (float)(1.0 / (f->sky_luminance + 1.5e-5));
     /* Leave out what adds nothing: a star layer whose brightest texel would
      * not reach a quarter of an 8-bit step is not evaluated at all. */
     if (f->star_luminance * f->exposure < 1.0f / 1024.0f) f->star_luminance = 0.0f;
@@ -177,13 +179,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         gl->glGenVertexArrays(1, &s->vao);
         gl->glBindVertexArray(s->vao);
     }
-    float zero[4 * 5] = {0};
-    s->quad_buffer = sky_buffer_create(s, zero, sizeof zero, GL_DYNAMIC_DRAW);
-    if (!s->quad_buffer) {
-        err_printf(err, err_len, "sky_create: glGenBuffers failed");
-        goto fail;
-    }
-    if (sky_gradient_create(s, err, err_len)) goto fail;
+    if (sky_dome_create(s, err, err_len)) goto fail;
     if ((features & SKY_CLOUDS) && sky_clouds_create(s, err, err_len)) goto fail;
     if ((features & SKY_FLICKER_STARS) && sky_flicker_create(s, err, err_len)) goto fail;
     if ((features & SKY_SUN) && sky_sun_create(s, err, err_len)) goto fail;
@@ -225,8 +221,8 @@ void sky_destroy(sky *s)
         for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(s, (sky_texture_id)i);
         sky_program_destroy(s, &s->dome);
         sky_program_destroy(s, &s->sun);
-        GLuint buffers[2] = {s->quad_buffer, s->sun_buffer};
-        gl->glDeleteBuffers(2, buffers);
+        GLuint buffers[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer};
+        gl->glDeleteBuffers(3, buffers);
         if (s->vao) gl->glDeleteVertexArrays(1, &s->vao);
     }
     free(s);
@@ -368,7 +364,7 @@ static int camera_rotation(const sky *s, const float view[16], double rot[9])
     return 1;
 }
 
-/* Fills the dome quad (ndc + view ray per corner) and u_view_proj. */
+/* Validates the camera and fills u_view_proj: horizon directions to clip. */
 static sky_result setup_camera(sky *s, const float view[16], const float proj[16])
 {
     for (int i = 0; i < 16; i++)
@@ -381,23 +377,6 @@ static sky_result setup_camera(sky *s, const float view[16], const float proj[16
     double p[16], pinv[16];
     for (int i = 0; i < 16; i++) p[i] = proj[i];
     if (!invert4(p, pinv)) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: the projection is singular");
-    static const float ndc[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
-    float v[4 * 5];
-    for (int c = 0; c < 4; c++) {
-        double q[4] = {ndc[c][0], ndc[c][1], -1.0, 1.0}, e[4];
-        for (int i = 0; i < 4; i++) e[i] = pinv[i] * q[0] + pinv[4 + i] * q[1] + pinv[8 + i] * q[2] + pinv[12 + i] * q[3];
-        /* the near-plane point seen from the eye at the origin */
-        if (!(fabs(e[3]) > 1e-30))
-            return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: the projection is not a perspective");
-        for (int i = 0; i < 3; i++) e[i] /= e[3];
-        v[c * 5 + 0] = ndc[c][0];
-        v[c * 5 + 1] = ndc[c][1];
-        for (int j = 0; j < 3; j++) /* camera -> horizon: transpose of rot */
-            v[c * 5 + 2 + j] = (float)(rot[0 * 3 + j] * e[0] + rot[1 * 3 + j] * e[1] + rot[2 * 3 + j] * e[2]);
-    }
-    const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, s->quad_buffer);
-    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
     /* u_view_proj = proj * [rot 0; 0 1], column-major */
     for (int col = 0; col < 4; col++)
         for (int row = 0; row < 4; row++) {
@@ -412,21 +391,21 @@ static sky_result setup_camera(sky *s, const float view[16], const float proj[16
     return SKY_OK;
 }
 
+/* The all-sky image: the aspect that keeps its circle round, and black
+ * around it where no part of the dome lands (viewport only). */
 static void setup_fisheye(sky *s, const GLint viewport[4])
 {
-    static const float ndc[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
-    float v[4 * 5] = {0};
-    for (int c = 0; c < 4; c++) {
-        v[c * 5 + 0] = ndc[c][0];
-        v[c * 5 + 1] = ndc[c][1];
-    }
-    const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, s->quad_buffer);
-    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
     double w = viewport[2] > 0 ? viewport[2] : 1, h = viewport[3] > 0 ? viewport[3] : 1;
     s->frame.aspect[0] = (float)(w > h ? w / h : 1.0);
     s->frame.aspect[1] = (float)(h > w ? h / w : 1.0);
     s->frame.fisheye = 1.0f;
+    const sky_gl *gl = &s->gl;
+    gl->glEnable(GL_SCISSOR_TEST);
+    gl->glScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    gl->glClear(GL_COLOR_BUFFER_BIT);
+    gl->glDisable(GL_SCISSOR_TEST);
 }
 
 /* ---- drawing --------------------------------------------------------------------- */
@@ -438,7 +417,8 @@ static double now_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-static void bind_corners(sky *s, GLuint buffer)
+/* The sun quad's corners: disc coordinates (a_pos) and directions (a_dir). */
+static void bind_quad(sky *s, GLuint buffer)
 {
     const sky_gl *gl = &s->gl;
     gl->glBindBuffer(GL_ARRAY_BUFFER, buffer);
@@ -446,6 +426,7 @@ static void bind_corners(sky *s, GLuint buffer)
     gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)(2 * sizeof(float)));
     gl->glEnableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
+    gl->glDisableVertexAttribArray(2);
 }
 
 static void reset_layer_stats(sky *s)
@@ -458,7 +439,8 @@ static void reset_layer_stats(sky *s)
     s->stats.draws_per_frame = 0;
 }
 
-static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint buffer)
+/* Draws one layer: the dome mesh (buffer 0) or a quad buffer. */
+static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint quad)
 {
     const sky_gl *gl = &s->gl;
     int timed = s->cfg.profile_layers;
@@ -468,8 +450,12 @@ static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint 
         t0 = now_ms();
     }
     sky_program_apply(s, prog);
-    bind_corners(s, buffer);
-    gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    if (quad) {
+        bind_quad(s, quad);
+        gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    } else {
+        sky_dome_draw(s);
+    }
     if (timed) {
         gl->glFinish();
         s->stats.layers[layer].ms = now_ms() - t0;
@@ -491,8 +477,8 @@ static sky_result draw_frame(sky *s, const sky_gl_state *host)
     if (s->profile == SKY_GL_CORE33) gl->glBindVertexArray(s->vao);
 
     /* 1. the dome: atmosphere, with flicker stars behind it and clouds in
-     * front, in one full-screen pass */
-    draw_layer(s, SKY_LAYER_ATMOSPHERE, &s->dome, s->quad_buffer);
+     * front, in one pass over the screen */
+    draw_layer(s, SKY_LAYER_ATMOSPHERE, &s->dome, 0);
     if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = s->frame.star_luminance > 0.0f;
     if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);
 
@@ -504,10 +490,6 @@ static sky_result draw_frame(sky *s, const sky_gl_state *host)
         gl->glBlendEquation(GL_FUNC_ADD);
         gl->glBlendFunc(GL_ONE, GL_ONE);
         draw_layer(s, SKY_LAYER_SUN, &s->sun, s->sun_buffer);
-    }
-    if (s->profile == SKY_GL_COMPAT20) {
-        gl->glDisableVertexAttribArray(0);
-        gl->glDisableVertexAttribArray(1);
     }
     (void)host;
     GLenum e = gl->glGetError();
@@ -563,7 +545,7 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
             out->gpu_bytes += s->textures[i].bytes;
             out->layers[s->textures[i].owner].bytes += s->textures[i].bytes;
         }
-    out->layers[SKY_LAYER_ATMOSPHERE].bytes += 4 * 5 * sizeof(float); /* the dome quad */
+    out->layers[SKY_LAYER_ATMOSPHERE].bytes += s->buffer_bytes - (s->sun_buffer ? 4 * 5 * sizeof(float) : 0);
     if (s->sun_buffer) out->layers[SKY_LAYER_SUN].bytes += 4 * 5 * sizeof(float);
     out->programs = s->program_count;
     out->buffers = s->buffer_count;

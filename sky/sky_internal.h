@@ -37,8 +37,6 @@ void sky_png_free(unsigned char *rgba);
 typedef enum sky_texture_id {
     SKY_TEX_CLOUDS = 0, /* RGBA: photo, noise, detail, sunset gradient (R-P sec. 3) */
     SKY_TEX_FLICKER,    /* RGBA: intensity, rate, variance, phase (R-P sec. 4)      */
-    SKY_TEX_GALAXY,     /* monochrome galaxy in all four channels (R-P sec. 4)       */
-    SKY_TEX_GRADIENT,   /* day sky colour by elevation (R-P fig. 1 inset)            */
     SKY_TEX_COUNT
 } sky_texture_id;
 
@@ -60,6 +58,7 @@ typedef struct sky_frame {
     float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
     float sun_radius;        /* angular radius of the drawn disc, radians        */
     float sky_luminance;     /* kcd/m^2: scale of the day gradient               */
+    float horizon_tint[3];   /* colour of the horizon under a low sun            */
     float night_luminance;   /* kcd/m^2: scale of the night sky background       */
     float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
     float output_hdr;        /* 1 = linear out, 0 = tone mapped                 */
@@ -128,7 +127,9 @@ struct sky {
     sky_texture textures[SKY_TEX_COUNT];
     sky_program dome;             /* full-screen pass: atmosphere+flicker+clouds */
     sky_program sun;              /* sun quad                                  */
-    GLuint quad_buffer;           /* 4 corners: ndc.xy, direction.xyz          */
+    GLuint dome_vertices;         /* dome.c: direction, gradient colour, galaxy */
+    GLuint dome_indices;
+    int dome_index_count, dome_upper_first; /* indices: all, and where the upper hemisphere starts */
     GLuint sun_buffer;            /* 4 corners: direction.xyz, disc uv         */
     GLuint vao;                   /* CORE33 only                               */
     int program_count, buffer_count;
@@ -149,7 +150,8 @@ sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
 /* Loads the function table and picks the profile. Returns 0 or writes err. */
 int sky_gl_init(sky *s, char *err, size_t err_len);
 /* Compiles and links a program from the common prologue, the given snippets
- * and a vertex and fragment main file. Attribute 0 = a_pos, 1 = a_dir. */
+ * and a vertex and fragment main file. Attributes: 0 a_pos, 1 a_dir,
+ * 2 a_color. */
 int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char *frag_main,
                       const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len);
 void sky_program_destroy(sky *s, sky_program *p);
@@ -163,16 +165,23 @@ int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigne
 int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
                      int repeat, char *err, size_t err_len);
 void sky_texture_destroy(sky *s, sky_texture_id id);
-GLuint sky_buffer_create(sky *s, const void *data, size_t bytes, GLenum usage);
+/* Reads an asset (override directory first, then the embedded copy) and
+ * decodes it to RGBA8, checking its size. Free with sky_png_free. */
+int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, unsigned char **rgba, char *err,
+                        size_t err_len);
+GLuint sky_buffer_create(sky *s, GLenum target, const void *data, size_t bytes, GLenum usage);
 
 /* Host GL state that sky_draw changes, saved and restored around it. */
+#define SKY_ATTRIBS 3 /* a_pos, a_dir, a_color */
 typedef struct sky_gl_state {
-    GLint program, active_texture, array_buffer, vao, viewport[4];
+    GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4], scissor_box[4];
+    GLfloat clear_color[4];
     GLint textures[4];
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
     GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
-    GLint attrib_enabled[2], attrib_size[2], attrib_type[2], attrib_norm[2], attrib_stride[2], attrib_buffer[2];
-    void *attrib_pointer[2];
+    GLint attrib_enabled[SKY_ATTRIBS], attrib_size[SKY_ATTRIBS], attrib_type[SKY_ATTRIBS], attrib_norm[SKY_ATTRIBS],
+        attrib_stride[SKY_ATTRIBS], attrib_buffer[SKY_ATTRIBS];
+    void *attrib_pointer[SKY_ATTRIBS];
 } sky_gl_state;
 void sky_gl_state_save(sky *s, sky_gl_state *st);
 void sky_gl_state_restore(sky *s, const sky_gl_state *st);
@@ -184,8 +193,16 @@ extern const sky_snippet sky_clouds_snippet;
 extern const sky_snippet sky_flicker_snippet;
 extern const sky_snippet sky_sun_snippet;
 
-int sky_gradient_create(sky *s, char *err, size_t err_len);
+/* The dome mesh with per-vertex gradient colour and galaxy (dome.c). */
+int sky_dome_create(sky *s, char *err, size_t err_len);
+void sky_dome_draw(sky *s); /* binds its buffers and draws */
 void sky_gradient_frame(sky *s);
+/* Day-gradient colour (linear RGB) for a direction, from the 256x1
+ * gradient image, as R-P's gradient texture maps it onto the dome. */
+void sky_gradient_vertex(const unsigned char *gradient_rgba, const float dir[3], float rgb[3]);
+/* Galaxy brightness 0..1 for a direction, from the 128x128 galaxy image
+ * stretched over the dome (R-P sec. 4). */
+float sky_flicker_galaxy_vertex(const unsigned char *galaxy_rgba, const float dir[3]);
 /* Drift of each cloud layer (0, 1, detail, upper) in texture periods per
  * second at speed 1. */
 extern const double sky_cloud_velocity[4][2];

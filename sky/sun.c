@@ -24,7 +24,6 @@
 #define SKY_SUN_QUAD_RADII 16.0
 
 static const sky_uniform_desc sun_uniforms[] = {
-    SKY_UF("u_view_proj", SKY_U_M4, view_proj),
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
     SKY_UF("u_sun_luminance", SKY_U_F1, sun_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
@@ -67,7 +66,7 @@ int sky_sun_create(sky *s, char *err, size_t err_len)
     float zero[4 * 5] = {0};
     (void)err;
     (void)err_len;
-    s->sun_buffer = sky_buffer_create(s, zero, sizeof zero, GL_DYNAMIC_DRAW);
+    s->sun_buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, zero, sizeof zero, GL_DYNAMIC_DRAW);
     return s->sun_buffer ? 0 : -1;
 }
 

@@ -260,7 +260,7 @@ void test_api_lighting_and_stats(void)
 
     sky_stats st;
     CHECK(sky_get_stats(f.s, &st) == SKY_OK, "stats");
-    CHECK(st.textures == 4 && st.programs == 2, "4 textures and 2 programs by default, got %d and %d", st.textures,
+    CHECK(st.textures == 2 && st.programs == 2, "2 textures and 2 programs by default, got %d and %d", st.textures,
           st.programs);
     CHECK(st.layers[SKY_LAYER_MOON].enabled == 0 && st.layers[SKY_LAYER_CLOUDS].enabled == 1, "layer flags");
     size_t sum = 0;
@@ -289,20 +289,22 @@ void test_api_gl_objects_deleted(void)
     float view[16], proj[16];
     default_camera(view, proj);
     sky_draw(s, view, proj);
-    GLuint tex[SKY_TEX_COUNT], prog[2] = {s->dome.id, s->sun.id}, buf[2] = {s->quad_buffer, s->sun_buffer},
-                                vao = s->vao;
+    GLuint tex[SKY_TEX_COUNT], prog[2] = {s->dome.id, s->sun.id},
+                               buf[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer}, vao = s->vao;
     int live = 0;
     for (int i = 0; i < SKY_TEX_COUNT; i++) {
         tex[i] = s->textures[i].id;
         live += glIsTexture(tex[i]) == GL_TRUE;
     }
-    for (int i = 0; i < 2; i++) live += (glIsProgram(prog[i]) == GL_TRUE) + (glIsBuffer(buf[i]) == GL_TRUE);
+    for (int i = 0; i < 2; i++) live += glIsProgram(prog[i]) == GL_TRUE;
+    for (int i = 0; i < 3; i++) live += glIsBuffer(buf[i]) == GL_TRUE;
     live += glIsVertexArray(vao) == GL_TRUE;
-    CHECK(live == SKY_TEX_COUNT + 5, "all objects live before destroy (%d)", live);
+    CHECK(live == SKY_TEX_COUNT + 6, "all objects live before destroy (%d)", live);
     sky_destroy(s);
     int left = 0;
     for (int i = 0; i < SKY_TEX_COUNT; i++) left += glIsTexture(tex[i]) == GL_TRUE;
-    for (int i = 0; i < 2; i++) left += (glIsProgram(prog[i]) == GL_TRUE) + (glIsBuffer(buf[i]) == GL_TRUE);
+    for (int i = 0; i < 2; i++) left += glIsProgram(prog[i]) == GL_TRUE;
+    for (int i = 0; i < 3; i++) left += glIsBuffer(buf[i]) == GL_TRUE;
     left += glIsVertexArray(vao) == GL_TRUE;
     CHECK(left == 0, "%d GL objects survive sky_destroy", left);
     sky_osmesa_destroy(&ctx);
@@ -323,10 +325,11 @@ void test_api_leaks_1000_cycles(void)
 /* ---- GL state ---------------------------------------------------------------- */
 
 typedef struct gl_snapshot {
-    GLint program, active, array_buffer, vao, viewport[4], tex[4];
+    GLint program, active, array_buffer, element_buffer, vao, viewport[4], scissor_box[4], tex[4];
+    GLfloat clear_color[4];
     GLboolean blend, depth, cull, scissor, stencil, depth_mask, color_mask[4];
     GLint bsrc, bdst, bsrca, bdsta, beq, beqa, depth_func;
-    GLint attrib_enabled[2], attrib_size[2], attrib_stride[2], attrib_buffer[2];
+    GLint attrib_enabled[3], attrib_size[3], attrib_stride[3], attrib_buffer[3];
 } gl_snapshot;
 
 static void snapshot(gl_snapshot *g, int core)
@@ -336,7 +339,10 @@ static void snapshot(gl_snapshot *g, int core)
     glGetIntegerv(GL_ACTIVE_TEXTURE, &g->active);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &g->array_buffer);
     if (core) glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
+    glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &g->element_buffer);
     glGetIntegerv(GL_VIEWPORT, g->viewport);
+    glGetIntegerv(GL_SCISSOR_BOX, g->scissor_box);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, g->clear_color);
     GLint active;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
     for (int i = 0; i < 4; i++) {
@@ -358,7 +364,7 @@ static void snapshot(gl_snapshot *g, int core)
     glGetIntegerv(GL_BLEND_EQUATION_RGB, &g->beq);
     glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &g->beqa);
     glGetIntegerv(GL_DEPTH_FUNC, &g->depth_func);
-    for (GLuint i = 0; i < 2; i++) {
+    for (GLuint i = 0; i < 3; i++) {
         glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &g->attrib_enabled[i]);
         glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_SIZE, &g->attrib_size[i]);
         glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_STRIDE, &g->attrib_stride[i]);
@@ -413,6 +419,13 @@ static void state_restored(sky_gl_profile profile)
     glActiveTexture(GL_TEXTURE2);
     glUseProgram(prog);
     glViewport(3, 4, 50, 40);
+    glScissor(1, 2, 30, 20);
+    glClearColor(0.25f, 0.5f, 0.75f, 0.125f);
+    GLuint ebo = 0;
+    glGenBuffers(1, &ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 16, (const void *)0);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
     glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
@@ -441,6 +454,7 @@ static void state_restored(sky_gl_profile profile)
     glDeleteProgram(prog);
     glDeleteTextures(4, tex);
     glDeleteBuffers(1, &buf);
+    glDeleteBuffers(1, &ebo);
     if (core) glDeleteVertexArrays(1, &vao);
     fixture_close(&f);
 }

@@ -1,24 +1,29 @@
 /*
  * The gradient atmosphere: Roden & Parberry's day sky (a blue gradient by
- * elevation) scaled to physical luminance by the sun's altitude. The
- * cheapest path and the only one needing no lookup table.
+ * elevation, baked into the dome's vertices) scaled to physical luminance
+ * by the sun's altitude. The cheapest path: no texture, no lookup table.
  */
 #include "../sky_internal.h"
 
 #include <math.h>
 
 static const sky_uniform_desc gradient_uniforms[] = {
-    SKY_UT("u_gradient_tex", SKY_TEX_GRADIENT),
     SKY_UF("u_sky_luminance", SKY_U_F1, sky_luminance),
     SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
+    SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
 };
 const sky_snippet sky_gradient_snippet = {"SKY_HAS_GRADIENT", "gradient.glsl", gradient_uniforms,
                                           (int)(sizeof gradient_uniforms / sizeof gradient_uniforms[0])};
 
-int sky_gradient_create(sky *s, char *err, size_t err_len)
+void sky_gradient_vertex(const unsigned char *gradient, const float d[3], float rgb[3])
 {
-    return sky_texture_load(s, SKY_TEX_GRADIENT, SKY_LAYER_ATMOSPHERE, "gradient.png", 256, 1, 0, err, err_len);
+    /* texel coordinate sqrt(elevation sine) * 255: more texels near the
+     * horizon, where the gradient changes */
+    double t = sqrt(sky_clampd(d[1], 0.0, 1.0)) * 255.0;
+    int i0 = (int)t, i1 = i0 < 255 ? i0 + 1 : 255;
+    double f = t - i0;
+    for (int c = 0; c < 3; c++) rgb[c] = (float)((gradient[4 * i0 + c] * (1.0 - f) + gradient[4 * i1 + c] * f) / 255.0);
 }
 
 /* Luminance scale of the day sky (kcd/m^2) for a sun at altitude h. Above
@@ -39,4 +44,9 @@ void sky_gradient_frame(sky *s)
     f->sky_luminance = (float)day_sky_luminance(f->sun_altitude);
     /* A dark, moonless sky: about 0.2 mcd/m^2 (21.6 mag/arcsec^2). */
     f->night_luminance = 2.0e-7f;
+    /* The low-sun horizon colour: the square root of the direct beam's
+     * transmittance (light that travelled about half the sun's path),
+     * normalised to its red channel. Per frame here, not per pixel. */
+    double red = f->sun_transmittance[0] > 1e-6f ? f->sun_transmittance[0] : 1e-6;
+    for (int i = 0; i < 3; i++) f->horizon_tint[i] = (float)sqrt(f->sun_transmittance[i] / red);
 }

@@ -194,6 +194,7 @@ int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char 
     gl->glAttachShader(p->id, shaders[1]);
     gl->glBindAttribLocation(p->id, 0, "a_pos");
     gl->glBindAttribLocation(p->id, 1, "a_dir");
+    gl->glBindAttribLocation(p->id, 2, "a_color");
     gl->glLinkProgram(p->id);
     gl->glDeleteShader(shaders[0]); /* flagged; freed with the program */
     gl->glDeleteShader(shaders[1]);
@@ -342,18 +343,19 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
     return buf;
 }
 
-int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
-                     int repeat, char *err, size_t err_len)
+int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, unsigned char **rgba_out, char *err,
+                        size_t err_len)
 {
     size_t size = 0;
     int failed = 0;
+    *rgba_out = NULL;
     unsigned char *file = read_override(s->cfg.texture_dir, name, &size, err, err_len, &failed);
     if (failed) return -1;
     const unsigned char *data = file;
     if (!file) {
         const sky_blob *b = sky_find_blob(name);
         if (!b) {
-            set_err(err, err_len, "texture %s is not embedded in this build", name);
+            set_err(err, err_len, "asset %s is not embedded in this build", name);
             return -1;
         }
         data = b->data;
@@ -362,19 +364,28 @@ int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *nam
     const char *origin = file ? "override" : "embedded";
     int w = 0, h = 0, rc = -1;
     if (!sky_png_info(data, size, &w, &h)) {
-        set_err(err, err_len, "%s texture %s is not a readable PNG", origin, name);
+        set_err(err, err_len, "%s asset %s is not a readable PNG", origin, name);
     } else if (w != expect_w || h != expect_h) {
-        set_err(err, err_len, "%s texture %s is %dx%d; expected %dx%d", origin, name, w, h, expect_w, expect_h);
+        set_err(err, err_len, "%s asset %s is %dx%d; expected %dx%d", origin, name, w, h, expect_w, expect_h);
     } else {
         const char *why = "";
-        unsigned char *rgba = sky_png_decode_rgba(data, size, &w, &h, &why);
-        if (!rgba)
-            set_err(err, err_len, "%s texture %s: %s", origin, name, why);
+        *rgba_out = sky_png_decode_rgba(data, size, &w, &h, &why);
+        if (!*rgba_out)
+            set_err(err, err_len, "%s asset %s: %s", origin, name, why);
         else
-            rc = sky_texture_create(s, id, owner, rgba, w, h, repeat, err, err_len);
-        sky_png_free(rgba);
+            rc = 0;
     }
     free(file);
+    return rc;
+}
+
+int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
+                     int repeat, char *err, size_t err_len)
+{
+    unsigned char *rgba = NULL;
+    if (sky_asset_load_rgba(s, name, expect_w, expect_h, &rgba, err, err_len)) return -1;
+    int rc = sky_texture_create(s, id, owner, rgba, expect_w, expect_h, repeat, err, err_len);
+    sky_png_free(rgba);
     return rc;
 }
 
@@ -385,15 +396,15 @@ void sky_texture_destroy(sky *s, sky_texture_id id)
     memset(t, 0, sizeof *t);
 }
 
-GLuint sky_buffer_create(sky *s, const void *data, size_t bytes, GLenum usage)
+GLuint sky_buffer_create(sky *s, GLenum target, const void *data, size_t bytes, GLenum usage)
 {
     const sky_gl *gl = &s->gl;
     GLuint b = 0;
     gl->glGenBuffers(1, &b);
     if (!b) return 0;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, b);
-    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, data, usage);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+    gl->glBindBuffer(target, b);
+    gl->glBufferData(target, (GLsizeiptr)bytes, data, usage);
+    gl->glBindBuffer(target, 0);
     s->buffer_count++;
     s->buffer_bytes += bytes;
     return b;
@@ -414,6 +425,8 @@ void sky_gl_state_save(sky *s, sky_gl_state *st)
     gl->glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &st->array_buffer);
     if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
     gl->glGetIntegerv(GL_VIEWPORT, st->viewport);
+    gl->glGetIntegerv(GL_SCISSOR_BOX, st->scissor_box);
+    gl->glGetFloatv(GL_COLOR_CLEAR_VALUE, st->clear_color);
     st->blend = gl->glIsEnabled(GL_BLEND);
     st->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
     st->cull_face = gl->glIsEnabled(GL_CULL_FACE);
@@ -429,7 +442,8 @@ void sky_gl_state_save(sky *s, sky_gl_state *st)
     gl->glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &st->blend_eq_alpha);
     if (s->profile == SKY_GL_COMPAT20) {
         /* No VAO: the attribute arrays we use are global state. */
-        for (GLuint i = 0; i < 2; i++) {
+        gl->glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &st->element_buffer);
+        for (GLuint i = 0; i < SKY_ATTRIBS; i++) {
             gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &st->attrib_enabled[i]);
             gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_SIZE, &st->attrib_size[i]);
             gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_TYPE, &st->attrib_type[i]);
@@ -453,7 +467,8 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st)
 {
     const sky_gl *gl = &s->gl;
     if (s->profile == SKY_GL_COMPAT20) {
-        for (GLuint i = 0; i < 2; i++) {
+        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, (GLuint)st->element_buffer);
+        for (GLuint i = 0; i < SKY_ATTRIBS; i++) {
             gl->glBindBuffer(GL_ARRAY_BUFFER, (GLuint)st->attrib_buffer[i]);
             /* A pointer set while no buffer was bound is a client-memory
              * pointer; GL accepts it back only in compatibility contexts,
@@ -476,6 +491,8 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st)
     gl->glActiveTexture((GLenum)st->active_texture);
     gl->glUseProgram((GLuint)st->program);
     gl->glViewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
+    gl->glScissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
+    gl->glClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);
     set_cap(gl, GL_BLEND, st->blend);
     set_cap(gl, GL_DEPTH_TEST, st->depth_test);
     set_cap(gl, GL_CULL_FACE, st->cull_face);

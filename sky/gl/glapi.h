@@ -83,6 +83,10 @@ typedef ptrdiff_t GLintptr;
 #define GL_ARRAY_BUFFER 0x8892
 #define GL_ELEMENT_ARRAY_BUFFER 0x8893
 #define GL_ARRAY_BUFFER_BINDING 0x8894
+#define GL_ELEMENT_ARRAY_BUFFER_BINDING 0x8895
+#define GL_UNSIGNED_SHORT 0x1403
+#define GL_SCISSOR_BOX 0x0C10
+#define GL_COLOR_CLEAR_VALUE 0x0C22
 #define GL_STATIC_DRAW 0x88E4
 #define GL_DYNAMIC_DRAW 0x88E8
 #define GL_VERTEX_ATTRIB_ARRAY_ENABLED 0x8622
@@ -151,6 +155,9 @@ typedef ptrdiff_t GLintptr;
     X(void, glGetVertexAttribiv, (GLuint i, GLenum pname, GLint *v))                          \
     X(void, glGetVertexAttribPointerv, (GLuint i, GLenum pname, void **p))                    \
     X(void, glDrawArrays, (GLenum mode, GLint first, GLsizei count))                          \
+    X(void, glDrawElements, (GLenum mode, GLsizei count, GLenum type, const void *indices))   \
+    X(void, glScissor, (GLint x, GLint y, GLsizei w, GLsizei h))                              \
+    X(void, glGetFloatv, (GLenum pname, GLfloat *data))                                       \
     X(GLuint, glCreateShader, (GLenum type))                                                  \
     X(void, glShaderSource, (GLuint sh, GLsizei n, const GLchar *const *src, const GLint *len)) \
     X(void, glCompileShader, (GLuint sh))                                                     \

@@ -41,7 +41,6 @@ vec4 sky_clouds(vec3 d)
     float cloud1 = SKY_TEX2D(u_clouds_tex, tc0).r;
     float cloud2 = SKY_TEX2D(u_clouds_tex, tc1).g;
     float detail = SKY_TEX2D(u_clouds_tex, tc3).b;
-    float sunset = SKY_TEX2D(u_clouds_tex, tc2).a;
     float upper = SKY_TEX2D(u_clouds_tex, tcu).g;
 
     vec4 c = vec4(cloud1 + cloud2 * (1.0 - cloud1));      /* 14 */
@@ -61,8 +60,10 @@ vec4 sky_clouds(vec3 d)
     c.rgb = mix(c.rgb, vec3(1.0), thin * (1.0 - c.a));
     c.a += thin * (1.0 - c.a);
 
-    float sa = sunset * u_sunset;                          /* 26 */
-    c.rgb = c.rgb * (1.0 - sa) + u_sunset_color * sa;      /* 27 */
+    if (u_sunset > 0.0) { /* uniform: no fetch when the slider is at 0 */
+        float sa = SKY_TEX2D(u_clouds_tex, tc2).a * u_sunset;  /* 26 */
+        c.rgb = c.rgb * (1.0 - sa) + u_sunset_color * sa;      /* 27 */
+    }
     c.rgb *= u_cloud_light;                                /* 28 */
 
     /* Beyond the paper: the texture has no mipmaps (memory budget), so where

@@ -6,6 +6,7 @@ uniform float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither   
 uniform float u_fisheye;     /* 1: equidistant all-sky mapping                   */
 uniform vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
 uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
+uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 
 const float SKY_PI = 3.14159265;
 
@@ -39,17 +40,14 @@ float sky_hash(vec2 p)
 }
 
 /* Linear luminance (kcd/m^2) to the output: linear for HDR hosts; else
- * exposure, an exponential tone map, sRGB encoding and a triangular dither
- * of one 8-bit step applied after the tone map. */
+ * exposure, then Hejl and Burgess-Dawson's filmic curve, a rational fit
+ * that includes the sRGB-like display gamma (no exp, no pow: cheap on weak
+ * GPUs), then a dither of one 8-bit step so smooth gradients do not band. */
 vec4 sky_output(vec3 L, float alpha)
 {
-    L = max(L, vec3(0.0));
-    if (u_output_hdr > 0.5) return vec4(L, alpha);
-    vec3 x = vec3(1.0) - exp(-L * u_exposure);
-    vec3 lo = x * 12.92;
-    vec3 hi = 1.055 * pow(max(x, vec3(0.0031308)), vec3(1.0 / 2.4)) - 0.055;
-    vec3 srgb = mix(lo, hi, step(vec3(0.0031308), x));
-    float n = sky_hash(gl_FragCoord.xy) + sky_hash(gl_FragCoord.yx + 17.0) - 1.0;
-    return vec4(srgb + n / 255.0, alpha);
+    if (u_output_hdr > 0.5) return vec4(max(L, vec3(0.0)), alpha);
+    vec3 x = max(L * u_exposure - 0.004, vec3(0.0));
+    vec3 display = (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
+    return vec4(display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0, alpha);
 }
 #endif /* SKY_FRAGMENT */

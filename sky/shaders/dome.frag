@@ -1,26 +1,22 @@
-/* dome.frag: one pass for everything behind and in the atmosphere, back to
- * front (Mueller sec. 5): night layers, attenuated by the atmosphere, plus
- * the atmosphere's own light, then the clouds over both. */
+/* dome.frag: everything behind and in the atmosphere, back to front
+ * (Mueller sec. 5): the atmosphere's own light, the night layers behind it
+ * dimmed by its extinction, then the clouds over both. */
 SKY_IN vec3 v_dir;
-SKY_IN vec2 v_ndc;
+SKY_IN vec4 v_color;  /* rgb: day gradient, a: galaxy */
 void main()
 {
-    vec3 d;
-    if (u_fisheye > 0.5) {
-        vec2 p = v_ndc * u_aspect;
-        if (dot(p, p) > 1.0) {
-            SKY_FRAG_COLOR = vec4(0.0, 0.0, 0.0, 1.0);
-            return;
-        }
-        d = sky_fisheye_dir(p);
-    } else {
-        d = normalize(v_dir);
+    /* The perspective-correct interpolation of the directions of a flat
+     * triangle drawn at infinity is the pixel's own ray: exact. */
+    vec3 d = normalize(v_dir);
+    if (u_fisheye > 0.5 && d.y < 0.0) {
+        SKY_FRAG_COLOR = vec4(0.0, 0.0, 0.0, 1.0); /* outside the all-sky circle */
+        return;
     }
-    vec3 L = vec3(0.0);
+    vec3 L = sky_atmosphere(d, v_color.rgb);
 #ifdef SKY_HAS_FLICKER
-    L += sky_flicker(d);
+    /* uniform branch: skipped by day */
+    if (u_star_luminance > 0.0) L += sky_flicker(d, v_color.a) * sky_atmosphere_transmittance(d);
 #endif
-    L = L * sky_atmosphere_transmittance(d) + sky_atmosphere(d);
 #ifdef SKY_HAS_CLOUDS
     vec4 c = sky_clouds(d);
     L = mix(L, c.rgb, c.a);

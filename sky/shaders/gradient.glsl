@@ -1,32 +1,28 @@
 /* gradient.glsl: Roden-Parberry's day sky (sec. 2, fig. 1 inset): a blue
- * gradient by elevation, scaled by the daylight luminance for the sun's
- * altitude, with a forward-scattering aureole tinted by the sunlight that
- * reaches it and a faint night floor. */
-uniform sampler2D u_gradient_tex;
+ * gradient by elevation (interpolated from the dome's vertices), scaled by
+ * the daylight luminance for the sun's altitude, with a forward-scattering
+ * aureole tinted by the sunlight that reaches it and a faint night floor. */
 uniform float u_sky_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
 uniform float u_night_luminance;  /* kcd/m^2 of the moonless night sky      */
 uniform vec3 u_sun_transmittance;
+uniform vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient.c */
 
 /* Elevation sine of a direction, with the ground mirrored to the horizon
  * colour so a host's terrain gap shows haze rather than black. */
 float sky_gradient_elevation(vec3 d) { return clamp(d.y, 0.0, 1.0); }
 
-vec3 sky_atmosphere(vec3 d)
+vec3 sky_atmosphere(vec3 d, vec3 day)
 {
     float e = sky_gradient_elevation(d);
-    /* sqrt spends more of the 256 texels near the horizon, where it changes. */
-    vec3 day = SKY_TEX2D(u_gradient_tex, vec2(sqrt(e) * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb;
     float mu = max(dot(d, u_sun_dir), 0.0);
     float mu2 = mu * mu, mu4 = mu2 * mu2, mu8 = mu4 * mu4;
     /* aureole: a broad and a narrow lobe, strongest near the horizon where
      * the path is long */
     float aureole = (0.25 * mu8 + 0.6 * mu8 * mu8 * mu8 * mu8) * (1.0 + 1.5 * (1.0 - e));
-    /* Low sun: the horizon takes the colour of the light that reaches it
-     * (square root of the direct beam's transmittance, normalised), most
-     * strongly on the sun's side. */
-    vec3 tint = sqrt(u_sun_transmittance / max(u_sun_transmittance.r, 1e-6));
+    /* Low sun: the horizon takes the colour of the light that reaches it,
+     * most strongly on the sun's side. */
     float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
-    vec3 L = u_sky_luminance * (day * mix(vec3(1.0), tint, low) + aureole * u_sun_transmittance);
+    vec3 L = u_sky_luminance * (day * mix(vec3(1.0), u_horizon_tint, low) + aureole * u_sun_transmittance);
     L += u_night_luminance * vec3(0.55, 0.7, 1.0) * (1.0 + (1.0 - e));
     if (d.y < 0.0) L *= 1.0 / (1.0 - 4.0 * d.y); /* darken below the horizon */
     return L;

@@ -1,7 +1,6 @@
 /* sun.vert: a camera-facing quad around the sun direction (R-P sec. 2).
  * Corners are directions; w = 0 puts them at infinity, z = w on the far
  * plane so no near/far setting clips them. */
-uniform mat4 u_view_proj;
 SKY_ATTR vec2 a_pos;   /* disc coordinates, -1..1 across the quad */
 SKY_ATTR vec3 a_dir;
 SKY_OUT vec3 v_dir;

@@ -1,0 +1,223 @@
+/*
+ * sky-bench: what the sky costs, as medians and as ratios to a baseline
+ * measured in the same run — a full-screen quad with one texture fetch,
+ * the cheapest thing a sky could possibly be.
+ *
+ *   sky-bench [--json] [--size WxH] [--frames N]
+ *
+ * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
+ * draws, frame ms (median of N) and its ratio to the baseline of the same
+ * profile. The atmosphere error columns arrive with the CPU reference.
+ */
+#define GL_GLEXT_PROTOTYPES 1
+#include "cli.h"
+#include "osmesa_ctx.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* The baseline: one full-screen triangle strip, one RGBA8 512x512 texture
+ * fetch per pixel, written straight out. */
+static double baseline_ms(int core, int frames)
+{
+    const char *vs = core ? "#version 330 core\nin vec2 p;\nout vec2 uv;\n"
+                            "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,0.0,1.0);}\n"
+                          : "#version 110\nattribute vec2 p;\nvarying vec2 uv;\n"
+                            "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,0.0,1.0);}\n";
+    const char *fs = core ? "#version 330 core\nin vec2 uv;\nuniform sampler2D t;\nout vec4 c;\n"
+                            "void main(){c=texture(t,uv*3.0);}\n"
+                          : "#version 110\nvarying vec2 uv;\nuniform sampler2D t;\n"
+                            "void main(){gl_FragColor=texture2D(t,uv*3.0);}\n";
+    GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER), p = glCreateProgram();
+    glShaderSource(v, 1, &vs, NULL);
+    glShaderSource(f, 1, &fs, NULL);
+    glCompileShader(v);
+    glCompileShader(f);
+    glAttachShader(p, v);
+    glAttachShader(p, f);
+    glBindAttribLocation(p, 0, "p");
+    glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) return -1.0;
+    unsigned char *texels = malloc(512 * 512 * 4);
+    for (int i = 0; i < 512 * 512 * 4; i++) texels[i] = (unsigned char)(i * 2654435761u >> 24);
+    GLuint tex, buf, vao = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 512, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    free(texels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    if (core) {
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+    }
+    static const float quad[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    glGenBuffers(1, &buf);
+    glBindBuffer(GL_ARRAY_BUFFER, buf);
+    glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    glEnableVertexAttribArray(0);
+    glUseProgram(p);
+    glUniform1i(glGetUniformLocation(p, "t"), 0);
+    double *t = malloc(sizeof(double) * (size_t)frames);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4); /* warm-up: shader JIT */
+    glFinish();
+    for (int i = 0; i < frames; i++) {
+        double t0 = now_ms();
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+        glFinish();
+        t[i] = now_ms() - t0;
+    }
+    double m = median(t, frames);
+    free(t);
+    glDisableVertexAttribArray(0);
+    glDeleteBuffers(1, &buf);
+    if (core) glDeleteVertexArrays(1, &vao);
+    glDeleteTextures(1, &tex);
+    glDeleteProgram(p);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    return m;
+}
+
+typedef struct row {
+    const char *preset;
+    const char *profile;
+    double frame_ms, ratio;
+    sky_stats st;
+} row;
+
+static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int frames, row *out)
+{
+    char *argv[] = {"sky-bench", "--preset", (char *)preset, NULL};
+    sky_cli cli;
+    char err[512];
+    if (sky_cli_parse(&cli, 3, argv, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-bench: %s\n", err);
+        return -1;
+    }
+    cli.gl = gl;
+    cli.width = w;
+    cli.height = h;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = cli.features;
+    cfg.gl_profile = gl;
+    cfg.get_proc_address = sky_osmesa_loader();
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        fprintf(stderr, "sky-bench: %s: %s\n", preset, err);
+        return -1;
+    }
+    sky_set_params(s, &cli.params);
+    float view[16], proj[16];
+    sky_cli_camera(&cli, view, proj);
+    double *t = malloc(sizeof(double) * (size_t)frames);
+    sky_draw(s, view, proj); /* warm-up: shader JIT */
+    glFinish();
+    for (int i = 0; i < frames; i++) {
+        sky_update(s, 1.0 / 60.0);
+        double t0 = now_ms();
+        sky_draw(s, view, proj);
+        glFinish();
+        t[i] = now_ms() - t0;
+    }
+    out->frame_ms = median(t, frames);
+    free(t);
+    sky_get_stats(s, &out->st);
+    out->preset = preset;
+    out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
+    sky_destroy(s);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    int json = 0, w = 1280, h = 720, frames = 20;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--json"))
+            json = 1;
+        else if (!strcmp(argv[i], "--size") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &w, &h) == 2 && w > 0 &&
+                 h > 0 && w <= 8192 && h <= 8192)
+            i++;
+        else if (!strcmp(argv[i], "--frames") && i + 1 < argc && (frames = atoi(argv[i + 1])) >= 3 && frames <= 10000)
+            i++;
+        else {
+            fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3]\n",
+                    argv[i]);
+            return 2;
+        }
+    }
+    static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry"};
+    enum { NP = sizeof presets / sizeof presets[0] };
+    row rows[2 * NP];
+    double base[2] = {0, 0};
+    int nrows = 0;
+    for (int prof = 0; prof < 2; prof++) {
+        sky_gl_profile gl = prof == 0 ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
+        char err[512];
+        sky_osmesa ctx;
+        if (sky_osmesa_create(&ctx, w, h, gl, 0, err, sizeof err)) {
+            fprintf(stderr, "sky-bench: %s\n", err);
+            return 1;
+        }
+        base[prof] = baseline_ms(prof == 0, frames);
+        if (base[prof] <= 0) {
+            fprintf(stderr, "sky-bench: baseline shader failed\n");
+            return 1;
+        }
+        for (int p = 0; p < NP; p++) {
+            if (bench_preset(presets[p], gl, w, h, frames, &rows[nrows])) return 1;
+            rows[nrows].ratio = rows[nrows].frame_ms / base[prof];
+            nrows++;
+        }
+        sky_osmesa_destroy(&ctx);
+    }
+    if (json) {
+        printf("{\"size\":\"%dx%d\", \"frames\":%d, \"baseline\": {\"frame_ms\":%.4f, \"compat_frame_ms\":%.4f},\n"
+               " \"presets\": [\n",
+               w, h, frames, base[0], base[1]);
+        for (int i = 0; i < nrows; i++)
+            printf("  {\"preset\":\"%s\", \"profile\":\"%s\", \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "
+                   "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f}%s\n",
+                   rows[i].preset, rows[i].profile, rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs,
+                   rows[i].st.draws_per_frame, rows[i].frame_ms, rows[i].ratio, i + 1 < nrows ? "," : "");
+        printf(" ]}\n");
+        return 0;
+    }
+    printf("sky-bench: %dx%d, median of %d frames, llvmpipe or whatever GL OSMesa provides\n", w, h, frames);
+    printf("baseline (one-texture full-screen quad): core %.2f ms, compat %.2f ms\n\n", base[0], base[1]);
+    printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline |\n");
+    printf("|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < nrows; i++)
+        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f |\n", rows[i].preset, rows[i].profile,
+               rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs, rows[i].st.draws_per_frame,
+               rows[i].frame_ms, rows[i].ratio);
+    return 0;
+}
