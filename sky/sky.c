@@ -185,13 +185,19 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     if ((features & SKY_SUN) && sky_sun_create(s, err, err_len)) goto fail;
     s->cfg.texture_dir = NULL;
 
-    /* The dome program holds only the snippets of enabled features. */
+    /* The dome program holds only the snippets of enabled features. With
+     * night layers there are two variants, with and without them: a
+     * uniform branch is not free on every GPU (llvmpipe pays for both
+     * sides), and a day frame should do no star work at all. */
     const sky_snippet *dome_snippets[SKY_MAX_SNIPPETS];
     int n = 0;
     dome_snippets[n++] = &sky_gradient_snippet;
-    if (features & SKY_FLICKER_STARS) dome_snippets[n++] = &sky_flicker_snippet;
     if (features & SKY_CLOUDS) dome_snippets[n++] = &sky_clouds_snippet;
     if (sky_program_build(s, &s->dome, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
+    if (features & SKY_FLICKER_STARS) {
+        dome_snippets[n++] = &sky_flicker_snippet;
+        if (sky_program_build(s, &s->dome_night, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
+    }
     if (features & SKY_SUN) {
         const sky_snippet *sun_snippets[2];
         int m = 0;
@@ -220,6 +226,7 @@ void sky_destroy(sky *s)
     if (gl->glDeleteTextures) { /* NULL when sky_gl_init failed early */
         for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(s, (sky_texture_id)i);
         sky_program_destroy(s, &s->dome);
+        sky_program_destroy(s, &s->dome_night);
         sky_program_destroy(s, &s->sun);
         GLuint buffers[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer};
         gl->glDeleteBuffers(3, buffers);
@@ -478,8 +485,9 @@ static sky_result draw_frame(sky *s, const sky_gl_state *host)
 
     /* 1. the dome: atmosphere, with flicker stars behind it and clouds in
      * front, in one pass over the screen */
-    draw_layer(s, SKY_LAYER_ATMOSPHERE, &s->dome, 0);
-    if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = s->frame.star_luminance > 0.0f;
+    int night = s->dome_night.id && s->frame.star_luminance > 0.0f;
+    draw_layer(s, SKY_LAYER_ATMOSPHERE, night ? &s->dome_night : &s->dome, 0);
+    if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night;
     if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);
 
     /* 2. the sun quad, added over the dome (it hides behind the clouds by

@@ -125,7 +125,8 @@ struct sky {
     int world_is_identity;
 
     sky_texture textures[SKY_TEX_COUNT];
-    sky_program dome;             /* full-screen pass: atmosphere+flicker+clouds */
+    sky_program dome;             /* the dome pass: atmosphere + clouds          */
+    sky_program dome_night;       /* the same with the night layers (flicker)    */
     sky_program sun;              /* sun quad                                  */
     GLuint dome_vertices;         /* dome.c: direction, gradient colour, galaxy */
     GLuint dome_indices;

@@ -14,8 +14,8 @@ void main()
     }
     vec3 L = sky_atmosphere(d, v_color.rgb);
 #ifdef SKY_HAS_FLICKER
-    /* uniform branch: skipped by day */
-    if (u_star_luminance > 0.0) L += sky_flicker(d, v_color.a) * sky_atmosphere_transmittance(d);
+    /* only in the night variant of this program (sky.c) */
+    L += sky_flicker(d, v_color.a) * sky_atmosphere_transmittance(d);
 #endif
 #ifdef SKY_HAS_CLOUDS
     vec4 c = sky_clouds(d);
