@@ -112,7 +112,7 @@ int sky_dome_create(sky *s, char *err, size_t err_len)
     return 0;
 }
 
-void sky_dome_draw(sky *s)
+void sky_dome_draw(sky *s, int upper)
 {
     const sky_gl *gl = &s->gl;
     gl->glBindBuffer(GL_ARRAY_BUFFER, s->dome_vertices);
@@ -123,9 +123,7 @@ void sky_dome_draw(sky *s)
     gl->glDisableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
     gl->glEnableVertexAttribArray(2);
-    /* The all-sky image shows the upper hemisphere only; the lower one
-     * would fold over it (its nadir has no single image point). */
-    int first = s->frame.fisheye > 0.5f ? s->dome_upper_first : 0;
-    gl->glDrawElements(GL_TRIANGLES, s->dome_index_count - first, GL_UNSIGNED_SHORT,
-                       (const void *)(first * sizeof(unsigned short)));
+    int first = upper ? s->dome_upper_first : 0;
+    int count = upper ? s->dome_index_count - s->dome_upper_first : s->dome_upper_first;
+    gl->glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_SHORT, (const void *)(first * sizeof(unsigned short)));
 }

@@ -194,6 +194,11 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     dome_snippets[n++] = &sky_gradient_snippet;
     if (features & SKY_CLOUDS) dome_snippets[n++] = &sky_clouds_snippet;
     if (sky_program_build(s, &s->dome, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
+    /* Below the horizon there are no clouds and no stars: the lower
+     * hemisphere gets the atmosphere alone (the host's terrain usually
+     * covers it; what shows in a gap is the horizon haze). */
+    if (n > 1 && sky_program_build(s, &s->ground, "dome.vert", "dome.frag", dome_snippets, 1, err, err_len))
+        goto fail;
     if (features & SKY_FLICKER_STARS) {
         dome_snippets[n++] = &sky_flicker_snippet;
         if (sky_program_build(s, &s->dome_night, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
@@ -227,6 +232,7 @@ void sky_destroy(sky *s)
         for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(s, (sky_texture_id)i);
         sky_program_destroy(s, &s->dome);
         sky_program_destroy(s, &s->dome_night);
+        sky_program_destroy(s, &s->ground);
         sky_program_destroy(s, &s->sun);
         GLuint buffers[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer};
         gl->glDeleteBuffers(3, buffers);
@@ -446,7 +452,7 @@ static void reset_layer_stats(sky *s)
     s->stats.draws_per_frame = 0;
 }
 
-/* Draws one layer: the dome mesh (buffer 0) or a quad buffer. */
+/* Draws one layer: a quad buffer, or the dome's hemispheres (quad 0). */
 static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint quad)
 {
     const sky_gl *gl = &s->gl;
@@ -461,7 +467,17 @@ static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint 
         bind_quad(s, quad);
         gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     } else {
-        sky_dome_draw(s);
+        sky_dome_draw(s, 1);
+        /* the lower hemisphere: its own cheap program when the upper one
+         * carries more than the atmosphere; none in the all-sky image */
+        if (s->frame.fisheye < 0.5f) {
+            if (s->ground.id) {
+                sky_program_apply(s, &s->ground);
+                s->stats.draws_per_frame++;
+                s->stats.layers[layer].draws++;
+            }
+            sky_dome_draw(s, 0);
+        }
     }
     if (timed) {
         gl->glFinish();

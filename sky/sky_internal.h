@@ -127,6 +127,7 @@ struct sky {
     sky_texture textures[SKY_TEX_COUNT];
     sky_program dome;             /* the dome pass: atmosphere + clouds          */
     sky_program dome_night;       /* the same with the night layers (flicker)    */
+    sky_program ground;           /* below the horizon: atmosphere only          */
     sky_program sun;              /* sun quad                                  */
     GLuint dome_vertices;         /* dome.c: direction, gradient colour, galaxy */
     GLuint dome_indices;
@@ -196,7 +197,8 @@ extern const sky_snippet sky_sun_snippet;
 
 /* The dome mesh with per-vertex gradient colour and galaxy (dome.c). */
 int sky_dome_create(sky *s, char *err, size_t err_len);
-void sky_dome_draw(sky *s); /* binds its buffers and draws */
+/* Binds the dome's buffers and draws its upper (1) or lower (0) hemisphere. */
+void sky_dome_draw(sky *s, int upper);
 void sky_gradient_frame(sky *s);
 /* Day-gradient colour (linear RGB) for a direction, from the 256x1
  * gradient image, as R-P's gradient texture maps it onto the dome. */
