@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define PI 3.14159265358979323846
 
@@ -262,6 +263,37 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         if (rc) return rc;
     }
     return SKY_CLI_OK;
+}
+
+sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = cli->features;
+    cfg.gl_profile = cli->gl;
+    cfg.atmosphere = cli->atmosphere;
+    cfg.get_proc_address = loader;
+    return cfg;
+}
+
+double sky_cli_now_ms(void)
+{
+    struct timespec ts;
+    timespec_get(&ts, TIME_UTC);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double sky_cli_median(double *v, int n)
+{
+    if (n <= 0) return 0.0;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16])

@@ -33,6 +33,13 @@ typedef struct sky_cli {
 int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, size_t err_len);
 void sky_cli_usage(FILE *out, const char *prog, int is_demo);
 
+/* The sky_config the options describe, for the given GL loader. */
+sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader);
+
+/* Wall-clock milliseconds, and the median of n samples (sorts v). */
+double sky_cli_now_ms(void);
+double sky_cli_median(double *v, int n);
+
 /* Column-major view and projection matrices for --yaw/--pitch/--fov. */
 void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
 

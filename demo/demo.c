@@ -22,11 +22,7 @@ static int headless(const sky_cli *cli)
         fprintf(stderr, "sky-demo: %s\n", err);
         return 1;
     }
-    sky_config cfg = {0};
-    cfg.features = cli->features;
-    cfg.gl_profile = cli->gl;
-    cfg.atmosphere = cli->atmosphere;
-    cfg.get_proc_address = sky_osmesa_loader();
+    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         fprintf(stderr, "sky-demo: %s\n", err);
@@ -148,11 +144,7 @@ int main(int argc, char **argv)
     glfwSwapInterval(1);
     glfwSetWindowUserPointer(win, &d);
     glfwSetKeyCallback(win, on_key);
-    sky_config cfg = {0};
-    cfg.features = d.cli.features;
-    cfg.gl_profile = d.cli.gl;
-    cfg.atmosphere = d.cli.atmosphere;
-    cfg.get_proc_address = glfwGetProcAddress;
+    sky_config cfg = sky_cli_config(&d.cli, glfwGetProcAddress);
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         fprintf(stderr, "sky-demo: %s\n", err);

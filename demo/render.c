@@ -10,20 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* FILE.png -> FILE_0007.png for frame 7 of several. */
 static void frame_path(char *dst, size_t len, const char *path, int frame, int frames)
@@ -47,11 +33,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         fprintf(stderr, "sky-render: %s\n", err);
         return 1;
     }
-    sky_config cfg = {0};
-    cfg.features = cli->features;
-    cfg.gl_profile = cli->gl;
-    cfg.atmosphere = cli->atmosphere;
-    cfg.get_proc_address = sky_osmesa_loader();
+    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
     cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
     cfg.profile_layers = cli->stats;
     sky *s = sky_create(&cfg, err, sizeof err);
@@ -79,10 +61,10 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     }
     for (int f = 0; !rc && f < cli->frames; f++) {
         if (f > 0 && sky_update(s, 1.0 / 30.0) < 0) rc = 1;
-        double t0 = now_ms();
+        double t0 = sky_cli_now_ms();
         sky_result r = cli->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj);
         sky_osmesa_finish(&ctx);
-        times[f] = now_ms() - t0;
+        times[f] = sky_cli_now_ms() - t0;
         if (r < 0) {
             fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
             rc = 1;
@@ -103,8 +85,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     if (!rc && print_stats) {
         sky_stats st;
         sky_get_stats(s, &st);
-        qsort(times, (size_t)cli->frames, sizeof(double), cmp_double);
-        sky_cli_print_stats(stdout, &st, times[cli->frames / 2]);
+        sky_cli_print_stats(stdout, &st, sky_cli_median(times, cli->frames));
     }
     free(times);
     sky_destroy(s);

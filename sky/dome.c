@@ -11,7 +11,6 @@
 #include "sky_internal.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -53,7 +52,7 @@ int sky_dome_create(sky *s, char *err, size_t err_len)
         free(idx);
         sky_png_free(gradient);
         sky_png_free(galaxy);
-        snprintf(err, err_len, "out of memory for the dome mesh");
+        sky_format(err, err_len, "out of memory for the dome mesh");
         return -1;
     }
     /* rings from the nadir side up: down rings reversed, then up rings */
@@ -106,7 +105,7 @@ int sky_dome_create(sky *s, char *err, size_t err_len)
     sky_png_free(gradient);
     sky_png_free(galaxy);
     if (!s->dome_vertices || !s->dome_indices) {
-        snprintf(err, err_len, "glGenBuffers failed for the dome mesh");
+        sky_format(err, err_len, "glGenBuffers failed for the dome mesh");
         return -1;
     }
     return 0;

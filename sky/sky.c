@@ -35,17 +35,12 @@ sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
     return code;
 }
 
-static void err_printf(char *err, size_t len, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static void err_printf(char *err, size_t len, const char *fmt, ...)
+void sky_format(char *buf, size_t len, const char *fmt, ...)
 {
-    if (!err || len == 0) return;
+    if (!buf || len == 0) return;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err, len, fmt, ap);
+    vsnprintf(buf, len, fmt, ap);
     va_end(ap);
 }
 
@@ -129,28 +124,28 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
 {
     if (err && err_len) err[0] = '\0';
     if (!cfg) {
-        err_printf(err, err_len, "sky_create: config is NULL (a zeroed sky_config with get_proc_address set is enough)");
+        sky_format(err, err_len, "sky_create: config is NULL (a zeroed sky_config with get_proc_address set is enough)");
         return NULL;
     }
     if (!cfg->get_proc_address) {
-        err_printf(err, err_len, "sky_create: get_proc_address is NULL; pass the host's GL loader");
+        sky_format(err, err_len, "sky_create: get_proc_address is NULL; pass the host's GL loader");
         return NULL;
     }
     if ((unsigned)cfg->atmosphere > SKY_ATMOSPHERE_BLEND || (unsigned)cfg->gl_profile > SKY_GL_COMPAT20 ||
         (unsigned)cfg->output > SKY_OUTPUT_HDR) {
-        err_printf(err, err_len, "sky_create: atmosphere %d, gl_profile %d or output %d is out of range",
+        sky_format(err, err_len, "sky_create: atmosphere %d, gl_profile %d or output %d is out of range",
                    (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
         return NULL;
     }
     if (cfg->atmosphere != SKY_ATMOSPHERE_DEFAULT && cfg->atmosphere != SKY_ATMOSPHERE_GRADIENT) {
-        err_printf(err, err_len, "sky_create: atmosphere path %d is not built yet (only GRADIENT is)",
+        sky_format(err, err_len, "sky_create: atmosphere path %d is not built yet (only GRADIENT is)",
                    (int)cfg->atmosphere);
         return NULL;
     }
     unsigned features = cfg->features == 0 ? SKY_FEATURES_DEFAULT
                         : (cfg->features & SKY_FEATURES_NONE) ? 0u : cfg->features;
     if (features & ~(unsigned)SKY_FEATURES_AVAILABLE) {
-        err_printf(err, err_len, "sky_create: features 0x%x are not built yet (available: 0x%x)",
+        sky_format(err, err_len, "sky_create: features 0x%x are not built yet (available: 0x%x)",
                    features & ~(unsigned)SKY_FEATURES_AVAILABLE, (unsigned)SKY_FEATURES_AVAILABLE);
         return NULL;
     }
@@ -158,13 +153,13 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     for (int i = 0; i < 9; i++)
         if (cfg->horizon_to_world[i] != 0.0f) identity = 0;
     if (!identity && !check_rotation(cfg->horizon_to_world)) {
-        err_printf(err, err_len, "sky_create: horizon_to_world is not a rotation (columns must be orthonormal)");
+        sky_format(err, err_len, "sky_create: horizon_to_world is not a rotation (columns must be orthonormal)");
         return NULL;
     }
 
     sky *s = calloc(1, sizeof *s);
     if (!s) {
-        err_printf(err, err_len, "sky_create: out of memory");
+        sky_format(err, err_len, "sky_create: out of memory");
         return NULL;
     }
     s->cfg = *cfg; /* texture_dir is the caller's string: used during create only */
@@ -213,7 +208,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     if (s->profile == SKY_GL_CORE33) gl->glBindVertexArray(0);
     GLenum e = gl->glGetError();
     if (e != GL_NO_ERROR) {
-        err_printf(err, err_len, "sky_create: GL error 0x%04x while creating resources", e);
+        sky_format(err, err_len, "sky_create: GL error 0x%04x while creating resources", e);
         goto fail;
     }
     compute_frame(s);

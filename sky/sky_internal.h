@@ -142,6 +142,12 @@ struct sky {
 };
 
 /* ---- error text --------------------------------------------------------- */
+/* snprintf into an error buffer that may be NULL or empty. */
+void sky_format(char *buf, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
 sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))

@@ -63,6 +63,15 @@ float image_luminance(const image *im, int x, int y);
 /* The camera of a scene as sky-render builds it. */
 void scene_camera(const scene *sc, float view[16], float proj[16]);
 
+/* A small OSMesa context and a sky in it (base: config or NULL for the
+ * defaults; the loader and profile are filled in). */
+typedef struct fixture {
+    sky_osmesa ctx;
+    sky *s;
+} fixture;
+int fixture_open(fixture *f, sky_gl_profile profile, const sky_config *base);
+void fixture_close(fixture *f);
+
 /* Path of a built program (SKY_BIN or build/bin). */
 const char *bin_path(const char *name, char *buf, size_t len);
 /* Runs a shell command, returns its exit status; output into buf. */

@@ -22,42 +22,6 @@ void test_api_leaks_1000_cycles(void);
 void test_gl_state_restored_core(void);
 void test_gl_state_restored_compat(void);
 
-/* A context and a default sky in it. */
-typedef struct fixture {
-    sky_osmesa ctx;
-    sky *s;
-} fixture;
-
-static int fixture_open(fixture *f, sky_gl_profile profile, const sky_config *base)
-{
-    char err[512];
-    memset(f, 0, sizeof *f);
-    if (sky_osmesa_create(&f->ctx, 64, 48, profile, 0, err, sizeof err)) {
-        printf("    %s\n", err);
-        return -1;
-    }
-    sky_config cfg;
-    if (base)
-        cfg = *base;
-    else
-        memset(&cfg, 0, sizeof cfg);
-    cfg.get_proc_address = sky_osmesa_loader();
-    cfg.gl_profile = profile;
-    f->s = sky_create(&cfg, err, sizeof err);
-    if (!f->s) {
-        printf("    sky_create: %s\n", err);
-        sky_osmesa_destroy(&f->ctx);
-        return -1;
-    }
-    return 0;
-}
-
-static void fixture_close(fixture *f)
-{
-    sky_destroy(f->s);
-    sky_osmesa_destroy(&f->ctx);
-}
-
 static void default_camera(float view[16], float proj[16])
 {
     scene sc = scene_default();

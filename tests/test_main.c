@@ -125,6 +125,36 @@ int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
     return rc;
 }
 
+int fixture_open(fixture *f, sky_gl_profile profile, const sky_config *base)
+{
+    char err[512];
+    memset(f, 0, sizeof *f);
+    if (sky_osmesa_create(&f->ctx, 64, 48, profile, 0, err, sizeof err)) {
+        printf("    %s\n", err);
+        return -1;
+    }
+    sky_config cfg;
+    if (base)
+        cfg = *base;
+    else
+        memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.gl_profile = profile;
+    f->s = sky_create(&cfg, err, sizeof err);
+    if (!f->s) {
+        printf("    sky_create: %s\n", err);
+        sky_osmesa_destroy(&f->ctx);
+        return -1;
+    }
+    return 0;
+}
+
+void fixture_close(fixture *f)
+{
+    sky_destroy(f->s);
+    sky_osmesa_destroy(&f->ctx);
+}
+
 void image_free(image *im)
 {
     free(im->px);

@@ -207,21 +207,12 @@ void test_render_day_bright_night_dark_with_stars(void)
 
 void test_render_no_star_work_at_noon(void)
 {
-    char err[512];
-    sky_osmesa ctx;
-    if (sky_osmesa_create(&ctx, 64, 64, SKY_GL_AUTO, 0, err, sizeof err)) {
-        CHECK(0, "%s", err);
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "fixture");
         return;
     }
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.get_proc_address = sky_osmesa_loader();
-    sky *s = sky_create(&cfg, err, sizeof err);
-    if (!s) {
-        CHECK(0, "%s", err);
-        sky_osmesa_destroy(&ctx);
-        return;
-    }
+    sky *s = f.s;
     sky_params p = sky_default_params();
     sky_stats st;
     p.time = 0.5f;
@@ -236,8 +227,7 @@ void test_render_no_star_work_at_noon(void)
     sky_get_stats(s, &st);
     CHECK(st.layers[SKY_LAYER_FLICKER].drawn, "flicker stars are drawn at midnight");
     CHECK(!st.layers[SKY_LAYER_SUN].drawn, "no sun at midnight");
-    sky_destroy(s);
-    sky_osmesa_destroy(&ctx);
+    fixture_close(&f);
 
     /* skipping changes nothing visible: noon with and without the layer */
     scene with = sky_only(SKY_FLICKER_STARS), without = sky_only(SKY_FEATURES_NONE);
@@ -479,22 +469,13 @@ static void bright_centroid(const image *im, double *cx, double *cy, double *pea
 
 static int sun_direction(const scene *sc, double dir[3])
 {
-    char err[256];
-    sky_osmesa ctx;
-    if (sky_osmesa_create(&ctx, 8, 8, SKY_GL_AUTO, 0, err, sizeof err)) return -1;
-    sky_config cfg = sc->cfg;
-    cfg.get_proc_address = sky_osmesa_loader();
-    sky *s = sky_create(&cfg, err, sizeof err);
-    if (!s) {
-        sky_osmesa_destroy(&ctx);
-        return -1;
-    }
-    sky_set_params(s, &sc->params);
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &sc->cfg)) return -1;
+    sky_set_params(f.s, &sc->params);
     sky_lighting l;
-    sky_get_lighting(s, &l);
+    sky_get_lighting(f.s, &l);
     for (int i = 0; i < 3; i++) dir[i] = l.sun_direction[i];
-    sky_destroy(s);
-    sky_osmesa_destroy(&ctx);
+    fixture_close(&f);
     return 0;
 }
 

@@ -18,26 +18,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    timespec_get(&ts, TIME_UTC);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* The baseline: one full-screen triangle strip, one RGBA8 512x512 texture
  * fetch per pixel, written straight out. */
@@ -89,12 +69,12 @@ static double baseline_ms(int core, int frames)
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4); /* warm-up: shader JIT */
     glFinish();
     for (int i = 0; i < frames; i++) {
-        double t0 = now_ms();
+        double t0 = sky_cli_now_ms();
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
         glFinish();
-        t[i] = now_ms() - t0;
+        t[i] = sky_cli_now_ms() - t0;
     }
-    double m = median(t, frames);
+    double m = sky_cli_median(t, frames);
     free(t);
     glDisableVertexAttribArray(0);
     glDeleteBuffers(1, &buf);
@@ -125,11 +105,7 @@ static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int
     cli.gl = gl;
     cli.width = w;
     cli.height = h;
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.features = cli.features;
-    cfg.gl_profile = gl;
-    cfg.get_proc_address = sky_osmesa_loader();
+    sky_config cfg = sky_cli_config(&cli, sky_osmesa_loader());
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         fprintf(stderr, "sky-bench: %s: %s\n", preset, err);
@@ -143,12 +119,12 @@ static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int
     glFinish();
     for (int i = 0; i < frames; i++) {
         sky_update(s, 1.0 / 60.0);
-        double t0 = now_ms();
+        double t0 = sky_cli_now_ms();
         sky_draw(s, view, proj);
         glFinish();
-        t[i] = now_ms() - t0;
+        t[i] = sky_cli_now_ms() - t0;
     }
-    out->frame_ms = median(t, frames);
+    out->frame_ms = sky_cli_median(t, frames);
     free(t);
     sky_get_stats(s, &out->st);
     out->preset = preset;

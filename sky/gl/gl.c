@@ -9,20 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void set_err(char *err, size_t len, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static void set_err(char *err, size_t len, const char *fmt, ...)
-{
-    if (!err || len == 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, len, fmt, ap);
-    va_end(ap);
-}
-
 /* Parses "M.m..." after any leading non-digits ("OpenGL ES 3.0", "4.5 (Core
  * Profile) Mesa"). Returns major*10+minor, or 0 when the string is unusable. */
 static int parse_version(const char *v)
@@ -52,7 +38,7 @@ int sky_gl_init(sky *s, char *err, size_t err_len)
 #define SKY_GL_LOAD(ret, name, params)                                                   \
     s->gl.name = (ret(SKY_APIENTRY *) params)gpa(#name);                                 \
     if (!s->gl.name) {                                                                   \
-        set_err(err, err_len, "the GL context lacks %s (OpenGL 2.0 is the minimum)", #name); \
+        sky_format(err, err_len, "the GL context lacks %s (OpenGL 2.0 is the minimum)", #name); \
         return -1;                                                                       \
     }
     SKY_GL_FUNCS_20(SKY_GL_LOAD)
@@ -66,11 +52,11 @@ int sky_gl_init(sky *s, char *err, size_t err_len)
     const char *version = (const char *)gl->glGetString(GL_VERSION);
     int gl_ver = parse_version(version);
     if (gl_ver == 0) {
-        set_err(err, err_len, "no usable GL context is current (GL_VERSION is %s)", version ? version : "NULL");
+        sky_format(err, err_len, "no usable GL context is current (GL_VERSION is %s)", version ? version : "NULL");
         return -1;
     }
     if (gl_ver < 20) {
-        set_err(err, err_len, "OpenGL %s is too old: libsky needs at least 2.0", version);
+        sky_format(err, err_len, "OpenGL %s is too old: libsky needs at least 2.0", version);
         return -1;
     }
     snprintf(s->gl_version, sizeof s->gl_version, "%s", version);
@@ -93,19 +79,19 @@ int sky_gl_init(sky *s, char *err, size_t err_len)
     sky_gl_profile want = s->cfg.gl_profile;
     if (want == SKY_GL_AUTO) want = can_core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
     if (want == SKY_GL_CORE33 && !can_core) {
-        set_err(err, err_len, "CORE33 asked for, but the context offers OpenGL %s with GLSL %d.%d", version,
+        sky_format(err, err_len, "CORE33 asked for, but the context offers OpenGL %s with GLSL %d.%d", version,
                 glsl_ver / 10, glsl_ver % 10);
         return -1;
     }
     if (want == SKY_GL_COMPAT20 && is_core_context) {
-        set_err(err, err_len, "COMPAT20 needs a compatibility context; this one is a %s core profile", version);
+        sky_format(err, err_len, "COMPAT20 needs a compatibility context; this one is a %s core profile", version);
         return -1;
     }
     if (want == SKY_GL_COMPAT20) {
         GLint units = 0;
         gl->glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
         if (units < 4) {
-            set_err(err, err_len, "the context has %d texture units; libsky needs 4", (int)units);
+            sky_format(err, err_len, "the context has %d texture units; libsky needs 4", (int)units);
             return -1;
         }
     }
@@ -133,7 +119,7 @@ static GLuint compile(sky *s, GLenum type, const char *const *parts, int count, 
     const sky_gl *gl = &s->gl;
     GLuint sh = gl->glCreateShader(type);
     if (!sh) {
-        set_err(err, err_len, "glCreateShader failed");
+        sky_format(err, err_len, "glCreateShader failed");
         return 0;
     }
     gl->glShaderSource(sh, count, parts, NULL);
@@ -143,7 +129,7 @@ static GLuint compile(sky *s, GLenum type, const char *const *parts, int count, 
     if (!ok) {
         char log[512] = "";
         gl->glGetShaderInfoLog(sh, (GLsizei)sizeof log, NULL, log);
-        set_err(err, err_len, "%s shader failed to compile: %s", type == GL_VERTEX_SHADER ? "vertex" : "fragment",
+        sky_format(err, err_len, "%s shader failed to compile: %s", type == GL_VERTEX_SHADER ? "vertex" : "fragment",
                 log);
         gl->glDeleteShader(sh);
         return 0;
@@ -154,7 +140,7 @@ static GLuint compile(sky *s, GLenum type, const char *const *parts, int count, 
 static const char *blob_text(const char *name, char *err, size_t err_len)
 {
     const sky_blob *b = sky_find_blob(name);
-    if (!b) set_err(err, err_len, "embedded shader %s is missing from this build", name);
+    if (!b) sky_format(err, err_len, "embedded shader %s is missing from this build", name);
     return b ? (const char *)b->data : NULL;
 }
 
@@ -164,7 +150,7 @@ int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char 
     const sky_gl *gl = &s->gl;
     memset(p, 0, sizeof *p);
     if (snippet_count > SKY_MAX_SNIPPETS) {
-        set_err(err, err_len, "too many shader snippets (%d)", snippet_count);
+        sky_format(err, err_len, "too many shader snippets (%d)", snippet_count);
         return -1;
     }
     /* prologue, feature defines, common code, snippets, main */
@@ -204,7 +190,7 @@ int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char 
     if (!ok) {
         char log[512] = "";
         gl->glGetProgramInfoLog(p->id, (GLsizei)sizeof log, NULL, log);
-        set_err(err, err_len, "shader program failed to link: %s", log);
+        sky_format(err, err_len, "shader program failed to link: %s", log);
         goto fail;
     }
     /* Uniform rows: common first, then each snippet's. Rows the compiler
@@ -215,7 +201,7 @@ int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char 
     for (int i = 0; i <= snippet_count; i++)
         for (int u = 0; u < all[i]->uniform_count; u++) {
             if (p->uniform_count == SKY_MAX_UNIFORMS) {
-                set_err(err, err_len, "too many uniforms in one program");
+                sky_format(err, err_len, "too many uniforms in one program");
                 goto fail;
             }
             p->uniforms[p->uniform_count] = &all[i]->uniforms[u];
@@ -278,7 +264,7 @@ int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigne
     if (!is_pow2(w) || !is_pow2(h)) {
         /* COMPAT20 has no NPOT textures; keeping one rule for both profiles
          * makes the compat path the tested path. */
-        set_err(err, err_len, "texture %dx%d is not a power of two", w, h);
+        sky_format(err, err_len, "texture %dx%d is not a power of two", w, h);
         return -1;
     }
     sky_texture *t = &s->textures[id];
@@ -302,7 +288,7 @@ int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigne
     if (e != GL_NO_ERROR) {
         gl->glDeleteTextures(1, &t->id);
         t->id = 0;
-        set_err(err, err_len, "uploading a %dx%d texture failed (GL error 0x%04x)", w, h, e);
+        sky_format(err, err_len, "uploading a %dx%d texture failed (GL error 0x%04x)", w, h, e);
         return -1;
     }
     t->width = w;
@@ -323,7 +309,7 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
     if (!dir) return NULL;
     int n = snprintf(path, sizeof path, "%s/%s", dir, name);
     if (n < 0 || (size_t)n >= sizeof path) {
-        set_err(err, err_len, "texture override path too long: %s/%s", dir, name);
+        sky_format(err, err_len, "texture override path too long: %s/%s", dir, name);
         *failed = 1;
         return NULL;
     }
@@ -334,7 +320,7 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
     int too_big = buf && got == MAX_FILE && fgetc(f) != EOF;
     fclose(f);
     if (!buf || too_big || got == 0) {
-        set_err(err, err_len, "%s: %s", path, !buf ? "out of memory" : too_big ? "larger than 16 MiB" : "empty file");
+        sky_format(err, err_len, "%s: %s", path, !buf ? "out of memory" : too_big ? "larger than 16 MiB" : "empty file");
         free(buf);
         *failed = 1;
         return NULL;
@@ -355,7 +341,7 @@ int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, un
     if (!file) {
         const sky_blob *b = sky_find_blob(name);
         if (!b) {
-            set_err(err, err_len, "asset %s is not embedded in this build", name);
+            sky_format(err, err_len, "asset %s is not embedded in this build", name);
             return -1;
         }
         data = b->data;
@@ -364,14 +350,14 @@ int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, un
     const char *origin = file ? "override" : "embedded";
     int w = 0, h = 0, rc = -1;
     if (!sky_png_info(data, size, &w, &h)) {
-        set_err(err, err_len, "%s asset %s is not a readable PNG", origin, name);
+        sky_format(err, err_len, "%s asset %s is not a readable PNG", origin, name);
     } else if (w != expect_w || h != expect_h) {
-        set_err(err, err_len, "%s asset %s is %dx%d; expected %dx%d", origin, name, w, h, expect_w, expect_h);
+        sky_format(err, err_len, "%s asset %s is %dx%d; expected %dx%d", origin, name, w, h, expect_w, expect_h);
     } else {
         const char *why = "";
         *rgba_out = sky_png_decode_rgba(data, size, &w, &h, &why);
         if (!*rgba_out)
-            set_err(err, err_len, "%s asset %s: %s", origin, name, why);
+            sky_format(err, err_len, "%s asset %s: %s", origin, name, why);
         else
             rc = 0;
     }
