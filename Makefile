@@ -11,11 +11,11 @@ CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
 
-SKY_SRC := sky/sky.c sky/dome.c sky/sun.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/astro.c sky/astro_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
-TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png
+TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
-SKY_HDR := sky/sky.h sky/sky_internal.h sky/gl/glapi.h
+SKY_HDR := sky/sky.h sky/sky_internal.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
 
 BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
@@ -76,6 +76,10 @@ $(BIN)/sky-bench: tools/bench.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 bench: all
 	$(BIN)/sky-bench
 
+$(BIN)/catgen: tools/catgen.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
+
 $(BIN)/texgen: tools/texgen.c
 	@mkdir -p $(@D)
 	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
@@ -87,7 +91,7 @@ run: deps all
 TEST_SRC := $(wildcard tests/*.c)
 $(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(SKY_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(LIB)/libsky.a -lOSMesa -lerfa $(LDLIBS_M)
 
 # The leak check links the library with LeakSanitizer in its own build dir.
 $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
@@ -111,9 +115,12 @@ install: all
 # ---- assets ---------------------------------------------------------------------------
 # Rebuilds textures/ from their origins (see textures/README.md). Needs
 # Debian's stellarium-data, which it downloads and unpacks into build/.
-textures: $(BIN)/texgen
+textures: $(BIN)/texgen $(BIN)/catgen
 	@sh tools/fetch-stellarium.sh $(BUILD)/stellarium
+	@sh tools/fetch-d3celestial.sh $(BUILD)/d3-celestial
 	$(BIN)/texgen --out textures --photo $(BUILD)/stellarium/usr/share/stellarium/textures/earth-clouds.png --crop 0,20,176
+	$(BIN)/catgen --stars $(BUILD)/d3-celestial/package/data/stars.8.json \
+	    --pm $(BUILD)/stellarium/usr/share/stellarium/stars/default/hip_pm.dat --max-mag 6.5 --out textures/stars.dat
 
 # The README's pictures, rendered by sky-render.
 screenshots: all

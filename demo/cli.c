@@ -39,6 +39,42 @@ static int parse_number(const char *s, double lo, double hi, double *out)
     return 1;
 }
 
+/* ISO 8601 UTC: [+-]YYYY-MM-DDTHH:MM:SS[.fff]Z (the Z may be left out). */
+static int parse_date(const char *s, double *jd)
+{
+    int sign = 1, year, month, day, hour, minute, used = 0;
+    double second;
+    if (!s) return 0;
+    if (*s == '-' || *s == '+') sign = *s++ == '-' ? -1 : 1;
+    if (sscanf(s, "%d-%d-%dT%d:%d:%lf%n", &year, &month, &day, &hour, &minute, &second, &used) != 6) return 0;
+    const char *rest = s + used;
+    if (*rest == 'Z') rest++;
+    if (*rest != '\0' || year < 0 || month < 1 || month > 12 || hour < 0 || hour > 23 || minute < 0 ||
+        minute > 59 || !(second >= 0.0 && second < 61.0))
+        return 0;
+    year *= sign;
+    static const int days[12] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    int leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    if (day < 1 || day > days[month - 1] || (month == 2 && day == 29 && !leap)) return 0;
+    *jd = sky_julian_day(year, month, day, hour, minute, second);
+    return 1;
+}
+
+static int parse_hips(const char *s, sky_cli *cli)
+{
+    if (!s || !*s) return 0;
+    while (*s) {
+        char *end = NULL;
+        long v = strtol(s, &end, 10);
+        if (end == s || v <= 0 || v > 1000000 || cli->hip_count == 64) return 0;
+        cli->hip[cli->hip_count++] = (int)v;
+        s = end;
+        if (*s == ',') s++;
+        else if (*s) return 0;
+    }
+    return 1;
+}
+
 static int parse_features(const char *s, unsigned *out, char *err, size_t len)
 {
     static const struct {
@@ -92,14 +128,19 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --features LIST          comma list of clouds,sun,flicker (or none)\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|minimal\n"
-            "  --frames N               render N frames, 1/30 s apart\n",
+            "  --frames N               render N frames, 1/30 s apart\n"
+            "  --date YYYY-MM-DDTHH:MM:SSZ   UTC instant (years -1999..3000); with --time,\n"
+            "                           --time sets the local solar time on that date\n"
+            "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
             prog);
     if (is_demo)
         fprintf(out, "  --screenshot FILE.png    with --frames: save the last frame and quit\n");
     else
         fprintf(out, "  --out FILE.png           8-bit sRGB image (with --frames: FILE_0001.png ...)\n"
                      "  --out-pfm FILE.pfm       linear float RGB, luminance in kcd/m^2\n"
-                     "  --stats                  print JSON statistics after rendering\n");
+                     "  --stats                  print JSON statistics after rendering\n"
+                     "  --query                  print the astronomical state as JSON (no GL)\n"
+                     "  --hip N,N,...            with --query: also these Hipparcos stars\n");
 }
 
 /* Presets: the features and sliders a game would use for a scene. Options
@@ -146,8 +187,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
     cli->pitch = 20.0;
     cli->fov = 60.0;
     cli->frames = 1;
+    memset(&cli->observer, 0, sizeof cli->observer);
+    int have_date = 0;
+    double date_jd = 0.0;
+    sky_observer where = {0.0, 40.0, 0.0, 0.0, 1}; /* sky.h's documented default place */
     static const char *const sliders[6] = {"--cover", "--height", "--density", "--sunset", "--speed", "--time"};
-    static const char *const later[] = {"--date", "--lat", "--lon", "--alt", "--hip"};
     /* given[]: features, gl, six sliders; seen[] catches duplicates */
     int given[8] = {0};
     const char *seen[64];
@@ -169,8 +213,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             cli->stats = 1;
             continue;
         }
-        if (!strcmp(opt, "--query"))
-            return fail(err, len, "--query: not available yet (the astronomy module has not landed)");
+        if (!is_demo && !strcmp(opt, "--query")) {
+            cli->query = 1;
+            continue;
+        }
         /* options with a value */
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         int known = 1;
@@ -178,9 +224,6 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         int slider = -1;
         for (int k = 0; k < 6; k++)
             if (!strcmp(opt, sliders[k])) slider = k;
-        for (size_t k = 0; k < sizeof later / sizeof later[0]; k++)
-            if (!strcmp(opt, later[k]))
-                return fail(err, len, "%s: not available yet (the astronomy module has not landed)", opt);
         if (slider >= 0) {
             if (!parse_number(val, 0.0, 1.0, &v))
                 return fail(err, len, "%s: expected a number in 0..1, got '%s'", opt, val ? val : "(nothing)");
@@ -216,6 +259,27 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                 return fail(err, len, "--frames: expected a whole number in 1..1000000, got '%s'",
                             val ? val : "(nothing)");
             cli->frames = (int)v;
+        } else if (!strcmp(opt, "--date")) {
+            if (!parse_date(val, &date_jd))
+                return fail(err, len, "--date: expected YYYY-MM-DDTHH:MM:SSZ (UTC), got '%s'", val ? val : "(nothing)");
+            double year = 2000.0 + (date_jd - 2451545.0) / 365.25;
+            if (year < -1999.0 || year >= 3001.0)
+                return fail(err, len, "--date: '%s' is outside the supported years -1999..3000", val);
+            have_date = 1;
+        } else if (!strcmp(opt, "--lat")) {
+            if (!parse_number(val, -90.0, 90.0, &where.latitude_deg))
+                return fail(err, len, "--lat: expected degrees in -90..90, got '%s'", val ? val : "(nothing)");
+        } else if (!strcmp(opt, "--lon")) {
+            if (!parse_number(val, -180.0, 180.0, &where.longitude_deg))
+                return fail(err, len, "--lon: expected degrees in -180..180 (east positive), got '%s'",
+                            val ? val : "(nothing)");
+        } else if (!strcmp(opt, "--alt")) {
+            if (!parse_number(val, -500.0, 100000.0, &where.altitude_m))
+                return fail(err, len, "--alt: expected metres in -500..100000, got '%s'", val ? val : "(nothing)");
+        } else if (!is_demo && !strcmp(opt, "--hip")) {
+            if (!parse_hips(val, cli))
+                return fail(err, len, "--hip: expected up to 64 Hipparcos numbers N,N,..., got '%s'",
+                            val ? val : "(nothing)");
         } else if (!strcmp(opt, "--features")) {
             if (!val) return fail(err, len, "--features: expected a list such as clouds,sun");
             int rc = parse_features(val, &cli->features, err, len);
@@ -262,6 +326,13 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         int rc = apply_preset(cli, cli->preset, given, err, len);
         if (rc) return rc;
     }
+    if (cli->hip_count && !cli->query) return fail(err, len, "--hip: only meaningful with --query");
+    /* --date alone: the instant as given; with --time: the time slider
+     * sets the local solar time on that date; neither: sky.h's default
+     * date, the time slider setting the time of day */
+    cli->observer = where;
+    cli->observer.julian_day_utc = have_date ? date_jd : sky_julian_day(2026, 3, 20, 12, 0, 0.0);
+    cli->observer.time_from_params = !have_date || given[2 + 5];
     return SKY_CLI_OK;
 }
 
@@ -319,6 +390,39 @@ void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16])
     proj[10] = (float)((far + n) / (n - far));
     proj[11] = -1.0f;
     proj[14] = (float)(2.0 * far * n / (n - far));
+}
+
+static void print_place(FILE *out, const char *name, const sky_body_place *b)
+{
+    fprintf(out, "\"%s\": {\"alt\":%.6f, \"alt_geometric\":%.6f, \"az\":%.6f, \"ra\":%.6f, \"dec\":%.6f", name,
+            b->alt_deg, b->alt_geometric_deg, b->az_deg, b->ra_deg, b->dec_deg);
+}
+
+void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count)
+{
+    fprintf(out, "{\"jd_ut\":%.8f, \"delta_t_s\":%.3f, \"lmst_deg\":%.6f,\n ", a->julian_day_ut, a->delta_t_s,
+            a->lmst_deg);
+    print_place(out, "sun", &a->sun);
+    fprintf(out, ", \"distance_au\":%.8f},\n ", a->sun.distance_km / 149597870.7);
+    print_place(out, "moon", &a->moon);
+    fprintf(out,
+            ", \"distance_km\":%.3f, \"illuminated_fraction\":%.6f, \"phase_angle\":%.6f, "
+            "\"bright_limb_angle\":%.6f, \"libration_lat\":%.6f, \"libration_lon\":%.6f, "
+            "\"axis_angle\":%.6f, \"parallactic_angle\":%.6f},\n",
+            a->moon.distance_km, a->moon_illuminated_fraction, a->moon_phase_angle_deg, a->moon_bright_limb_deg,
+            a->moon_libration_lat_deg, a->moon_libration_lon_deg, a->moon_axis_angle_deg, a->moon_parallactic_deg);
+    fprintf(out, " \"eclipse\": {\"umbral_magnitude\":%.6f, \"penumbral_magnitude\":%.6f},\n \"stars\": [",
+            a->umbral_magnitude, a->penumbral_magnitude);
+    for (int i = 0; i < count; i++) {
+        const sky_star_place *p = &stars[i];
+        if (p->found)
+            fprintf(out, "%s{\"hip\":%d, \"alt\":%.6f, \"alt_geometric\":%.6f, \"az\":%.6f, \"vmag\":%.2f, \"bv\":%.3f}",
+                    i ? ", " : "", p->hip, p->alt_deg, p->alt_geometric_deg, p->az_deg, p->vmag, p->bv);
+        else
+            fprintf(out, "%s{\"hip\":%d, \"found\":false}", i ? ", " : "", p->hip);
+    }
+    fprintf(out, "],\n \"star_visibility\":%.6g, \"moon_visibility\":%.6g}\n", a->star_visibility,
+            a->moon_visibility);
 }
 
 static const char *profile_name(sky_gl_profile p) { return p == SKY_GL_CORE33 ? "core" : "compat"; }

@@ -24,6 +24,11 @@ typedef struct sky_cli {
     const char *out_png, *out_pfm;
     int frames;
     int stats;
+    /* where and when */
+    sky_observer observer;   /* default observer unless --date/--lat/... */
+    int query;               /* --query: astronomy JSON, no GL           */
+    int hip[64];
+    int hip_count;
     /* sky-demo only */
     const char *screenshot;
 } sky_cli;
@@ -42,6 +47,9 @@ double sky_cli_median(double *v, int n);
 
 /* Column-major view and projection matrices for --yaw/--pitch/--fov. */
 void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
+
+/* Prints the --query JSON object of DESIGN.md. */
+void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count);
 
 /* Prints sky_get_stats as the JSON object of DESIGN.md. frame_ms overrides
  * the sky's own figure (sky-render passes a median). */

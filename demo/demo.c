@@ -32,6 +32,7 @@ static int headless(const sky_cli *cli)
     float view[16], proj[16];
     sky_cli_camera(cli, view, proj);
     sky_set_params(s, &cli->params);
+    sky_set_observer(s, &cli->observer);
     sky_set_elapsed(s, cli->seconds);
     int rc = 0;
     for (int f = 0; f < cli->frames && !rc; f++) {
@@ -151,6 +152,7 @@ int main(int argc, char **argv)
         glfwTerminate();
         return 1;
     }
+    sky_set_observer(s, &d.cli.observer);
     sky_set_elapsed(s, d.cli.seconds);
     double last = glfwGetTime();
     int frame = 0;

@@ -43,7 +43,8 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         return 1;
     }
     int rc = 0;
-    if (sky_set_params(s, &cli->params) < 0 || sky_set_elapsed(s, cli->seconds) < 0) {
+    if (sky_set_params(s, &cli->params) < 0 || sky_set_observer(s, &cli->observer) < 0 ||
+        sky_set_elapsed(s, cli->seconds) < 0) {
         fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
         rc = 1;
     }
@@ -105,6 +106,18 @@ int main(int argc, char **argv)
     if (rc) {
         fprintf(stderr, "sky-render: %s\n", err);
         return 2;
+    }
+    if (cli.query) {
+        sky_astronomy a;
+        sky_star_place stars[64];
+        char err2[512];
+        if (sky_compute_astronomy(&cli.observer, cli.params.time, cli.hip, cli.hip_count, stars, &a, err2,
+                                  sizeof err2) < 0) {
+            fprintf(stderr, "sky-render: %s\n", err2);
+            return 1;
+        }
+        sky_cli_print_query(stdout, &a, stars, cli.hip_count);
+        return 0;
     }
     /* The PFM needs a float buffer and a linear sky, the PNG an 8-bit one:
      * one pass each. Statistics come from the PNG pass when there is one.

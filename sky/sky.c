@@ -74,20 +74,24 @@ const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
 
 /* ---- frame state ----------------------------------------------------------- */
 
-/* Everything that depends on the sliders, not on the camera. */
+/* Everything that depends on the sliders and the observer, not on the
+ * camera. */
 static void compute_frame(sky *s)
 {
     sky_frame *f = &s->frame;
-    sky_sun_position(s, s->params.time, f->sun_dir, &f->sun_altitude);
+    /* The observer was validated when set; only a time slider pushing a
+     * date at the very end of the supported span past it can fail here,
+     * and then the last valid state is kept. */
+    sky_astro a;
+    if (sky_observer_astro(&s->observer, s->params.time, &a, NULL, 0) == 0) s->astro = a;
+    for (int i = 0; i < 3; i++) f->sun_dir[i] = (float)s->astro.sun.dir[i];
+    f->sun_altitude = (float)s->astro.sun.alt; /* apparent: what the eye sees */
     double sin_alt = sin(f->sun_altitude);
     /* R-P's "amount of sunlight" from the time of day: full above 10
      * degrees, none below -6 (end of civil twilight). */
     f->daylight = (float)sky_smoothstep(sin(-6.0 * SKY_PI / 180.0), sin(10.0 * SKY_PI / 180.0), sin_alt);
-    /* Mueller sec. 5: star intensity x (1 + (s_z + 1.14)^32)^(-1/2), s_z the
-     * sun's up component; the power is taken of a clamped base so it stays
-     * finite for every s_z in [-1, 1]. */
-    double base = sky_clampd(sin_alt + 1.14, 0.0, 2.14);
-    f->night = (float)(1.0 / sqrt(1.0 + pow(base, 32.0)));
+    /* Mueller sec. 5 star fade (astro.c) */
+    f->night = (float)s->astro.star_visibility;
     sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
     sky_gradient_frame(s);
     if (s->features & SKY_SUN) sky_sun_frame(s);
@@ -167,6 +171,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     s->world_is_identity = identity;
     for (int i = 0; i < 9; i++) s->horizon_to_world[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : cfg->horizon_to_world[i];
     s->params = sky_default_params();
+    s->observer = sky_default_observer();
 
     if (sky_gl_init(s, err, err_len)) goto fail;
     const sky_gl *gl = &s->gl;
@@ -261,6 +266,32 @@ sky_result sky_set_params(sky *s, const sky_params *p)
     s->params.time = out[5];
     compute_frame(s);
     return rc;
+}
+
+sky_result sky_set_observer(sky *s, const sky_observer *o)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!o) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_observer: observer is NULL");
+    if (sky_observer_check(o, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
+    sky_astro a;
+    if (sky_observer_astro(o, s->params.time, &a, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
+    s->observer = *o;
+    compute_frame(s);
+    return SKY_OK;
+}
+
+sky_result sky_get_observer(const sky *s, sky_observer *o)
+{
+    if (!s || !o) return SKY_ERR_INVALID_ARGUMENT;
+    *o = s->observer;
+    return SKY_OK;
+}
+
+sky_result sky_get_astronomy(const sky *s, sky_astronomy *out)
+{
+    if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
+    sky_astronomy_from_astro(&s->astro, out);
+    return SKY_OK;
 }
 
 sky_result sky_get_params(const sky *s, sky_params *p)

@@ -161,6 +161,70 @@ SKY_API sky_result sky_draw(sky *s, const float view[16], const float proj[16]);
  * left (as seen looking up). Outside the circle is black. */
 SKY_API sky_result sky_draw_fisheye(sky *s);
 
+/* ---- where and when ----------------------------------------------------------
+
+ * The observer: a UTC instant (as a Julian day; sky_julian_day converts a
+ * calendar date) and a place on the WGS84 ellipsoid. Supported: years
+ * -1999..3000, latitude -90..90, longitude -180..180 (east positive),
+ * altitude -500..100000 m. With time_from_params set, the time slider sets
+ * the local apparent solar time on the observer's local date (0 midnight,
+ * 0.5 noon, when the sun crosses the meridian); otherwise the instant is
+ * used as given and the time slider is ignored.
+ *
+ * Until sky_set_observer is called, a sky shows the vernal equinox of
+ * 2026 (2026-03-20) from latitude 40 N, longitude 0, sea level, with the
+ * time slider setting the time of day. */
+typedef struct sky_observer {
+    double julian_day_utc;
+    double latitude_deg, longitude_deg, altitude_m;
+    int time_from_params;
+} sky_observer;
+
+/* Julian day of a proleptic Gregorian UTC date and time (any year;
+ * second may carry a fraction). */
+SKY_API double sky_julian_day(int year, int month, int day, int hour, int minute, double second);
+SKY_API sky_result sky_set_observer(sky *s, const sky_observer *obs);
+SKY_API sky_result sky_get_observer(const sky *s, sky_observer *obs);
+
+typedef struct sky_body_place {
+    double alt_deg;           /* topocentric, refracted (standard atmosphere) */
+    double alt_geometric_deg; /* topocentric, without refraction              */
+    double az_deg;            /* from north through east                      */
+    double ra_deg, dec_deg;   /* geocentric apparent, of date                 */
+    double distance_km;
+} sky_body_place;
+
+/* The astronomical state of an instant and place (Meeus-class theories;
+ * see README for the measured accuracy against ERFA). */
+typedef struct sky_astronomy {
+    double julian_day_ut, delta_t_s, lmst_deg;
+    sky_body_place sun, moon;
+    double moon_illuminated_fraction;  /* 0..1                                */
+    double moon_phase_angle_deg;       /* 0 full .. 180 new                   */
+    double moon_bright_limb_deg;       /* position angle from north via east  */
+    double moon_libration_lat_deg, moon_libration_lon_deg;
+    double moon_axis_angle_deg;        /* position angle of the moon's axis   */
+    double moon_parallactic_deg;       /* parallactic angle at the moon       */
+    double umbral_magnitude, penumbral_magnitude; /* lunar eclipse, Danjon   */
+    double star_visibility, moon_visibility;      /* Mueller sec. 5 fades    */
+} sky_astronomy;
+
+/* A catalogue star's place (Hipparcos number; found = 0 if it is not in
+ * the built-in catalogue, every star to V 6.5). */
+typedef struct sky_star_place {
+    int hip, found;
+    double alt_deg, alt_geometric_deg, az_deg;
+    double vmag, bv;
+} sky_star_place;
+
+/* Computes the astronomy of an observer without any GL: time_of_day is
+ * used when obs->time_from_params is set. hip/stars may be NULL (count 0).
+ * Errors: out-of-range observer, NaN. */
+SKY_API sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, const int *hip, int count,
+                                         sky_star_place *stars, sky_astronomy *out, char *err, size_t err_len);
+/* The astronomy of the sky's current frame. */
+SKY_API sky_result sky_get_astronomy(const sky *s, sky_astronomy *out);
+
 /* Layers, for per-layer statistics. */
 typedef enum sky_layer {
     SKY_LAYER_STARMAP = 0,

@@ -4,11 +4,13 @@
 #ifndef SKY_INTERNAL_H
 #define SKY_INTERNAL_H
 
-#include "sky.h"
+#include "astro.h"
 #include "gl/glapi.h"
+#include "sky.h"
 
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #define SKY_PI 3.14159265358979323846
 
@@ -46,6 +48,24 @@ typedef struct sky_texture {
     size_t bytes;
     sky_layer owner;
 } sky_texture;
+
+/* ---- star catalogue (catalog.c) --------------------------------------------- */
+typedef struct sky_catalog {
+    sky_star *stars; /* sorted by magnitude, brightest first */
+    int count;
+} sky_catalog;
+int sky_catalog_parse(sky_catalog *cat, const unsigned char *data, size_t size, char *err, size_t err_len);
+int sky_catalog_load(sky_catalog *cat, char *err, size_t err_len); /* the embedded one */
+const sky_star *sky_catalog_find(const sky_catalog *cat, int hip);
+void sky_catalog_free(sky_catalog *cat);
+
+/* ---- observer (observer.c) --------------------------------------------------- */
+sky_observer sky_default_observer(void);
+int sky_observer_check(const sky_observer *o, char *err, size_t err_len);
+/* Astronomy for the observer, with the time slider's time of day when the
+ * observer asks for it. */
+int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro *a, char *err, size_t err_len);
+void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *out);
 
 /* ---- per-frame state: everything the shaders read ------------------------ */
 typedef struct sky_frame {
@@ -118,6 +138,8 @@ struct sky {
     char error[256];
 
     sky_params params;
+    sky_observer observer;
+    sky_astro astro;              /* for observer + time slider; see observer.c */
     double elapsed;               /* seconds, for callers that ask            */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */
     double flicker_phase;         /* wrapped (see flicker.c)                   */
@@ -228,8 +250,6 @@ int sky_sun_visible(const sky *s);
 /* Fills the sun quad's corner directions for the current frame. */
 void sky_sun_update_quad(sky *s);
 
-/* Sun direction and sunlight from the time slider (sun.c). */
-void sky_sun_position(const sky *s, double time_of_day, float dir[3], float *altitude);
 /* Direct-beam transmittance for a ray at the given altitude (radians),
  * Kasten-Young air mass times a Rayleigh+aerosol optical depth. */
 void sky_sun_transmittance(double altitude, float out[3]);

@@ -1,18 +1,12 @@
 /*
- * The sun: where the time slider puts it, how much of its light comes
- * through the atmosphere, and the camera-facing quad that draws its
- * limb-darkened disc (Roden & Parberry sec. 2; Schneegans et al. eq. 1).
+ * The sun: how much of its light comes through the atmosphere, and the
+ * camera-facing quad that draws its limb-darkened disc (Roden & Parberry
+ * sec. 2; Schneegans et al. eq. 1). Where it is comes from astro.c.
  */
 #include "sky_internal.h"
 
 #include <math.h>
 #include <string.h>
-
-/* Until the astronomy module lands, the sun follows a fixed day: the
- * equinox (declination 0) seen from latitude 40 N, so time 0.25 is sunrise
- * in the east, 0.5 is noon in the south at 50 degrees, 0.75 is sunset. */
-#define SKY_DEFAULT_LATITUDE_DEG 40.0
-#define SKY_DEFAULT_DECLINATION_DEG 0.0
 
 /* Drawn disc: the true mean angular radius, 959.63 arcsec. */
 #define SKY_SUN_RADIUS_RAD 4.6524e-3
@@ -30,22 +24,6 @@ static const sky_uniform_desc sun_uniforms[] = {
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
 const sky_snippet sky_sun_snippet = {NULL, NULL, sun_uniforms, (int)(sizeof sun_uniforms / sizeof sun_uniforms[0])};
-
-void sky_sun_position(const sky *s, double time_of_day, float dir[3], float *altitude)
-{
-    (void)s;
-    const double deg = SKY_PI / 180.0;
-    double lat = SKY_DEFAULT_LATITUDE_DEG * deg, dec = SKY_DEFAULT_DECLINATION_DEG * deg;
-    double hour_angle = (time_of_day - 0.5) * 2.0 * SKY_PI;
-    double east = -cos(dec) * sin(hour_angle);
-    double north = cos(lat) * sin(dec) - sin(lat) * cos(dec) * cos(hour_angle);
-    double up = sin(lat) * sin(dec) + cos(lat) * cos(dec) * cos(hour_angle);
-    double n = sqrt(east * east + north * north + up * up);
-    dir[0] = (float)(east / n);
-    dir[1] = (float)(up / n);
-    dir[2] = (float)(-north / n); /* +z is south */
-    *altitude = (float)asin(sky_clampd(up / n, -1.0, 1.0));
-}
 
 void sky_sun_transmittance(double altitude, float out[3])
 {

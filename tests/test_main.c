@@ -46,6 +46,16 @@ int test_failures;
     X(textures_tile_without_seams)               \
     X(flicker_texture_neighbourhoods)            \
     X(cli_exit_codes_and_messages)               \
+    X(astro_time_scales)                         \
+    X(astro_sun_vs_erfa)                         \
+    X(astro_moon_vs_erfa)                        \
+    X(astro_stars_vs_erfa)                       \
+    X(astro_phase_and_eclipse_vs_erfa)           \
+    X(astro_historic_lunar_eclipses)             \
+    X(astro_refraction)                          \
+    X(astro_bad_input)                           \
+    X(astro_time_slider_is_solar_time)           \
+    X(astro_query_json)                          \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

@@ -1,0 +1,537 @@
+/*
+ * Positional astronomy (see astro.h). Formulas from J. Meeus, Astronomical
+ * Algorithms, 2nd ed. (1998), cited by chapter and equation; the VSOP87 and
+ * ELP terms are in astro_tables.c.
+ */
+#include "astro.h"
+#include "astro_tables.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+#define PI 3.14159265358979323846
+#define TWO_PI (2.0 * PI)
+#define DEG (PI / 180.0)
+#define ARCSEC (PI / 648000.0)
+#define J2000 2451545.0
+#define AU_KM 149597870.7
+#define EARTH_RADIUS_KM 6378.137     /* WGS84 equatorial */
+#define EARTH_FLATTENING (1.0 / 298.257223563)
+#define MOON_RADIUS_KM 1737.4
+#define SUN_RADIUS_KM 696000.0       /* IAU nominal: 959.63" at 1 au */
+
+static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+/* asin/acos of a value rounding may have pushed past +-1 */
+static double safe_asin(double x) { return asin(clamp(x, -1.0, 1.0)); }
+static double wrap_2pi(double a)
+{
+    a = fmod(a, TWO_PI);
+    return a < 0.0 ? a + TWO_PI : a;
+}
+static double poly(double t, const double *c, int n)
+{
+    double s = 0.0;
+    for (int i = n - 1; i >= 0; i--) s = s * t + c[i];
+    return s;
+}
+
+/* ---- time ---------------------------------------------------------------------- */
+
+double sky_jd_from_calendar(int year, int month, int day, int hour, int minute, double second)
+{
+    /* Proleptic Gregorian to Julian day number (Fliegel & Van Flandern
+     * 1968), with floor division so it holds for negative years too. */
+    long a = (14 - month) / 12;
+    long y = (long)year + 4800 - a;
+    long m = month + 12 * a - 3;
+    long yd = y >= 0 ? y / 4 : -((-y + 3) / 4);
+    long yc = y >= 0 ? y / 100 : -((-y + 99) / 100);
+    long yq = y >= 0 ? y / 400 : -((-y + 399) / 400);
+    long jdn = day + (153 * m + 2) / 5 + 365 * y + yd - yc + yq - 32045;
+    return (double)jdn - 0.5 + (hour + (minute + second / 60.0) / 60.0) / 24.0;
+}
+
+void sky_calendar_from_jd(double jd, int *year, int *month, int *day, double *day_fraction)
+{
+    /* inverse of the above (Richards' algorithm), floor-based */
+    double z = floor(jd + 0.5);
+    *day_fraction = jd + 0.5 - z;
+    long j = (long)z;
+    long f = j + 1401 + (((4 * j + 274277) / 146097) * 3) / 4 - 38;
+    if (4 * j + 274277 < 0) f = j + 1401 + ((((4 * j + 274277) - 146096) / 146097) * 3) / 4 - 38;
+    long e = 4 * f + 3;
+    long g = (e % 1461 + 1461) % 1461 / 4;
+    long h = 5 * g + 2;
+    *day = (int)((h % 153) / 5 + 1);
+    *month = (int)((h / 153 + 2) % 12 + 1);
+    long ediv = e >= 0 ? e / 1461 : -((-e + 1460) / 1461);
+    *year = (int)(ediv - 4716 + (14 - *month) / 12);
+}
+
+double sky_jd_from_unix(double unix_seconds) { return 2440587.5 + unix_seconds / 86400.0; }
+
+double sky_delta_t(double jd_ut)
+{
+    /* Espenak & Meeus (2006), "Polynomial expressions for Delta T",
+     * NASA Five Millennium Canon of Solar Eclipses; y is the decimal year. */
+    double y = 2000.0 + (jd_ut - J2000) / 365.25;
+    double u, t;
+    if (y < -500.0) {
+        u = (y - 1820.0) / 100.0;
+        return -20.0 + 32.0 * u * u;
+    }
+    if (y < 500.0) {
+        static const double c[7] = {10583.6, -1014.41, 33.78311, -5.952053, -0.1798452, 0.022174192, 0.0090316521};
+        return poly(y / 100.0, c, 7);
+    }
+    if (y < 1600.0) {
+        static const double c[7] = {1574.2, -556.01, 71.23472, 0.319781, -0.8503463, -0.005050998, 0.0083572073};
+        return poly((y - 1000.0) / 100.0, c, 7);
+    }
+    if (y < 1700.0) {
+        t = y - 1600.0;
+        return 120.0 - 0.9808 * t - 0.01532 * t * t + t * t * t / 7129.0;
+    }
+    if (y < 1800.0) {
+        t = y - 1700.0;
+        return 8.83 + 0.1603 * t - 0.0059285 * t * t + 0.00013336 * t * t * t - t * t * t * t / 1174000.0;
+    }
+    if (y < 1860.0) {
+        static const double c[8] = {13.72,         -0.332447,  0.0068612,      0.0041116,
+                                    -0.00037436,  0.0000121272, -0.0000001699, 0.000000000875};
+        return poly(y - 1800.0, c, 8);
+    }
+    if (y < 1900.0) {
+        static const double c[6] = {7.62, 0.5737, -0.251754, 0.01680668, -0.0004473624, 1.0 / 233174.0};
+        return poly(y - 1860.0, c, 6);
+    }
+    if (y < 1920.0) {
+        static const double c[5] = {-2.79, 1.494119, -0.0598939, 0.0061966, -0.000197};
+        return poly(y - 1900.0, c, 5);
+    }
+    if (y < 1941.0) {
+        static const double c[4] = {21.20, 0.84493, -0.076100, 0.0020936};
+        return poly(y - 1920.0, c, 4);
+    }
+    if (y < 1961.0) {
+        static const double c[4] = {29.07, 0.407, -1.0 / 233.0, 1.0 / 2547.0};
+        return poly(y - 1950.0, c, 4);
+    }
+    if (y < 1986.0) {
+        static const double c[4] = {45.45, 1.067, -1.0 / 260.0, -1.0 / 718.0};
+        return poly(y - 1975.0, c, 4);
+    }
+    if (y < 2005.0) {
+        static const double c[6] = {63.86, 0.3345, -0.060374, 0.0017275, 0.000651814, 0.00002373599};
+        return poly(y - 2000.0, c, 6);
+    }
+    if (y < 2050.0) {
+        t = y - 2000.0;
+        return 62.92 + 0.32217 * t + 0.005589 * t * t;
+    }
+    u = (y - 1820.0) / 100.0;
+    if (y < 2150.0) return -20.0 + 32.0 * u * u - 0.5628 * (2150.0 - y);
+    return -20.0 + 32.0 * u * u;
+}
+
+double sky_gmst(double jd_ut)
+{
+    /* Meeus 12.4; the day count is split so the large linear term keeps
+     * its precision */
+    double d = jd_ut - J2000, t = d / 36525.0;
+    double whole = floor(d), frac = d - whole;
+    double deg = 280.46061837 + 360.98564736629 * frac + fmod(0.98564736629 * whole, 360.0) +
+                 0.000387933 * t * t - t * t * t / 38710000.0;
+    return wrap_2pi(deg * DEG);
+}
+
+/* ---- rotations --------------------------------------------------------------------- */
+
+typedef double mat3[9]; /* row-major */
+
+static void mat_mul(const double *a, const double *b, double *out)
+{
+    double r[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) r[i * 3 + j] = a[i * 3] * b[j] + a[i * 3 + 1] * b[3 + j] + a[i * 3 + 2] * b[6 + j];
+    for (int i = 0; i < 9; i++) out[i] = r[i];
+}
+static void mat_vec(const double *m, const double *v, double *out)
+{
+    double r[3];
+    for (int i = 0; i < 3; i++) r[i] = m[i * 3] * v[0] + m[i * 3 + 1] * v[1] + m[i * 3 + 2] * v[2];
+    out[0] = r[0], out[1] = r[1], out[2] = r[2];
+}
+/* Frame rotations about x, y, z by angle a (the frame turns, vectors keep). */
+static void rot_x(double a, double *m)
+{
+    double c = cos(a), s = sin(a);
+    double r[9] = {1, 0, 0, 0, c, s, 0, -s, c};
+    for (int i = 0; i < 9; i++) m[i] = r[i];
+}
+static void rot_y(double a, double *m)
+{
+    double c = cos(a), s = sin(a);
+    double r[9] = {c, 0, -s, 0, 1, 0, s, 0, c};
+    for (int i = 0; i < 9; i++) m[i] = r[i];
+}
+static void rot_z(double a, double *m)
+{
+    double c = cos(a), s = sin(a);
+    double r[9] = {c, s, 0, -s, c, 0, 0, 0, 1};
+    for (int i = 0; i < 9; i++) m[i] = r[i];
+}
+
+static void spherical_to_vec(double lon, double lat, double *v)
+{
+    v[0] = cos(lat) * cos(lon);
+    v[1] = cos(lat) * sin(lon);
+    v[2] = sin(lat);
+}
+static void vec_to_spherical(const double *v, double *lon, double *lat)
+{
+    double r = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    *lon = wrap_2pi(atan2(v[1], v[0]));
+    *lat = r > 0.0 ? safe_asin(v[2] / r) : 0.0;
+}
+
+/* ---- nutation, obliquity, precession ---------------------------------------------------- */
+
+/* Mean obliquity, Laskar (1986) as in Meeus 22.3: good to 0.01" over
+ * 1000 years and a few arcseconds over 10000. t in Julian centuries TT. */
+static double mean_obliquity(double t)
+{
+    static const double c[11] = {84381.448, -4680.93, -1.55, 1999.25, -51.38, -249.67,
+                                 -39.05,    7.12,     27.87, 5.79,    2.45};
+    return poly(t / 100.0, c, 11) * ARCSEC;
+}
+
+/* Nutation in longitude and obliquity, the four largest terms (Meeus
+ * ch. 22): 0.5" in longitude, 0.1" in obliquity. */
+static void nutation(double t, double *dpsi, double *deps)
+{
+    double omega = (125.04452 - 1934.136261 * t + 0.0020708 * t * t + t * t * t / 450000.0) * DEG;
+    double l_sun = (280.4665 + 36000.7698 * t) * DEG, l_moon = (218.3165 + 481267.8813 * t) * DEG;
+    *dpsi = (-17.20 * sin(omega) - 1.32 * sin(2 * l_sun) - 0.23 * sin(2 * l_moon) + 0.21 * sin(2 * omega)) * ARCSEC;
+    *deps = (9.20 * cos(omega) + 0.57 * cos(2 * l_sun) + 0.10 * cos(2 * l_moon) - 0.09 * cos(2 * omega)) * ARCSEC;
+}
+
+/* J2000 mean equator -> mean equator of date: Lieske et al. (1977) angles,
+ * Meeus 21.2-21.4; P = Rz(-z) Ry(theta) Rz(-zeta). */
+static void precession_matrix(double t, double *p)
+{
+    double zeta = (2306.2181 * t + 0.30188 * t * t + 0.017998 * t * t * t) * ARCSEC;
+    double z = (2306.2181 * t + 1.09468 * t * t + 0.018203 * t * t * t) * ARCSEC;
+    double theta = (2004.3109 * t - 0.42665 * t * t - 0.041833 * t * t * t) * ARCSEC;
+    double a[9], b[9], c[9];
+    rot_z(-zeta, a);
+    rot_y(theta, b);
+    rot_z(-z, c);
+    mat_mul(b, a, p);
+    mat_mul(c, p, p);
+}
+
+/* ---- the sun ---------------------------------------------------------------------------- */
+
+static double vsop_sum(const sky_vsop_series *series, int n, double tau)
+{
+    double total = 0.0, tp = 1.0;
+    for (int i = 0; i < n; i++, tp *= tau) {
+        double s = 0.0;
+        for (int k = 0; k < series[i].count; k++) {
+            const sky_vsop_term *term = &series[i].terms[k];
+            s += term->a * cos(term->b + term->c * tau);
+        }
+        total += s * tp;
+    }
+    return total * 1e-8;
+}
+
+/* Apparent geocentric ecliptic longitude and latitude of the sun and its
+ * distance in au (Meeus ch. 25, higher accuracy): VSOP87 heliocentric
+ * Earth, FK5 correction (32.3), nutation, aberration. Also the true
+ * geometric longitude (for stellar aberration). */
+static void sun_position(double t, double dpsi, double *lambda, double *beta, double *r_au, double *true_lon)
+{
+    double tau = t / 10.0;
+    double l = vsop_sum(sky_earth_L, 6, tau), b = vsop_sum(sky_earth_B, 2, tau), r = vsop_sum(sky_earth_R, 5, tau);
+    double theta = wrap_2pi(l + PI), bet = -b;
+    double lp = theta - (1.397 * t + 0.00031 * t * t) * DEG;
+    theta += -0.09033 * ARCSEC;
+    bet += 0.03916 * ARCSEC * (cos(lp) - sin(lp));
+    *true_lon = theta;
+    *lambda = wrap_2pi(theta + dpsi - 20.4898 * ARCSEC / r);
+    *beta = bet;
+    *r_au = r;
+}
+
+/* ---- the moon ----------------------------------------------------------------------------- */
+
+/* Geocentric ecliptic longitude (of date, without nutation), latitude and
+ * distance (km) of the moon: Meeus ch. 47 with all terms of tables 47.A
+ * and 47.B. Also the mean arguments F and the ascending node (ch. 53). */
+static void moon_position(double t, double *lambda, double *beta, double *dist, double *f_out, double *node)
+{
+    double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
+    double lp = (218.3164477 + 481267.88123421 * t - 0.0015786 * t2 + t3 / 538841.0 - t4 / 65194000.0) * DEG;
+    double d = (297.8501921 + 445267.1114034 * t - 0.0018819 * t2 + t3 / 545868.0 - t4 / 113065000.0) * DEG;
+    double m = (357.5291092 + 35999.0502909 * t - 0.0001536 * t2 + t3 / 24490000.0) * DEG;
+    double mp = (134.9633964 + 477198.8675055 * t + 0.0087414 * t2 + t3 / 69699.0 - t4 / 14712000.0) * DEG;
+    double f = (93.2720950 + 483202.0175233 * t - 0.0036539 * t2 - t3 / 3526000.0 + t4 / 863310000.0) * DEG;
+    double a1 = (119.75 + 131.849 * t) * DEG, a2 = (53.09 + 479264.290 * t) * DEG,
+           a3 = (313.45 + 481266.484 * t) * DEG;
+    double e = 1.0 - 0.002516 * t - 0.0000074 * t2;
+    double sl = 0.0, sr = 0.0, sb = 0.0;
+    for (int i = 0; i < 60; i++) {
+        const sky_moon_term *k = &sky_moon_lr[i];
+        double arg = k->d * d + k->m * m + k->mp * mp + k->f * f;
+        double ef = k->m == 0 ? 1.0 : (k->m == 1 || k->m == -1 ? e : e * e); /* 47.6 */
+        sl += k->a * ef * sin(arg);
+        sr += k->b * ef * cos(arg);
+    }
+    for (int i = 0; i < 60; i++) {
+        const sky_moon_term *k = &sky_moon_b[i];
+        double arg = k->d * d + k->m * m + k->mp * mp + k->f * f;
+        double ef = k->m == 0 ? 1.0 : (k->m == 1 || k->m == -1 ? e : e * e);
+        sb += k->a * ef * sin(arg);
+    }
+    sl += 3958.0 * sin(a1) + 1962.0 * sin(lp - f) + 318.0 * sin(a2);
+    sb += -2235.0 * sin(lp) + 382.0 * sin(a3) + 175.0 * sin(a1 - f) + 175.0 * sin(a1 + f) + 127.0 * sin(lp - mp) -
+          115.0 * sin(lp + mp);
+    *lambda = wrap_2pi(lp + sl * 1e-6 * DEG);
+    *beta = sb * 1e-6 * DEG;
+    *dist = 385000.56 + sr / 1000.0;
+    *f_out = f;
+    *node = (125.0445479 - 1934.1362891 * t + 0.0020754 * t2 + t3 / 467441.0 - t4 / 60616000.0) * DEG;
+}
+
+/* ---- horizon ------------------------------------------------------------------------------- */
+
+double sky_refraction(double h, double pressure_factor)
+{
+    /* Saemundsson (1986), Meeus 16.4, for the true altitude in degrees;
+     * +0.0019279' makes it vanish at the zenith. Below -1 degree the
+     * formula heads for its pole at -5.1; the taper keeps it continuous,
+     * finite and the apparent altitude monotonic. */
+    double hd = h / DEG;
+    double hc = hd > -1.0 ? hd : -1.0;
+    double r_arcmin = 1.02 / tan((hc + 10.3 / (hc + 5.11)) * DEG) + 0.0019279;
+    if (hd >= 89.999) r_arcmin = 0.0;
+    double taper = hd >= -1.0 ? 1.0 : clamp((hd + 6.0) / 5.0, 0.0, 1.0);
+    return r_arcmin / 60.0 * DEG * taper * pressure_factor;
+}
+
+void sky_horizon_vector(double alt, double az, double out[3])
+{
+    out[0] = cos(alt) * sin(az);  /* east */
+    out[1] = sin(alt);            /* up */
+    out[2] = -cos(alt) * cos(az); /* south: azimuth 0 is north (-z) */
+}
+
+/* True equator of date -> horizon frame: rows are east, up, south in
+ * equatorial coordinates for local apparent sidereal time `last`. */
+static void horizon_matrix(double last, double lat, double *m)
+{
+    double sl = sin(last), cl = cos(last), sp = sin(lat), cp = cos(lat);
+    /* zenith = (cp cl, cp sl, sp); north = (-sp cl, -sp sl, cp); east = (-sl, cl, 0) */
+    double r[9] = {-sl, cl, 0.0, cp * cl, cp * sl, sp, sp * cl, sp * sl, -cp};
+    for (int i = 0; i < 9; i++) m[i] = r[i];
+}
+
+static void horizon_from_vector(const double *v, double pressure, double *alt, double *alt_geo, double *az,
+                                double dir[3])
+{
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    double h = safe_asin(v[1] / n);
+    *alt_geo = h;
+    *az = wrap_2pi(atan2(v[0], -v[2]));
+    *alt = h + sky_refraction(h, pressure);
+    sky_horizon_vector(*alt, *az, dir);
+}
+
+/* Topocentric horizon place of a body at geocentric apparent (ra, dec,
+ * distance_km): the observer's geocentric position is subtracted in the
+ * equatorial frame of date (rigorous parallax, Meeus ch. 11 and 40). */
+static void body_place(const sky_astro *a, const double obs_eq[3], sky_astro_body *b)
+{
+    double v[3], h[3];
+    spherical_to_vec(b->ra, b->dec, v);
+    for (int i = 0; i < 3; i++) v[i] = v[i] * b->distance_km - obs_eq[i];
+    mat_vec(a->horizon, v, h);
+    horizon_from_vector(h, a->pressure_factor, &b->alt, &b->alt_geometric, &b->az, b->dir);
+}
+
+static void ecl_to_eq(double lambda, double beta, double eps, double *ra, double *dec)
+{
+    double v[3], m[9];
+    spherical_to_vec(lambda, beta, v);
+    rot_x(-eps, m);
+    mat_vec(m, v, v);
+    vec_to_spherical(v, ra, dec);
+}
+
+/* Angular distance between two points on the sphere (haversine form,
+ * accurate for small and large angles). */
+static double separation(double ra1, double dec1, double ra2, double dec2)
+{
+    double sd = sin((dec2 - dec1) / 2), sr = sin((ra2 - ra1) / 2);
+    double h = sd * sd + cos(dec1) * cos(dec2) * sr * sr;
+    return 2.0 * safe_asin(sqrt(clamp(h, 0.0, 1.0)));
+}
+
+static void set_error(char *err, size_t len, const char *fmt, ...)
+{
+    if (!err || !len) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, len, fmt, ap);
+    va_end(ap);
+}
+
+int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a, char *err, size_t err_len)
+{
+    if (!isfinite(jd_ut) || !obs || !isfinite(obs->latitude) || !isfinite(obs->longitude) ||
+        !isfinite(obs->altitude_m)) {
+        set_error(err, err_len, "date or observer is not finite");
+        return -1;
+    }
+    double year = 2000.0 + (jd_ut - J2000) / 365.25;
+    if (year < SKY_ASTRO_YEAR_MIN || year >= SKY_ASTRO_YEAR_MAX + 1) {
+        set_error(err, err_len, "year %.0f is outside the supported range %d..%d", floor(year), SKY_ASTRO_YEAR_MIN,
+                  SKY_ASTRO_YEAR_MAX);
+        return -1;
+    }
+    if (fabs(obs->latitude) > PI / 2 + 1e-12) {
+        set_error(err, err_len, "latitude %.6g degrees is outside -90..90", obs->latitude / DEG);
+        return -1;
+    }
+    if (obs->altitude_m < -500.0 || obs->altitude_m > 100000.0) {
+        set_error(err, err_len, "altitude %.6g m is outside -500..100000", obs->altitude_m);
+        return -1;
+    }
+    double lat = clamp(obs->latitude, -PI / 2, PI / 2);
+    a->jd_ut = jd_ut;
+    a->delta_t = sky_delta_t(jd_ut);
+    a->jd_tt = jd_ut + a->delta_t / 86400.0;
+    double t = (a->jd_tt - J2000) / 36525.0;
+    a->years_since_j2000 = (a->jd_tt - J2000) / 365.25;
+
+    double dpsi, deps;
+    nutation(t, &dpsi, &deps);
+    double eps0 = mean_obliquity(t), eps = eps0 + deps;
+    a->obliquity = eps;
+    a->nutation_longitude = dpsi;
+    double gmst = sky_gmst(jd_ut);
+    a->lmst = wrap_2pi(gmst + obs->longitude);
+    a->last = wrap_2pi(gmst + dpsi * cos(eps) + obs->longitude);
+    horizon_matrix(a->last, lat, a->horizon);
+    /* refraction at the observer's pressure (scale height 8.4 km) */
+    a->pressure_factor = exp(-obs->altitude_m / 8434.5);
+
+    /* the observer's geocentric position, equatorial of date, km (WGS84
+     * ellipsoid, Meeus ch. 11) */
+    double b_a = 1.0 - EARTH_FLATTENING;
+    double u = atan(b_a * tan(lat));
+    double rho_sin = b_a * sin(u) + obs->altitude_m / 1000.0 / EARTH_RADIUS_KM * sin(lat);
+    double rho_cos = cos(u) + obs->altitude_m / 1000.0 / EARTH_RADIUS_KM * cos(lat);
+    double obs_eq[3] = {EARTH_RADIUS_KM * rho_cos * cos(a->last), EARTH_RADIUS_KM * rho_cos * sin(a->last),
+                        EARTH_RADIUS_KM * rho_sin};
+
+    /* sun */
+    double sl, sb, sr, true_lon;
+    sun_position(t, dpsi, &sl, &sb, &sr, &true_lon);
+    ecl_to_eq(sl, sb, eps, &a->sun.ra, &a->sun.dec);
+    a->sun.distance_km = sr * AU_KM;
+    body_place(a, obs_eq, &a->sun);
+    a->sun_semidiameter = atan(SUN_RADIUS_KM / a->sun.distance_km);
+
+    /* moon: apparent longitude adds nutation (Meeus 47); no aberration,
+     * the moon moves with the Earth (light time is 1.3 s: 0.7") */
+    double ml, mb, md, f, node;
+    moon_position(t, &ml, &mb, &md, &f, &node);
+    double ml_app = wrap_2pi(ml + dpsi);
+    ecl_to_eq(ml_app, mb, eps, &a->moon.ra, &a->moon.dec);
+    a->moon.distance_km = md;
+    body_place(a, obs_eq, &a->moon);
+    a->moon_semidiameter = asin(clamp(MOON_RADIUS_KM / md, 0.0, 1.0));
+
+    /* phase (Meeus 48.2-48.5, geocentric) */
+    double psi = separation(a->sun.ra, a->sun.dec, a->moon.ra, a->moon.dec);
+    a->moon_phase_angle = atan2(a->sun.distance_km * sin(psi), md - a->sun.distance_km * cos(psi));
+    a->moon_illuminated = (1.0 + cos(a->moon_phase_angle)) / 2.0;
+    double dra = a->sun.ra - a->moon.ra;
+    a->moon_bright_limb = wrap_2pi(atan2(cos(a->sun.dec) * sin(dra), sin(a->sun.dec) * cos(a->moon.dec) -
+                                                                          cos(a->sun.dec) * sin(a->moon.dec) * cos(dra)));
+    /* optical libration and position angle of the axis (Meeus 53.1-53.2,
+     * physical libration left out: under 0.04 degrees) */
+    const double inc = 1.54242 * DEG;
+    double w = ml_app - dpsi - node;
+    double lib_a = atan2(sin(w) * cos(mb) * cos(inc) - sin(mb) * sin(inc), cos(w) * cos(mb));
+    double lib_l = wrap_2pi(lib_a - f);
+    a->moon_libration_lon = lib_l > PI ? lib_l - TWO_PI : lib_l;
+    a->moon_libration_lat = safe_asin(-sin(w) * cos(mb) * sin(inc) - sin(mb) * cos(inc));
+    double v_node = node + dpsi;
+    double x = sin(inc) * sin(v_node), y = sin(inc) * cos(v_node) * cos(eps) - cos(inc) * sin(eps);
+    double omega = atan2(x, y);
+    a->moon_axis_angle = safe_asin(sqrt(x * x + y * y) * cos(a->moon.ra - omega) / cos(a->moon_libration_lat));
+    /* parallactic angle (Meeus 14.1) at the moon's geocentric place; the
+     * topocentric shift changes it by far less than the disc shows */
+    double hour = a->last - a->moon.ra;
+    a->moon_parallactic = atan2(sin(hour), tan(lat) * cos(a->moon.dec) - sin(a->moon.dec) * cos(hour));
+
+    /* lunar eclipse: Danjon's rule as used by Espenak's canon. The shadow
+     * axis points at the antisolar point; pi' is the moon's parallax on
+     * the Earth's mean radius; the 1.01 enlarges the shadow for the
+     * atmosphere. */
+    double pi_moon = asin(EARTH_RADIUS_KM / md) * 0.998340, pi_sun = asin(EARTH_RADIUS_KM / a->sun.distance_km);
+    a->umbra_radius = 1.01 * pi_moon + pi_sun - a->sun_semidiameter;
+    a->penumbra_radius = 1.01 * pi_moon + pi_sun + a->sun_semidiameter;
+    a->shadow_distance = separation(wrap_2pi(a->sun.ra + PI), -a->sun.dec, a->moon.ra, a->moon.dec);
+    a->umbral_magnitude = (a->umbra_radius + a->moon_semidiameter - a->shadow_distance) / (2.0 * a->moon_semidiameter);
+    a->penumbral_magnitude =
+        (a->penumbra_radius + a->moon_semidiameter - a->shadow_distance) / (2.0 * a->moon_semidiameter);
+
+    /* day-night fades (Mueller sec. 5), s_z the sun's up component; the
+     * powers act on clamped bases so they stay finite */
+    double s_z = a->sun.dir[1];
+    a->star_visibility = 1.0 / sqrt(1.0 + pow(clamp(s_z + 1.14, 0.0, 2.14), 32.0));
+    a->moon_visibility = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(clamp(s_z + 1.05, 0.0, 2.05), 32.0));
+
+    /* stars: one precession-nutation matrix for the frame (Mueller eq. 7-8)
+     * and the annual aberration as Earth's velocity over c (Meeus 23.2 in
+     * vector form: circular term toward longitude sun - 90, plus the
+     * eccentricity term), in the true equator of date */
+    double pm[9], nm[9], r1[9], r2[9], r3[9];
+    precession_matrix(t, pm);
+    rot_x(eps0, r1);
+    rot_z(-dpsi, r2);
+    rot_x(-eps, r3);
+    mat_mul(r2, r1, nm);
+    mat_mul(r3, nm, nm);
+    mat_mul(nm, pm, a->precession_nutation);
+    const double kappa = 20.49552 * ARCSEC;
+    double ecc = 0.016708634 - 0.000042037 * t - 0.0000001267 * t * t;
+    double peri = (102.93735 + 1.71946 * t + 0.00046 * t * t) * DEG;
+    double ab_ecl[3] = {kappa * (sin(true_lon) - ecc * sin(peri)), -kappa * (cos(true_lon) - ecc * cos(peri)), 0.0};
+    double ecl_to_eq_m[9];
+    rot_x(-eps, ecl_to_eq_m);
+    mat_vec(ecl_to_eq_m, ab_ecl, a->aberration);
+    return 0;
+}
+
+void sky_astro_star(const sky_astro *a, const sky_star *s, double *alt, double *alt_geometric, double *az,
+                    double dir[3])
+{
+    /* proper motion, linear in ra/dec over the supported centuries */
+    double yrs = a->years_since_j2000;
+    double cd = cos(s->dec);
+    double ra = s->ra + (cd > 1e-9 ? s->pm_ra / cd : 0.0) * 1e-3 * ARCSEC * yrs;
+    double dec = s->dec + s->pm_dec * 1e-3 * ARCSEC * yrs;
+    double v[3], h[3];
+    spherical_to_vec(ra, dec, v);
+    mat_vec(a->precession_nutation, v, v);
+    for (int i = 0; i < 3; i++) v[i] += a->aberration[i];
+    mat_vec(a->horizon, v, h);
+    horizon_from_vector(h, a->pressure_factor, alt, alt_geometric, az, dir);
+}

@@ -1,0 +1,109 @@
+/*
+ * Positional astronomy for libsky: time scales, the sun (VSOP87 as
+ * truncated by Meeus), the moon (Meeus ch. 47, the full 60 + 60 terms),
+ * catalogue stars (proper motion, precession, nutation, aberration),
+ * topocentric horizon coordinates with refraction, the moon's phase,
+ * libration and orientation, and lunar eclipse magnitudes. Pure C, double
+ * precision, no GL. Internal to the library; tests link it directly.
+ *
+ * Angles are radians unless a name says _deg. Azimuth is measured from
+ * north through east. "Apparent" means of date: nutation and aberration
+ * applied.
+ */
+#ifndef SKY_ASTRO_H
+#define SKY_ASTRO_H
+
+#include <stddef.h>
+
+/* Supported span of dates: where the Delta T fit is defined. */
+#define SKY_ASTRO_YEAR_MIN (-1999)
+#define SKY_ASTRO_YEAR_MAX 3000
+
+/* ---- time ------------------------------------------------------------------ */
+
+/* Julian day of a proleptic Gregorian calendar instant (any year). */
+double sky_jd_from_calendar(int year, int month, int day, int hour, int minute, double second);
+/* The calendar date of a Julian day (proleptic Gregorian). */
+void sky_calendar_from_jd(double jd, int *year, int *month, int *day, double *day_fraction);
+/* Julian day of Unix seconds. */
+double sky_jd_from_unix(double unix_seconds);
+/* Delta T = TT - UT in seconds: Espenak & Meeus (2006) polynomials,
+ * defined for -1999..+3000 and extrapolated parabolically outside. */
+double sky_delta_t(double jd_ut);
+/* Greenwich mean sidereal time in radians (Meeus 12.4), UT1 ~ UTC. */
+double sky_gmst(double jd_ut);
+
+/* ---- results ------------------------------------------------------------------ */
+
+typedef struct sky_astro_observer {
+    double latitude, longitude; /* geodetic, radians; east positive */
+    double altitude_m;
+} sky_astro_observer;
+
+typedef struct sky_astro_body {
+    double ra, dec;            /* geocentric apparent, of date              */
+    double distance_km;
+    double alt, alt_geometric; /* topocentric; alt includes refraction     */
+    double az;
+    double dir[3];             /* horizon frame (+x east, +y up, +z south),
+                                  refracted                                 */
+} sky_astro_body;
+
+typedef struct sky_astro {
+    double jd_ut, jd_tt, delta_t;  /* days, days, seconds                    */
+    double lmst, last;             /* local mean / apparent sidereal time     */
+    double obliquity;              /* true obliquity of date                  */
+    double nutation_longitude;
+    sky_astro_body sun, moon;
+    /* moon */
+    double moon_phase_angle;       /* sun-moon-earth angle: 0 full, pi new    */
+    double moon_illuminated;       /* fraction of the disc lit, 0..1          */
+    double moon_bright_limb;       /* position angle of the bright limb's
+                                      midpoint, from north through east       */
+    double moon_libration_lat, moon_libration_lon; /* optical libration      */
+    double moon_axis_angle;        /* position angle of the moon's axis       */
+    double moon_parallactic;       /* topocentric parallactic angle           */
+    double moon_semidiameter;      /* geocentric, radians                     */
+    double sun_semidiameter;
+    /* lunar eclipse (Danjon's enlarged shadow) */
+    double umbral_magnitude, penumbral_magnitude;
+    double umbra_radius, penumbra_radius, shadow_distance; /* angles        */
+    /* day-night fade factors (Mueller sec. 5) */
+    double star_visibility, moon_visibility;
+    /* stars: J2000 unit vector -> apparent direction of date in the
+     * horizon frame = horizon * normalize(precession_nutation * v + aberration) */
+    double precession_nutation[9]; /* row-major, J2000 mean -> true of date  */
+    double aberration[3];          /* Earth's velocity / c, equatorial of date */
+    double horizon[9];             /* true equatorial of date -> horizon frame */
+    double years_since_j2000;      /* for proper motion (TT, Julian years)    */
+    double pressure_factor;        /* refraction scale for the altitude       */
+} sky_astro;
+
+/* Computes everything for one instant (UTC, taken as UT1) and observer.
+ * Returns 0, or -1 with a message for a date outside the supported span,
+ * a latitude outside +-90 degrees or a non-finite input. */
+int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *out, char *err, size_t err_len);
+
+/* A catalogue star: J2000 position, proper motion (mas/yr, RA component
+ * times cos dec). */
+typedef struct sky_star {
+    int hip;
+    double ra, dec;
+    double pm_ra, pm_dec;
+    float vmag, bv;
+} sky_star;
+
+/* Apparent topocentric place of a star for the state's instant: refracted
+ * and geometric altitude, azimuth; dir is the refracted horizon vector. */
+void sky_astro_star(const sky_astro *a, const sky_star *star, double *alt, double *alt_geometric, double *az,
+                    double dir[3]);
+
+/* Atmospheric refraction (Saemundsson 1986, as in Meeus 16.4) for a true
+ * altitude h, scaled by pressure_factor; continuous and finite for every
+ * h: below -1 degree it tapers linearly to 0 at -6 degrees. */
+double sky_refraction(double h, double pressure_factor);
+
+/* Horizon-frame unit vector of an altitude and azimuth. */
+void sky_horizon_vector(double alt, double az, double out[3]);
+
+#endif

@@ -1,0 +1,133 @@
+/*
+ * Where and when: the observer, the time slider as local apparent solar
+ * time, and the public astronomy queries. The astronomy itself is astro.c;
+ * the star catalogue is catalog.c.
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEG (SKY_PI / 180.0)
+
+sky_observer sky_default_observer(void)
+{
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.julian_day_utc = sky_jd_from_calendar(2026, 3, 20, 12, 0, 0.0);
+    o.latitude_deg = 40.0;
+    o.time_from_params = 1;
+    return o;
+}
+
+double sky_julian_day(int year, int month, int day, int hour, int minute, double second)
+{
+    return sky_jd_from_calendar(year, month, day, hour, minute, second);
+}
+
+int sky_observer_check(const sky_observer *o, char *err, size_t err_len)
+{
+    double year = 2000.0 + (o->julian_day_utc - 2451545.0) / 365.25;
+    if (!isfinite(o->julian_day_utc) || year < SKY_ASTRO_YEAR_MIN || year >= SKY_ASTRO_YEAR_MAX + 1)
+        sky_format(err, err_len, "observer: the date (JD %g) is outside the years %d..%d", o->julian_day_utc,
+                   SKY_ASTRO_YEAR_MIN, SKY_ASTRO_YEAR_MAX);
+    else if (!isfinite(o->latitude_deg) || fabs(o->latitude_deg) > 90.0)
+        sky_format(err, err_len, "observer: latitude %g is outside -90..90", o->latitude_deg);
+    else if (!isfinite(o->longitude_deg) || fabs(o->longitude_deg) > 180.0)
+        sky_format(err, err_len, "observer: longitude %g is outside -180..180", o->longitude_deg);
+    else if (!isfinite(o->altitude_m) || o->altitude_m < -500.0 || o->altitude_m > 100000.0)
+        sky_format(err, err_len, "observer: altitude %g m is outside -500..100000", o->altitude_m);
+    else
+        return 0;
+    return -1;
+}
+
+/* The instant the observer and the time slider describe. With the slider,
+ * local apparent solar time `time_of_day` on the observer's local (mean
+ * solar) date: start from mean solar time, then correct once by the
+ * measured difference (the equation of time, at most 17 minutes, changes
+ * by seconds a day, so one correction is exact to well under a second). */
+int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro *a, char *err, size_t err_len)
+{
+    sky_astro_observer ao = {o->latitude_deg * DEG, o->longitude_deg * DEG, o->altitude_m};
+    if (!o->time_from_params) return sky_astro_compute(o->julian_day_utc, &ao, a, err, err_len);
+    double lon_days = o->longitude_deg / 360.0;
+    double local_midnight = floor(o->julian_day_utc + lon_days + 0.5) - 0.5;
+    double tod = sky_clampd(time_of_day, 0.0, 1.0);
+    double jd = local_midnight + tod - lon_days;
+    if (sky_astro_compute(jd, &ao, a, err, err_len)) return -1;
+    /* apparent solar time now: the sun's hour angle + 12 h */
+    double solar = sky_wrap((a->last - a->sun.ra) / (2.0 * SKY_PI) + 0.5, 1.0);
+    double correction = sky_wrap(tod - solar + 0.5, 1.0) - 0.5;
+    return sky_astro_compute(jd + correction, &ao, a, err, err_len);
+}
+
+static void body_out(const sky_astro_body *b, sky_body_place *p)
+{
+    p->alt_deg = b->alt / DEG;
+    p->alt_geometric_deg = b->alt_geometric / DEG;
+    p->az_deg = b->az / DEG;
+    p->ra_deg = b->ra / DEG;
+    p->dec_deg = b->dec / DEG;
+    p->distance_km = b->distance_km;
+}
+
+void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *o)
+{
+    memset(o, 0, sizeof *o);
+    o->julian_day_ut = a->jd_ut;
+    o->delta_t_s = a->delta_t;
+    o->lmst_deg = a->lmst / DEG;
+    body_out(&a->sun, &o->sun);
+    body_out(&a->moon, &o->moon);
+    o->moon_illuminated_fraction = a->moon_illuminated;
+    o->moon_phase_angle_deg = a->moon_phase_angle / DEG;
+    o->moon_bright_limb_deg = a->moon_bright_limb / DEG;
+    o->moon_libration_lat_deg = a->moon_libration_lat / DEG;
+    o->moon_libration_lon_deg = a->moon_libration_lon / DEG;
+    o->moon_axis_angle_deg = a->moon_axis_angle / DEG;
+    o->moon_parallactic_deg = a->moon_parallactic / DEG;
+    o->umbral_magnitude = a->umbral_magnitude;
+    o->penumbral_magnitude = a->penumbral_magnitude;
+    o->star_visibility = a->star_visibility;
+    o->moon_visibility = a->moon_visibility;
+}
+
+sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, const int *hip, int count,
+                                 sky_star_place *stars, sky_astronomy *out, char *err, size_t err_len)
+{
+    if (err && err_len) err[0] = '\0';
+    if (!obs || !out || count < 0 || (count > 0 && (!hip || !stars))) {
+        sky_format(err, err_len, "sky_compute_astronomy: NULL observer or output, or a bad star list");
+        return SKY_ERR_INVALID_ARGUMENT;
+    }
+    if (isnan(time_of_day)) {
+        sky_format(err, err_len, "sky_compute_astronomy: time_of_day is NaN");
+        return SKY_ERR_INVALID_ARGUMENT;
+    }
+    if (sky_observer_check(obs, err, err_len)) return SKY_ERR_INVALID_ARGUMENT;
+    sky_astro a;
+    if (sky_observer_astro(obs, time_of_day, &a, err, err_len)) return SKY_ERR_INVALID_ARGUMENT;
+    sky_astronomy_from_astro(&a, out);
+    if (count == 0) return SKY_OK;
+    sky_catalog cat;
+    if (sky_catalog_load(&cat, err, err_len)) return SKY_ERR_ASSET;
+    for (int i = 0; i < count; i++) {
+        sky_star_place *p = &stars[i];
+        memset(p, 0, sizeof *p);
+        p->hip = hip[i];
+        const sky_star *st = sky_catalog_find(&cat, hip[i]);
+        if (!st) continue;
+        double alt, alt_geo, az, dir[3];
+        sky_astro_star(&a, st, &alt, &alt_geo, &az, dir);
+        p->found = 1;
+        p->alt_deg = alt / DEG;
+        p->alt_geometric_deg = alt_geo / DEG;
+        p->az_deg = az / DEG;
+        p->vmag = st->vmag;
+        p->bv = st->bv;
+    }
+    sky_catalog_free(&cat);
+    return SKY_OK;
+}
