@@ -46,7 +46,9 @@ void sky_gradient_frame(sky *s)
     f->night_luminance = 2.0e-7f;
     /* The low-sun horizon colour: the square root of the direct beam's
      * transmittance (light that travelled about half the sun's path),
-     * normalised to its red channel. Per frame here, not per pixel. */
+     * normalised to its red channel, and only 70 % saturated: the horizon
+     * also sees light scattered from higher, bluer air. Per frame here,
+     * not per pixel. */
     double red = f->sun_transmittance[0] > 1e-6f ? f->sun_transmittance[0] : 1e-6;
-    for (int i = 0; i < 3; i++) f->horizon_tint[i] = (float)sqrt(f->sun_transmittance[i] / red);
+    for (int i = 0; i < 3; i++) f->horizon_tint[i] = (float)(0.3 + 0.7 * sqrt(f->sun_transmittance[i] / red));
 }

@@ -21,7 +21,7 @@ vec3 sky_atmosphere(vec3 d, vec3 day)
     float aureole = (0.25 * mu8 + 0.6 * mu8 * mu8 * mu8 * mu8) * (1.0 + 1.5 * (1.0 - e));
     /* Low sun: the horizon takes the colour of the light that reaches it,
      * most strongly on the sun's side. */
-    float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
+    float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu) / (1.0 - 6.0 * min(d.y, 0.0));
     vec3 L = u_sky_luminance * (day * mix(vec3(1.0), u_horizon_tint, low) + aureole * u_sun_transmittance);
     L += u_night_luminance * vec3(0.55, 0.7, 1.0) * (1.0 + (1.0 - e));
     if (d.y < 0.0) L *= 1.0 / (1.0 - 4.0 * d.y); /* darken below the horizon */
