@@ -183,6 +183,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     if ((features & SKY_CLOUDS) && sky_clouds_create(s, err, err_len)) goto fail;
     if ((features & SKY_FLICKER_STARS) && sky_flicker_create(s, err, err_len)) goto fail;
     if ((features & SKY_SUN) && sky_sun_create(s, err, err_len)) goto fail;
+    if (features & SKY_STARS) {
+        compute_frame(s); /* the astronomy of the default observer */
+        if (sky_stars_create(s, err, err_len)) goto fail;
+    }
     s->cfg.texture_dir = NULL;
 
     /* The dome program holds only the snippets of enabled features. With
@@ -202,6 +206,13 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     if (features & SKY_FLICKER_STARS) {
         dome_snippets[n++] = &sky_flicker_snippet;
         if (sky_program_build(s, &s->dome_night, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
+    }
+    if (features & SKY_STARS) {
+        const sky_snippet *star_snippets[2];
+        int m = 0;
+        if (features & SKY_CLOUDS) star_snippets[m++] = &sky_clouds_snippet;
+        star_snippets[m++] = &sky_stars_snippet;
+        if (sky_program_build(s, &s->stars, "stars.vert", "stars.frag", star_snippets, m, err, err_len)) goto fail;
     }
     if (features & SKY_SUN) {
         const sky_snippet *sun_snippets[2];
@@ -233,9 +244,11 @@ void sky_destroy(sky *s)
         sky_program_destroy(s, &s->dome);
         sky_program_destroy(s, &s->dome_night);
         sky_program_destroy(s, &s->ground);
+        sky_program_destroy(s, &s->stars);
+        sky_stars_destroy(s);
         sky_program_destroy(s, &s->sun);
-        GLuint buffers[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer};
-        gl->glDeleteBuffers(3, buffers);
+        GLuint buffers[4] = {s->dome_vertices, s->dome_indices, s->sun_buffer, s->star_buffer};
+        gl->glDeleteBuffers(4, buffers);
         if (s->vao) gl->glDeleteVertexArrays(1, &s->vao);
     }
     free(s);
@@ -427,6 +440,10 @@ static sky_result setup_camera(sky *s, const float view[16], const float proj[16
             s->frame.view_proj[col * 4 + row] = (float)acc;
         }
     s->frame.fisheye = 0.0f;
+    /* radians per pixel at the view centre: 2 tan(fov/2) / height */
+    GLint vp[4];
+    s->gl.glGetIntegerv(GL_VIEWPORT, vp);
+    s->frame.pixel_angle = (float)(2.0 / (fabs(p[5]) * (vp[3] > 0 ? vp[3] : 1)));
     return SKY_OK;
 }
 
@@ -438,6 +455,7 @@ static void setup_fisheye(sky *s, const GLint viewport[4])
     s->frame.aspect[0] = (float)(w > h ? w / h : 1.0);
     s->frame.aspect[1] = (float)(h > w ? h / w : 1.0);
     s->frame.fisheye = 1.0f;
+    s->frame.pixel_angle = (float)(SKY_PI / (w < h ? w : h)); /* 90 degrees on the circle's radius */
     const sky_gl *gl = &s->gl;
     gl->glEnable(GL_SCISSOR_TEST);
     gl->glScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -532,7 +550,31 @@ static sky_result draw_frame(sky *s, const sky_gl_state *host)
     if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night;
     if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);
 
-    /* 2. the sun quad, added over the dome (it hides behind the clouds by
+    /* 2. catalogue stars, added over the dome: their light dimmed by the
+     * atmosphere (extinction in the shader) and hidden by the clouds */
+    if (s->features & SKY_STARS) {
+        GLint vp[4];
+        gl->glGetIntegerv(GL_VIEWPORT, vp);
+        for (int i = 0; i < 4; i++) s->frame.star_viewport[i] = (float)vp[i];
+        sky_stars_frame(s);
+        if (sky_stars_visible(s)) {
+            gl->glEnable(GL_BLEND);
+            gl->glBlendEquation(GL_FUNC_ADD);
+            gl->glBlendFunc(GL_ONE, GL_ONE);
+            double t0 = s->cfg.profile_layers ? (gl->glFinish(), now_ms()) : 0.0;
+            sky_program_apply(s, &s->stars);
+            sky_stars_draw(s);
+            if (s->cfg.profile_layers) {
+                gl->glFinish();
+                s->stats.layers[SKY_LAYER_STARS].ms = now_ms() - t0;
+            }
+            s->stats.layers[SKY_LAYER_STARS].drawn = 1;
+            s->stats.layers[SKY_LAYER_STARS].draws++;
+            s->stats.draws_per_frame++;
+        }
+    }
+
+    /* 3. the sun quad, added over the dome (it hides behind the clouds by
      * evaluating them itself) */
     if (sky_sun_visible(s)) {
         sky_sun_update_quad(s);
@@ -597,6 +639,11 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
         }
     out->layers[SKY_LAYER_ATMOSPHERE].bytes += s->buffer_bytes - (s->sun_buffer ? 4 * 5 * sizeof(float) : 0);
     if (s->sun_buffer) out->layers[SKY_LAYER_SUN].bytes += 4 * 5 * sizeof(float);
+    if (s->star_buffer) {
+        size_t star_bytes = sizeof(float) * 9 * (size_t)s->catalog.count;
+        out->layers[SKY_LAYER_STARS].bytes += star_bytes;
+        out->layers[SKY_LAYER_ATMOSPHERE].bytes -= star_bytes;
+    }
     out->programs = s->program_count;
     out->buffers = s->buffer_count;
     static const unsigned layer_feature[SKY_LAYER_COUNT] = {SKY_STARMAP, SKY_STARS, SKY_FLICKER_STARS, SKY_MOON,

@@ -63,7 +63,7 @@ typedef enum sky_feature {
     SKY_CLOUDS        = 1u << 0, /* Roden-Parberry cloud layers             */
     SKY_SUN           = 1u << 1, /* limb-darkened sun disc                  */
     SKY_MOON          = 1u << 2, /* Mueller moon (not built yet)            */
-    SKY_STARS         = 1u << 3, /* catalogue star billboards (not yet)     */
+    SKY_STARS         = 1u << 3, /* catalogue stars (Mueller sec. 4)         */
     SKY_FLICKER_STARS = 1u << 4, /* Roden-Parberry flicker stars + galaxy   */
     SKY_STARMAP       = 1u << 5, /* Milky Way star map (not yet)            */
     SKY_ECLIPSE       = 1u << 6, /* lunar eclipses (not yet)                */
@@ -73,7 +73,7 @@ typedef enum sky_feature {
 #define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
 /* The features this build can render; asking for others is
  * SKY_ERR_UNSUPPORTED from sky_create. */
-#define SKY_FEATURES_AVAILABLE (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
+#define SKY_FEATURES_AVAILABLE (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_STARS)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
@@ -117,6 +117,10 @@ typedef struct sky_config {
     /* Optional rotation (column-major 3x3) from the horizon frame above to
      * the host's world frame; all zero = identity (y up). */
     float horizon_to_world[9];
+    /* Mueller's control magnitude m_a for catalogue stars: stars are drawn
+     * 2.512^(m_a - 4) times their physical brightness, and those brighter
+     * than m_a get a glare. 0 = 4 (physical). Range 1..10. */
+    float star_control_magnitude;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,

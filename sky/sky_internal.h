@@ -85,7 +85,8 @@ typedef struct sky_frame {
     float fisheye;           /* 1 = equidistant all-sky mapping                 */
     float aspect[2];         /* fisheye: ndc scale so the circle is round        */
     float frame_index;       /* dither seed                                     */
-    float view_proj[16];     /* horizon direction -> clip (sun quad)             */
+    float view_proj[16];     /* horizon direction (w = 0) -> clip                */
+    float pixel_angle;       /* radians per pixel at the view centre             */
     /* clouds (R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
@@ -95,10 +96,13 @@ typedef struct sky_frame {
     /* flicker stars (R-P sec. 4) */
     float flicker_phase;     /* flicker time in rate units, wrapped             */
     float star_luminance;    /* kcd/m^2 of a full-intensity star texel          */
+    /* catalogue stars (stars.c) */
+    float star_rot[16], star_aberration[3], star_size[4], star_viewport[4], star_pressure[3];
+    float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
 } sky_frame;
 
 /* ---- programs and the uniform table ------------------------------------- */
-typedef enum sky_uniform_type { SKY_U_F1, SKY_U_F2, SKY_U_F3, SKY_U_M4, SKY_U_TEX } sky_uniform_type;
+typedef enum sky_uniform_type { SKY_U_F1, SKY_U_F2, SKY_U_F3, SKY_U_F4, SKY_U_M4, SKY_U_TEX } sky_uniform_type;
 
 /* One row per uniform: the GLSL name, its type, and where its value lives
  * (an offset into sky_frame, or a texture id). Each phenomenon file owns its
@@ -151,6 +155,11 @@ struct sky {
     sky_program dome_night;       /* the same with the night layers (flicker)    */
     sky_program ground;           /* below the horizon: atmosphere only          */
     sky_program sun;              /* sun quad                                  */
+    sky_program stars;            /* catalogue stars (points)                  */
+    sky_catalog catalog;
+    GLuint star_buffer;
+    double star_epoch;            /* years since J2000 of the uploaded positions */
+    float star_point_max;         /* largest point size the context draws      */
     GLuint dome_vertices;         /* dome.c: direction, gradient colour, galaxy */
     GLuint dome_indices;
     int dome_index_count, dome_upper_first; /* indices: all, and where the upper hemisphere starts */
@@ -209,6 +218,7 @@ typedef struct sky_gl_state {
     GLint textures[4];
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
     GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
+    GLboolean program_point_size;
     GLint attrib_enabled[SKY_ATTRIBS], attrib_size[SKY_ATTRIBS], attrib_type[SKY_ATTRIBS], attrib_norm[SKY_ATTRIBS],
         attrib_stride[SKY_ATTRIBS], attrib_buffer[SKY_ATTRIBS];
     void *attrib_pointer[SKY_ATTRIBS];
@@ -222,6 +232,7 @@ extern const sky_snippet sky_gradient_snippet;
 extern const sky_snippet sky_clouds_snippet;
 extern const sky_snippet sky_flicker_snippet;
 extern const sky_snippet sky_sun_snippet;
+extern const sky_snippet sky_stars_snippet;
 
 /* The dome mesh with per-vertex gradient colour and galaxy (dome.c). */
 int sky_dome_create(sky *s, char *err, size_t err_len);
@@ -244,6 +255,13 @@ int sky_clouds_visible(const sky *s);
 int sky_flicker_create(sky *s, char *err, size_t err_len);
 void sky_flicker_advance(sky *s, double dt);
 void sky_flicker_frame(sky *s);
+int sky_stars_create(sky *s, char *err, size_t err_len);
+void sky_stars_destroy(sky *s);
+void sky_stars_frame(sky *s); /* after the camera is set up */
+int sky_stars_visible(const sky *s);
+void sky_stars_draw(sky *s);
+/* B-V to linear sRGB of unit luminance (stars.c). */
+void sky_star_color(double bv, float rgb[3]);
 int sky_sun_create(sky *s, char *err, size_t err_len);
 void sky_sun_frame(sky *s);
 int sky_sun_visible(const sky *s);

@@ -56,6 +56,11 @@ int test_failures;
     X(astro_bad_input)                           \
     X(astro_time_slider_is_solar_time)           \
     X(astro_query_json)                          \
+    X(stars_where_astronomy_puts_them)           \
+    X(stars_control_magnitude_and_twilight)      \
+    X(stars_colour_follows_bv)                   \
+    X(stars_scintillate_more_near_horizon)       \
+    X(stars_skipped_at_noon)                     \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

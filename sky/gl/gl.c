@@ -242,6 +242,7 @@ void sky_program_apply(sky *s, const sky_program *p)
         case SKY_U_F1: gl->glUniform1f(loc, v[0]); break;
         case SKY_U_F2: gl->glUniform2f(loc, v[0], v[1]); break;
         case SKY_U_F3: gl->glUniform3f(loc, v[0], v[1], v[2]); break;
+        case SKY_U_F4: gl->glUniform4f(loc, v[0], v[1], v[2], v[3]); break;
         case SKY_U_M4: gl->glUniformMatrix4fv(loc, 1, GL_FALSE, v); break;
         case SKY_U_TEX:
             gl->glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
@@ -418,6 +419,7 @@ void sky_gl_state_save(sky *s, sky_gl_state *st)
     st->cull_face = gl->glIsEnabled(GL_CULL_FACE);
     st->scissor_test = gl->glIsEnabled(GL_SCISSOR_TEST);
     st->stencil_test = gl->glIsEnabled(GL_STENCIL_TEST);
+    st->program_point_size = gl->glIsEnabled(GL_PROGRAM_POINT_SIZE);
     gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
     gl->glGetBooleanv(GL_COLOR_WRITEMASK, st->color_mask);
     gl->glGetIntegerv(GL_BLEND_SRC_RGB, &st->blend_src_rgb);
@@ -484,6 +486,7 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st)
     set_cap(gl, GL_CULL_FACE, st->cull_face);
     set_cap(gl, GL_SCISSOR_TEST, st->scissor_test);
     set_cap(gl, GL_STENCIL_TEST, st->stencil_test);
+    set_cap(gl, GL_PROGRAM_POINT_SIZE, st->program_point_size);
     gl->glDepthMask(st->depth_mask);
     gl->glColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
     gl->glBlendFuncSeparate((GLenum)st->blend_src_rgb, (GLenum)st->blend_dst_rgb, (GLenum)st->blend_src_alpha,

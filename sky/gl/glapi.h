@@ -31,7 +31,10 @@ typedef ptrdiff_t GLintptr;
 #define GL_NO_ERROR 0
 #define GL_FALSE 0
 #define GL_TRUE 1
+#define GL_POINTS 0x0000
 #define GL_TRIANGLES 0x0004
+#define GL_PROGRAM_POINT_SIZE 0x8642
+#define GL_ALIASED_POINT_SIZE_RANGE 0x846D
 #define GL_TRIANGLE_STRIP 0x0005
 #define GL_ZERO 0
 #define GL_ONE 1

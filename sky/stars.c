@@ -1,0 +1,196 @@
+/*
+ * Catalogue stars after Mueller et al. 2012, sec. 4: every star of the
+ * built-in catalogue (to V 6.5) as one point, coloured by its B-V, sized by
+ * the field of view (eq. 9), with a physically normalised intensity PSF
+ * (eq. 10), glare for stars brighter than the control magnitude,
+ * extinction (eq. 11-12) and scintillation. Shaders: stars.vert/.frag.
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define STAR_FLOATS 9 /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
+/* Illuminance of a V = 0 star: 2.54e-6 lux (e.g. Allen's Astrophysical
+ * Quantities), in klx so that luminance comes out in kcd/m^2. */
+#define STAR_E0_KLX 2.54e-9
+/* Mueller's minimum billboard radius, sqrt(2) pixels (eq. 9). */
+#define STAR_Q_PX 1.41421356
+/* Glare radius coefficient c_k in pixels: Sirius at m_a = 4 gets ~17 px. */
+#define STAR_GLARE_CK_PX 1.5
+/* Integral of T(l) = 2l^3 - 3l^2 + 1 over the unit disc: 2 pi (2/5 - 3/4 +
+ * 1/2) = 0.3 pi. Dividing by it makes a star's light add up to its
+ * illuminance, whatever its pixel size. */
+#define STAR_PSF_INTEGRAL (0.3 * SKY_PI)
+
+static const sky_uniform_desc star_uniforms[] = {
+    SKY_UF("u_star_rot", SKY_U_M4, star_rot),
+    SKY_UF("u_star_aberration", SKY_U_F3, star_aberration),
+    SKY_UF("u_star_size", SKY_U_F4, star_size),
+    SKY_UF("u_star_viewport", SKY_U_F4, star_viewport),
+    SKY_UF("u_star_pressure", SKY_U_F3, star_pressure),
+    SKY_UF("u_star_flux_scale", SKY_U_F1, star_flux_scale),
+    SKY_UF("u_star_extinction", SKY_U_F3, star_extinction),
+    SKY_UF("u_star_shell", SKY_U_F3, star_shell),
+    SKY_UF("u_star_seed", SKY_U_F1, star_seed),
+};
+const sky_snippet sky_stars_snippet = {NULL, NULL, star_uniforms, (int)(sizeof star_uniforms / sizeof star_uniforms[0])};
+
+/* B-V to linear sRGB of unit luminance: temperature after Ballesteros
+ * (2012), the Planckian locus fit of Kim et al. (2002) for its
+ * chromaticity, then XYZ to linear sRGB (IEC 61966-2-1). */
+void sky_star_color(double bv, float rgb[3])
+{
+    bv = sky_clampd(bv, -0.4, 2.5);
+    double t = 4600.0 * (1.0 / (0.92 * bv + 1.7) + 1.0 / (0.92 * bv + 0.62));
+    t = sky_clampd(t, 1667.0, 25000.0);
+    double t1 = 1e3 / t, t2 = t1 * t1, t3 = t2 * t1, x, y;
+    if (t <= 4000.0)
+        x = -0.2661239 * t3 - 0.2343589 * t2 + 0.8776956 * t1 + 0.179910;
+    else
+        x = -3.0258469 * t3 + 2.1070379 * t2 + 0.2226347 * t1 + 0.240390;
+    double x2 = x * x, x3 = x2 * x;
+    if (t <= 2222.0)
+        y = -1.1063814 * x3 - 1.34811020 * x2 + 2.18555832 * x - 0.20219683;
+    else if (t <= 4000.0)
+        y = -0.9549476 * x3 - 1.37418593 * x2 + 2.09137015 * x - 0.16748867;
+    else
+        y = 3.0817580 * x3 - 5.87338670 * x2 + 3.75112997 * x - 0.37001483;
+    double X = x / y, Y = 1.0, Z = (1.0 - x - y) / y;
+    double r = 3.2406 * X - 1.5372 * Y - 0.4986 * Z;
+    double g = -0.9689 * X + 1.8758 * Y + 0.0415 * Z;
+    double b = 0.0557 * X - 0.2040 * Y + 1.0570 * Z;
+    r = r > 0 ? r : 0, g = g > 0 ? g : 0, b = b > 0 ? b : 0;
+    /* the clamp can change the luminance; set it back to 1 */
+    double lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    rgb[0] = (float)(r / lum), rgb[1] = (float)(g / lum), rgb[2] = (float)(b / lum);
+}
+
+/* Fills the vertex buffer: J2000 directions moved by proper motion to the
+ * given epoch (years since J2000), colours and magnitudes. */
+static int upload_stars(sky *s, double years, char *err, size_t err_len)
+{
+    const sky_catalog *cat = &s->catalog;
+    float *v = malloc(sizeof(float) * STAR_FLOATS * (size_t)cat->count);
+    if (!v) {
+        sky_format(err, err_len, "out of memory for %d stars", cat->count);
+        return -1;
+    }
+    const double mas = SKY_PI / 648000.0 * 1e-3;
+    for (int i = 0; i < cat->count; i++) {
+        const sky_star *st = &cat->stars[i];
+        double cd = cos(st->dec);
+        double ra = st->ra + (cd > 1e-9 ? st->pm_ra / cd : 0.0) * mas * years;
+        double dec = st->dec + st->pm_dec * mas * years;
+        float *p = v + i * STAR_FLOATS;
+        p[0] = (float)i;
+        p[1] = 0.0f;
+        p[2] = (float)(cos(dec) * cos(ra));
+        p[3] = (float)(cos(dec) * sin(ra));
+        p[4] = (float)sin(dec);
+        sky_star_color(st->bv, p + 5);
+        p[8] = st->vmag;
+    }
+    size_t bytes = sizeof(float) * STAR_FLOATS * (size_t)cat->count;
+    const sky_gl *gl = &s->gl;
+    if (!s->star_buffer) {
+        s->star_buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, v, bytes, GL_STATIC_DRAW);
+    } else {
+        gl->glBindBuffer(GL_ARRAY_BUFFER, s->star_buffer);
+        gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, v, GL_STATIC_DRAW);
+    }
+    free(v);
+    s->star_epoch = years;
+    if (!s->star_buffer) {
+        sky_format(err, err_len, "glGenBuffers failed for the stars");
+        return -1;
+    }
+    return 0;
+}
+
+int sky_stars_create(sky *s, char *err, size_t err_len)
+{
+    if (sky_catalog_load(&s->catalog, err, err_len)) return -1;
+    GLfloat range[2] = {1.0f, 1.0f};
+    s->gl.glGetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
+    s->star_point_max = range[1] > 1.0f ? range[1] : 1.0f;
+    return upload_stars(s, s->astro.years_since_j2000, err, err_len);
+}
+
+void sky_stars_destroy(sky *s) { sky_catalog_free(&s->catalog); }
+
+/* Per frame, from the observer's astronomy. */
+void sky_stars_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    const sky_astro *a = &s->astro;
+    /* proper motion moves Arcturus 0.1" a month: refresh past half a year */
+    if (fabs(a->years_since_j2000 - s->star_epoch) > 0.5) upload_stars(s, a->years_since_j2000, NULL, 0);
+    /* J2000 -> horizon = horizon * precession-nutation (row-major) into a
+     * column-major mat4 */
+    double m[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double acc = 0.0;
+            for (int k = 0; k < 3; k++) acc += a->horizon[i * 3 + k] * a->precession_nutation[k * 3 + j];
+            m[i * 3 + j] = acc;
+        }
+    memset(f->star_rot, 0, sizeof f->star_rot);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) f->star_rot[j * 4 + i] = (float)m[i * 3 + j];
+    f->star_rot[15] = 1.0f;
+    for (int i = 0; i < 3; i++)
+        f->star_aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
+                                        a->horizon[i * 3 + 2] * a->aberration[2]);
+    float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
+    f->star_size[0] = (float)STAR_Q_PX;
+    f->star_size[1] = (float)STAR_GLARE_CK_PX;
+    f->star_size[2] = 0.5f * s->star_point_max - 1.0f;
+    f->star_size[3] = m_a;
+    f->star_pressure[0] = (float)a->pressure_factor;
+    /* eq. 10 in physical units: peak luminance of a V = 0 star on a PSF of
+     * radius q pixels (pixel_angle radians each) */
+    double r = STAR_Q_PX * f->pixel_angle;
+    double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
+    f->star_flux_scale = (float)(peak * a->star_visibility);
+    /* the same zenith optical depths as the sun's beam (sun.c), thinning
+     * with the observer's altitude */
+    float zenith[3];
+    sky_sun_transmittance(SKY_PI / 2, zenith);
+    double thin = exp(-s->observer.altitude_m / 8000.0);
+    for (int i = 0; i < 3; i++) f->star_extinction[i] = (float)(-log(zenith[i]) * thin);
+    const double re = 6371.0, te = 8.0;
+    double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
+    f->star_shell[0] = (float)(re + h);
+    f->star_shell[1] = (float)(re + te);
+    f->star_shell[2] = (float)(te - h);
+    /* the scintillation clock: ten random values a second, wrapped so a
+     * float keeps its fraction after years of running */
+    f->star_seed = (float)sky_wrap(s->elapsed * 10.0, 997.0);
+}
+
+/* The brightest star (Sirius, V -1.46) would add less than a quarter of
+ * an 8-bit step: skip the draw (and in the day, that is always). */
+int sky_stars_visible(const sky *s)
+{
+    if (!(s->features & SKY_STARS) || !s->star_buffer) return 0;
+    const sky_frame *f = &s->frame;
+    double brightest = f->star_flux_scale * pow(2.512, 1.46);
+    return f->output_hdr > 0.5f ? brightest > 0.0 : brightest * f->exposure >= 1.0 / 1024.0;
+}
+
+void sky_stars_draw(sky *s)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, s->star_buffer);
+    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)0);
+    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(2 * sizeof(float)));
+    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(5 * sizeof(float)));
+    gl->glEnableVertexAttribArray(0);
+    gl->glEnableVertexAttribArray(1);
+    gl->glEnableVertexAttribArray(2);
+    gl->glEnable(GL_PROGRAM_POINT_SIZE);
+    gl->glDrawArrays(GL_POINTS, 0, s->catalog.count);
+    gl->glDisable(GL_PROGRAM_POINT_SIZE);
+}

@@ -1,0 +1,361 @@
+/*
+ * Catalogue star tests (Mueller sec. 4): positions in the image against
+ * the astronomy, brightness control, colour, scintillation, and leaving
+ * the stars out by day.
+ */
+#include "test.h"
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void test_stars_where_astronomy_puts_them(void);
+void test_stars_control_magnitude_and_twilight(void);
+void test_stars_colour_follows_bv(void);
+void test_stars_scintillate_more_near_horizon(void);
+void test_stars_skipped_at_noon(void);
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+/* Winter evening at 60 N: Orion in the south, Vega low in the north,
+ * Polaris at 60 degrees, all five test stars above the horizon. */
+static sky_observer winter_evening(void)
+{
+    sky_observer o = {sky_julian_day(2024, 1, 15, 21, 0, 0.0), 60.0, 10.0, 0.0, 0};
+    return o;
+}
+
+static scene star_scene(void)
+{
+    scene sc = scene_default();
+    sc.cfg.features = SKY_STARS;
+    sc.params.cover = 0.0f;
+    return sc;
+}
+
+/* Renders with an observer (render_scene has none). */
+static int render_with_observer(const scene *sc, const sky_observer *o, int hdr, image *out)
+{
+    char err[512];
+    sky_osmesa ctx;
+    memset(out, 0, sizeof *out);
+    if (sky_osmesa_create(&ctx, sc->w, sc->h, SKY_GL_AUTO, hdr, err, sizeof err)) return -1;
+    sky_config cfg = sc->cfg;
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
+    sky *s = sky_create(&cfg, err, sizeof err);
+    int rc = -1;
+    if (s && sky_set_params(s, &sc->params) >= 0 && sky_set_observer(s, o) == SKY_OK &&
+        sky_set_elapsed(s, sc->seconds) == SKY_OK) {
+        float view[16], proj[16];
+        scene_camera(sc, view, proj);
+        if ((sc->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) == SKY_OK) rc = 0;
+    }
+    if (!s) printf("    %s\n", err);
+    sky_osmesa_finish(&ctx);
+    if (!rc) {
+        out->w = sc->w;
+        out->h = sc->h;
+        out->px = malloc(sizeof(float) * 3u * (size_t)sc->w * (size_t)sc->h);
+        for (int y = 0; y < sc->h; y++)
+            for (int x = 0; x < sc->w; x++)
+                for (int c = 0; c < 3; c++) {
+                    size_t src = ((size_t)(sc->h - 1 - y) * (size_t)sc->w + (size_t)x) * 4u + (size_t)c;
+                    out->px[((size_t)y * (size_t)sc->w + (size_t)x) * 3u + (size_t)c] =
+                        hdr ? ((const float *)ctx.pixels)[src] : ((const unsigned char *)ctx.pixels)[src] / 255.0f;
+                }
+    }
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return rc;
+}
+
+/* Luminance-weighted centroid of the brightest blob within r px of (cx, cy). */
+static double blob(const image *im, double cx, double cy, int r, double *bx, double *by)
+{
+    double peak = 0.0;
+    for (int y = (int)cy - r; y <= (int)cy + r; y++)
+        for (int x = (int)cx - r; x <= (int)cx + r; x++)
+            if (x >= 0 && y >= 0 && x < im->w && y < im->h) peak = fmax(peak, image_luminance(im, x, y));
+    double sx = 0, sy = 0, sw = 0;
+    for (int y = (int)cy - r; y <= (int)cy + r; y++)
+        for (int x = (int)cx - r; x <= (int)cx + r; x++)
+            if (x >= 0 && y >= 0 && x < im->w && y < im->h) {
+                double l = image_luminance(im, x, y);
+                if (l > 0.3 * peak) sx += l * (x + 0.5), sy += l * (y + 0.5), sw += l;
+            }
+    *bx = sw > 0 ? sx / sw : -1;
+    *by = sw > 0 ? sy / sw : -1;
+    return peak;
+}
+
+void test_stars_where_astronomy_puts_them(void)
+{
+    const struct {
+        const char *name;
+        int hip;
+    } stars[5] = {{"Sirius", 32349}, {"Betelgeuse", 27989}, {"Rigel", 24436}, {"Vega", 91262}, {"Polaris", 11767}};
+    sky_observer o = winter_evening();
+    int hips[5];
+    for (int i = 0; i < 5; i++) hips[i] = stars[i].hip;
+    sky_star_place places[5];
+    sky_astronomy a;
+    char err[256];
+    if (sky_compute_astronomy(&o, 0.0f, hips, 5, places, &a, err, sizeof err) != SKY_OK) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    for (int i = 0; i < 5; i++) {
+        CHECK(places[i].found && places[i].alt_deg > 3.0, "%s above the horizon (%.1f)", stars[i].name,
+              places[i].alt_deg);
+        /* point the camera a little off the star, so the projection is
+         * exercised, and find the star where its alt/az projects */
+        scene sc = star_scene();
+        sc.w = sc.h = 200;
+        sc.fov = 20.0;
+        sc.yaw = places[i].az_deg + 3.0;
+        sc.pitch = fmin(places[i].alt_deg - 2.0, 80.0);
+        image im;
+        if (render_with_observer(&sc, &o, 1, &im)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        float view[16], proj[16];
+        scene_camera(&sc, view, proj);
+        double d[3], e[4], c[4];
+        sky_horizon_vector(places[i].alt_deg * DEG, places[i].az_deg * DEG, d);
+        for (int r = 0; r < 4; r++) e[r] = view[r] * d[0] + view[4 + r] * d[1] + view[8 + r] * d[2];
+        for (int r = 0; r < 4; r++) c[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2];
+        double px = (c[0] / c[3] + 1.0) * 0.5 * sc.w, py = (1.0 - c[1] / c[3]) * 0.5 * sc.h;
+        double bx, by;
+        double peak = blob(&im, px, py, 6, &bx, &by);
+        double err_px = hypot(bx - px, by - py);
+        NOTE("%-10s alt %6.2f az %6.2f: expected (%.2f, %.2f), found (%.2f, %.2f): %.2f px", stars[i].name,
+             places[i].alt_deg, places[i].az_deg, px, py, bx, by, err_px);
+        CHECK(peak > 0.0 && err_px <= 1.5, "%s %.2f px from its astronomical place", stars[i].name, err_px);
+        image_free(&im);
+    }
+}
+
+/* Point sources in an LDR fisheye (inside the circle). */
+static int count_stars(const image *im, float contrast)
+{
+    int n = 0;
+    double r_max = 0.95 * 0.5 * im->w;
+    for (int y = 1; y < im->h - 1; y++)
+        for (int x = 1; x < im->w - 1; x++) {
+            if (hypot(x + 0.5 - 0.5 * im->w, y + 0.5 - 0.5 * im->h) > r_max) continue;
+            float c = image_luminance(im, x, y), around = 0.0f;
+            int higher = 0;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++)
+                    if (dx || dy) {
+                        float v = image_luminance(im, x + dx, y + dy);
+                        higher |= v > c;
+                        around += v;
+                    }
+            n += !higher && c - around / 8.0f > contrast;
+        }
+    return n;
+}
+
+void test_stars_control_magnitude_and_twilight(void)
+{
+    sky_observer o = winter_evening();
+    int counts[3];
+    const float ma[3] = {2.5f, 4.0f, 6.0f};
+    for (int k = 0; k < 3; k++) {
+        scene sc = star_scene();
+        sc.fisheye = 1;
+        sc.w = sc.h = 512;
+        sc.cfg.star_control_magnitude = ma[k];
+        image im;
+        if (render_with_observer(&sc, &o, 0, &im)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        counts[k] = count_stars(&im, 0.06f);
+        image_free(&im);
+    }
+    NOTE("visible stars at m_a 2.5 / 4 / 6: %d / %d / %d", counts[0], counts[1], counts[2]);
+    CHECK(counts[0] < counts[1] && counts[1] < counts[2], "more stars with a higher control magnitude");
+    /* and fewer as the sky brightens: the same night at dusk */
+    sky_observer dusk = o;
+    dusk.julian_day_utc = sky_julian_day(2024, 1, 15, 15, 30, 0.0); /* sun a few degrees down */
+    scene sc = star_scene();
+    sc.fisheye = 1;
+    sc.w = sc.h = 512;
+    image im;
+    if (render_with_observer(&sc, &dusk, 0, &im)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    int dusk_count = count_stars(&im, 0.06f);
+    image_free(&im);
+    NOTE("visible stars at dusk: %d (night: %d)", dusk_count, counts[1]);
+    CHECK(dusk_count < counts[1] / 2, "a brighter sky hides most stars (%d vs %d)", dusk_count, counts[1]);
+}
+
+void test_stars_colour_follows_bv(void)
+{
+    float blue[3], red[3], sun[3];
+    sky_star_color(-0.03, blue); /* Rigel */
+    sky_star_color(1.85, red);   /* Betelgeuse */
+    sky_star_color(0.65, sun);   /* a G2 star like the sun: near white */
+    CHECK(blue[2] / blue[0] > 1.2 * red[2] / red[0], "a B-V < 0 star is bluer than a B-V > 1.3 one");
+    CHECK(red[0] > red[2], "Betelgeuse is red (%.2f %.2f %.2f)", red[0], red[1], red[2]);
+    CHECK(fabs(sun[0] - sun[2]) < 0.35 * sun[1], "a solar-type star is nearly white (%.2f %.2f %.2f)", sun[0], sun[1],
+          sun[2]);
+    for (double bv = -0.5; bv <= 3.0; bv += 0.05) {
+        float c[3];
+        sky_star_color(bv, c);
+        double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        if (!(fabs(y - 1.0) < 1e-3 && c[0] >= 0 && c[1] >= 0 && c[2] >= 0)) {
+            CHECK(0, "B-V %.2f: colour (%g %g %g) must be non-negative with unit luminance", bv, c[0], c[1], c[2]);
+            break;
+        }
+    }
+    /* in the image: Rigel's pixels bluer than Betelgeuse's */
+    sky_observer o = winter_evening();
+    int hips[2] = {24436, 27989};
+    sky_star_place p[2];
+    sky_astronomy a;
+    sky_compute_astronomy(&o, 0.0f, hips, 2, p, &a, NULL, 0);
+    double ratio[2];
+    for (int i = 0; i < 2; i++) {
+        scene sc = star_scene();
+        sc.w = sc.h = 64;
+        sc.fov = 5.0;
+        sc.yaw = p[i].az_deg;
+        sc.pitch = p[i].alt_deg;
+        image im;
+        if (render_with_observer(&sc, &o, 1, &im)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        double r = 0, b = 0;
+        for (int y = 24; y < 40; y++)
+            for (int x = 24; x < 40; x++) r += im.px[3 * (y * 64 + x)], b += im.px[3 * (y * 64 + x) + 2];
+        ratio[i] = b / (r + 1e-30);
+        image_free(&im);
+    }
+    NOTE("blue/red in the image: Rigel %.2f, Betelgeuse %.2f", ratio[0], ratio[1]);
+    CHECK(ratio[0] > 1.5 * ratio[1], "Rigel renders bluer than Betelgeuse");
+}
+
+void test_stars_scintillate_more_near_horizon(void)
+{
+    /* brightness of every catalogue star over 24 frames, in a fisheye;
+     * relative variance averaged for low (5..15 deg) and high (70..90 deg) */
+    sky_observer o = winter_evening();
+    enum { FRAMES = 24, W = 512 };
+    sky_catalog cat;
+    if (sky_catalog_load(&cat, NULL, 0)) {
+        CHECK(0, "catalogue");
+        return;
+    }
+    sky_astro a;
+    sky_observer_astro(&o, 0.0, &a, NULL, 0);
+    int n = cat.count < 3000 ? cat.count : 3000; /* the brightest 3000 */
+    double *sum = calloc((size_t)n, sizeof(double)), *sum2 = calloc((size_t)n, sizeof(double));
+    int *px = calloc((size_t)n * 2, sizeof(int));
+    double *alt = calloc((size_t)n, sizeof(double));
+    for (int i = 0; i < n; i++) {
+        double al, ag, az, d[3];
+        sky_astro_star(&a, &cat.stars[i], &al, &ag, &az, d);
+        alt[i] = al / DEG;
+        double theta = acos(d[1]), hl = hypot(d[0], d[2]), r = theta / (3.14159265358979323846 / 2);
+        px[2 * i] = hl > 0 ? (int)((1.0 - r * d[0] / hl) * 0.5 * W) : W / 2;
+        px[2 * i + 1] = hl > 0 ? (int)((1.0 + r * d[2] / hl) * 0.5 * W) : W / 2;
+    }
+    for (int f = 0; f < FRAMES; f++) {
+        scene sc = star_scene();
+        sc.fisheye = 1;
+        sc.w = sc.h = W;
+        sc.seconds = f * 0.37; /* independent scintillation values */
+        image im;
+        if (render_with_observer(&sc, &o, 1, &im)) {
+            CHECK(0, "render failed");
+            break;
+        }
+        for (int i = 0; i < n; i++) {
+            double s = 0;
+            for (int dy = -2; dy <= 2; dy++)
+                for (int dx = -2; dx <= 2; dx++) {
+                    int x = px[2 * i] + dx, y = px[2 * i + 1] + dy;
+                    if (x >= 0 && y >= 0 && x < W && y < W) s += image_luminance(&im, x, y);
+                }
+            sum[i] += s;
+            sum2[i] += s * s;
+        }
+        image_free(&im);
+    }
+    double low = 0, high = 0;
+    int nl = 0, nh = 0;
+    for (int i = 0; i < n; i++) {
+        double m = sum[i] / FRAMES;
+        if (m <= 0) continue;
+        double rel_var = (sum2[i] / FRAMES - m * m) / (m * m);
+        if (alt[i] > 5 && alt[i] < 15) low += rel_var, nl++;
+        if (alt[i] > 70) high += rel_var, nh++;
+    }
+    low /= nl > 0 ? nl : 1;
+    high /= nh > 0 ? nh : 1;
+    NOTE("relative brightness variance over %d frames: %.2e at 5-15 deg (%d stars), %.2e above 70 deg (%d stars)",
+         FRAMES, low, nl, high, nh);
+    CHECK(nl > 20 && nh > 20, "enough stars low and high");
+    CHECK(low > 1e-6 && low > 10.0 * high, "scintillation grows toward the horizon (%.2e vs %.2e)", low, high);
+    free(sum);
+    free(sum2);
+    free(px);
+    free(alt);
+    sky_catalog_free(&cat);
+}
+
+void test_stars_skipped_at_noon(void)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_STARS | SKY_SUN;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_params p = sky_default_params();
+    sky_stats st;
+    float view[16], proj[16];
+    scene sc = scene_default();
+    scene_camera(&sc, view, proj);
+    p.time = 0.5f;
+    sky_set_params(f.s, &p);
+    sky_draw(f.s, view, proj);
+    sky_get_stats(f.s, &st);
+    CHECK(st.layers[SKY_LAYER_STARS].enabled && !st.layers[SKY_LAYER_STARS].drawn &&
+              st.layers[SKY_LAYER_STARS].draws == 0,
+          "no star draw at noon");
+    p.time = 0.0f;
+    sky_set_params(f.s, &p);
+    sky_draw(f.s, view, proj);
+    sky_get_stats(f.s, &st);
+    CHECK(st.layers[SKY_LAYER_STARS].draws == 1, "one star draw at midnight");
+    CHECK(st.layers[SKY_LAYER_STARS].bytes > 8000 * 9 * sizeof(float), "the star buffer is counted (%zu bytes)",
+          st.layers[SKY_LAYER_STARS].bytes);
+    fixture_close(&f);
+    /* and no star pixel at noon: the image equals one without stars */
+    scene with = star_scene(), without = scene_default();
+    with.params.time = without.params.time = 0.5f;
+    with.params.cover = without.params.cover = 0.0f;
+    without.cfg.features = SKY_FEATURES_NONE;
+    image a, b;
+    if (render_scene(&with, 1, SKY_GL_AUTO, &a) || render_scene(&without, 1, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double worst = 0;
+    for (size_t i = 0; i < 3u * (size_t)a.w * (size_t)a.h; i++) worst = fmax(worst, fabs((double)a.px[i] - b.px[i]));
+    CHECK(worst == 0.0, "noon with catalogue stars equals noon without (max difference %g)", worst);
+    image_free(&a);
+    image_free(&b);
+}
