@@ -100,7 +100,7 @@ static int parse_features(const char *s, unsigned *out, char *err, size_t len)
                 found = 1;
             }
         if (!found)
-            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,flicker,stars or none)", (int)n,
+            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,flicker,stars,starmap or none)", (int)n,
                         p);
         p += n;
         if (*p == ',') {
@@ -125,7 +125,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
             "  --atmosphere gradient    atmosphere path\n"
-            "  --features LIST          comma list of clouds,sun,flicker,stars (or none)\n"
+            "  --features LIST          comma list of clouds,sun,flicker,stars,starmap (or none)\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
@@ -157,7 +157,7 @@ static int apply_preset(sky_cli *cli, const char *name, const int *given, char *
         {"noon", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f},
         {"overcast", SKY_CLOUDS, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f},
         {"sunset", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f},
-        {"starry", SKY_STARS | SKY_CLOUDS, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f},
+        {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f},
         {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f, 0.2f, 0.45f},
     };
     for (size_t i = 0; i < sizeof presets / sizeof presets[0]; i++) {

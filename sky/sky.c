@@ -92,6 +92,24 @@ static void compute_frame(sky *s)
     f->daylight = (float)sky_smoothstep(sin(-6.0 * SKY_PI / 180.0), sin(10.0 * SKY_PI / 180.0), sin_alt);
     /* Mueller sec. 5 star fade (astro.c) */
     f->night = (float)s->astro.star_visibility;
+    /* The sky's rotation, J2000 -> horizon = horizon * precession-nutation
+     * (eq. 7), as column-major mat4s: for the stars, and transposed (its
+     * inverse) for the star map */
+    double m[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double acc = 0.0;
+            for (int k = 0; k < 3; k++) acc += s->astro.horizon[i * 3 + k] * s->astro.precession_nutation[k * 3 + j];
+            m[i * 3 + j] = acc;
+        }
+    memset(f->star_rot, 0, sizeof f->star_rot);
+    memset(f->starmap_rot, 0, sizeof f->starmap_rot);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            f->star_rot[j * 4 + i] = (float)m[i * 3 + j];
+            f->starmap_rot[i * 4 + j] = (float)m[i * 3 + j];
+        }
+    f->star_rot[15] = f->starmap_rot[15] = 1.0f;
     sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
     sky_gradient_frame(s);
     if (s->features & SKY_SUN) sky_sun_frame(s);
@@ -182,6 +200,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     if (sky_dome_create(s, err, err_len)) goto fail;
     if ((features & SKY_CLOUDS) && sky_clouds_create(s, err, err_len)) goto fail;
     if ((features & SKY_FLICKER_STARS) && sky_flicker_create(s, err, err_len)) goto fail;
+    if ((features & SKY_STARMAP) && sky_starmap_create(s, err, err_len)) goto fail;
     if ((features & SKY_SUN) && sky_sun_create(s, err, err_len)) goto fail;
     if (features & SKY_STARS) {
         compute_frame(s); /* the astronomy of the default observer */
@@ -203,8 +222,9 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
      * covers it; what shows in a gap is the horizon haze). */
     if (n > 1 && sky_program_build(s, &s->ground, "dome.vert", "dome.frag", dome_snippets, 1, err, err_len))
         goto fail;
-    if (features & SKY_FLICKER_STARS) {
-        dome_snippets[n++] = &sky_flicker_snippet;
+    if (features & (SKY_FLICKER_STARS | SKY_STARMAP)) {
+        if (features & SKY_FLICKER_STARS) dome_snippets[n++] = &sky_flicker_snippet;
+        if (features & SKY_STARMAP) dome_snippets[n++] = &sky_starmap_snippet;
         if (sky_program_build(s, &s->dome_night, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
     }
     if (features & SKY_STARS) {
@@ -545,9 +565,11 @@ static sky_result draw_frame(sky *s, const sky_gl_state *host)
 
     /* 1. the dome: atmosphere, with flicker stars behind it and clouds in
      * front, in one pass over the screen */
-    int night = s->dome_night.id && s->frame.star_luminance > 0.0f;
+    if (s->features & SKY_STARMAP) sky_starmap_frame(s);
+    int night = s->dome_night.id && (s->frame.star_luminance > 0.0f || s->frame.starmap_scale > 0.0f);
     draw_layer(s, SKY_LAYER_ATMOSPHERE, night ? &s->dome_night : &s->dome, 0);
-    if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night;
+    if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night && s->frame.star_luminance > 0;
+    if (s->features & SKY_STARMAP) s->stats.layers[SKY_LAYER_STARMAP].drawn = night && s->frame.starmap_scale > 0;
     if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);
 
     /* 2. catalogue stars, added over the dome: their light dimmed by the

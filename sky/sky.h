@@ -65,7 +65,7 @@ typedef enum sky_feature {
     SKY_MOON          = 1u << 2, /* Mueller moon (not built yet)            */
     SKY_STARS         = 1u << 3, /* catalogue stars (Mueller sec. 4)         */
     SKY_FLICKER_STARS = 1u << 4, /* Roden-Parberry flicker stars + galaxy   */
-    SKY_STARMAP       = 1u << 5, /* Milky Way star map (not yet)            */
+    SKY_STARMAP       = 1u << 5, /* Milky Way star map (Mueller sec. 4.4)    */
     SKY_ECLIPSE       = 1u << 6, /* lunar eclipses (not yet)                */
     SKY_FEATURES_NONE = 1u << 31
 } sky_feature;
@@ -73,7 +73,7 @@ typedef enum sky_feature {
 #define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
 /* The features this build can render; asking for others is
  * SKY_ERR_UNSUPPORTED from sky_create. */
-#define SKY_FEATURES_AVAILABLE (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_STARS)
+#define SKY_FEATURES_AVAILABLE (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */

@@ -39,6 +39,7 @@ void sky_png_free(unsigned char *rgba);
 typedef enum sky_texture_id {
     SKY_TEX_CLOUDS = 0, /* RGBA: photo, noise, detail, sunset gradient (R-P sec. 3) */
     SKY_TEX_FLICKER,    /* RGBA: intensity, rate, variance, phase (R-P sec. 4)      */
+    SKY_TEX_STARMAP,    /* equirectangular J2000 faint stars + Milky Way (Mueller 4.4) */
     SKY_TEX_COUNT
 } sky_texture_id;
 
@@ -99,6 +100,8 @@ typedef struct sky_frame {
     /* catalogue stars (stars.c) */
     float star_rot[16], star_aberration[3], star_size[4], star_viewport[4], star_pressure[3];
     float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
+    /* star map (starmap.c) */
+    float starmap_rot[16], starmap_scale;
 } sky_frame;
 
 /* ---- programs and the uniform table ------------------------------------- */
@@ -233,6 +236,7 @@ extern const sky_snippet sky_clouds_snippet;
 extern const sky_snippet sky_flicker_snippet;
 extern const sky_snippet sky_sun_snippet;
 extern const sky_snippet sky_stars_snippet;
+extern const sky_snippet sky_starmap_snippet;
 
 /* The dome mesh with per-vertex gradient colour and galaxy (dome.c). */
 int sky_dome_create(sky *s, char *err, size_t err_len);
@@ -262,6 +266,8 @@ int sky_stars_visible(const sky *s);
 void sky_stars_draw(sky *s);
 /* B-V to linear sRGB of unit luminance (stars.c). */
 void sky_star_color(double bv, float rgb[3]);
+int sky_starmap_create(sky *s, char *err, size_t err_len);
+void sky_starmap_frame(sky *s); /* after the camera is set up */
 int sky_sun_create(sky *s, char *err, size_t err_len);
 void sky_sun_frame(sky *s);
 int sky_sun_visible(const sky *s);

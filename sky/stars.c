@@ -127,19 +127,6 @@ void sky_stars_frame(sky *s)
     const sky_astro *a = &s->astro;
     /* proper motion moves Arcturus 0.1" a month: refresh past half a year */
     if (fabs(a->years_since_j2000 - s->star_epoch) > 0.5) upload_stars(s, a->years_since_j2000, NULL, 0);
-    /* J2000 -> horizon = horizon * precession-nutation (row-major) into a
-     * column-major mat4 */
-    double m[9];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            double acc = 0.0;
-            for (int k = 0; k < 3; k++) acc += a->horizon[i * 3 + k] * a->precession_nutation[k * 3 + j];
-            m[i * 3 + j] = acc;
-        }
-    memset(f->star_rot, 0, sizeof f->star_rot);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) f->star_rot[j * 4 + i] = (float)m[i * 3 + j];
-    f->star_rot[15] = 1.0f;
     for (int i = 0; i < 3; i++)
         f->star_aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
                                         a->horizon[i * 3 + 2] * a->aberration[2]);

@@ -61,6 +61,7 @@ int test_failures;
     X(stars_colour_follows_bv)                   \
     X(stars_scintillate_more_near_horizon)       \
     X(stars_skipped_at_noon)                     \
+    X(starmap_shows_the_milky_way)               \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

@@ -15,6 +15,7 @@ void test_stars_control_magnitude_and_twilight(void);
 void test_stars_colour_follows_bv(void);
 void test_stars_scintillate_more_near_horizon(void);
 void test_stars_skipped_at_noon(void);
+void test_starmap_shows_the_milky_way(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -358,4 +359,83 @@ void test_stars_skipped_at_noon(void)
     CHECK(worst == 0.0, "noon with catalogue stars equals noon without (max difference %g)", worst);
     image_free(&a);
     image_free(&b);
+}
+
+/* Fisheye pixel of a horizon direction (sky.h's equidistant mapping). */
+static void fisheye_pixel(const double d[3], int n, double *x, double *y)
+{
+    double theta = acos(d[1]), hl = hypot(d[0], d[2]), r = theta / (3.14159265358979323846 / 2);
+    *x = hl > 0 ? (1.0 - r * d[0] / hl) * 0.5 * n : 0.5 * n;
+    *y = hl > 0 ? (1.0 + r * d[2] / hl) * 0.5 * n : 0.5 * n;
+}
+
+void test_starmap_shows_the_milky_way(void)
+{
+    /* An August night at 45 N: the galactic centre (Sgr A*) low in the
+     * south, the galactic north pole (in Coma) in the west. */
+    sky_observer o = {sky_julian_day(2024, 8, 10, 21, 0, 0.0), 45.0, 10.0, 0.0, 0};
+    sky_astro a;
+    sky_observer_astro(&o, 0.0, &a, NULL, 0);
+    const sky_star gc = {0, 266.417 * DEG, -29.008 * DEG, 0, 0, 0, 0}, gnp = {0, 192.859 * DEG, 27.128 * DEG, 0, 0, 0, 0};
+    double alt, alt_geo, az, d_gc[3], d_gnp[3];
+    sky_astro_star(&a, &gc, &alt, &alt_geo, &az, d_gc);
+    double alt_gc = alt;
+    sky_astro_star(&a, &gnp, &alt, &alt_geo, &az, d_gnp);
+    CHECK(alt_gc > 10 * DEG && alt > 10 * DEG, "both above the horizon (%.1f, %.1f deg)", alt_gc / DEG, alt / DEG);
+    scene sc = scene_default();
+    sc.cfg.features = SKY_STARMAP;
+    sc.fisheye = 1;
+    sc.w = sc.h = 256;
+    image im;
+    if (render_with_observer(&sc, &o, 1, &im)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double x, y, l_gc = 0, l_gnp = 0;
+    fisheye_pixel(d_gc, 256, &x, &y);
+    for (int dy = -2; dy <= 2; dy++)
+        for (int dx = -2; dx <= 2; dx++) l_gc += image_luminance(&im, (int)x + dx, (int)y + dy);
+    fisheye_pixel(d_gnp, 256, &x, &y);
+    for (int dy = -2; dy <= 2; dy++)
+        for (int dx = -2; dx <= 2; dx++) l_gnp += image_luminance(&im, (int)x + dx, (int)y + dy);
+    image_free(&im);
+    /* the same place without the star map: what the map adds */
+    sc.cfg.features = SKY_FEATURES_NONE;
+    if (render_with_observer(&sc, &o, 1, &im)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double b_gc = 0, b_gnp = 0;
+    fisheye_pixel(d_gc, 256, &x, &y);
+    for (int dy = -2; dy <= 2; dy++)
+        for (int dx = -2; dx <= 2; dx++) b_gc += image_luminance(&im, (int)x + dx, (int)y + dy);
+    fisheye_pixel(d_gnp, 256, &x, &y);
+    for (int dy = -2; dy <= 2; dy++)
+        for (int dx = -2; dx <= 2; dx++) b_gnp += image_luminance(&im, (int)x + dx, (int)y + dy);
+    image_free(&im);
+    double add_gc = (l_gc - b_gc) / 25, add_gnp = (l_gnp - b_gnp) / 25;
+    NOTE("star map adds %.3g kcd/m^2 at the galactic centre, %.3g at the galactic pole", add_gc, add_gnp);
+    CHECK(add_gc > 3.0 * add_gnp && add_gc > 0, "the Milky Way's core outshines the galactic pole");
+
+    /* by day the map is not evaluated at all */
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_STARMAP;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg) == 0) {
+        sky_params p = sky_default_params();
+        sky_stats st;
+        p.time = 0.5f;
+        sky_set_params(f.s, &p);
+        sky_draw_fisheye(f.s);
+        sky_get_stats(f.s, &st);
+        CHECK(st.layers[SKY_LAYER_STARMAP].enabled && !st.layers[SKY_LAYER_STARMAP].drawn, "no star map at noon");
+        CHECK(st.layers[SKY_LAYER_STARMAP].bytes == 512 * 256 * 4, "the map is a 512x256 RGBA8 texture");
+        p.time = 0.0f;
+        sky_set_params(f.s, &p);
+        sky_draw_fisheye(f.s);
+        sky_get_stats(f.s, &st);
+        CHECK(st.layers[SKY_LAYER_STARMAP].drawn, "the star map at midnight");
+        fixture_close(&f);
+    }
 }

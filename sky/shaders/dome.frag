@@ -13,9 +13,13 @@ void main()
         return;
     }
     vec3 L = sky_atmosphere(d, v_color.rgb);
+    /* night layers: only in the night variant of this program (sky.c),
+     * behind the atmosphere and dimmed by it */
 #ifdef SKY_HAS_FLICKER
-    /* only in the night variant of this program (sky.c) */
     L += sky_flicker(d, v_color.a) * sky_atmosphere_transmittance(d);
+#endif
+#ifdef SKY_HAS_STARMAP
+    L += sky_starmap(d) * sky_atmosphere_transmittance(d);
 #endif
 #ifdef SKY_HAS_CLOUDS
     vec4 c = sky_clouds(d);
