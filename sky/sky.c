@@ -68,6 +68,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_aspect", SKY_U_F2, aspect),
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
     SKY_UF("u_view_proj", SKY_U_M4, view_proj),
+    SKY_UF("u_night_shift", SKY_U_F1, night_shift),
 };
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
                                         (int)(sizeof common_uniforms / sizeof common_uniforms[0])};
@@ -120,6 +121,12 @@ static void compute_frame(sky *s)
      * floor about seventy times the dark sky keeps the sky dark blue and
      * the stars bright. */
     f->exposure = (float)(1.0 / (f->sky_luminance + 1.5e-5));
+    /* Night vision: the adaptation luminance (what the exposure maps to
+     * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
+     * cd/m^2, on a log scale; the shift is at most 60 % (the moon and
+     * stars keep a little colour in the eye of a game player). */
+    double adapt = 1.0 / f->exposure;
+    f->night_shift = (float)(0.6 * sky_smoothstep(log10(3e-3), log10(1e-5), log10(adapt)));
     /* Leave out what adds nothing: a star layer whose brightest texel would
      * not reach a quarter of an 8-bit step is not evaluated at all. */
     if (f->star_luminance * f->exposure < 1.0f / 1024.0f) f->star_luminance = 0.0f;

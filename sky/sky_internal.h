@@ -82,6 +82,7 @@ typedef struct sky_frame {
     float horizon_tint[3];   /* colour of the horizon under a low sun            */
     float night_luminance;   /* kcd/m^2: scale of the night sky background       */
     float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
+    float night_shift;       /* 0..0.6: scotopic blue shift in the tone map      */
     float output_hdr;        /* 1 = linear out, 0 = tone mapped                 */
     float fisheye;           /* 1 = equidistant all-sky mapping                 */
     float aspect[2];         /* fisheye: ndc scale so the circle is round        */

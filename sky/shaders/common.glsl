@@ -6,6 +6,7 @@ uniform float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither   
 uniform float u_fisheye;     /* 1: equidistant all-sky mapping                   */
 uniform vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
 uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
+uniform float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
 uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 
 const float SKY_PI = 3.14159265;
@@ -46,7 +47,13 @@ float sky_hash(vec2 p)
 vec4 sky_output(vec3 L, float alpha)
 {
     if (u_output_hdr > 0.5) return vec4(max(L, vec3(0.0)), alpha);
-    vec3 x = max(L * u_exposure - 0.004, vec3(0.0));
+    /* Mueller sec. 6: rods see no colour and peak in the blue-green, so a
+     * dark-adapted scene loses saturation toward a bluish grey; what is
+     * bright enough for the cones (a bright star) keeps its colour */
+    vec3 e = max(L * u_exposure, vec3(0.0));
+    float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
+    e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.05, y)));
+    vec3 x = max(e - 0.004, vec3(0.0));
     vec3 display = (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
     return vec4(display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0, alpha);
 }
