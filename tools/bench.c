@@ -93,12 +93,12 @@ typedef struct row {
     sky_stats st;
 } row;
 
-static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int frames, row *out)
+/* Median frame ms of the scene described by command-line style options. */
+static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h, int frames, row *out)
 {
-    char *argv[] = {"sky-bench", "--preset", (char *)preset, NULL};
     sky_cli cli;
     char err[512];
-    if (sky_cli_parse(&cli, 3, argv, 0, err, sizeof err)) {
+    if (sky_cli_parse(&cli, argc, argv, 0, err, sizeof err)) {
         fprintf(stderr, "sky-bench: %s\n", err);
         return -1;
     }
@@ -108,10 +108,11 @@ static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int
     sky_config cfg = sky_cli_config(&cli, sky_osmesa_loader());
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
-        fprintf(stderr, "sky-bench: %s: %s\n", preset, err);
+        fprintf(stderr, "sky-bench: %s: %s\n", name, err);
         return -1;
     }
     sky_set_params(s, &cli.params);
+    sky_set_observer(s, &cli.observer);
     float view[16], proj[16];
     sky_cli_camera(&cli, view, proj);
     double *t = malloc(sizeof(double) * (size_t)frames);
@@ -127,7 +128,7 @@ static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int
     out->frame_ms = sky_cli_median(t, frames);
     free(t);
     sky_get_stats(s, &out->st);
-    out->preset = preset;
+    out->preset = name;
     out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
     sky_destroy(s);
     return 0;
@@ -154,6 +155,27 @@ static double astro_us(int n)
     return sink == sink ? m : -1.0; /* keeps the work from being optimised away */
 }
 
+static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int frames, row *out)
+{
+    char *argv[] = {"sky-bench", "--preset", (char *)preset, NULL};
+    return bench_args(3, argv, preset, gl, w, h, frames, out);
+}
+
+/* Mueller's night layers on their own, on an August night with the Milky
+ * Way up: the frame with the layer minus the frame without it. */
+static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_ms[3])
+{
+    static const char *features[3] = {"none", "stars", "starmap"};
+    row r;
+    for (int i = 0; i < 3; i++) {
+        char *argv[] = {"sky-bench", "--features", (char *)features[i], "--date", "2024-08-10T21:00:00Z",
+                        "--lat", "45", "--yaw", "180", "--pitch", "30", NULL};
+        if (bench_args(11, argv, features[i], gl, w, h, frames, &r)) return -1;
+        out_ms[i] = r.frame_ms;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20;
@@ -174,7 +196,7 @@ int main(int argc, char **argv)
     static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];
-    double base[2] = {0, 0};
+    double base[2] = {0, 0}, night[2][3];
     int nrows = 0;
     for (int prof = 0; prof < 2; prof++) {
         sky_gl_profile gl = prof == 0 ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
@@ -194,6 +216,7 @@ int main(int argc, char **argv)
             rows[nrows].ratio = rows[nrows].frame_ms / base[prof];
             nrows++;
         }
+        if (bench_night(gl, w, h, frames, night[prof])) return 1;
         sky_osmesa_destroy(&ctx);
     }
     double astro = astro_us(2000);
@@ -207,6 +230,12 @@ int main(int argc, char **argv)
                    "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f}%s\n",
                    rows[i].preset, rows[i].profile, rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs,
                    rows[i].st.draws_per_frame, rows[i].frame_ms, rows[i].ratio, i + 1 < nrows ? "," : "");
+        printf(" ],\n \"night_layers\": [\n");
+        for (int prof = 0; prof < 2; prof++)
+            printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"stars_ratio\":%.3f, \"starmap_ms\":%.4f, "
+                   "\"starmap_ratio\":%.3f}%s\n",
+                   prof ? "compat" : "core", night[prof][1] - night[prof][0], (night[prof][1] - night[prof][0]) / base[prof],
+                   night[prof][2] - night[prof][0], (night[prof][2] - night[prof][0]) / base[prof], prof ? "" : ",");
         printf(" ]}\n");
         return 0;
     }
@@ -219,5 +248,13 @@ int main(int argc, char **argv)
         printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f |\n", rows[i].preset, rows[i].profile,
                rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs, rows[i].st.draws_per_frame,
                rows[i].frame_ms, rows[i].ratio);
+    printf("\nMueller's night layers (added to an atmosphere-only night frame):\n\n");
+    printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
+    for (int prof = 0; prof < 2; prof++) {
+        printf("| 8874 catalogue stars | %s | %.2f | %.2f |\n", prof ? "compat" : "core", night[prof][1] - night[prof][0],
+               (night[prof][1] - night[prof][0]) / base[prof]);
+        printf("| star map | %s | %.2f | %.2f |\n", prof ? "compat" : "core", night[prof][2] - night[prof][0],
+               (night[prof][2] - night[prof][0]) / base[prof]);
+    }
     return 0;
 }
