@@ -52,6 +52,8 @@ typedef struct scene {
     int fisheye;
     double yaw, pitch, fov;
     int w, h;
+    int has_observer;   /* 0: the sky's default observer */
+    sky_observer observer;
 } scene;
 
 scene scene_default(void);

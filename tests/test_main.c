@@ -116,7 +116,9 @@ int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
         return -1;
     }
     int rc = 0;
-    if (sky_set_params(s, &sc->params) < 0 || sky_set_elapsed(s, sc->seconds) < 0) rc = -1;
+    if (sky_set_params(s, &sc->params) < 0 || sky_set_elapsed(s, sc->seconds) < 0 ||
+        (sc->has_observer && sky_set_observer(s, &sc->observer) != SKY_OK))
+        rc = -1;
     float view[16], proj[16];
     scene_camera(sc, view, proj);
     if (!rc && (sc->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) < 0) {

@@ -35,41 +35,13 @@ static scene star_scene(void)
     return sc;
 }
 
-/* Renders with an observer (render_scene has none). */
+/* Renders a scene as the observer sees it. */
 static int render_with_observer(const scene *sc, const sky_observer *o, int hdr, image *out)
 {
-    char err[512];
-    sky_osmesa ctx;
-    memset(out, 0, sizeof *out);
-    if (sky_osmesa_create(&ctx, sc->w, sc->h, SKY_GL_AUTO, hdr, err, sizeof err)) return -1;
-    sky_config cfg = sc->cfg;
-    cfg.get_proc_address = sky_osmesa_loader();
-    cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
-    sky *s = sky_create(&cfg, err, sizeof err);
-    int rc = -1;
-    if (s && sky_set_params(s, &sc->params) >= 0 && sky_set_observer(s, o) == SKY_OK &&
-        sky_set_elapsed(s, sc->seconds) == SKY_OK) {
-        float view[16], proj[16];
-        scene_camera(sc, view, proj);
-        if ((sc->fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) == SKY_OK) rc = 0;
-    }
-    if (!s) printf("    %s\n", err);
-    sky_osmesa_finish(&ctx);
-    if (!rc) {
-        out->w = sc->w;
-        out->h = sc->h;
-        out->px = malloc(sizeof(float) * 3u * (size_t)sc->w * (size_t)sc->h);
-        for (int y = 0; y < sc->h; y++)
-            for (int x = 0; x < sc->w; x++)
-                for (int c = 0; c < 3; c++) {
-                    size_t src = ((size_t)(sc->h - 1 - y) * (size_t)sc->w + (size_t)x) * 4u + (size_t)c;
-                    out->px[((size_t)y * (size_t)sc->w + (size_t)x) * 3u + (size_t)c] =
-                        hdr ? ((const float *)ctx.pixels)[src] : ((const unsigned char *)ctx.pixels)[src] / 255.0f;
-                }
-    }
-    sky_destroy(s);
-    sky_osmesa_destroy(&ctx);
-    return rc;
+    scene with = *sc;
+    with.has_observer = 1;
+    with.observer = *o;
+    return render_scene(&with, hdr, SKY_GL_AUTO, out);
 }
 
 /* Luminance-weighted centroid of the brightest blob within r px of (cx, cy). */

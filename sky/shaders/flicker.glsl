@@ -22,5 +22,5 @@ vec3 sky_flicker(vec3 d, float galaxy)
      * clean filtering (tools/texgen.c), stay dark where R is 0. */
     float flick = star.r * (1.0 + star.b * sin(2.0 * SKY_PI * (star.g * u_flicker_phase + star.a)));
     float stars = flick * (1.0 + 3.0 * galaxy);
-    return u_star_luminance * (vec3(stars) + galaxy * vec3(0.14, 0.15, 0.19));
+    return u_star_luminance * (vec3(stars) + galaxy * vec3(0.07, 0.075, 0.095));
 }
