@@ -120,12 +120,12 @@ static void compute_frame(sky *s)
      * scale maps to the filmic curve's shoulder (common.glsl); at night a
      * floor about seventy times the dark sky keeps the sky dark blue and
      * the stars bright. */
-    f->exposure = (float)(1.0 / (f->sky_luminance + 1.5e-5));
+    f->exposure = (float)(pow(2.0, s->exposure_bias) / (f->sky_luminance + 1.5e-5));
     /* Night vision: the adaptation luminance (what the exposure maps to
      * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
      * cd/m^2, on a log scale; the shift is at most 60 % (the moon and
      * stars keep a little colour in the eye of a game player). */
-    double adapt = 1.0 / f->exposure;
+    double adapt = f->sky_luminance + 1.5e-5; /* the automatic exposure's reference */
     f->night_shift = (float)(0.6 * sky_smoothstep(log10(3e-3), log10(1e-5), log10(adapt)));
     /* Leave out what adds nothing: a star layer whose brightest texel would
      * not reach a quarter of an 8-bit step is not evaluated at all. */
@@ -338,6 +338,17 @@ sky_result sky_get_params(const sky *s, sky_params *p)
 {
     if (!s || !p) return SKY_ERR_INVALID_ARGUMENT;
     *p = s->params;
+    return SKY_OK;
+}
+
+sky_result sky_set_exposure_bias(sky *s, float ev)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (isnan(ev)) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_exposure_bias: ev is NaN");
+    float c = sky_clampf(ev, -10.0f, 10.0f);
+    s->exposure_bias = c;
+    compute_frame(s);
+    if (c != ev) return sky_fail(s, SKY_CLAMPED, "sky_set_exposure_bias: %g clamped to %g (range -10..10)", (double)ev, (double)c);
     return SKY_OK;
 }
 

@@ -148,6 +148,11 @@ SKY_API const char *sky_last_error(const sky *s);
 SKY_API sky_result sky_set_params(sky *s, const sky_params *p);
 SKY_API sky_result sky_get_params(const sky *s, sky_params *p);
 
+/* Exposure of the LDR output relative to the automatic one, in stops:
+ * +1 doubles the light, -1 halves it. Range -10..10 (clamped; NaN is
+ * rejected). Has no effect on HDR output. */
+SKY_API sky_result sky_set_exposure_bias(sky *s, float ev);
+
 /* Advances animation time (cloud drift, star flicker) by dt seconds. dt must
  * be finite and >= 0. Time is kept in double and wrapped, so a game may run
  * for years without the clouds stuttering. */

@@ -147,6 +147,7 @@ struct sky {
 
     sky_params params;
     sky_observer observer;
+    float exposure_bias;          /* stops, sky_set_exposure_bias               */
     sky_astro astro;              /* for observer + time slider; see observer.c */
     double elapsed;               /* seconds, for callers that ask            */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */

@@ -52,6 +52,7 @@ typedef struct scene {
     int fisheye;
     double yaw, pitch, fov;
     int w, h;
+    float exposure_bias; /* stops (sky_set_exposure_bias) */
     int has_observer;   /* 0: the sky's default observer */
     sky_observer observer;
 } scene;

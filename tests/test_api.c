@@ -123,6 +123,10 @@ void test_api_sliders_clamp_and_reject_nan(void)
     sky_get_params(f.s, &after);
     CHECK(!memcmp(&after, &got, sizeof after), "a rejected call changes nothing");
     CHECK(sky_set_params(f.s, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL params");
+    CHECK(sky_set_exposure_bias(f.s, NAN) == SKY_ERR_INVALID_ARGUMENT, "NaN exposure bias rejected");
+    CHECK(sky_set_exposure_bias(f.s, 50.0f) == SKY_CLAMPED, "exposure bias clamped");
+    CHECK(sky_set_exposure_bias(NULL, 0.0f) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_set_exposure_bias(f.s, 0.0f) == SKY_OK, "exposure bias 0");
 
     /* every slider at its extremes draws a finite frame */
     float view[16], proj[16];

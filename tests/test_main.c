@@ -117,7 +117,8 @@ int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
     }
     int rc = 0;
     if (sky_set_params(s, &sc->params) < 0 || sky_set_elapsed(s, sc->seconds) < 0 ||
-        (sc->has_observer && sky_set_observer(s, &sc->observer) != SKY_OK))
+        (sc->has_observer && sky_set_observer(s, &sc->observer) != SKY_OK) ||
+        sky_set_exposure_bias(s, sc->exposure_bias) != SKY_OK)
         rc = -1;
     float view[16], proj[16];
     scene_camera(sc, view, proj);

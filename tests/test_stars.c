@@ -153,6 +153,23 @@ void test_stars_control_magnitude_and_twilight(void)
     }
     NOTE("visible stars at m_a 2.5 / 4 / 6: %d / %d / %d", counts[0], counts[1], counts[2]);
     CHECK(counts[0] < counts[1] && counts[1] < counts[2], "more stars with a higher control magnitude");
+    /* and fewer with less exposure: -2 and +2 stops at m_a 4 */
+    int by_ev[2];
+    for (int k = 0; k < 2; k++) {
+        scene sc = star_scene();
+        sc.fisheye = 1;
+        sc.w = sc.h = 512;
+        sc.exposure_bias = k ? 2.0f : -2.0f;
+        image im;
+        if (render_with_observer(&sc, &o, 0, &im)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        by_ev[k] = count_stars(&im, 0.06f);
+        image_free(&im);
+    }
+    NOTE("visible stars at -2 / 0 / +2 stops: %d / %d / %d", by_ev[0], counts[1], by_ev[1]);
+    CHECK(by_ev[0] < counts[1] && counts[1] < by_ev[1], "fewer stars with less exposure");
     /* and fewer as the sky brightens: the same night at dusk */
     sky_observer dusk = o;
     dusk.julian_day_utc = sky_julian_day(2024, 1, 15, 15, 30, 0.0); /* sun a few degrees down */
