@@ -18,11 +18,13 @@
 #pragma GCC diagnostic pop
 #endif
 
+/* A 3.3 core context, or any legacy one (asking for 1.0 takes whatever
+ * the driver offers, so the library itself judges an old version). */
 static OSMesaContext make_context(int core)
 {
     const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE,
                            core ? OSMESA_CORE_PROFILE : OSMESA_COMPAT_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION,
-                           core ? 3 : 2, OSMESA_CONTEXT_MINOR_VERSION, core ? 3 : 0, 0};
+                           core ? 3 : 1, OSMESA_CONTEXT_MINOR_VERSION, core ? 3 : 0, 0};
     return OSMesaCreateContextAttribs(attribs, NULL);
 }
 

@@ -12,6 +12,7 @@
 
 void test_profiles_compat_on_emulated_2004_gpu(void);
 void test_texture_budget_minimal_path(void);
+void test_profiles_too_old_context_is_an_error(void);
 void test_textures_tile_without_seams(void);
 void test_cli_exit_codes_and_messages(void);
 void test_flicker_texture_neighbourhoods(void);
@@ -77,6 +78,17 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
     remove(core_png);
     remove(old_png);
     remove(soft_png);
+}
+
+/* A context older than OpenGL 2.0 gets a clear error, not a crash. */
+void test_profiles_too_old_context_is_an_error(void)
+{
+    char render[512], cmd[1024], out[2048];
+    snprintf(cmd, sizeof cmd, "MESA_GL_VERSION_OVERRIDE=1.5 %s --size 16x16 --out /dev/null 2>&1",
+             bin_path("sky-render", render, sizeof render));
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 1 && strstr(out, "too old") && strstr(out, "2.0"), "GL 1.5 context: exit 1 with a clear message (%d: %s)",
+          rc, out);
 }
 
 void test_texture_budget_minimal_path(void)

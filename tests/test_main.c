@@ -42,6 +42,7 @@ int test_failures;
     X(render_hdr_finite_everywhere)              \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
+    X(profiles_too_old_context_is_an_error)      \
     X(texture_budget_minimal_path)               \
     X(textures_tile_without_seams)               \
     X(flicker_texture_neighbourhoods)            \
