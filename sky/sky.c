@@ -570,7 +570,7 @@ static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint 
     s->stats.draws_per_frame++;
 }
 
-static sky_result draw_frame(sky *s, const sky_gl_state *host)
+static sky_result draw_frame(sky *s)
 {
     const sky_gl *gl = &s->gl;
     gl->glDisable(GL_DEPTH_TEST);
@@ -623,7 +623,6 @@ static sky_result draw_frame(sky *s, const sky_gl_state *host)
         gl->glBlendFunc(GL_ONE, GL_ONE);
         draw_layer(s, SKY_LAYER_SUN, &s->sun, s->sun_buffer);
     }
-    (void)host;
     GLenum e = gl->glGetError();
     if (e != GL_NO_ERROR) return sky_fail(s, SKY_ERR_GL, "sky_draw: GL error 0x%04x", e);
     return SKY_OK;
@@ -638,7 +637,7 @@ static sky_result draw_with(sky *s, const float *view, const float *proj)
     sky_gl_state_save(s, &host);
     reset_layer_stats(s);
     sky_result rc = view ? setup_camera(s, view, proj) : (setup_fisheye(s, host.viewport), SKY_OK);
-    if (rc == SKY_OK) rc = draw_frame(s, &host);
+    if (rc == SKY_OK) rc = draw_frame(s);
     sky_gl_state_restore(s, &host);
     if (s->cfg.profile_layers) gl->glFinish();
     s->stats.frame_ms = now_ms() - t0;

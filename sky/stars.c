@@ -158,13 +158,14 @@ void sky_stars_frame(sky *s)
 }
 
 /* The brightest star (Sirius, V -1.46) would add less than a quarter of
- * an 8-bit step: skip the draw (and in the day, that is always). */
+ * an 8-bit step at the automatic exposure: skip the draw (by day, that is
+ * always). The same rule holds for HDR output, so a host doing its own
+ * tone mapping does no star work at noon either. */
 int sky_stars_visible(const sky *s)
 {
     if (!(s->features & SKY_STARS) || !s->star_buffer) return 0;
     const sky_frame *f = &s->frame;
-    double brightest = f->star_flux_scale * pow(2.512, 1.46);
-    return f->output_hdr > 0.5f ? brightest > 0.0 : brightest * f->exposure >= 1.0 / 1024.0;
+    return f->star_flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0;
 }
 
 void sky_stars_draw(sky *s)
