@@ -11,9 +11,9 @@ CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
 
-SKY_SRC := sky/sky.c sky/astro.c sky/astro_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/astro.c sky/astro_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
-TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png
+TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
 SKY_HDR := sky/sky.h sky/sky_internal.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
 
@@ -118,7 +118,8 @@ install: all
 textures: $(BIN)/texgen $(BIN)/catgen
 	@sh tools/fetch-stellarium.sh $(BUILD)/stellarium
 	@sh tools/fetch-d3celestial.sh $(BUILD)/d3-celestial
-	$(BIN)/texgen --out textures --photo $(BUILD)/stellarium/usr/share/stellarium/textures/earth-clouds.png --crop 0,20,176
+	$(BIN)/texgen --out textures --photo $(BUILD)/stellarium/usr/share/stellarium/textures/earth-clouds.png --crop 0,20,176 \
+	    --moon $(BUILD)/stellarium/usr/share/stellarium/textures/moon.png
 	$(BIN)/catgen --stars $(BUILD)/d3-celestial/package/data/stars.8.json \
 	    --pm $(BUILD)/stellarium/usr/share/stellarium/stars/default/hip_pm.dat --max-mag 6.5 --out textures/stars.dat \
 	    --map textures/starmap.png --mw $(BUILD)/d3-celestial/package/data/mw.json

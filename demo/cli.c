@@ -100,7 +100,7 @@ static int parse_features(const char *s, unsigned *out, char *err, size_t len)
                 found = 1;
             }
         if (!found)
-            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,flicker,stars,starmap or none)", (int)n,
+            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,moon,flicker,stars,starmap,eclipse or none)", (int)n,
                         p);
         p += n;
         if (*p == ',') {
@@ -125,7 +125,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
             "  --atmosphere gradient    atmosphere path\n"
-            "  --features LIST          comma list of clouds,sun,flicker,stars,starmap (or none)\n"
+            "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse (or none)\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"

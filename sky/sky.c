@@ -178,6 +178,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    features & ~(unsigned)SKY_FEATURES_AVAILABLE, (unsigned)SKY_FEATURES_AVAILABLE);
         return NULL;
     }
+    if ((features & SKY_ECLIPSE) && !(features & SKY_MOON)) {
+        sky_format(err, err_len, "sky_create: SKY_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
+        return NULL;
+    }
     int identity = 1;
     for (int i = 0; i < 9; i++)
         if (cfg->horizon_to_world[i] != 0.0f) identity = 0;
@@ -209,10 +213,9 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     if ((features & SKY_FLICKER_STARS) && sky_flicker_create(s, err, err_len)) goto fail;
     if ((features & SKY_STARMAP) && sky_starmap_create(s, err, err_len)) goto fail;
     if ((features & SKY_SUN) && sky_sun_create(s, err, err_len)) goto fail;
-    if (features & SKY_STARS) {
-        compute_frame(s); /* the astronomy of the default observer */
-        if (sky_stars_create(s, err, err_len)) goto fail;
-    }
+    if (features & (SKY_STARS | SKY_MOON)) compute_frame(s); /* the default observer's astronomy */
+    if ((features & SKY_STARS) && sky_stars_create(s, err, err_len)) goto fail;
+    if ((features & SKY_MOON) && sky_moon_create(s, err, err_len)) goto fail;
     s->cfg.texture_dir = NULL;
 
     /* The dome program holds only the snippets of enabled features. With
@@ -240,6 +243,14 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         if (features & SKY_CLOUDS) star_snippets[m++] = &sky_clouds_snippet;
         star_snippets[m++] = &sky_stars_snippet;
         if (sky_program_build(s, &s->stars, "stars.vert", "stars.frag", star_snippets, m, err, err_len)) goto fail;
+    }
+    if (features & SKY_MOON) {
+        const sky_snippet *moon_snippets[3];
+        int m = 0;
+        if (features & SKY_CLOUDS) moon_snippets[m++] = &sky_clouds_snippet;
+        if (features & SKY_ECLIPSE) moon_snippets[m++] = &sky_eclipse_snippet;
+        moon_snippets[m++] = &sky_moon_snippet;
+        if (sky_program_build(s, &s->moon, "moon.vert", "moon.frag", moon_snippets, m, err, err_len)) goto fail;
     }
     if (features & SKY_SUN) {
         const sky_snippet *sun_snippets[2];
@@ -272,10 +283,11 @@ void sky_destroy(sky *s)
         sky_program_destroy(s, &s->dome_night);
         sky_program_destroy(s, &s->ground);
         sky_program_destroy(s, &s->stars);
+        sky_program_destroy(s, &s->moon);
         sky_stars_destroy(s);
         sky_program_destroy(s, &s->sun);
-        GLuint buffers[4] = {s->dome_vertices, s->dome_indices, s->sun_buffer, s->star_buffer};
-        gl->glDeleteBuffers(4, buffers);
+        GLuint buffers[5] = {s->dome_vertices, s->dome_indices, s->sun_buffer, s->star_buffer, s->moon_buffer};
+        gl->glDeleteBuffers(5, buffers);
         if (s->vao) gl->glDeleteVertexArrays(1, &s->vao);
     }
     free(s);
@@ -614,7 +626,20 @@ static sky_result draw_frame(sky *s)
         }
     }
 
-    /* 3. the sun quad, added over the dome (it hides behind the clouds by
+    /* 3. the moon: added by day; at night it also hides the stars behind
+     * it (src alpha: its coverage times the night factor) */
+    if (s->features & SKY_MOON) {
+        sky_moon_frame(s);
+        if (sky_moon_visible(s)) {
+            sky_moon_update_quad(s);
+            gl->glEnable(GL_BLEND);
+            gl->glBlendEquation(GL_FUNC_ADD);
+            gl->glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            draw_layer(s, SKY_LAYER_MOON, &s->moon, s->moon_buffer);
+        }
+    }
+
+    /* 4. the sun quad, added over the dome (it hides behind the clouds by
      * evaluating them itself) */
     if (sky_sun_visible(s)) {
         sky_sun_update_quad(s);
@@ -678,6 +703,10 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
         }
     out->layers[SKY_LAYER_ATMOSPHERE].bytes += s->buffer_bytes - (s->sun_buffer ? 4 * 5 * sizeof(float) : 0);
     if (s->sun_buffer) out->layers[SKY_LAYER_SUN].bytes += 4 * 5 * sizeof(float);
+    if (s->moon_buffer) {
+        out->layers[SKY_LAYER_MOON].bytes += 4 * 5 * sizeof(float);
+        out->layers[SKY_LAYER_ATMOSPHERE].bytes -= 4 * 5 * sizeof(float);
+    }
     if (s->star_buffer) {
         size_t star_bytes = sizeof(float) * 9 * (size_t)s->catalog.count;
         out->layers[SKY_LAYER_STARS].bytes += star_bytes;

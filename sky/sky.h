@@ -62,18 +62,19 @@ typedef enum sky_result {
 typedef enum sky_feature {
     SKY_CLOUDS        = 1u << 0, /* Roden-Parberry cloud layers             */
     SKY_SUN           = 1u << 1, /* limb-darkened sun disc                  */
-    SKY_MOON          = 1u << 2, /* Mueller moon (not built yet)            */
+    SKY_MOON          = 1u << 2, /* Mueller moon: phase, libration, shading  */
     SKY_STARS         = 1u << 3, /* catalogue stars (Mueller sec. 4)         */
     SKY_FLICKER_STARS = 1u << 4, /* Roden-Parberry flicker stars + galaxy   */
     SKY_STARMAP       = 1u << 5, /* Milky Way star map (Mueller sec. 4.4)    */
-    SKY_ECLIPSE       = 1u << 6, /* lunar eclipses (not yet)                */
+    SKY_ECLIPSE       = 1u << 6, /* lunar eclipses on the moon (needs MOON)  */
     SKY_FEATURES_NONE = 1u << 31
 } sky_feature;
 
 #define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
 /* The features this build can render; asking for others is
  * SKY_ERR_UNSUPPORTED from sky_create. */
-#define SKY_FEATURES_AVAILABLE (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP)
+#define SKY_FEATURES_AVAILABLE \
+    (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_ECLIPSE)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
@@ -121,6 +122,9 @@ typedef struct sky_config {
      * 2.512^(m_a - 4) times their physical brightness, and those brighter
      * than m_a get a glare. 0 = 4 (physical). Range 1..10. */
     float star_control_magnitude;
+    /* Mueller's artificial moon scale c_d (eq. 1): the disc is drawn c_d
+     * times its true size. 0 = 2.5; range 0.5..50. */
+    float moon_scale;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,

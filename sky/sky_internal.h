@@ -40,6 +40,8 @@ typedef enum sky_texture_id {
     SKY_TEX_CLOUDS = 0, /* RGBA: photo, noise, detail, sunset gradient (R-P sec. 3) */
     SKY_TEX_FLICKER,    /* RGBA: intensity, rate, variance, phase (R-P sec. 4)      */
     SKY_TEX_STARMAP,    /* equirectangular J2000 faint stars + Milky Way (Mueller 4.4) */
+    SKY_TEX_MOON,       /* 256x128 lunar albedo, selenographic (Mueller 2.2.2)       */
+    SKY_TEX_ECLIPSE,    /* 128x1 eclipse colour h(t), log10-encoded (Mueller 3.2)    */
     SKY_TEX_COUNT
 } sky_texture_id;
 
@@ -103,6 +105,9 @@ typedef struct sky_frame {
     float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
     /* star map (starmap.c) */
     float starmap_rot[16], starmap_scale;
+    /* moon (moon.c) */
+    float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_terms[4], moon_earthshine[3];
+    float moon_center_km[3], shadow_axis[3], shadow[4];
 } sky_frame;
 
 /* ---- programs and the uniform table ------------------------------------- */
@@ -161,6 +166,11 @@ struct sky {
     sky_program ground;           /* below the horizon: atmosphere only          */
     sky_program sun;              /* sun quad                                  */
     sky_program stars;            /* catalogue stars (points)                  */
+    sky_program moon;             /* moon billboard                            */
+    GLuint moon_buffer;           /* 4 corners: disc uv, direction              */
+    float moon_albedo_mean;       /* the albedo map's near-side mean            */
+    double moon_axes[3][3];       /* billboard x (right), y (up), moon direction */
+    double moon_radius_tan;       /* drawn disc radius on the tangent plane     */
     sky_catalog catalog;
     GLuint star_buffer;
     double star_epoch;            /* years since J2000 of the uploaded positions */
@@ -239,6 +249,8 @@ extern const sky_snippet sky_flicker_snippet;
 extern const sky_snippet sky_sun_snippet;
 extern const sky_snippet sky_stars_snippet;
 extern const sky_snippet sky_starmap_snippet;
+extern const sky_snippet sky_moon_snippet;
+extern const sky_snippet sky_eclipse_snippet;
 
 /* The dome mesh with per-vertex gradient colour and galaxy (dome.c). */
 int sky_dome_create(sky *s, char *err, size_t err_len);
@@ -270,6 +282,10 @@ void sky_stars_draw(sky *s);
 void sky_star_color(double bv, float rgb[3]);
 int sky_starmap_create(sky *s, char *err, size_t err_len);
 void sky_starmap_frame(sky *s); /* after the camera is set up */
+int sky_moon_create(sky *s, char *err, size_t err_len);
+void sky_moon_frame(sky *s);
+int sky_moon_visible(const sky *s);
+void sky_moon_update_quad(sky *s);
 int sky_sun_create(sky *s, char *err, size_t err_len);
 void sky_sun_frame(sky *s);
 int sky_sun_visible(const sky *s);

@@ -191,7 +191,7 @@ void test_cli_exit_codes_and_messages(void)
         {"--atmosphere hillaire", 2, "not available yet"},
         {"--preset beach", 2, "--preset"},
         {"--date 2011-06-15", 2, "--date"},
-        {"--features moon", 2, "not available yet"},
+        {"--atmosphere rayleigh", 2, "not available yet"},
         {"--bogus", 2, "--bogus"},
         {"stray", 2, "stray"},
         {"--cover 0.2 --cover 0.3", 2, "more than once"},

@@ -63,6 +63,11 @@ int test_failures;
     X(stars_scintillate_more_near_horizon)       \
     X(stars_skipped_at_noon)                     \
     X(starmap_shows_the_milky_way)               \
+    X(moon_phase_and_bright_limb)                \
+    X(moon_earthshine_on_a_crescent)             \
+    X(moon_total_eclipse_is_dark_and_red)        \
+    X(moon_penumbral_eclipse_is_slightly_darker) \
+    X(moon_left_out_when_not_needed)             \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

@@ -11,6 +11,10 @@
  *                 B relative variance, A phase (R-P sec. 4)
  *   galaxy.png    128x128 galaxy band, grey in all channels (R-P sec. 4)
  *   gradient.png  256x1 day-sky colour by sqrt(elevation) (R-P fig. 1)
+ *   moon.png      256x128 lunar albedo, equirectangular, selenographic
+ *                 longitude 0 at the centre, east to the right (with
+ *                 --moon FILE: a global lunar map such as stellarium-data's
+ *                 USGS/Clementine mosaic, box-filtered down)
  *
  * The photo may be any cloud photograph or a cloud map such as NASA's (as
  * shipped by Debian's stellarium-data); cloudiness is taken as the smallest
@@ -305,30 +309,66 @@ static int build_gradient(const char *dir)
     return write_png(dir, "gradient.png", 256, 1, img);
 }
 
+static int build_moon(const char *dir, const char *path)
+{
+    int w, h, comp;
+    unsigned char *src = stbi_load(path, &w, &h, &comp, 3);
+    if (!src) {
+        fprintf(stderr, "texgen: cannot read moon map %s\n", path);
+        return -1;
+    }
+    enum { MW = 256, MH = 128 };
+    unsigned char *img = malloc(MW * MH * 4);
+    for (int y = 0; y < MH; y++)
+        for (int x = 0; x < MW; x++) {
+            /* average the source texels that fall in this one (grey) */
+            int x0 = x * w / MW, x1 = (x + 1) * w / MW, y0 = y * h / MH, y1 = (y + 1) * h / MH;
+            double acc = 0;
+            int n = 0;
+            for (int yy = y0; yy < y1; yy++)
+                for (int xx = x0; xx < x1; xx++) {
+                    const unsigned char *p = src + 3 * ((size_t)yy * (size_t)w + (size_t)xx);
+                    acc += (p[0] + p[1] + p[2]) / 3.0;
+                    n++;
+                }
+            unsigned char v = (unsigned char)lround(n ? acc / n : 0);
+            unsigned char *o = img + 4 * (y * MW + x);
+            o[0] = o[1] = o[2] = v;
+            o[3] = 255;
+        }
+    stbi_image_free(src);
+    int rc = write_png(dir, "moon.png", MW, MH, img);
+    free(img);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
-    const char *out = NULL, *photo = NULL;
+    const char *out = NULL, *photo = NULL, *moon = NULL;
     int cx = 0, cy = 0, cs = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
         else if (!strcmp(argv[i], "--photo") && i + 1 < argc)
             photo = argv[++i];
+        else if (!strcmp(argv[i], "--moon") && i + 1 < argc)
+            moon = argv[++i];
         else if (!strcmp(argv[i], "--crop") && i + 1 < argc) {
             if (sscanf(argv[++i], "%d,%d,%d", &cx, &cy, &cs) != 3) {
                 fprintf(stderr, "texgen: --crop wants X,Y,SIZE\n");
                 return 2;
             }
         } else {
-            fprintf(stderr, "usage: texgen --out DIR --photo FILE [--crop X,Y,SIZE]\n");
+            fprintf(stderr, "usage: texgen --out DIR --photo FILE [--crop X,Y,SIZE] [--moon FILE]\n");
             return 2;
         }
     }
     if (!out || !photo) {
-        fprintf(stderr, "usage: texgen --out DIR --photo FILE [--crop X,Y,SIZE]\n");
+        fprintf(stderr, "usage: texgen --out DIR --photo FILE [--crop X,Y,SIZE] [--moon FILE]\n");
         return 2;
     }
     if (build_clouds(out, photo, cx, cy, cs) || build_flicker(out) || build_galaxy(out) || build_gradient(out))
         return 1;
+    if (moon && build_moon(out, moon)) return 1;
     return 0;
 }

@@ -1,0 +1,266 @@
+/*
+ * The moon after Mueller et al. 2012, sec. 2-3: a billboard sphere at the
+ * topocentric moon, sized from its true distance times an artificial
+ * scale c_d (eq. 1), oriented by libration, axis and parallactic angles
+ * (eq. 2), shaded Hapke-Lommel-Seeliger with earthshine (eq. 3-4), dimmed
+ * by extinction, and, with SKY_ECLIPSE, darkened and reddened per fragment
+ * by the Earth's shadow (sec. 3). Shaders: moon.vert/.frag.
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define MOON_RADIUS_KM 1737.4
+/* The full moon's mean luminance, about 2.5 kcd/m^2 (e.g. 2500 cd/m^2 in
+ * lighting handbooks), for an albedo texel at the map's mean. */
+#define MOON_FULL_LUMINANCE 2.5
+/* Earthshine at new moon relative to the full moon's surface brightness:
+ * about 1.5e-4 (the ashen light of a young crescent, near magnitude -3
+ * spread over the disc, against the full moon's -12.7). */
+#define MOON_EARTHSHINE 1.5e-4
+#define MOON_QUAD_RADII 4.0 /* the quad reaches 4 disc radii: the halo */
+/* Mueller's c_i: how much a total eclipse is brightened in LDR output, as
+ * a photographer would lengthen the exposure */
+#define ECLIPSE_BOOST 30.0
+
+static const sky_uniform_desc moon_uniforms[] = {
+    SKY_UT("u_moon_tex", SKY_TEX_MOON),
+    SKY_UF("u_moon_body", SKY_U_M4, moon_body),
+    SKY_UF("u_moon_view", SKY_U_M4, moon_view),
+    SKY_UF("u_moon_light", SKY_U_F3, moon_light),
+    SKY_UF("u_moon_color", SKY_U_F3, moon_color),
+    SKY_UF("u_moon_terms", SKY_U_F4, moon_terms),
+    SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
+};
+const sky_snippet sky_moon_snippet = {NULL, NULL, moon_uniforms, (int)(sizeof moon_uniforms / sizeof moon_uniforms[0])};
+
+static const sky_uniform_desc eclipse_uniforms[] = {
+    SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
+    SKY_UF("u_moon_center_km", SKY_U_F3, moon_center_km),
+    SKY_UF("u_shadow_axis", SKY_U_F3, shadow_axis),
+    SKY_UF("u_shadow", SKY_U_F4, shadow),
+};
+const sky_snippet sky_eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
+                                         (int)(sizeof eclipse_uniforms / sizeof eclipse_uniforms[0])};
+
+/* Mueller's h(t) (sec. 3.2, fig. 5), our own fit of its four phenomena:
+ * t in [0, 1/2] is the umbra (centre to edge), [1/2, 1] the penumbra.
+ * Returned as log10 per channel. */
+static void eclipse_h(double t, double out[3])
+{
+    /* penumbra: barely noticeable, darkening softly toward the umbra */
+    double pen = t >= 0.5 ? (t - 0.5) / 0.5 : 0.0;
+    double pen_h = log10(0.3 + 0.7 * pow(pen, 0.7));
+    /* umbra: dark, red-orange, darker toward the centre; a bluish rim at
+     * its edge (light that skimmed the upper atmosphere) */
+    double u = t < 0.5 ? t / 0.5 : 1.0;
+    double red = -3.7 + 1.6 * u * u, green = -4.4 + 1.8 * u * u, blue = -4.9 + 2.1 * u * u;
+    double rim = exp(-(u - 0.97) * (u - 0.97) / (2 * 0.04 * 0.04));
+    double umb[3] = {red, green + 0.6 * rim, blue + 1.4 * rim};
+    /* a soft umbra edge: blend over t = 0.47..0.53 */
+    double w = sky_smoothstep(0.47, 0.53, t);
+    double penumbra_side = t >= 0.5 ? pen_h : log10(0.3);
+    for (int c = 0; c < 3; c++) out[c] = (1.0 - w) * umb[c] + w * penumbra_side;
+}
+
+int sky_moon_create(sky *s, char *err, size_t err_len)
+{
+    if (sky_texture_load(s, SKY_TEX_MOON, SKY_LAYER_MOON, "moon.png", 256, 128, 1, err, err_len)) return -1;
+    /* the albedo map's mean, so MOON_FULL_LUMINANCE is the disc's mean */
+    unsigned char *albedo = NULL;
+    if (sky_asset_load_rgba(s, "moon.png", 256, 128, &albedo, err, err_len)) return -1;
+    double sum = 0.0, wsum = 0.0;
+    for (int y = 0; y < 128; y++) {
+        double w = cos(((y + 0.5) / 128.0 - 0.5) * SKY_PI); /* texel area on the sphere */
+        for (int x = 64; x < 192; x++) sum += w * albedo[4 * (y * 256 + x)] / 255.0, wsum += w; /* near side */
+    }
+    sky_png_free(albedo);
+    s->moon_albedo_mean = (float)(sum / wsum);
+    float zero[4 * 5] = {0};
+    s->moon_buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, zero, sizeof zero, GL_DYNAMIC_DRAW);
+    if (!s->moon_buffer) {
+        sky_format(err, err_len, "glGenBuffers failed for the moon");
+        return -1;
+    }
+    if (s->features & SKY_ECLIPSE) {
+        unsigned char lut[128 * 4];
+        for (int i = 0; i < 128; i++) {
+            double h[3];
+            eclipse_h((i + 0.5) / 128.0, h);
+            for (int c = 0; c < 3; c++) lut[4 * i + c] = (unsigned char)lround(sky_clampd(-h[c] / 5.0, 0.0, 1.0) * 255.0);
+            lut[4 * i + 3] = 255;
+        }
+        if (sky_texture_create(s, SKY_TEX_ECLIPSE, SKY_LAYER_MOON, lut, 128, 1, 0, err, err_len)) return -1;
+    }
+    return 0;
+}
+
+/* Hapke's (1966) retrodirective function B(phi) with compaction g = 0.6,
+ * times the Lommel-Seeliger phase law S(phi): the HLS phase factor of
+ * Mueller eq. 3. */
+static double hls_phase(double phi)
+{
+    const double g = 0.6;
+    phi = sky_clampd(fabs(phi), 0.0, SKY_PI);
+    double b = 1.0;
+    if (phi < SKY_PI / 2) {
+        double tp = tan(phi);
+        double e = tp > 1e-9 ? exp(-g / tp) : 0.0;
+        b = 2.0 - (tp / (2.0 * g)) * (1.0 - e) * (3.0 - e);
+    }
+    double sp = (sin(phi) + (SKY_PI - phi) * cos(phi)) / SKY_PI;
+    return b * sp;
+}
+
+static void cross3(const double a[3], const double b[3], double o[3])
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+static void normalize3(double v[3])
+{
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
+}
+
+void sky_moon_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    const sky_astro *a = &s->astro;
+    double m[3] = {a->moon.dir[0], a->moon.dir[1], a->moon.dir[2]}; /* refracted, topocentric */
+    /* billboard frame: z toward the viewer, y toward the zenith, x right */
+    double z[3] = {-m[0], -m[1], -m[2]}, up[3] = {0.0, 1.0, 0.0}, x[3], y[3];
+    if (fabs(m[1]) > 0.999) up[1] = 0.0, up[2] = -1.0; /* at the zenith: north up */
+    double dz = up[0] * m[0] + up[1] * m[1] + up[2] * m[2];
+    for (int i = 0; i < 3; i++) y[i] = up[i] - dz * m[i];
+    normalize3(y);
+    cross3(y, z, x);
+    for (int i = 0; i < 3; i++) {
+        s->moon_axes[0][i] = x[i];
+        s->moon_axes[1][i] = y[i];
+        s->moon_axes[2][i] = m[i];
+    }
+    memset(f->moon_view, 0, sizeof f->moon_view);
+    for (int i = 0; i < 3; i++) f->moon_view[0 * 4 + i] = (float)x[i], f->moon_view[1 * 4 + i] = (float)y[i],
+                                f->moon_view[2 * 4 + i] = (float)z[i];
+    f->moon_view[15] = 1.0f;
+    /* sun seen from the moon (both topocentric, geometric): the exact
+     * phase geometry */
+    double sun_h[3], moon_h[3], l[3];
+    sky_horizon_vector(a->sun.alt_geometric, a->sun.az, sun_h);
+    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, moon_h);
+    for (int i = 0; i < 3; i++) l[i] = sun_h[i] * a->sun.distance_km - moon_h[i] * a->moon.distance_km;
+    normalize3(l);
+    f->moon_light[0] = (float)(l[0] * x[0] + l[1] * x[1] + l[2] * x[2]);
+    f->moon_light[1] = (float)(l[0] * y[0] + l[1] * y[1] + l[2] * y[2]);
+    f->moon_light[2] = (float)(l[0] * z[0] + l[1] * z[1] + l[2] * z[2]);
+    double phase = acos(sky_clampd(f->moon_light[2], -1.0, 1.0));
+    /* orientation (eq. 2): body = Ry(l) Rx(-b) Rz(-(P - q)) view */
+    double alpha = a->moon_axis_angle - a->moon_parallactic, lb = a->moon_libration_lat, ll = a->moon_libration_lon;
+    double ca = cos(-alpha), sa = sin(-alpha), cb = cos(-lb), sb = sin(-lb), cl = cos(ll), sl = sin(ll);
+    double rz[9] = {ca, -sa, 0, sa, ca, 0, 0, 0, 1};
+    double rx[9] = {1, 0, 0, 0, cb, -sb, 0, sb, cb};
+    double ry[9] = {cl, 0, sl, 0, 1, 0, -sl, 0, cl};
+    double t1[9], body[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            t1[i * 3 + j] = 0;
+            for (int k = 0; k < 3; k++) t1[i * 3 + j] += rx[i * 3 + k] * rz[k * 3 + j];
+        }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            body[i * 3 + j] = 0;
+            for (int k = 0; k < 3; k++) body[i * 3 + j] += ry[i * 3 + k] * t1[k * 3 + j];
+        }
+    memset(f->moon_body, 0, sizeof f->moon_body);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) f->moon_body[j * 4 + i] = (float)body[i * 3 + j];
+    f->moon_body[15] = 1.0f;
+    /* brightness: the HLS phase factor relative to full moon, where
+     * cos i = cos r makes Lommel-Seeliger 1/2 */
+    double phase_factor = hls_phase(phase) / hls_phase(0.0) * 2.0;
+    /* earthshine (eq. 4), normalised to its new-moon value */
+    double es = (-0.0061 * pow(SKY_PI, 3) + 0.0289 * SKY_PI * SKY_PI);
+    double e = (-0.0061 * pow(phase, 3) + 0.0289 * phase * phase - 0.0105 * sin(phase)) / es;
+    e = sky_clampd(e, 0.0, 1.0) * MOON_EARTHSHINE;
+    /* extinction over the moon's air mass, as for the stars */
+    float zenith[3];
+    sky_sun_transmittance(SKY_PI / 2, zenith);
+    double cos_t = sky_clampd(m[1], -1.0, 1.0), re = 6371.0, te = 8.0;
+    double hkm = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
+    double ash = re + hkm, bsh = re + te;
+    double airmass = (sqrt(fmax(bsh * bsh - ash * ash * (1.0 - cos_t * cos_t), 0.0)) - ash * cos_t) / (te - hkm);
+    static const double k_lambda[3] = {0.92 / 0.807, 0.79 / 0.807, 0.64 / 0.807}; /* Mueller sec. 2.2.2, unit luminance */
+    static const double beta_e[3] = {0.88, 0.96, 1.00};                            /* earthshine colour */
+    double fade = a->moon_visibility;
+    double scale = MOON_FULL_LUMINANCE / (s->moon_albedo_mean > 0.01f ? s->moon_albedo_mean : 0.01f);
+    for (int i = 0; i < 3; i++) {
+        double ext = exp(log(zenith[i]) * airmass * exp(-s->observer.altitude_m / 8000.0));
+        f->moon_color[i] = (float)(scale * k_lambda[i] * ext * fade);
+    }
+    f->moon_terms[0] = (float)phase_factor;
+    for (int i = 0; i < 3; i++) f->moon_earthshine[i] = (float)(e * beta_e[i]); /* bluish */
+    /* halo: a small part of the disc's light, only at night */
+    f->moon_terms[2] = (float)(2e-3 * a->moon_illuminated * a->star_visibility);
+    /* at night the disc hides what is behind it (stars); by day the sky in
+     * front of it is bright and it only adds */
+    f->moon_terms[3] = (float)a->star_visibility;
+    /* LDR: expose the moon on its own, as the eye adapts to it locally:
+     * its lit mean lands at the tone curve's shoulder instead of pure
+     * white (HDR output stays physical) */
+    if (f->output_hdr < 0.5f) {
+        double lit = MOON_FULL_LUMINANCE * fmax(phase_factor * 0.5, 1e-6) * fade;
+        double k = 1.5 / (f->exposure * lit);
+        if (k < 1.0)
+            for (int i = 0; i < 3; i++) f->moon_color[i] *= (float)k;
+    }
+    /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2) */
+    double cd = s->cfg.moon_scale > 0.0f ? sky_clampd(s->cfg.moon_scale, 0.5, 50.0) : 2.5;
+    double topo_km = a->moon.distance_km; /* geocentric; the topocentric size differs by < 2 % */
+    s->moon_radius_tan = tan(cd * asin(sky_clampd(MOON_RADIUS_KM / topo_km, 0.0, 1.0)));
+    /* eclipse: geocentric geometry in the horizon frame */
+    if (s->features & SKY_ECLIPSE) {
+        double mg[3], sg[3], v[3];
+        v[0] = cos(a->moon.dec) * cos(a->moon.ra), v[1] = cos(a->moon.dec) * sin(a->moon.ra), v[2] = sin(a->moon.dec);
+        for (int i = 0; i < 3; i++) mg[i] = a->horizon[i * 3] * v[0] + a->horizon[i * 3 + 1] * v[1] + a->horizon[i * 3 + 2] * v[2];
+        v[0] = cos(a->sun.dec) * cos(a->sun.ra), v[1] = cos(a->sun.dec) * sin(a->sun.ra), v[2] = sin(a->sun.dec);
+        for (int i = 0; i < 3; i++) sg[i] = a->horizon[i * 3] * v[0] + a->horizon[i * 3 + 1] * v[1] + a->horizon[i * 3 + 2] * v[2];
+        for (int i = 0; i < 3; i++) f->moon_center_km[i] = (float)(mg[i] * a->moon.distance_km);
+        for (int i = 0; i < 3; i++) f->shadow_axis[i] = (float)sg[i];
+        f->shadow[0] = (float)(a->moon.distance_km * tan(a->umbra_radius));
+        f->shadow[1] = (float)(a->moon.distance_km * tan(a->penumbra_radius));
+        /* the disc as drawn is c_d times too big; the shadow test uses the
+         * true radius so the eclipse's geometry stays right */
+        f->shadow[2] = (float)MOON_RADIUS_KM;
+        /* i(t_m): brighten a deep eclipse in LDR (Mueller sec. 3.2.1) */
+        double tm = a->umbral_magnitude;
+        double boost = 1.0 + (ECLIPSE_BOOST - 1.0) * sky_smoothstep(0.0, 1.0, tm);
+        f->shadow[3] = f->output_hdr > 0.5f ? 1.0f : (float)boost;
+    }
+}
+
+int sky_moon_visible(const sky *s)
+{
+    if (!(s->features & SKY_MOON) || !s->moon_buffer) return 0;
+    /* the whole quad, halo included, below the horizon */
+    return s->astro.moon.alt > -atan(MOON_QUAD_RADII * s->moon_radius_tan) - 0.01;
+}
+
+void sky_moon_update_quad(sky *s)
+{
+    float v[4 * 5];
+    static const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    double k = MOON_QUAD_RADII * s->moon_radius_tan;
+    for (int c = 0; c < 4; c++) {
+        v[c * 5 + 0] = (float)(corners[c][0] * MOON_QUAD_RADII);
+        v[c * 5 + 1] = (float)(corners[c][1] * MOON_QUAD_RADII);
+        for (int i = 0; i < 3; i++)
+            v[c * 5 + 2 + i] = (float)(s->moon_axes[2][i] + k * (corners[c][0] * s->moon_axes[0][i] +
+                                                                 corners[c][1] * s->moon_axes[1][i]));
+    }
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, s->moon_buffer);
+    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+}

@@ -1,0 +1,68 @@
+/* moon.frag: the moon-sphere reconstructed per fragment (Mueller sec. 2):
+ * normal n = (u, v, sqrt(1 - u^2 - v^2)) in the billboard frame, albedo
+ * from the selenographic map after the orientation R_m (eq. 2: libration,
+ * axis and parallactic angles, built in moon.c), Hapke-Lommel-Seeliger
+ * shading (eq. 3, its phase terms per frame on the CPU), earthshine
+ * (eq. 4), the reddish k_lambda, extinction, the lunar eclipse's colour
+ * h(t_f) per fragment and brightness i(t_m) (sec. 3), a glare halo at
+ * night, and the clouds in front. */
+uniform sampler2D u_moon_tex;       /* 256x128 albedo, selenographic        */
+uniform mat4 u_moon_body;           /* billboard frame -> moon body frame    */
+uniform mat4 u_moon_view;           /* billboard frame -> horizon frame      */
+uniform vec3 u_moon_light;          /* direction to the sun, billboard frame */
+uniform vec3 u_moon_color;          /* kcd/m^2 of the full moon's mean, per
+                                       channel, with k_lambda, extinction, fade */
+uniform vec4 u_moon_terms;          /* x: HLS phase factor, z: halo,
+                                       w: occlusion of what is behind      */
+uniform vec3 u_moon_earthshine;     /* earthshine relative to full sunlight */
+#ifdef SKY_HAS_ECLIPSE
+uniform sampler2D u_eclipse_tex;    /* h(t), log10-encoded: h = 10^(-5 texel) */
+uniform vec3 u_moon_center_km;      /* geocentric moon, horizon frame        */
+uniform vec3 u_shadow_axis;         /* geocentric direction to the sun       */
+uniform vec4 u_shadow;              /* umbra r, penumbra r (km), moon radius (km), i(t_m) */
+#endif
+SKY_IN vec2 v_uv;
+SKY_IN vec3 v_dir;
+
+void main()
+{
+    vec3 d = normalize(v_dir);
+    float r2 = dot(v_uv, v_uv);
+    if (r2 >= 16.0 || d.y < -0.02) discard;
+    vec3 L = vec3(0.0);
+    float cover = 0.0;
+    if (r2 < 1.0) {
+        vec3 n = vec3(v_uv, sqrt(1.0 - r2));
+        vec3 b = (u_moon_body * vec4(n, 0.0)).xyz;
+        vec2 st = vec2(0.5 + atan(b.x, b.z) / (2.0 * SKY_PI), 0.5 - asin(clamp(b.y, -1.0, 1.0)) / SKY_PI);
+        float albedo = SKY_TEX2D(u_moon_tex, st).r;
+        /* Lommel-Seeliger: cos i / (cos i + cos r); its phase factor is
+         * in u_moon_terms.x */
+        float cos_i = max(dot(n, u_moon_light), 0.0), cos_r = max(n.z, 1e-4);
+        float lit = cos_i / (cos_i + cos_r) * u_moon_terms.x;
+        L = u_moon_color * albedo * (vec3(lit) + u_moon_earthshine);
+#ifdef SKY_HAS_ECLIPSE
+        /* the fragment's distance from the shadow axis, in km (sec. 3.1) */
+        vec3 p = u_moon_center_km + u_shadow.z * (u_moon_view * vec4(n, 0.0)).xyz;
+        float dist = length(cross(p, u_shadow_axis));
+        if (dot(p, u_shadow_axis) < 0.0 && dist < u_shadow.y) {
+            float t = dist < u_shadow.x ? 0.5 * dist / u_shadow.x
+                                        : 0.5 + 0.5 * (dist - u_shadow.x) / (u_shadow.y - u_shadow.x);
+            vec3 h = pow(vec3(10.0), -5.0 * SKY_TEX2D(u_eclipse_tex, vec2(t * (127.0 / 128.0) + 0.5 / 128.0, 0.5)).rgb);
+            L *= h * u_shadow.w;
+        }
+#endif
+        cover = u_moon_terms.w;
+    } else {
+        /* halo: falls off with the square of the distance, windowed to the
+         * quad's edge */
+        float r = sqrt(r2), w = (4.0 - r) / 3.0;
+        L = u_moon_color * u_moon_terms.z * w * w / r2;
+    }
+#ifdef SKY_HAS_CLOUDS
+    float c = sky_clouds(d).a;
+    L *= 1.0 - c;
+    cover *= 1.0 - c;
+#endif
+    SKY_FRAG_COLOR = vec4(sky_output(L, 1.0).rgb, cover);
+}

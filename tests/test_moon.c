@@ -1,0 +1,243 @@
+/*
+ * Moon tests (Mueller sec. 2-3): phase and bright limb measured on the
+ * rendered disc against the astronomy, earthshine, lunar eclipses, and the
+ * moon left out below the horizon or out of the scene.
+ */
+#include "test.h"
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void test_moon_phase_and_bright_limb(void);
+void test_moon_earthshine_on_a_crescent(void);
+void test_moon_total_eclipse_is_dark_and_red(void);
+void test_moon_penumbral_eclipse_is_slightly_darker(void);
+void test_moon_left_out_when_not_needed(void);
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+typedef struct closeup {
+    image im;
+    double cx, cy, radius_px; /* the disc in the image */
+    sky_astronomy a;
+} closeup;
+
+/* Renders the moon centred and magnified: a 256x256 view whose field is
+ * three drawn disc diameters. */
+static int moon_closeup(const sky_observer *o, unsigned features, float moon_scale, int hdr, closeup *c)
+{
+    memset(c, 0, sizeof *c);
+    if (sky_compute_astronomy(o, 0.0f, NULL, 0, NULL, &c->a, NULL, 0) != SKY_OK) return -1;
+    scene sc = scene_default();
+    sc.cfg.features = features;
+    sc.cfg.moon_scale = moon_scale;
+    sc.params.cover = 0.0f;
+    sc.w = sc.h = 256;
+    sc.yaw = c->a.moon.az_deg;
+    sc.pitch = c->a.moon.alt_deg;
+    sc.has_observer = 1;
+    sc.observer = *o;
+    double disc = tan(moon_scale * asin(1737.4 / c->a.moon.distance_km)); /* tangent-plane radius */
+    sc.fov = 2.0 * atan(3.0 * disc) / DEG;
+    c->cx = c->cy = 128.0;
+    c->radius_px = disc / tan(sc.fov * DEG / 2) * 128.0;
+    return render_scene(&sc, hdr, SKY_GL_AUTO, &c->im);
+}
+
+/* Lit fraction of the disc and the direction (image angle from up,
+ * counter-clockwise) of the lit part's centroid. */
+static double lit_fraction(const closeup *c, double *limb_angle)
+{
+    double peak = 0;
+    for (int y = 0; y < 256; y++)
+        for (int x = 0; x < 256; x++)
+            if (hypot(x + 0.5 - c->cx, y + 0.5 - c->cy) < 0.95 * c->radius_px) peak = fmax(peak, image_luminance(&c->im, x, y));
+    int disc = 0, lit = 0;
+    double sx = 0, sy = 0;
+    for (int y = 0; y < 256; y++)
+        for (int x = 0; x < 256; x++) {
+            double dx = x + 0.5 - c->cx, dy = y + 0.5 - c->cy;
+            if (hypot(dx, dy) >= c->radius_px) continue;
+            disc++;
+            if (image_luminance(&c->im, x, y) > 0.04 * peak) lit++, sx += dx, sy += dy;
+        }
+    /* image y grows downward: up is -y; counter-clockwise from up is toward -x */
+    *limb_angle = atan2(-sx, -sy);
+    return disc ? (double)lit / disc : 0.0;
+}
+
+void test_moon_phase_and_bright_limb(void)
+{
+    const struct {
+        const char *name;
+        int y, m, d, hh, mm;
+        double lat, lon;
+    } cases[4] = {
+        {"first quarter 2024-06-14", 2024, 6, 14, 20, 0, 45.0, 10.0},
+        {"waning gibbous 2024-06-25", 2024, 6, 25, 2, 0, 45.0, 10.0},
+        {"full 2024-06-22", 2024, 6, 22, 0, 0, -30.0, 20.0},
+        {"crescent 2024-06-10", 2024, 6, 10, 21, 0, 40.0, 0.0},
+    };
+    for (int i = 0; i < 4; i++) {
+        sky_observer o = {sky_julian_day(cases[i].y, cases[i].m, cases[i].d, cases[i].hh, cases[i].mm, 0.0), cases[i].lat,
+                          cases[i].lon, 0.0, 0};
+        closeup c;
+        if (moon_closeup(&o, SKY_MOON, 1.0f, 1, &c)) {
+            CHECK(0, "%s: render failed", cases[i].name);
+            continue;
+        }
+        CHECK(c.a.moon.alt_deg > 5.0, "%s: moon up (%.1f)", cases[i].name, c.a.moon.alt_deg);
+        double limb, k = lit_fraction(&c, &limb);
+        /* the image's up is the zenith: position angles are measured from
+         * north, which lies the parallactic angle clockwise from up */
+        double expect = (c.a.moon_bright_limb_deg - c.a.moon_parallactic_deg) * DEG;
+        double dlimb = fabs(remainder(limb - expect, 2 * 3.14159265358979323846)) / DEG;
+        NOTE("%s: lit fraction %.3f (astro %.3f); bright limb %.1f deg from up (astro %.1f): %.1f deg off", cases[i].name,
+             k, c.a.moon_illuminated_fraction, limb / DEG, remainder(expect, 2 * 3.14159265358979323846) / DEG, dlimb);
+        CHECK(fabs(k - c.a.moon_illuminated_fraction) <= 0.03, "%s: lit fraction %.3f vs %.3f", cases[i].name, k,
+              c.a.moon_illuminated_fraction);
+        if (c.a.moon_illuminated_fraction < 0.97) /* at full the limb has no direction */
+            CHECK(dlimb <= 5.0, "%s: bright limb %.1f deg off", cases[i].name, dlimb);
+        image_free(&c.im);
+    }
+}
+
+void test_moon_earthshine_on_a_crescent(void)
+{
+    /* a two-day crescent in deep twilight */
+    sky_observer o = {sky_julian_day(2024, 6, 8, 20, 30, 0.0), 45.0, 10.0, 0.0, 0};
+    closeup c;
+    if (moon_closeup(&o, SKY_MOON, 2.5f, 1, &c)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double limb, k = lit_fraction(&c, &limb);
+    /* dark side: disc pixels on the side away from the bright limb */
+    double dark = 0, sky_l = 0;
+    int nd = 0, ns = 0;
+    for (int y = 0; y < 256; y++)
+        for (int x = 0; x < 256; x++) {
+            double dx = x + 0.5 - c.cx, dy = y + 0.5 - c.cy, r = hypot(dx, dy);
+            double toward_limb = (-sin(limb) * dx - cos(limb) * dy) / (r > 0 ? r : 1);
+            if (r < 0.8 * c.radius_px && toward_limb < -0.3) dark += image_luminance(&c.im, x, y), nd++;
+            if (r > 1.35 * c.radius_px * 4.0 / 1.5 && x > 2 && y > 2) sky_l += image_luminance(&c.im, x, y), ns++;
+        }
+    dark /= nd ? nd : 1;
+    sky_l /= ns ? ns : 1;
+    NOTE("crescent %.3f lit: dark side %.3g kcd/m^2 (earthshine), sky %.3g kcd/m^2", k, dark, sky_l);
+    CHECK(k < 0.15 && nd > 100, "a thin crescent (%.3f lit)", k);
+    CHECK(dark > 2.0 * sky_l, "earthshine makes the dark side brighter than the sky (%.3g vs %.3g)", dark, sky_l);
+    image_free(&c.im);
+}
+
+static double disc_mean(const closeup *c, double rgb[3])
+{
+    double sum = 0;
+    int n = 0;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    for (int y = 0; y < 256; y++)
+        for (int x = 0; x < 256; x++)
+            if (hypot(x + 0.5 - c->cx, y + 0.5 - c->cy) < 0.9 * c->radius_px) {
+                const float *p = c->im.px + 3 * (y * 256 + x);
+                for (int k = 0; k < 3; k++) rgb[k] += p[k];
+                sum += image_luminance(&c->im, x, y);
+                n++;
+            }
+    for (int k = 0; k < 3; k++) rgb[k] /= n ? n : 1;
+    return n ? sum / n : 0.0;
+}
+
+void test_moon_total_eclipse_is_dark_and_red(void)
+{
+    /* greatest eclipse of 2011-06-15 (20:12:37 TD), seen from where the
+     * moon stands high (Madagascar region) */
+    double jd = sky_julian_day(2011, 6, 15, 20, 12, 37.0);
+    sky_observer o = {jd - sky_delta_t(jd) / 86400.0, -20.0, 57.0, 0.0, 0};
+    closeup ecl, plain;
+    if (moon_closeup(&o, SKY_MOON | SKY_ECLIPSE, 2.5f, 1, &ecl) || moon_closeup(&o, SKY_MOON, 2.5f, 1, &plain)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double rgb[3], rgb_plain[3];
+    double l_ecl = disc_mean(&ecl, rgb), l_full = disc_mean(&plain, rgb_plain);
+    NOTE("2011-06-15 at greatest eclipse: disc %.3g kcd/m^2 vs %.3g uneclipsed (x%.2g); rgb %.3g %.3g %.3g", l_ecl,
+         l_full, l_ecl / l_full, rgb[0], rgb[1], rgb[2]);
+    CHECK(ecl.a.umbral_magnitude > 1.6, "total (%.3f)", ecl.a.umbral_magnitude);
+    CHECK(l_ecl < 0.01 * l_full, "the eclipsed disc is far darker than the full moon");
+    CHECK(rgb[0] > 2.0 * rgb[1] && rgb[0] > 2.0 * rgb[2], "red dominates the eclipsed moon");
+    image_free(&ecl.im);
+    image_free(&plain.im);
+}
+
+void test_moon_penumbral_eclipse_is_slightly_darker(void)
+{
+    /* the penumbral eclipse of 2020-01-10, greatest at 19:10 UT */
+    sky_observer o = {sky_julian_day(2020, 1, 10, 19, 10, 0.0), 20.0, 80.0, 0.0, 0};
+    closeup ecl, plain;
+    if (moon_closeup(&o, SKY_MOON | SKY_ECLIPSE, 2.5f, 1, &ecl) || moon_closeup(&o, SKY_MOON, 2.5f, 1, &plain)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double rgb[3];
+    double ratio = disc_mean(&ecl, rgb) / disc_mean(&plain, rgb);
+    NOTE("penumbral 2020-01-10 (penumbral magnitude %.3f): disc at %.2f of its uneclipsed brightness",
+         ecl.a.penumbral_magnitude, ratio);
+    CHECK(ratio > 0.4 && ratio < 0.97, "a penumbral eclipse only dims the moon somewhat (%.2f)", ratio);
+    image_free(&ecl.im);
+    image_free(&plain.im);
+}
+
+void test_moon_left_out_when_not_needed(void)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_MOON | SKY_CLOUDS;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_stats with;
+    sky_get_stats(f.s, &with);
+    /* moon below the horizon: no draw */
+    sky_observer below = {sky_julian_day(2024, 6, 22, 12, 0, 0.0), 45.0, 10.0, 0.0, 0}; /* full moon, local noon */
+    sky_astronomy a;
+    sky_compute_astronomy(&below, 0.0f, NULL, 0, NULL, &a, NULL, 0);
+    CHECK(a.moon.alt_deg < -10.0, "the full moon is down at noon (%.1f)", a.moon.alt_deg);
+    sky_set_observer(f.s, &below);
+    sky_draw_fisheye(f.s);
+    sky_stats st;
+    sky_get_stats(f.s, &st);
+    CHECK(st.layers[SKY_LAYER_MOON].enabled && st.layers[SKY_LAYER_MOON].draws == 0, "no moon draw when it is down");
+    sky_observer up = below;
+    up.julian_day_utc = sky_julian_day(2024, 6, 22, 0, 0, 0.0);
+    sky_set_observer(f.s, &up);
+    sky_draw_fisheye(f.s);
+    sky_get_stats(f.s, &st);
+    CHECK(st.layers[SKY_LAYER_MOON].draws == 1, "one moon draw when it is up");
+    fixture_close(&f);
+    /* a scene without the moon has no moon texture */
+    cfg.features = SKY_CLOUDS;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg) == 0) {
+        sky_stats without;
+        sky_get_stats(f.s, &without);
+        NOTE("GPU bytes with the moon %zu, without %zu (moon layer %zu)", with.gpu_bytes, without.gpu_bytes,
+             with.layers[SKY_LAYER_MOON].bytes);
+        CHECK(with.gpu_bytes - without.gpu_bytes == with.layers[SKY_LAYER_MOON].bytes &&
+                  with.layers[SKY_LAYER_MOON].bytes >= 256 * 128 * 4,
+              "leaving the moon out saves exactly its texture and buffer");
+        CHECK(without.textures == with.textures - 1, "one texture fewer");
+        fixture_close(&f);
+    }
+    /* an eclipse without a moon is a configuration error */
+    char err[256];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_AUTO, 0, err, sizeof err) == 0) {
+        cfg.features = SKY_ECLIPSE;
+        cfg.get_proc_address = sky_osmesa_loader();
+        CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "SKY_MOON"), "SKY_ECLIPSE alone: %s", err);
+        sky_osmesa_destroy(&ctx);
+    }
+}
