@@ -143,38 +143,52 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
                      "  --hip N,N,...            with --query: also these Hipparcos stars\n");
 }
 
-/* Presets: the features and sliders a game would use for a scene. Options
- * given explicitly win over the preset, whatever their order. */
-static int apply_preset(sky_cli *cli, const char *name, const int *given, char *err, size_t len)
+/* Presets: the features and sliders a game would use for a scene; the
+ * moonlit and eclipse ones also bring a date, place and view that show
+ * their moon (used unless --date, --lat, --lon, --yaw, --pitch are given).
+ * Options given explicitly win over the preset, whatever their order. */
+typedef struct preset {
+    const char *name;
+    unsigned features;
+    sky_gl_profile gl;
+    float cover, height, density, sunset, speed, time;
+    const char *date; /* NULL: no date of its own */
+    double lat, lon, yaw, pitch;
+} preset;
+
+static const preset presets[] = {
+    {"noon", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f, NULL, 0, 0, 0, 0},
+    {"overcast", SKY_CLOUDS, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0},
+    {"sunset", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f, NULL, 0, 0, 0, 0},
+    {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f, NULL, 0, 0, 0, 0},
+    /* the full moon of 2026-04-02 from 40 N, looking at it */
+    {"moonlit", SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f,
+     "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0},
+    /* the total lunar eclipse of 2026-03-03, greatest at about 11:33 UTC,
+     * from Hawaii where the moon stands at 69 degrees */
+    {"eclipse", SKY_MOON | SKY_ECLIPSE | SKY_STARS | SKY_STARMAP, SKY_GL_AUTO, 0.0f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f,
+     "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0},
+    {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f, 0.2f, 0.45f, NULL, 0, 0,
+     0, 0},
+};
+
+static const preset *find_preset(const char *name)
 {
-    struct preset {
-        const char *name;
-        unsigned features;
-        sky_gl_profile gl;
-        float cover, height, density, sunset, speed, time;
-    };
-    static const struct preset presets[] = {
-        {"noon", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f},
-        {"overcast", SKY_CLOUDS, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f},
-        {"sunset", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f},
-        {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f},
-        {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f, 0.2f, 0.45f},
-    };
-    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; i++) {
-        const struct preset *p = &presets[i];
-        if (strcmp(p->name, name)) continue;
-        if (!given[0]) cli->features = p->features;
-        if (!given[1]) cli->gl = p->gl;
-        float *dst[6] = {&cli->params.cover, &cli->params.height, &cli->params.density,
-                         &cli->params.sunset, &cli->params.speed, &cli->params.time};
-        const float src[6] = {p->cover, p->height, p->density, p->sunset, p->speed, p->time};
-        for (int k = 0; k < 6; k++)
-            if (!given[2 + k]) *dst[k] = src[k];
-        return SKY_CLI_OK;
-    }
-    if (!strcmp(name, "moonlit") || !strcmp(name, "eclipse"))
-        return fail(err, len, "--preset: '%s' is not available yet (it needs the moon)", name);
-    return fail(err, len, "--preset: unknown preset '%s' (accepted: noon, overcast, sunset, starry, minimal)", name);
+    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; i++)
+        if (!strcmp(presets[i].name, name)) return &presets[i];
+    return NULL;
+}
+
+static int apply_preset(sky_cli *cli, const preset *p, const int *given)
+{
+    if (!given[0]) cli->features = p->features;
+    if (!given[1]) cli->gl = p->gl;
+    float *dst[6] = {&cli->params.cover, &cli->params.height, &cli->params.density,
+                     &cli->params.sunset, &cli->params.speed, &cli->params.time};
+    const float src[6] = {p->cover, p->height, p->density, p->sunset, p->speed, p->time};
+    for (int k = 0; k < 6; k++)
+        if (!given[2 + k]) *dst[k] = src[k];
+    return SKY_CLI_OK;
 }
 
 int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, size_t len)
@@ -306,6 +320,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                             val ? val : "(nothing)");
         } else if (!strcmp(opt, "--preset")) {
             if (!val) return fail(err, len, "--preset: expected a preset name");
+            if (!find_preset(val))
+                return fail(err, len,
+                            "--preset: unknown preset '%s' (accepted: noon, overcast, sunset, starry, moonlit, eclipse, "
+                            "minimal)",
+                            val);
             cli->preset = val;
         } else if (!is_demo && !strcmp(opt, "--out")) {
             if (!val || !*val) return fail(err, len, "--out: expected a file name");
@@ -323,8 +342,21 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         i++; /* consumed the value */
     }
     if (cli->preset) {
-        int rc = apply_preset(cli, cli->preset, given, err, len);
-        if (rc) return rc;
+        const preset *p = find_preset(cli->preset);
+        apply_preset(cli, p, given);
+        if (p->date) {
+            int has_place = 0, has_view = 0;
+            for (int k = 0; k < seen_count; k++) {
+                has_place |= !strcmp(seen[k], "--lat") || !strcmp(seen[k], "--lon");
+                has_view |= !strcmp(seen[k], "--yaw") || !strcmp(seen[k], "--pitch");
+            }
+            if (!have_date) {
+                parse_date(p->date, &date_jd);
+                have_date = 1;
+            }
+            if (!has_place) where.latitude_deg = p->lat, where.longitude_deg = p->lon;
+            if (!has_view) cli->yaw = p->yaw, cli->pitch = p->pitch;
+        }
     }
     if (cli->hip_count && !cli->query) return fail(err, len, "--hip: only meaningful with --query");
     /* --date alone: the instant as given; with --time: the time slider

@@ -67,10 +67,12 @@ void sky_clouds_frame(sky *s)
         for (int i = 0; i < 2; i++) offsets[l][i] = (float)s->cloud_offsets[l][i];
     /* R-P line 28's amount of sunlight, in luminance: half of the day sky's
      * scale as skylight plus the direct sun through the atmosphere; at night
-     * clouds are lit by the night sky only, so they hide the stars. */
+     * clouds are lit by the night sky, so they hide the stars, and by the
+     * moon, which makes them brighter than the sky around them. */
+    static const float moon_tint[3] = {0.95f, 0.97f, 1.0f};
     for (int i = 0; i < 3; i++)
         f->cloud_light[i] = f->sky_luminance * (0.45f + 1.1f * f->daylight * f->sun_transmittance[i]) +
-                            0.6f * f->night_luminance;
+                            0.6f * f->night_luminance + 4.0e-7f * f->moonlight * moon_tint[i];
     f->sunset_color[0] = 1.0f;
     f->sunset_color[1] = 0.42f;
     f->sunset_color[2] = 0.18f;

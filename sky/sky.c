@@ -118,14 +118,14 @@ static void compute_frame(sky *s)
     if (s->features & SKY_FLICKER_STARS) sky_flicker_frame(s);
     /* Automatic exposure from the scene's own brightness: the day sky's
      * scale maps to the filmic curve's shoulder (common.glsl); at night a
-     * floor about seventy times the dark sky keeps the sky dark blue and
-     * the stars bright. */
-    f->exposure = (float)(pow(2.0, s->exposure_bias) / (f->sky_luminance + 1.5e-5));
+     * floor 75 times the night sky (moonlit or not) keeps the sky dark blue
+     * and the stars bright. */
+    f->exposure = (float)(pow(2.0, s->exposure_bias) / (f->sky_luminance + 75.0 * f->night_luminance));
     /* Night vision: the adaptation luminance (what the exposure maps to
      * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
      * cd/m^2, on a log scale; the shift is at most 60 % (the moon and
      * stars keep a little colour in the eye of a game player). */
-    double adapt = f->sky_luminance + 1.5e-5; /* the automatic exposure's reference */
+    double adapt = f->sky_luminance + 75.0 * f->night_luminance; /* the automatic exposure's reference */
     f->night_shift = (float)(0.6 * sky_smoothstep(log10(3e-3), log10(1e-5), log10(adapt)));
     /* Leave out what adds nothing: a star layer whose brightest texel would
      * not reach a quarter of an 8-bit step is not evaluated at all. */

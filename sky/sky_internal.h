@@ -83,6 +83,7 @@ typedef struct sky_frame {
     float sky_luminance;     /* kcd/m^2: scale of the day gradient               */
     float horizon_tint[3];   /* colour of the horizon under a low sun            */
     float night_luminance;   /* kcd/m^2: scale of the night sky background       */
+    float moonlight;         /* 0..25: the moon's brightening of the night sky    */
     float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
     float night_shift;       /* 0..0.6: scotopic blue shift in the tone map      */
     float output_hdr;        /* 1 = linear out, 0 = tone mapped                 */

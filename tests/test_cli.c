@@ -200,6 +200,8 @@ void test_cli_exit_codes_and_messages(void)
         {"--size 8x8 --cover 0 --cover-typo 1", 2, "--cover-typo"},
         {"--help", 0, ""},
         {"--size 16x8 --preset overcast --cover 0.1", 0, ""},
+        {"--size 16x8 --preset moonlit", 0, ""},
+        {"--size 16x8 --preset eclipse --date 2026-03-03T12:00:00Z --yaw 10", 0, ""},
     };
     char render[512], cmd[1024], out[4096];
     bin_path("sky-render", render, sizeof render);

@@ -42,8 +42,18 @@ void sky_gradient_frame(sky *s)
 {
     sky_frame *f = &s->frame;
     f->sky_luminance = (float)day_sky_luminance(f->sun_altitude);
-    /* A dark, moonless sky: about 0.2 mcd/m^2 (21.6 mag/arcsec^2). */
-    f->night_luminance = 2.0e-7f;
+    /* A dark, moonless sky: about 0.2 mcd/m^2 (21.6 mag/arcsec^2). With
+     * the moon in the scene, its light scattered by the air brightens the
+     * night: some 25 times at full moon high in the sky (a moonlit sky of
+     * about 5 mcd/m^2), falling faster than the phase (the opposition
+     * surge) and fading as the moon sets. */
+    double moonlight = 0.0;
+    if (s->features & SKY_MOON) {
+        double up = sky_smoothstep(-2.0, 15.0, s->astro.moon.alt * 180.0 / SKY_PI);
+        moonlight = 25.0 * pow(sky_clampd(s->astro.moon_illuminated, 0.0, 1.0), 2.0) * up;
+    }
+    f->night_luminance = (float)(2.0e-7 * (1.0 + moonlight));
+    f->moonlight = (float)moonlight;
     /* The low-sun horizon colour: the square root of the direct beam's
      * transmittance (light that travelled about half the sun's path),
      * normalised to its red channel, and only 70 % saturated: the horizon
