@@ -204,18 +204,28 @@ void sky_moon_frame(sky *s)
     for (int i = 0; i < 3; i++) f->moon_earthshine[i] = (float)(e * beta_e[i]); /* bluish */
     /* halo: a small part of the disc's light, only at night */
     f->moon_terms[2] = (float)(2e-3 * a->moon_illuminated * a->star_visibility);
-    /* at night the disc hides what is behind it (stars); by day the sky in
-     * front of it is bright and it only adds */
-    f->moon_terms[3] = (float)a->star_visibility;
-    /* LDR: expose the moon on its own, as the eye adapts to it locally:
-     * its lit mean lands at the tone curve's shoulder instead of pure
-     * white (HDR output stays physical) */
+    /* In a dark sky the disc hides what is behind it (stars). While the
+     * sky is brighter than about 1e-6 kcd/m^2 (the sun above -15 degrees)
+     * the air in front of the moon shines too: the disc only adds, so its
+     * dark side is never darker than the sky around it. */
+    f->moon_terms[3] = (float)sky_smoothstep(1e-5, 1e-6, f->sky_luminance);
+    /* LDR: expose the sunlit moon on its own, as the eye adapts to it
+     * locally: its lit mean lands at the tone curve's shoulder instead of
+     * pure white. The earthshine keeps the scene's exposure, so the ashen
+     * light still stands out from the twilight. HDR output stays physical. */
+    double k = 1.0;
     if (f->output_hdr < 0.5f) {
         double lit = MOON_FULL_LUMINANCE * fmax(phase_factor * 0.5, 1e-6) * fade;
-        double k = 1.5 / (f->exposure * lit);
-        if (k < 1.0)
-            for (int i = 0; i < 3; i++) f->moon_color[i] *= (float)k;
+        k = fmin(1.0, 2.5 / (f->exposure * lit));
+        /* the eye compresses the ashen light too: it adds at most about
+         * a quarter of the sky's brightness around the moon, so the dark side reads
+         * as a glow slightly above the sky, not as a second moon */
+        double es_mean = MOON_FULL_LUMINANCE * fade * e;
+        double cap = 0.25 * (0.5 * f->sky_luminance + f->night_luminance);
+        if (es_mean > cap)
+            for (int i = 0; i < 3; i++) f->moon_earthshine[i] *= (float)(cap / es_mean);
     }
+    f->moon_terms[1] = (float)k;
     /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2) */
     double cd = s->cfg.moon_scale > 0.0f ? sky_clampd(s->cfg.moon_scale, 0.5, 50.0) : 2.5;
     double topo_km = a->moon.distance_km; /* geocentric; the topocentric size differs by < 2 % */

@@ -193,7 +193,7 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry"};
+    static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];
     double base[2] = {0, 0}, night[2][3];

@@ -13,4 +13,16 @@ $r --size 640x360 --preset starry --cover 0 --date 2024-08-10T21:00:00Z --lat 45
 $r --size 640x360 --preset minimal --time 0.02 --pitch 35 --out $out/flicker.png
 $r --size 360x360 --fisheye --time 0.3 --cover 0.5 --out $out/fisheye.png
 $r --size 640x360 --preset minimal --pitch 25 --out $out/minimal-compat.png
+$r --size 640x360 --preset moonlit --out $out/moonlit.png
+# moon close-ups: the camera on the moon, a 4-degree field, the disc at c_d = 2.5
+moon() { # name date lat lon extra-features
+    q=$($r --query --date "$2" --lat "$3" --lon "$4" | grep '"moon"')
+    alt=$(echo "$q" | sed 's/.*"alt":\([-0-9.]*\).*/\1/')
+    az=$(echo "$q" | sed 's/.*"az":\([-0-9.]*\).*/\1/')
+    $r --size 240x240 --features moon,stars$5 --date "$2" --lat "$3" --lon "$4" --yaw "$az" --pitch "$alt" --fov 4 --out "$out/$1.png"
+}
+moon moon-crescent 2024-06-08T20:30:00Z 45 10 ""
+moon moon-quarter 2024-06-14T20:00:00Z 45 10 ""
+moon moon-full 2024-06-22T00:00:00Z -30 20 ""
+moon moon-eclipse-2011 2011-06-15T20:11:31Z -20 57 ",eclipse"
 echo "screenshots: $(ls $out | tr '\n' ' ')"

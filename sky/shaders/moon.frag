@@ -12,8 +12,9 @@ uniform mat4 u_moon_view;           /* billboard frame -> horizon frame      */
 uniform vec3 u_moon_light;          /* direction to the sun, billboard frame */
 uniform vec3 u_moon_color;          /* kcd/m^2 of the full moon's mean, per
                                        channel, with k_lambda, extinction, fade */
-uniform vec4 u_moon_terms;          /* x: HLS phase factor, z: halo,
-                                       w: occlusion of what is behind      */
+uniform vec4 u_moon_terms;          /* x: HLS phase factor, y: LDR scale of
+                                       the sunlit part, z: halo, w: occlusion
+                                       of what is behind                     */
 uniform vec3 u_moon_earthshine;     /* earthshine relative to full sunlight */
 #ifdef SKY_HAS_ECLIPSE
 uniform sampler2D u_eclipse_tex;    /* h(t), log10-encoded: h = 10^(-5 texel) */
@@ -39,7 +40,7 @@ void main()
         /* Lommel-Seeliger: cos i / (cos i + cos r); its phase factor is
          * in u_moon_terms.x */
         float cos_i = max(dot(n, u_moon_light), 0.0), cos_r = max(n.z, 1e-4);
-        float lit = cos_i / (cos_i + cos_r) * u_moon_terms.x;
+        float lit = cos_i / (cos_i + cos_r) * u_moon_terms.x * u_moon_terms.y;
         L = u_moon_color * albedo * (vec3(lit) + u_moon_earthshine);
 #ifdef SKY_HAS_ECLIPSE
         /* the fragment's distance from the shadow axis, in km (sec. 3.1) */
@@ -57,7 +58,7 @@ void main()
         /* halo: falls off with the square of the distance, windowed to the
          * quad's edge */
         float r = sqrt(r2), w = (4.0 - r) / 3.0;
-        L = u_moon_color * u_moon_terms.z * w * w / r2;
+        L = u_moon_color * u_moon_terms.y * u_moon_terms.z * w * w / r2;
     }
 #ifdef SKY_HAS_CLOUDS
     float c = sky_clouds(d).a;
