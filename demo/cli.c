@@ -129,6 +129,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
+            "  --moon-scale C           draw the moon C times its true size (0.5..50; default 2.5)\n"
             "  --date YYYY-MM-DDTHH:MM:SSZ   UTC instant (years -1999..3000); with --time,\n"
             "                           --time sets the local solar time on that date\n"
             "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
@@ -268,6 +269,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 1.0, 179.0, &v))
                 return fail(err, len, "--fov: expected degrees in 1..179, got '%s'", val ? val : "(nothing)");
             cli->fov = v;
+        } else if (!strcmp(opt, "--moon-scale")) {
+            if (!parse_number(val, 0.5, 50.0, &v))
+                return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
+            cli->moon_scale = (float)v;
         } else if (!strcmp(opt, "--frames")) {
             if (!parse_number(val, 1.0, 1e6, &v) || v != floor(v))
                 return fail(err, len, "--frames: expected a whole number in 1..1000000, got '%s'",
@@ -375,6 +380,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.features = cli->features;
     cfg.gl_profile = cli->gl;
     cfg.atmosphere = cli->atmosphere;
+    cfg.moon_scale = cli->moon_scale;
     cfg.get_proc_address = loader;
     return cfg;
 }

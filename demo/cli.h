@@ -20,6 +20,7 @@ typedef struct sky_cli {
     unsigned features;      /* sky_config.features (0 = default)  */
     sky_gl_profile gl;
     sky_atmosphere_path atmosphere;
+    float moon_scale;       /* --moon-scale (0 = the library's default)  */
     const char *preset;
     const char *out_png, *out_pfm;
     int frames;

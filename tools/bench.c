@@ -90,6 +90,7 @@ typedef struct row {
     const char *preset;
     const char *profile;
     double frame_ms, ratio;
+    double layer_ms[SKY_LAYER_COUNT]; /* medians with profile_layers, -1 if never drawn alone */
     sky_stats st;
 } row;
 
@@ -115,6 +116,30 @@ static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl
     sky_set_observer(s, &cli.observer);
     float view[16], proj[16];
     sky_cli_camera(&cli, view, proj);
+    /* per-layer GPU time: a second sky with profile_layers (it waits for
+     * the GPU around each draw, so it is kept out of the frame timing) */
+    sky_config pcfg = cfg;
+    pcfg.profile_layers = 1;
+    sky *ps = sky_create(&pcfg, err, sizeof err);
+    double *lt = malloc(sizeof(double) * (size_t)frames * SKY_LAYER_COUNT);
+    for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
+    if (ps && lt) {
+        sky_set_params(ps, &cli.params);
+        sky_set_observer(ps, &cli.observer);
+        sky_draw(ps, view, proj);
+        int n[SKY_LAYER_COUNT] = {0};
+        for (int i = 0; i < frames; i++) {
+            sky_draw(ps, view, proj);
+            sky_stats st;
+            sky_get_stats(ps, &st);
+            for (int l = 0; l < SKY_LAYER_COUNT; l++)
+                if (st.layers[l].ms >= 0.0) lt[l * frames + n[l]++] = st.layers[l].ms;
+        }
+        for (int l = 0; l < SKY_LAYER_COUNT; l++)
+            if (n[l]) out->layer_ms[l] = sky_cli_median(lt + l * frames, n[l]);
+    }
+    free(lt);
+    sky_destroy(ps);
     double *t = malloc(sizeof(double) * (size_t)frames);
     sky_draw(s, view, proj); /* warm-up: shader JIT */
     glFinish();
@@ -161,9 +186,13 @@ static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int
     return bench_args(3, argv, preset, gl, w, h, frames, out);
 }
 
-/* Mueller's night layers on their own, on an August night with the Milky
- * Way up: the frame with the layer minus the frame without it. */
-static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_ms[3])
+/* Mueller's night layers on their own: the frame with the layer minus the
+ * frame without it. Stars and star map on an August night with the Milky
+ * Way up; the moon (full, 2024-06-22, looked at) at c_d 3 and 30. */
+enum { NIGHT_NONE, NIGHT_STARS, NIGHT_STARMAP, NIGHT_MOON_NONE, NIGHT_MOON3, NIGHT_MOON30, NIGHT_COUNT };
+/* the stars and the moon are draws of their own: their GPU time is
+ * measured directly; the star map lives in the dome pass: by difference */
+static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_ms[NIGHT_COUNT])
 {
     static const char *features[3] = {"none", "stars", "starmap"};
     row r;
@@ -171,7 +200,15 @@ static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_m
         char *argv[] = {"sky-bench", "--features", (char *)features[i], "--date", "2024-08-10T21:00:00Z",
                         "--lat", "45", "--yaw", "180", "--pitch", "30", NULL};
         if (bench_args(11, argv, features[i], gl, w, h, frames, &r)) return -1;
-        out_ms[i] = r.frame_ms;
+        out_ms[i] = i == 1 ? r.layer_ms[SKY_LAYER_STARS] : r.frame_ms;
+    }
+    static const char *moon_features[3] = {"none", "moon", "moon"}, *scales[3] = {"3", "3", "30"};
+    for (int i = 0; i < 3; i++) {
+        char *argv[] = {"sky-bench", "--features", (char *)moon_features[i], "--moon-scale", (char *)scales[i],
+                        "--date", "2024-06-22T00:00:00Z", "--lat", "-30", "--lon", "20", "--yaw", "30",
+                        "--pitch", "40", NULL};
+        if (bench_args(15, argv, moon_features[i], gl, w, h, frames, &r)) return -1;
+        out_ms[NIGHT_MOON_NONE + i] = i ? r.layer_ms[SKY_LAYER_MOON] : r.frame_ms;
     }
     return 0;
 }
@@ -196,7 +233,7 @@ int main(int argc, char **argv)
     static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];
-    double base[2] = {0, 0}, night[2][3];
+    double base[2] = {0, 0}, night[2][NIGHT_COUNT];
     int nrows = 0;
     for (int prof = 0; prof < 2; prof++) {
         sky_gl_profile gl = prof == 0 ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
@@ -232,10 +269,10 @@ int main(int argc, char **argv)
                    rows[i].st.draws_per_frame, rows[i].frame_ms, rows[i].ratio, i + 1 < nrows ? "," : "");
         printf(" ],\n \"night_layers\": [\n");
         for (int prof = 0; prof < 2; prof++)
-            printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"stars_ratio\":%.3f, \"starmap_ms\":%.4f, "
-                   "\"starmap_ratio\":%.3f}%s\n",
-                   prof ? "compat" : "core", night[prof][1] - night[prof][0], (night[prof][1] - night[prof][0]) / base[prof],
-                   night[prof][2] - night[prof][0], (night[prof][2] - night[prof][0]) / base[prof], prof ? "" : ",");
+            printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"starmap_ms\":%.4f, \"moon_cd3_ms\":%.4f, "
+                   "\"moon_cd30_ms\":%.4f}%s\n",
+                   prof ? "compat" : "core", night[prof][NIGHT_STARS], night[prof][NIGHT_STARMAP] - night[prof][NIGHT_NONE],
+                   night[prof][NIGHT_MOON3], night[prof][NIGHT_MOON30], prof ? "" : ",");
         printf(" ]}\n");
         return 0;
     }
@@ -248,13 +285,17 @@ int main(int argc, char **argv)
         printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f |\n", rows[i].preset, rows[i].profile,
                rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs, rows[i].st.draws_per_frame,
                rows[i].frame_ms, rows[i].ratio);
-    printf("\nMueller's night layers (added to an atmosphere-only night frame):\n\n");
+    printf("\nMueller's night layers: the stars' and the moon's own draw (GPU time around it), the star map as\n"
+           "what it adds to an atmosphere-only night frame:\n\n");
     printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
-    for (int prof = 0; prof < 2; prof++) {
-        printf("| 8874 catalogue stars | %s | %.2f | %.2f |\n", prof ? "compat" : "core", night[prof][1] - night[prof][0],
-               (night[prof][1] - night[prof][0]) / base[prof]);
-        printf("| star map | %s | %.2f | %.2f |\n", prof ? "compat" : "core", night[prof][2] - night[prof][0],
-               (night[prof][2] - night[prof][0]) / base[prof]);
-    }
+    static const char *names[NIGHT_COUNT] = {"", "8874 catalogue stars", "star map", "", "moon, c_d 3", "moon, c_d 30"};
+    /* -1: measured directly, else the frame it is the difference from */
+    static const int from[NIGHT_COUNT] = {0, -1, NIGHT_NONE, 0, -1, -1};
+    for (int prof = 0; prof < 2; prof++)
+        for (int k = 0; k < NIGHT_COUNT; k++) {
+            if (!names[k][0]) continue;
+            double ms = from[k] < 0 ? night[prof][k] : night[prof][k] - night[prof][from[k]];
+            printf("| %s | %s | %.2f | %.2f |\n", names[k], prof ? "compat" : "core", ms, ms / base[prof]);
+        }
     return 0;
 }
