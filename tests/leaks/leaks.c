@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int main(int argc, char **argv)
 {
@@ -28,8 +29,9 @@ int main(int argc, char **argv)
         memset(&cfg, 0, sizeof cfg);
         cfg.get_proc_address = sky_osmesa_loader();
         /* vary the features so every create path is walked */
-        static const unsigned masks[4] = {0, SKY_FEATURES_NONE, SKY_CLOUDS, SKY_SUN | SKY_FLICKER_STARS};
-        cfg.features = masks[i % 4];
+        static const unsigned masks[5] = {0, SKY_FEATURES_NONE, SKY_CLOUDS, SKY_SUN | SKY_FLICKER_STARS,
+                                          SKY_MOON | SKY_ECLIPSE | SKY_STARS | SKY_STARMAP | SKY_CLOUDS};
+        cfg.features = masks[i % 5];
         sky *s = sky_create(&cfg, err, sizeof err);
         if (!s) {
             fprintf(stderr, "sky-leaks: cycle %d: %s\n", i, err);
@@ -39,13 +41,38 @@ int main(int argc, char **argv)
         if (sky_update(s, 0.5) != SKY_OK || sky_draw(s, view, proj) != SKY_OK) failures++;
         sky_destroy(s);
     }
-    /* a failing create must not leak either */
+    /* failing creates must not leak either: one refused before any GL
+     * work, one that fails half-way (a broken override texture after the
+     * dome and other resources exist) */
     sky_config bad;
     memset(&bad, 0, sizeof bad);
     bad.get_proc_address = sky_osmesa_loader();
-    bad.texture_dir = "/dev/null/none";
-    bad.features = SKY_MOON;
-    if (sky_create(&bad, err, sizeof err) != NULL) failures++;
+    bad.features = SKY_ECLIPSE; /* needs SKY_MOON */
+    sky *s1 = sky_create(&bad, err, sizeof err);
+    if (s1) {
+        failures++;
+        sky_destroy(s1);
+    }
+    char dir[] = "/tmp/sky-leaks-XXXXXX";
+    if (mkdtemp(dir)) {
+        char path[64];
+        snprintf(path, sizeof path, "%s/moon.png", dir);
+        FILE *f = fopen(path, "wb");
+        if (f) {
+            fputs("not a png", f);
+            fclose(f);
+        }
+        bad.features = SKY_MOON | SKY_STARS | SKY_CLOUDS;
+        bad.texture_dir = dir;
+        sky *s2 = sky_create(&bad, err, sizeof err);
+        if (s2 || !strstr(err, "moon.png")) {
+            fprintf(stderr, "sky-leaks: a broken moon.png must fail: %s\n", err);
+            failures++;
+            sky_destroy(s2);
+        }
+        remove(path);
+        rmdir(dir);
+    }
     sky_osmesa_destroy(&ctx);
     printf("sky-leaks: %d create/draw/destroy cycles, %d failures\n", cycles, failures);
     return failures ? 1 : 0;
