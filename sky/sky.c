@@ -236,6 +236,15 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         if (features & SKY_FLICKER_STARS) dome_snippets[n++] = &sky_flicker_snippet;
         if (features & SKY_STARMAP) dome_snippets[n++] = &sky_starmap_snippet;
         if (sky_program_build(s, &s->dome_night, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
+        /* and the night without clouds, for cover 0 (by day at cover 0 the
+         * atmosphere-only program serves) */
+        if (features & SKY_CLOUDS) {
+            const sky_snippet *clear[SKY_MAX_SNIPPETS];
+            int c = 0;
+            for (int i = 0; i < n; i++)
+                if (dome_snippets[i] != &sky_clouds_snippet) clear[c++] = dome_snippets[i];
+            if (sky_program_build(s, &s->dome_night_clear, "dome.vert", "dome.frag", clear, c, err, err_len)) goto fail;
+        }
     }
     if (features & SKY_STARS) {
         const sky_snippet *star_snippets[2];
@@ -281,6 +290,7 @@ void sky_destroy(sky *s)
         for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(s, (sky_texture_id)i);
         sky_program_destroy(s, &s->dome);
         sky_program_destroy(s, &s->dome_night);
+        sky_program_destroy(s, &s->dome_night_clear);
         sky_program_destroy(s, &s->ground);
         sky_program_destroy(s, &s->stars);
         sky_program_destroy(s, &s->moon);
@@ -597,7 +607,11 @@ static sky_result draw_frame(sky *s)
      * front, in one pass over the screen */
     if (s->features & SKY_STARMAP) sky_starmap_frame(s);
     int night = s->dome_night.id && (s->frame.star_luminance > 0.0f || s->frame.starmap_scale > 0.0f);
-    draw_layer(s, SKY_LAYER_ATMOSPHERE, night ? &s->dome_night : &s->dome, 0);
+    /* at cover 0 the variants without cloud code (Roden-Parberry's line
+     * 15 makes every cloud texel vanish there anyway) */
+    int clear = (s->features & SKY_CLOUDS) && !sky_clouds_visible(s);
+    const sky_program *dome = night ? (clear ? &s->dome_night_clear : &s->dome_night) : (clear ? &s->ground : &s->dome);
+    draw_layer(s, SKY_LAYER_ATMOSPHERE, dome, 0);
     if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night && s->frame.star_luminance > 0;
     if (s->features & SKY_STARMAP) s->stats.layers[SKY_LAYER_STARMAP].drawn = night && s->frame.starmap_scale > 0;
     if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);

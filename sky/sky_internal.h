@@ -164,6 +164,7 @@ struct sky {
     sky_texture textures[SKY_TEX_COUNT];
     sky_program dome;             /* the dome pass: atmosphere + clouds          */
     sky_program dome_night;       /* the same with the night layers (flicker)    */
+    sky_program dome_night_clear; /* night layers without clouds (cover 0)       */
     sky_program ground;           /* below the horizon: atmosphere only          */
     sky_program sun;              /* sun quad                                  */
     sky_program stars;            /* catalogue stars (points)                  */

@@ -228,9 +228,9 @@ void test_api_lighting_and_stats(void)
 
     sky_stats st;
     CHECK(sky_get_stats(f.s, &st) == SKY_OK, "stats");
-    /* clouds + flicker stars; dome programs by day, by night and below the
-     * horizon, and the sun's */
-    CHECK(st.textures == 2 && st.programs == 4, "2 textures and 4 programs by default, got %d and %d", st.textures,
+    /* clouds + flicker stars; dome programs by day, by night, by night
+     * without clouds and below the horizon, and the sun's */
+    CHECK(st.textures == 2 && st.programs == 5, "2 textures and 5 programs by default, got %d and %d", st.textures,
           st.programs);
     CHECK(st.layers[SKY_LAYER_MOON].enabled == 0 && st.layers[SKY_LAYER_CLOUDS].enabled == 1, "layer flags");
     size_t sum = 0;
@@ -259,7 +259,7 @@ void test_api_gl_objects_deleted(void)
     float view[16], proj[16];
     default_camera(view, proj);
     sky_draw(s, view, proj);
-    GLuint tex[SKY_TEX_COUNT], prog[4] = {s->dome.id, s->dome_night.id, s->ground.id, s->sun.id},
+    GLuint tex[SKY_TEX_COUNT], prog[5] = {s->dome.id, s->dome_night.id, s->dome_night_clear.id, s->ground.id, s->sun.id},
                                buf[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer}, vao = s->vao;
     int live = 0, made = 0;
     for (int i = 0; i < SKY_TEX_COUNT; i++) {
@@ -267,14 +267,14 @@ void test_api_gl_objects_deleted(void)
         made += tex[i] != 0;
         live += glIsTexture(tex[i]) == GL_TRUE;
     }
-    for (int i = 0; i < 4; i++) live += glIsProgram(prog[i]) == GL_TRUE;
+    for (int i = 0; i < 5; i++) live += glIsProgram(prog[i]) == GL_TRUE;
     for (int i = 0; i < 3; i++) live += glIsBuffer(buf[i]) == GL_TRUE;
     live += glIsVertexArray(vao) == GL_TRUE;
-    CHECK(made == 2 && live == made + 8, "all objects live before destroy (%d of %d)", live, made + 8);
+    CHECK(made == 2 && live == made + 9, "all objects live before destroy (%d of %d)", live, made + 9);
     sky_destroy(s);
     int left = 0;
     for (int i = 0; i < SKY_TEX_COUNT; i++) left += glIsTexture(tex[i]) == GL_TRUE;
-    for (int i = 0; i < 4; i++) left += glIsProgram(prog[i]) == GL_TRUE;
+    for (int i = 0; i < 5; i++) left += glIsProgram(prog[i]) == GL_TRUE;
     for (int i = 0; i < 3; i++) left += glIsBuffer(buf[i]) == GL_TRUE;
     left += glIsVertexArray(vao) == GL_TRUE;
     CHECK(left == 0, "%d GL objects survive sky_destroy", left);
