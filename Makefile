@@ -99,8 +99,16 @@ $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_
 	$(CC) $(ALL_CFLAGS) -Wno-missing-prototypes -D_DEFAULT_SOURCE -fsanitize=leak -Idemo -o $@ \
 	    tests/leaks/leaks.c demo/osmesa_ctx.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa $(LDLIBS_M)
 
-test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks
-	@SKY_BIN=$(BIN) sh tests/run.sh
+# The same runner built with AddressSanitizer and UndefinedBehaviorSanitizer
+# over the library's sources, in a directory of its own.
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+$(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+	@mkdir -p $(@D)
+	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itests -Wno-missing-prototypes \
+	    -o $@ $(TEST_SRC) $(CLI_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa $(LDLIBS_M)
+
+test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks $(BUILD)/asan/sky-tests
+	@SKY_BIN=$(BIN) SKY_ASAN=$(BUILD)/asan sh tests/run.sh
 
 # ---- install ----------------------------------------------------------------------
 install: all

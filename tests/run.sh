@@ -1,5 +1,40 @@
 #!/bin/sh
-# make test: runs the test runner (which ends with "N passed, N failed").
-# Runs from the repository root so relative paths in tests resolve.
+# make test: the test runner, then the same runner built with AddressSanitizer
+# and UndefinedBehaviorSanitizer; the last line adds both up as
+# "N passed, N failed". Runs from the repository root so relative paths in
+# tests resolve.
 cd "$(dirname "$0")/.." || exit 1
-exec "${SKY_BIN:-build/bin}/sky-tests" "$@"
+bin=${SKY_BIN:-build/bin}
+asan=${SKY_ASAN:-build/asan}
+out=$(mktemp)
+filter=${1:-} # optional: only tests whose name contains it
+
+# the two counts of a runner's last line ("N passed, N failed"), or none
+counts() { tail -n 1 "$1" | sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\1 \2/p'; }
+
+"$bin/sky-tests" $filter | tee "$out"
+set -- $(counts "$out")
+passed=${1:-0}
+failed=${2:-1} # no summary line: the runner died
+
+if [ -x "$asan/sky-tests" ]; then
+    echo "== the same tests under AddressSanitizer + UndefinedBehaviorSanitizer =="
+    # leaks are LeakSanitizer's job (api_leaks_1000_cycles, with Mesa's own
+    # allocations suppressed); here memory errors and undefined behaviour
+    ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 "$asan/sky-tests" $filter > "$out" 2>&1
+    asan_status=$?
+    grep -E "^(ok|FAIL) |runtime error|ERROR: AddressSanitizer" "$out" | sed 's/^/  asan: /'
+    summary=$(counts "$out")
+    if [ -z "$summary" ]; then
+        tail -n 20 "$out" # a sanitizer abort leaves no summary line
+        failed=$((failed + 1))
+    else
+        set -- $summary
+        passed=$((passed + $1))
+        failed=$((failed + $2))
+        if [ "$asan_status" -ne 0 ] && [ "$2" -eq 0 ]; then failed=$((failed + 1)); fi
+    fi
+fi
+rm -f "$out"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
