@@ -21,15 +21,6 @@ static int parse_version(const char *v)
     return major * 10 + minor;
 }
 
-static int has_extension_string(const char *list, const char *name)
-{
-    if (!list) return 0;
-    size_t n = strlen(name);
-    for (const char *p = list; (p = strstr(p, name)) != NULL; p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return 1;
-    return 0;
-}
-
 int sky_gl_init(sky *s, char *err, size_t err_len)
 {
     sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
@@ -96,7 +87,6 @@ int sky_gl_init(sky *s, char *err, size_t err_len)
         }
     }
     s->profile = want;
-    (void)has_extension_string; /* kept for extension checks of later layers */
     return 0;
 }
 
