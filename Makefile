@@ -22,7 +22,7 @@ LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
 .PHONY: all deps run test install textures screenshots bench clean
-all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench
+all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
 	@sh tools/deps.sh
@@ -68,6 +68,10 @@ $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 $(BIN)/sky-demo: demo/demo.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lOSMesa $(LDLIBS_M)
+
+$(BIN)/sky-game: demo/game.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/game.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
 
 $(BIN)/sky-bench: tools/bench.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)

@@ -86,6 +86,7 @@ static void compute_frame(sky *s)
     sky_astro a;
     if (sky_observer_astro(&s->observer, s->params.time, &a, NULL, 0) == 0) s->astro = a;
     for (int i = 0; i < 3; i++) f->sun_dir[i] = (float)s->astro.sun.dir[i];
+    for (int i = 0; i < 3; i++) f->moon_dir[i] = (float)s->astro.moon.dir[i];
     f->sun_altitude = (float)s->astro.sun.alt; /* apparent: what the eye sees */
     double sin_alt = sin(f->sun_altitude);
     /* R-P's "amount of sunlight" from the time of day: full above 10
@@ -761,5 +762,20 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
         out->fog_color[i] = (0.8f * f->sky_luminance + f->night_luminance) * (0.75f + 0.25f * sky_tint[i]);
     }
     out->daylight = f->daylight;
+    out->exposure = f->exposure;
+    if (s->features & SKY_MOON) {
+        const sky_astro *a = &s->astro;
+        to_world(s, f->moon_dir, out->moon_direction);
+        /* the full moon gives about 0.27 lux at the zenith; the phase law
+         * of Allen's Astrophysical Quantities (magnitude grows as
+         * 0.026 |phi| + 4e-9 phi^4, phi in degrees) for other phases;
+         * extinction as for the sun's beam */
+        double phi = a->moon_phase_angle * 180.0 / SKY_PI;
+        double phase = pow(10.0, -0.4 * (0.026 * fabs(phi) + 4e-9 * phi * phi * phi * phi));
+        float t[3];
+        sky_sun_transmittance(a->moon.alt, t);
+        float up = a->moon.alt > -4.5e-3 ? 1.0f : 0.0f;
+        for (int i = 0; i < 3; i++) out->moon_color[i] = (float)(2.7e-4 * phase) * t[i] * up;
+    }
     return SKY_OK;
 }

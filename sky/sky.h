@@ -283,11 +283,18 @@ typedef struct sky_lighting {
     float sun_direction[3];
     float sun_color[3];        /* illuminance on a surface facing the sun, klx
                                   per channel, after atmospheric extinction   */
-    float sun_altitude_deg;    /* geometric altitude of the sun's centre       */
+    float sun_altitude_deg;    /* apparent (refracted) altitude of its centre  */
+    float moon_direction[3];
+    float moon_color[3];       /* moonlight on a surface facing the moon, klx
+                                  (0 when the scene has no moon or it is down) */
     float ambient_color[3];    /* sky irradiance on an upward surface, klx     */
     float fog_color[3];        /* horizon sky luminance, kcd/m^2               */
     float daylight;            /* 0 (night) .. 1 (full day): Roden-Parberry's
                                   amount of sunlight                          */
+    float exposure;            /* the sky's LDR exposure, 1/(kcd/m^2): a host
+                                  that lights its scene with the values above
+                                  (luminance = albedo * illuminance / pi) and
+                                  multiplies by this lands in the sky's range */
 } sky_lighting;
 
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);

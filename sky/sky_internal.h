@@ -74,6 +74,7 @@ void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *out);
 typedef struct sky_frame {
     /* common */
     float sun_dir[3];        /* horizon frame, unit                              */
+    float moon_dir[3];       /* horizon frame, unit, refracted                   */
     float sun_altitude;      /* radians, geometric                               */
     float daylight;          /* R-P "amount of sunlight", 0..1                   */
     float night;             /* visibility of night layers, 0..1                 */
