@@ -65,9 +65,9 @@ $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ demo/render.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
 
-$(BIN)/sky-demo: demo/demo.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+$(BIN)/sky-demo: demo/demo.c demo/ui.c demo/ui.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c demo/ui.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
 
 $(BIN)/sky-game: demo/game.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)

@@ -1,12 +1,14 @@
 /*
- * sky-demo: the sky in a GLFW window, steered by Roden & Parberry's six
- * parameters. Keys: 1-6 pick a slider, Up/Down (or +/-) move it, Space runs
- * the time of day, F toggles the fisheye view, arrows-left/right turn the
- * camera, S saves a screenshot (sky-demo.png), Esc quits.
+ * sky-demo: the sky in a GLFW window (OpenGL 3.3 core, else 2.0), steered
+ * by Roden & Parberry's six sliders drawn over it (drag them, or 1-6 and
+ * Up/Down). Space runs the time of day, +/- its speed; C U M K T P E
+ * toggle the layers, G the GL profile; right-drag looks around, the wheel
+ * zooms; L times each layer; S saves sky-demo.png. --help lists it all.
  * Without a display it says so and renders headless through OSMesa.
  */
 #include "cli.h"
 #include "osmesa_ctx.h"
+#include "ui.h"
 
 #include <GLFW/glfw3.h>
 #include <stdio.h>
@@ -55,15 +57,30 @@ static int headless(const sky_cli *cli)
 
 typedef struct demo {
     sky_cli cli;
+    sky *s;
+    ui *overlay;
     int slider;       /* 0..5 */
-    int running;      /* time of day advancing */
+    int running;      /* the time of day advancing */
+    double time_rate; /* slider units per second while running */
     int save;
+    int profiling;
+    int looking;      /* right button held: mouse-look */
+    double last_x, last_y;
+    unsigned features;
+    int recreate;     /* features changed: build a new sky */
+    int switch_profile;
+    float values[6];  /* the six sliders, in sky_params order */
 } demo;
 
-static float *slider_value(sky_params *p, int i)
+static void values_from_params(float v[6], const sky_params *p)
 {
-    float *v[6] = {&p->cover, &p->height, &p->density, &p->sunset, &p->speed, &p->time};
-    return v[i];
+    v[0] = p->cover, v[1] = p->height, v[2] = p->density, v[3] = p->sunset, v[4] = p->speed, v[5] = p->time;
+}
+
+static sky_params params_from_values(const float v[6])
+{
+    sky_params p = {v[0], v[1], v[2], v[3], v[4], v[5]};
+    return p;
 }
 
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
@@ -72,42 +89,161 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     (void)mods;
     demo *d = glfwGetWindowUserPointer(w);
     if (action == GLFW_RELEASE) return;
+    float *v = d->values;
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_6) d->slider = key - GLFW_KEY_1;
-    float *v = slider_value(&d->cli.params, d->slider);
-    if (key == GLFW_KEY_UP || key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) *v = *v + 0.02f > 1.0f ? 1.0f : *v + 0.02f;
-    if (key == GLFW_KEY_DOWN || key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) *v = *v - 0.02f < 0.0f ? 0.0f : *v - 0.02f;
+    if (key == GLFW_KEY_UP) v[d->slider] = v[d->slider] + 0.02f > 1.0f ? 1.0f : v[d->slider] + 0.02f;
+    if (key == GLFW_KEY_DOWN) v[d->slider] = v[d->slider] - 0.02f < 0.0f ? 0.0f : v[d->slider] - 0.02f;
     if (key == GLFW_KEY_LEFT) d->cli.yaw -= 5.0;
     if (key == GLFW_KEY_RIGHT) d->cli.yaw += 5.0;
     if (key == GLFW_KEY_SPACE) d->running = !d->running;
+    if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) d->time_rate *= 2.0;
+    if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) d->time_rate /= 2.0;
     if (key == GLFW_KEY_F) d->cli.fisheye = !d->cli.fisheye;
     if (key == GLFW_KEY_S) d->save = 1;
+    if (key == GLFW_KEY_L) d->profiling = !d->profiling, d->recreate = 1;
+    if (key == GLFW_KEY_G) d->switch_profile = 1;
+    /* feature toggles: the sky is rebuilt with only what is on */
+    static const struct { int key; unsigned bit; } toggles[] = {
+        {GLFW_KEY_C, SKY_CLOUDS}, {GLFW_KEY_U, SKY_SUN}, {GLFW_KEY_M, SKY_MOON}, {GLFW_KEY_K, SKY_FLICKER_STARS},
+        {GLFW_KEY_T, SKY_STARS}, {GLFW_KEY_P, SKY_STARMAP}, {GLFW_KEY_E, SKY_ECLIPSE}};
+    for (size_t i = 0; i < sizeof toggles / sizeof toggles[0]; i++)
+        if (key == toggles[i].key) {
+            d->features ^= toggles[i].bit;
+            if ((d->features & SKY_ECLIPSE) && !(d->features & SKY_MOON)) d->features |= SKY_MOON;
+            d->recreate = 1;
+        }
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, 1);
+}
+
+static void on_button(GLFWwindow *w, int button, int action, int mods)
+{
+    (void)mods;
+    demo *d = glfwGetWindowUserPointer(w);
+    double x, y;
+    glfwGetCursorPos(w, &x, &y);
+    if (button == GLFW_MOUSE_BUTTON_LEFT)
+        ui_mouse_button(d->overlay, action == GLFW_PRESS, x, y, d->values, &d->slider);
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) d->looking = action == GLFW_PRESS, d->last_x = x, d->last_y = y;
+}
+
+static void on_cursor(GLFWwindow *w, double x, double y)
+{
+    demo *d = glfwGetWindowUserPointer(w);
+    if (ui_mouse_move(d->overlay, x, y, d->values)) return;
+    if (d->looking) {
+        d->cli.yaw += (x - d->last_x) * 0.1 * d->cli.fov / 60.0;
+        d->cli.pitch -= (y - d->last_y) * 0.1 * d->cli.fov / 60.0;
+        d->cli.pitch = d->cli.pitch > 90 ? 90 : d->cli.pitch < -90 ? -90 : d->cli.pitch;
+        d->last_x = x, d->last_y = y;
+    }
+}
+
+static void on_scroll(GLFWwindow *w, double dx, double dy)
+{
+    (void)dx;
+    demo *d = glfwGetWindowUserPointer(w);
+    /* zooming in reveals fainter stars (Mueller eq. 9-10) */
+    d->cli.fov *= dy > 0 ? 0.9 : 1.0 / 0.9;
+    d->cli.fov = d->cli.fov < 1.0 ? 1.0 : d->cli.fov > 120.0 ? 120.0 : d->cli.fov;
 }
 
 static void save_screenshot(int width, int height, const char *path)
 {
-    sky_osmesa fake = {0};
-    fake.width = width;
-    fake.height = height;
-    fake.pixels = malloc((size_t)width * (size_t)height * 4u);
-    if (!fake.pixels) return;
+    sky_osmesa shot = {0};
+    shot.width = width;
+    shot.height = height;
+    shot.pixels = malloc((size_t)width * (size_t)height * 4u);
+    if (!shot.pixels) return;
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, fake.pixels);
-    if (sky_osmesa_write_png(&fake, path))
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
+    if (sky_osmesa_write_png(&shot, path))
         fprintf(stderr, "sky-demo: cannot write %s\n", path);
     else
         printf("sky-demo: saved %s\n", path);
-    free(fake.pixels);
+    free(shot.pixels);
+}
+
+static GLFWwindow *open_window(demo *d, int core)
+{
+    glfwDefaultWindowHints();
+    if (core) {
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    } else {
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+    }
+    GLFWwindow *w = glfwCreateWindow(d->cli.width, d->cli.height, "libsky", NULL, NULL);
+    if (!w) return NULL;
+    glfwMakeContextCurrent(w);
+    glfwSwapInterval(1);
+    glfwSetWindowUserPointer(w, d);
+    glfwSetKeyCallback(w, on_key);
+    glfwSetMouseButtonCallback(w, on_button);
+    glfwSetCursorPosCallback(w, on_cursor);
+    glfwSetScrollCallback(w, on_scroll);
+    return w;
+}
+
+static sky *make_sky(demo *d, char *err, size_t len)
+{
+    sky_config cfg = sky_cli_config(&d->cli, glfwGetProcAddress);
+    cfg.features = d->features;
+    cfg.profile_layers = d->profiling;
+    sky *s = sky_create(&cfg, err, len);
+    if (s) {
+        sky_set_params(s, &d->cli.params);
+        sky_set_observer(s, &d->cli.observer);
+    }
+    return s;
+}
+
+/* The --drag SLIDER:FROM:TO test hook: a left-button drag on a slider,
+ * fed through the same handlers as the mouse. */
+static int simulate_drag(demo *d, const char *spec)
+{
+    char name[16];
+    float from, to;
+    if (!spec || sscanf(spec, "%15[a-z]:%f:%f", name, &from, &to) != 3) return -1;
+    static const char *const names[6] = {"cover", "height", "density", "sunset", "speed", "time"};
+    for (int i = 0; i < 6; i++)
+        if (!strcmp(name, names[i])) {
+            double y = UI_SLIDER_Y0 + i * UI_SLIDER_DY + UI_SLIDER_H / 2;
+            float *v = d->values;
+            ui_mouse_button(d->overlay, 1, UI_SLIDER_X + from * UI_SLIDER_W, y, v, &d->slider);
+            for (int k = 1; k <= 8; k++) ui_mouse_move(d->overlay, UI_SLIDER_X + (from + (to - from) * k / 8.0) * UI_SLIDER_W, y, v);
+            ui_mouse_button(d->overlay, 0, 0, 0, v, &d->slider);
+            return 0;
+        }
+    return -1;
 }
 
 int main(int argc, char **argv)
 {
     demo d;
     memset(&d, 0, sizeof d);
+    d.time_rate = 1.0 / 120.0; /* a day in two minutes */
+    /* --drag is sky-demo's own option: take it out before the shared parse */
+    const char *drag = NULL;
+    char *args[64];
+    int n = 0;
+    for (int i = 0; i < argc && n < 64; i++) {
+        if (!strcmp(argv[i], "--drag") && i + 1 < argc) {
+            drag = argv[++i];
+            continue;
+        }
+        args[n++] = argv[i];
+    }
     char err[512];
-    int rc = sky_cli_parse(&d.cli, argc, argv, 1, err, sizeof err);
+    int rc = sky_cli_parse(&d.cli, n, args, 1, err, sizeof err);
     if (rc == SKY_CLI_HELP) {
         sky_cli_usage(stdout, "sky-demo", 1);
+        printf("  --drag SLIDER:FROM:TO    with --screenshot: drag a slider with the mouse first (tests)\n"
+               "keys: 1-6 pick a slider, Up/Down move it, Space runs time, +/- its speed, F fisheye,\n"
+               "      C U M K T P E toggle clouds sun moon flicker stars starmap eclipse, G GL profile,\n"
+               "      L per-layer timing, S screenshot, Esc quit; mouse: drag sliders, right-drag to look,\n"
+               "      wheel to zoom\n");
         return 0;
     }
     if (rc) {
@@ -115,6 +251,7 @@ int main(int argc, char **argv)
         return 2;
     }
     int automated = d.cli.screenshot != NULL;
+    values_from_params(d.values, &d.cli.params);
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
         fprintf(stderr, "sky-demo: no display found (DISPLAY is unset)\n");
         return headless(&d.cli);
@@ -123,46 +260,63 @@ int main(int argc, char **argv)
         fprintf(stderr, "sky-demo: GLFW cannot open the display\n");
         return headless(&d.cli);
     }
-    GLFWwindow *win = NULL;
-    if (d.cli.gl != SKY_GL_COMPAT20) {
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-        win = glfwCreateWindow(d.cli.width, d.cli.height, "libsky", NULL, NULL);
-    }
-    if (!win) {
-        glfwDefaultWindowHints();
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
-        win = glfwCreateWindow(d.cli.width, d.cli.height, "libsky", NULL, NULL);
-    }
+    d.features = d.cli.features ? d.cli.features : (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP);
+    if (d.features & SKY_FEATURES_NONE) d.features = SKY_FEATURES_NONE;
+    int core = d.cli.gl != SKY_GL_COMPAT20;
+    GLFWwindow *win = open_window(&d, core);
+    if (!win && core) win = open_window(&d, core = 0);
     if (!win) {
         fprintf(stderr, "sky-demo: no GL window could be created\n");
         glfwTerminate();
         return headless(&d.cli);
     }
-    glfwMakeContextCurrent(win);
-    glfwSwapInterval(1);
-    glfwSetWindowUserPointer(win, &d);
-    glfwSetKeyCallback(win, on_key);
-    sky_config cfg = sky_cli_config(&d.cli, glfwGetProcAddress);
-    sky *s = sky_create(&cfg, err, sizeof err);
-    if (!s) {
+    d.overlay = ui_create(core);
+    d.s = make_sky(&d, err, sizeof err);
+    if (!d.s) {
         fprintf(stderr, "sky-demo: %s\n", err);
         glfwTerminate();
         return 1;
     }
-    sky_set_observer(s, &d.cli.observer);
-    sky_set_elapsed(s, d.cli.seconds);
+    sky_set_elapsed(d.s, d.cli.seconds);
+    if (drag && simulate_drag(&d, drag)) {
+        fprintf(stderr, "sky-demo: --drag: expected SLIDER:FROM:TO, e.g. cover:0.1:0.9\n");
+        return 2;
+    }
     double last = glfwGetTime();
-    int frame = 0;
-    while (!glfwWindowShouldClose(win)) {
+    for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
         double now = glfwGetTime();
         double dt = automated ? 1.0 / 30.0 : now - last;
         last = now;
-        if (d.running) d.cli.params.time = (float)(d.cli.params.time + dt / 60.0 - (int)(d.cli.params.time + dt / 60.0));
-        sky_set_params(s, &d.cli.params);
-        sky_update(s, dt);
+        if (d.switch_profile) { /* a new context: the sky and overlay go with the old one */
+            d.switch_profile = 0;
+            sky_destroy(d.s);
+            ui_destroy(d.overlay);
+            glfwDestroyWindow(win);
+            win = open_window(&d, core = !core);
+            if (!win) win = open_window(&d, core = !core);
+            d.cli.gl = core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
+            d.overlay = ui_create(core);
+            d.recreate = 1;
+            d.s = NULL;
+        }
+        if (d.recreate) {
+            d.recreate = 0;
+            sky *s = make_sky(&d, err, sizeof err);
+            if (s) {
+                sky_destroy(d.s);
+                d.s = s;
+            } else {
+                fprintf(stderr, "sky-demo: %s\n", err);
+                if (!d.s) break;
+            }
+        }
+        if (d.running) {
+            double t = d.values[5] + dt * d.time_rate;
+            d.values[5] = (float)(t - (long)t);
+        }
+        d.cli.params = params_from_values(d.values);
+        sky_set_params(d.s, &d.cli.params);
+        sky_update(d.s, dt);
         int fw, fh;
         glfwGetFramebufferSize(win, &fw, &fh);
         glViewport(0, 0, fw, fh);
@@ -171,23 +325,44 @@ int main(int argc, char **argv)
         d.cli.height = fh > 0 ? fh : 1;
         float view[16], proj[16];
         sky_cli_camera(&d.cli, view, proj);
-        if ((d.cli.fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) < 0)
-            fprintf(stderr, "sky-demo: %s\n", sky_last_error(s));
-        frame++;
-        if (d.save || (automated && frame >= d.cli.frames)) {
+        if ((d.cli.fisheye ? sky_draw_fisheye(d.s) : sky_draw(d.s, view, proj)) < 0)
+            fprintf(stderr, "sky-demo: %s\n", sky_last_error(d.s));
+        /* the readout: where, when, cost */
+        sky_stats st;
+        sky_astronomy a;
+        sky_get_stats(d.s, &st);
+        sky_get_astronomy(d.s, &a);
+        int y, m, dd;
+        double frac;
+        sky_calendar(a.julian_day_ut, &y, &m, &dd, &frac);
+        char lines[1024];
+        int used = snprintf(lines, sizeof lines, "%04d-%02d-%02d %02d:%02d UTC  lat %.1f lon %.1f%c", y, m, dd,
+                            (int)(frac * 24), (int)(frac * 1440) % 60, d.cli.observer.latitude_deg,
+                            d.cli.observer.longitude_deg, 0);
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "sun %.1f deg  moon %.1f deg, %.0f %% lit%c",
+                         a.sun.alt_deg, a.moon.alt_deg, 100 * a.moon_illuminated_fraction, 0);
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  fov %.0f  time %s x%.0f%c",
+                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", d.cli.fov,
+                         d.running ? "running" : "paused", d.time_rate * 86400.0, 0);
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "sky %.2f ms  %zu KiB GPU  %d draws%c",
+                         st.frame_ms, st.gpu_bytes / 1024, st.draws_per_frame, 0);
+        for (int l = 0; l < SKY_LAYER_COUNT && used < 900; l++)
+            if (st.layers[l].enabled)
+                used += snprintf(lines + used, sizeof lines - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
+                                 st.layers[l].ms >= 0 ? (snprintf(err, sizeof err, "%.2f ms", st.layers[l].ms), err)
+                                                      : (st.layers[l].drawn ? "on" : "idle"), 0);
+        lines[used] = '\0';
+        ui_draw(d.overlay, fw, fh, d.values, d.slider, lines);
+        if (d.save || (automated && frame + 1 >= d.cli.frames)) {
             save_screenshot(fw, fh, automated ? d.cli.screenshot : "sky-demo.png");
             d.save = 0;
             if (automated) break;
         }
-        char title[160];
-        const sky_params *p = &d.cli.params;
-        snprintf(title, sizeof title, "libsky  [%d] cover %.2f height %.2f density %.2f sunset %.2f speed %.2f time %.2f",
-                 d.slider + 1, p->cover, p->height, p->density, p->sunset, p->speed, p->time);
-        glfwSetWindowTitle(win, title);
         glfwSwapBuffers(win);
         glfwPollEvents();
     }
-    sky_destroy(s);
+    sky_destroy(d.s);
+    ui_destroy(d.overlay);
     glfwDestroyWindow(win);
     glfwTerminate();
     return 0;

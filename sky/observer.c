@@ -26,6 +26,17 @@ double sky_julian_day(int year, int month, int day, int hour, int minute, double
     return sky_jd_from_calendar(year, month, day, hour, minute, second);
 }
 
+void sky_calendar(double jd, int *year, int *month, int *day, double *day_fraction)
+{
+    int y = 0, m = 0, d = 0;
+    double f = 0.0;
+    if (isfinite(jd)) sky_calendar_from_jd(jd, &y, &m, &d, &f);
+    if (year) *year = y;
+    if (month) *month = m;
+    if (day) *day = d;
+    if (day_fraction) *day_fraction = f;
+}
+
 int sky_observer_check(const sky_observer *o, char *err, size_t err_len)
 {
     double year = 2000.0 + (o->julian_day_utc - 2451545.0) / 365.25;

@@ -196,6 +196,9 @@ typedef struct sky_observer {
 /* Julian day of a proleptic Gregorian UTC date and time (any year;
  * second may carry a fraction). */
 SKY_API double sky_julian_day(int year, int month, int day, int hour, int minute, double second);
+/* The calendar date (proleptic Gregorian) of a Julian day, with the
+ * fraction of the day since 0h. */
+SKY_API void sky_calendar(double julian_day, int *year, int *month, int *day, double *day_fraction);
 SKY_API sky_result sky_set_observer(sky *s, const sky_observer *obs);
 SKY_API sky_result sky_get_observer(const sky *s, sky_observer *obs);
 

@@ -68,6 +68,9 @@ int test_failures;
     X(moon_total_eclipse_is_dark_and_red)        \
     X(moon_penumbral_eclipse_is_slightly_darker) \
     X(moon_left_out_when_not_needed)             \
+    X(demo_window_shows_sky_and_sliders)         \
+    X(demo_drag_on_cover_slider)                 \
+    X(game_lit_by_the_sky)                       \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

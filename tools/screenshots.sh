@@ -25,4 +25,11 @@ moon moon-crescent 2024-06-08T20:30:00Z 45 10 ""
 moon moon-quarter 2024-06-14T20:00:00Z 45 10 ""
 moon moon-full 2024-06-22T00:00:00Z -30 20 ""
 moon moon-eclipse-2011 2011-06-15T20:11:31Z -20 57 ",eclipse"
+# the windows need a display: under Xvfb when there is none
+x=""
+[ -n "${DISPLAY:-}" ] || x="xvfb-run -a -s '-screen 0 1280x720x24'"
+eval $x build/bin/sky-demo --size 960x540 --frames 3 --screenshot $out/demo.png --preset starry \
+    --date 2024-01-15T21:00:00Z --lat 45 --lon 10 --yaw 180 --pitch 30 >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-noon.png --time 0.45 >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-dusk.png --time 0.74 --sunset 0.8 >/dev/null
 echo "screenshots: $(ls $out | tr '\n' ' ')"

@@ -1,0 +1,123 @@
+/*
+ * The window programs under a real X server (Xvfb, installed by make's
+ * deps step): sky-demo shows the sky with its sliders, a synthetic mouse
+ * drag on the cover slider changes the clouds, and sky-game lights its
+ * world differently at noon and at night.
+ */
+#include "test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void test_demo_window_shows_sky_and_sliders(void);
+void test_demo_drag_on_cover_slider(void);
+void test_game_lit_by_the_sky(void);
+
+#define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
+
+static const char *tmp(const char *name, char *buf, size_t len)
+{
+    snprintf(buf, len, "/tmp/sky-test-%d-%s", (int)getpid(), name);
+    return buf;
+}
+
+/* Mean saturation (max - min over max) of a region: blue sky is high,
+ * white and grey clouds are low. */
+static double saturation(const image *im, int x0, int y0, int x1, int y1)
+{
+    double s = 0;
+    int n = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++) {
+            const float *p = im->px + 3 * (y * im->w + x);
+            float mx = fmaxf(p[0], fmaxf(p[1], p[2])), mn = fminf(p[0], fminf(p[1], p[2]));
+            s += mx > 0 ? (mx - mn) / mx : 0;
+            n++;
+        }
+    return n ? s / n : 0;
+}
+
+static int run_demo(const char *args, const char *png, image *out)
+{
+    char path[512], cmd[2048], log[4096];
+    snprintf(cmd, sizeof cmd, XVFB "%s --size 640x360 --frames 3 --screenshot %s %s 2>&1",
+             bin_path("sky-demo", path, sizeof path), png, args);
+    int rc = run_command(cmd, log, sizeof log);
+    if (rc != 0 || image_load_png(png, out)) {
+        printf("    %s\n    exit %d: %s\n", cmd, rc, log);
+        return -1;
+    }
+    remove(png);
+    return 0;
+}
+
+void test_demo_window_shows_sky_and_sliders(void)
+{
+    char png[256];
+    image im;
+    if (run_demo("--cover 0.3 --time 0.45", tmp("demo.png", png, sizeof png), &im)) {
+        CHECK(0, "sky-demo under Xvfb");
+        return;
+    }
+    /* the sky: blue dominates away from the overlay */
+    double b = 0, r = 0;
+    for (int y = 200; y < 260; y++)
+        for (int x = 400; x < 600; x++) r += im.px[3 * (y * 640 + x)], b += im.px[3 * (y * 640 + x) + 2];
+    CHECK(b > 1.05 * r, "the window shows a blue day sky (blue %.1f, red %.1f)", b, r);
+    /* the slider panel: the 'time' bar (row 6) is filled to 0.45 of its
+     * width with the bar colour, the rest darker */
+    int y = 20 + 5 * 22 + 6;
+    CHECK(image_luminance(&im, 100 + 40, y) > image_luminance(&im, 100 + 180, y) + 0.15f,
+          "the time slider is drawn filled to its value");
+    image_free(&im);
+}
+
+void test_demo_drag_on_cover_slider(void)
+{
+    char png[256];
+    image before, after;
+    if (run_demo("--cover 0.1 --time 0.45", tmp("before.png", png, sizeof png), &before) ||
+        run_demo("--cover 0.1 --time 0.45 --drag cover:0.1:0.9", tmp("after.png", png, sizeof png), &after)) {
+        CHECK(0, "sky-demo under Xvfb");
+        return;
+    }
+    double s0 = saturation(&before, 0, 170, 640, 250), s1 = saturation(&after, 0, 170, 640, 250);
+    NOTE("sky saturation: %.3f at cover 0.1, %.3f after dragging cover to 0.9", s0, s1);
+    CHECK(s1 < 0.6 * s0, "dragging the cover slider covers the sky with clouds");
+    /* the slider itself moved: cover's bar now filled near its end */
+    int y = 20 + 6;
+    CHECK(image_luminance(&after, 100 + 180, y) > image_luminance(&before, 100 + 180, y) + 0.2f,
+          "the cover bar follows the drag");
+    image_free(&before);
+    image_free(&after);
+}
+
+void test_game_lit_by_the_sky(void)
+{
+    char path[512], cmd[2048], log[4096], png[256];
+    double mean[2];
+    const char *when[2] = {"--time 0.5", "--time 0.0"};
+    for (int k = 0; k < 2; k++) {
+        tmp(k ? "night.png" : "noon.png", png, sizeof png);
+        snprintf(cmd, sizeof cmd, XVFB "%s --size 640x360 --frames 3 --screenshot %s %s 2>&1",
+                 bin_path("sky-game", path, sizeof path), png, when[k]);
+        image im;
+        int rc = run_command(cmd, log, sizeof log);
+        if (rc != 0 || image_load_png(png, &im)) {
+            CHECK(0, "sky-game under Xvfb: exit %d: %s", rc, log);
+            return;
+        }
+        /* the big box in the lower left: the lit world, not the sky */
+        double s = 0;
+        int n = 0;
+        for (int y = 230; y < 300; y++)
+            for (int x = 170; x < 240; x++) s += image_luminance(&im, x, y), n++;
+        mean[k] = s / n;
+        image_free(&im);
+        remove(png);
+    }
+    NOTE("sky-game: a box's mean brightness %.3f at noon, %.3f at midnight", mean[0], mean[1]);
+    CHECK(mean[0] > 0.15 && mean[0] > 5.0 * mean[1] + 0.02, "the world is lit by the sky: bright at noon, dark at night");
+}
