@@ -2,7 +2,8 @@
  * sky-demo: the sky in a GLFW window (OpenGL 3.3 core, else 2.0), steered
  * by Roden & Parberry's six sliders drawn over it (drag them, or 1-6 and
  * Up/Down). Space runs the time of day, +/- its speed; C U M K T P E
- * toggle the layers, G the GL profile; right-drag looks around, the wheel
+ * toggle the layers, A the atmosphere path, G the GL profile; right-drag
+ * looks around, the wheel
  * zooms; L times each layer; S saves sky-demo.png. --help lists it all.
  * Without a display it says so and renders headless through OSMesa.
  */
@@ -70,6 +71,7 @@ typedef struct demo {
     int recreate;     /* features changed: build a new sky */
     int switch_profile;
     float values[6];  /* the six sliders, in sky_params order */
+    char message[200]; /* the last error, shown in the readout */
 } demo;
 
 static void values_from_params(float v[6], const sky_params *p)
@@ -102,6 +104,10 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     if (key == GLFW_KEY_S) d->save = 1;
     if (key == GLFW_KEY_L) d->profiling = !d->profiling, d->recreate = 1;
     if (key == GLFW_KEY_G) d->switch_profile = 1;
+    if (key == GLFW_KEY_A) { /* the next atmosphere path */
+        d->cli.atmosphere = d->cli.atmosphere >= SKY_ATMOSPHERE_BLEND ? SKY_ATMOSPHERE_GRADIENT : d->cli.atmosphere + 1;
+        d->recreate = 1;
+    }
     /* feature toggles: the sky is rebuilt with only what is on */
     static const struct { int key; unsigned bit; } toggles[] = {
         {GLFW_KEY_C, SKY_CLOUDS}, {GLFW_KEY_U, SKY_SUN}, {GLFW_KEY_M, SKY_MOON}, {GLFW_KEY_K, SKY_FLICKER_STARS},
@@ -241,7 +247,8 @@ int main(int argc, char **argv)
         sky_cli_usage(stdout, "sky-demo", 1);
         printf("  --drag SLIDER:FROM:TO    with --screenshot: drag a slider with the mouse first (tests)\n"
                "keys: 1-6 pick a slider, Up/Down move it, Space runs time, +/- its speed, F fisheye,\n"
-               "      C U M K T P E toggle clouds sun moon flicker stars starmap eclipse, G GL profile,\n"
+               "      C U M K T P E toggle clouds sun moon flicker stars starmap eclipse, A atmosphere\n"
+               "      path, G GL profile,\n"
                "      L per-layer timing, S screenshot, Esc quit; mouse: drag sliders, right-drag to look,\n"
                "      wheel to zoom\n");
         return 0;
@@ -305,8 +312,11 @@ int main(int argc, char **argv)
             if (s) {
                 sky_destroy(d.s);
                 d.s = s;
+                d.message[0] = '\0';
             } else {
+                /* keep the sky that works and say why */
                 fprintf(stderr, "sky-demo: %s\n", err);
+                snprintf(d.message, sizeof d.message, "%.180s", err);
                 if (!d.s) break;
             }
         }
@@ -351,6 +361,8 @@ int main(int argc, char **argv)
                 used += snprintf(lines + used, sizeof lines - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
                                  st.layers[l].ms >= 0 ? (snprintf(err, sizeof err, "%.2f ms", st.layers[l].ms), err)
                                                       : (st.layers[l].drawn ? "on" : "idle"), 0);
+        if (d.message[0] && used < 900)
+            used += snprintf(lines + used, sizeof lines - (size_t)used, "%.100s%c", d.message, 0);
         lines[used] = '\0';
         ui_draw(d.overlay, fw, fh, d.values, d.slider, lines);
         if (d.save || (automated && frame + 1 >= d.cli.frames)) {
