@@ -301,6 +301,11 @@ int main(int argc, char **argv)
             glfwDestroyWindow(win);
             win = open_window(&d, core = !core);
             if (!win) win = open_window(&d, core = !core);
+            if (!win) {
+                fprintf(stderr, "sky-demo: no GL window for either profile\n");
+                glfwTerminate();
+                return 1;
+            }
             d.cli.gl = core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
             d.overlay = ui_create(core);
             d.recreate = 1;
