@@ -21,7 +21,7 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run test install textures screenshots bench clean
+.PHONY: all deps run test install textures screenshots bench fuzz clean
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -111,8 +111,28 @@ $(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(SKY_SR
 	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itests -Wno-missing-prototypes \
 	    -o $@ $(TEST_SRC) $(CLI_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa $(LDLIBS_M)
 
-test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks $(BUILD)/asan/sky-tests
-	@SKY_BIN=$(BIN) SKY_ASAN=$(BUILD)/asan sh tests/run.sh
+# libFuzzer harnesses (clang with compiler-rt); built only where that links
+FUZZ_CC ?= clang
+HAVE_FUZZ := $(shell printf 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { (void)d; (void)n; return 0; }' \
+    | $(FUZZ_CC) -fsanitize=fuzzer -x c - -o /dev/null 2>/dev/null && echo yes)
+FUZZ_FLAGS := -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo
+FUZZERS := $(if $(HAVE_FUZZ),$(BUILD)/fuzz/fuzz_catalog $(BUILD)/fuzz/fuzz_png $(BUILD)/fuzz/fuzz_cli)
+$(BUILD)/fuzz/fuzz_catalog: tests/fuzz/fuzz_catalog.c $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -o $@ tests/fuzz/fuzz_catalog.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(LDLIBS_M)
+$(BUILD)/fuzz/fuzz_png: tests/fuzz/fuzz_png.c $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -o $@ tests/fuzz/fuzz_png.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(LDLIBS_M)
+$(BUILD)/fuzz/fuzz_cli: tests/fuzz/fuzz_cli.c demo/cli.c demo/cli.h $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -o $@ tests/fuzz/fuzz_cli.c demo/cli.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(LDLIBS_M)
+
+# make fuzz: five minutes a harness (make test runs each for SKY_FUZZ_SECONDS, 20 by default)
+fuzz: $(FUZZERS)
+	@SKY_FUZZ_SECONDS=300 SKY_FUZZ=$(BUILD)/fuzz sh tests/fuzz/run.sh
+
+test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks $(BUILD)/asan/sky-tests $(FUZZERS)
+	@SKY_BIN=$(BIN) SKY_ASAN=$(BUILD)/asan SKY_FUZZ=$(if $(HAVE_FUZZ),$(BUILD)/fuzz) sh tests/run.sh
 
 # ---- install ----------------------------------------------------------------------
 install: all

@@ -34,6 +34,10 @@ const sky_blob *sky_find_blob(const char *name); /* NULL if not embedded */
 int sky_png_info(const unsigned char *data, size_t size, int *w, int *h);
 unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why);
 void sky_png_free(unsigned char *rgba);
+/* Decodes a PNG of exactly expect_w x expect_h to RGBA8 (checked from the
+ * header before decoding). Returns 0, or -1 with a message naming label. */
+int sky_image_decode(const unsigned char *data, size_t size, int expect_w, int expect_h, unsigned char **rgba,
+                     const char *label, char *err, size_t err_len);
 
 /* ---- textures ----------------------------------------------------------- */
 typedef enum sky_texture_id {

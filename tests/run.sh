@@ -1,6 +1,7 @@
 #!/bin/sh
 # make test: the test runner, then the same runner built with AddressSanitizer
-# and UndefinedBehaviorSanitizer; the last line adds both up as
+# and UndefinedBehaviorSanitizer, then (where clang's libFuzzer links) a
+# short run of each fuzzing harness; the last line adds them all up as
 # "N passed, N failed". Runs from the repository root so relative paths in
 # tests resolve.
 cd "$(dirname "$0")/.." || exit 1
@@ -33,6 +34,20 @@ if [ -x "$asan/sky-tests" ]; then
         passed=$((passed + $1))
         failed=$((failed + $2))
         if [ "$asan_status" -ne 0 ] && [ "$2" -eq 0 ]; then failed=$((failed + 1)); fi
+    fi
+fi
+fuzz=${SKY_FUZZ:-}
+if [ -z "$filter" ] && [ -n "$fuzz" ] && [ -d "$fuzz" ]; then
+    echo "== libFuzzer harnesses, ${SKY_FUZZ_SECONDS:-20} s each =="
+    SKY_FUZZ="$fuzz" sh tests/fuzz/run.sh > "$out" 2>&1
+    sed '$d' "$out" | sed 's/^/  fuzz: /'
+    summary=$(counts "$out")
+    if [ -z "$summary" ]; then
+        failed=$((failed + 1))
+    else
+        set -- $summary
+        passed=$((passed + $1))
+        failed=$((failed + $2))
     fi
 fi
 rm -f "$out"

@@ -338,20 +338,9 @@ int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, un
         data = b->data;
         size = b->size;
     }
-    const char *origin = file ? "override" : "embedded";
-    int w = 0, h = 0, rc = -1;
-    if (!sky_png_info(data, size, &w, &h)) {
-        sky_format(err, err_len, "%s asset %s is not a readable PNG", origin, name);
-    } else if (w != expect_w || h != expect_h) {
-        sky_format(err, err_len, "%s asset %s is %dx%d; expected %dx%d", origin, name, w, h, expect_w, expect_h);
-    } else {
-        const char *why = "";
-        *rgba_out = sky_png_decode_rgba(data, size, &w, &h, &why);
-        if (!*rgba_out)
-            sky_format(err, err_len, "%s asset %s: %s", origin, name, why);
-        else
-            rc = 0;
-    }
+    char label[160];
+    snprintf(label, sizeof label, "%s asset %s", file ? "override" : "embedded", name);
+    int rc = sky_image_decode(data, size, expect_w, expect_h, rgba_out, label, err, err_len);
     free(file);
     return rc;
 }

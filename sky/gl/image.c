@@ -40,3 +40,29 @@ unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *
 }
 
 void sky_png_free(unsigned char *rgba) { stbi_image_free(rgba); }
+
+int sky_image_decode(const unsigned char *data, size_t size, int expect_w, int expect_h, unsigned char **rgba,
+                     const char *label, char *err, size_t err_len)
+{
+    int w = 0, h = 0;
+    *rgba = NULL;
+    /* the header first: a wrong or absurd size is refused before any
+     * pixel is decoded or allocated */
+    if (!sky_png_info(data, size, &w, &h)) {
+        sky_format(err, err_len, "%s is not a readable PNG", label);
+        return -1;
+    }
+    if (w != expect_w || h != expect_h) {
+        sky_format(err, err_len, "%s is %dx%d; expected %dx%d", label, w, h, expect_w, expect_h);
+        return -1;
+    }
+    const char *why = "";
+    *rgba = sky_png_decode_rgba(data, size, &w, &h, &why);
+    if (!*rgba || w != expect_w || h != expect_h) {
+        sky_png_free(*rgba);
+        *rgba = NULL;
+        sky_format(err, err_len, "%s: %s", label, why);
+        return -1;
+    }
+    return 0;
+}
