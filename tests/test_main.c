@@ -71,6 +71,9 @@ int test_failures;
     X(demo_window_shows_sky_and_sliders)         \
     X(demo_drag_on_cover_slider)                 \
     X(game_lit_by_the_sky)                       \
+    X(reliability_hostile_override_textures)     \
+    X(reliability_two_skies_are_independent)     \
+    X(reliability_soak_10000_frames)             \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

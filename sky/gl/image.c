@@ -61,7 +61,7 @@ int sky_image_decode(const unsigned char *data, size_t size, int expect_w, int e
     if (!*rgba || w != expect_w || h != expect_h) {
         sky_png_free(*rgba);
         *rgba = NULL;
-        sky_format(err, err_len, "%s: %s", label, why);
+        sky_format(err, err_len, "%s: the PNG data is corrupt or truncated (%s)", label, why);
         return -1;
     }
     return 0;
