@@ -17,6 +17,7 @@ void test_textures_tile_without_seams(void);
 void test_cli_exit_codes_and_messages(void);
 void test_flicker_texture_neighbourhoods(void);
 void test_cli_outputs_png_pfm_stats(void);
+void test_cli_every_option_checked(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -213,6 +214,58 @@ void test_cli_exit_codes_and_messages(void)
               cases[i].message);
     }
     CHECK(access("/nonexistent-dir/x.png", F_OK) != 0, "no partial file");
+}
+
+/* Every option: missing, malformed, out of range and given twice exit 2
+ * naming it; the outputs to an unwritable place exit 1 naming the path and
+ * leave no file. */
+void test_cli_every_option_checked(void)
+{
+    static const struct {
+        const char *opt, *malformed, *out_of_range; /* NULL: no such case */
+    } opts[] = {
+        {"--size", "12by9", "0x10"},     {"--cover", "lots", "1.01"},       {"--height", "x", "-0.1"},
+        {"--density", "0.5.5", "2"},     {"--sunset", "", "inf"},            {"--speed", "nan", "7"},
+        {"--time", "noon", "-1"},        {"--seconds", "soon", "-5"},        {"--date", "yesterday", "4000-01-01T00:00:00Z"},
+        {"--lat", "north", "91"},        {"--lon", "east", "181"},           {"--alt", "high", "200000"},
+        {"--yaw", "left", "400"},        {"--pitch", "up", "-91"},           {"--fov", "wide", "180"},
+        {"--atmosphere", "fog", NULL},   {"--features", "rain", NULL},       {"--gl", "vulkan", NULL},
+        {"--preset", "beach", NULL},     {"--frames", "many", "0"},          {"--moon-scale", "big", "51"},
+        {"--hip", "sirius", "0"},        {"--out", NULL, NULL},              {"--out-pfm", NULL, NULL},
+    };
+    char render[512], cmd[1024], out[2048];
+    bin_path("sky-render", render, sizeof render);
+    int checked = 0;
+    for (size_t i = 0; i < sizeof opts / sizeof opts[0]; i++) {
+        const char *o = opts[i].opt;
+        const char *extra = !strcmp(o, "--hip") ? "--query " : "";
+        const char *variants[3] = {NULL, opts[i].malformed, opts[i].out_of_range};
+        for (int v = 0; v < 4; v++) {
+            if (v == 0)
+                snprintf(cmd, sizeof cmd, "%s %s%s 2>&1 >/dev/null", render, extra, o); /* missing value */
+            else if (v == 3)
+                snprintf(cmd, sizeof cmd, "%s %s%s %s %s %s 2>&1 >/dev/null", render, extra, o,
+                         !strcmp(o, "--out") || !strcmp(o, "--out-pfm") ? "/tmp/x" : (opts[i].out_of_range ? "1" : "auto"),
+                         o, !strcmp(o, "--out") || !strcmp(o, "--out-pfm") ? "/tmp/y" : "1"); /* twice */
+            else if (variants[v])
+                snprintf(cmd, sizeof cmd, "%s %s%s '%s' 2>&1 >/dev/null", render, extra, o, variants[v]);
+            else
+                continue;
+            int rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 2 && strstr(out, o), "%s: exit %d, message '%.120s' (case %d)", cmd, rc, out, v);
+            checked++;
+        }
+    }
+    /* unwritable outputs */
+    const char *paths[2] = {"--out /proc/sky-test.png", "--out-pfm /proc/sky-test.pfm"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(cmd, sizeof cmd, "%s --size 8x8 %s 2>&1 >/dev/null", render, paths[k]);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 1 && strstr(out, "/proc/sky-test"), "%s: exit %d, '%s'", paths[k], rc, out);
+        CHECK(access(strchr(paths[k], ' ') + 1, F_OK) != 0, "no partial %s", paths[k]);
+        checked++;
+    }
+    NOTE("%d malformed command lines checked", checked);
 }
 
 void test_cli_outputs_png_pfm_stats(void)

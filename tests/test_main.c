@@ -47,6 +47,7 @@ int test_failures;
     X(textures_tile_without_seams)               \
     X(flicker_texture_neighbourhoods)            \
     X(cli_exit_codes_and_messages)               \
+    X(cli_every_option_checked)                  \
     X(astro_time_scales)                         \
     X(astro_sun_vs_erfa)                         \
     X(astro_moon_vs_erfa)                        \
