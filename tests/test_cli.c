@@ -50,8 +50,12 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
     tmp_path("core.png", core_png, sizeof core_png);
     tmp_path("old.png", old_png, sizeof old_png);
     tmp_path("soft.png", soft_png, sizeof soft_png);
-    const char *scenes[3] = {"--preset noon", "--preset sunset --yaw 270 --pitch 10", "--preset starry"};
-    for (int k = 0; k < 3; k++) {
+    /* every preset, so each shader variant (clouds, stars, moon, eclipse) runs on both profiles */
+    const char *scenes[] = {"--preset noon",    "--preset sunset --yaw 270 --pitch 10",
+                            "--preset starry",  "--preset overcast",
+                            "--preset moonlit", "--preset eclipse",
+                            "--preset minimal"};
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         snprintf(cmd, sizeof cmd, "%s --size 320x180 %s --gl core --out %s 2>&1", render, scenes[k], core_png);
         int rc1 = run_command(cmd, out, sizeof out);
         snprintf(cmd, sizeof cmd, OLD_GPU "%s --size 320x180 %s --out %s --stats 2>&1", render, scenes[k], old_png);
