@@ -60,6 +60,9 @@ $(BUILD)/include/sky.h: sky/sky.h
 DEMO_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE -Isky -Idemo
 CLI_SRC := demo/cli.c demo/osmesa_ctx.c
 CLI_HDR := demo/cli.h demo/osmesa_ctx.h sky/sky.h
+# the stability suite: sky-bench --stability prints it, the tests assert it
+STAB_SRC := demo/stability.c
+STAB_HDR := demo/stability.h
 
 $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
@@ -73,9 +76,9 @@ $(BIN)/sky-game: demo/game.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ demo/game.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
 
-$(BIN)/sky-bench: tools/bench.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+$(BIN)/sky-bench: tools/bench.c $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
 
 bench: all
 	$(BIN)/sky-bench
@@ -93,9 +96,9 @@ run: deps all
 	@sh tools/run.sh
 
 TEST_SRC := $(wildcard tests/*.c)
-$(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(SKY_HDR) $(LIB)/libsky.a
+$(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(LIB)/libsky.a -lOSMesa -lerfa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lerfa $(LDLIBS_M)
 
 # The leak check links the library with LeakSanitizer in its own build dir.
 $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
@@ -106,10 +109,10 @@ $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_
 # The same runner built with AddressSanitizer and UndefinedBehaviorSanitizer
 # over the library's sources, in a directory of its own.
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-$(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+$(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
 	@mkdir -p $(@D)
 	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itests -Wno-missing-prototypes \
-	    -o $@ $(TEST_SRC) $(CLI_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa $(LDLIBS_M)
+	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa $(LDLIBS_M)
 
 # libFuzzer harnesses (clang with compiler-rt); built only where that links
 FUZZ_CC ?= clang

@@ -39,8 +39,11 @@ void sky_calendar(double jd, int *year, int *month, int *day, double *day_fracti
 
 int sky_observer_check(const sky_observer *o, char *err, size_t err_len)
 {
-    double year = 2000.0 + (o->julian_day_utc - 2451545.0) / 365.25;
-    if (!isfinite(o->julian_day_utc) || year < SKY_ASTRO_YEAR_MIN || year >= SKY_ASTRO_YEAR_MAX + 1)
+    /* the calendar bounds themselves: a Julian-year estimate of the year
+     * drifts by a month from the Gregorian calendar 4000 years out */
+    double first = sky_jd_from_calendar(SKY_ASTRO_YEAR_MIN, 1, 1, 0, 0, 0.0),
+           after_last = sky_jd_from_calendar(SKY_ASTRO_YEAR_MAX + 1, 1, 1, 0, 0, 0.0);
+    if (!isfinite(o->julian_day_utc) || o->julian_day_utc < first || o->julian_day_utc >= after_last)
         sky_format(err, err_len, "observer: the date (JD %g) is outside the years %d..%d", o->julian_day_utc,
                    SKY_ASTRO_YEAR_MIN, SKY_ASTRO_YEAR_MAX);
     else if (!isfinite(o->latitude_deg) || fabs(o->latitude_deg) > 90.0)

@@ -222,7 +222,9 @@ typedef struct sky_astronomy {
     double moon_axis_angle_deg;        /* position angle of the moon's axis   */
     double moon_parallactic_deg;       /* parallactic angle at the moon       */
     double umbral_magnitude, penumbral_magnitude; /* lunar eclipse, Danjon   */
-    double star_visibility, moon_visibility;      /* Mueller sec. 5 fades    */
+    double star_visibility;  /* Mueller sec. 5 star fade: 0 day .. 1 night      */
+    double moon_visibility;  /* Mueller sec. 5 moon factor: 0.5 day .. 1.207
+                                (0.5 + 1/sqrt 2) with the sun well down       */
 } sky_astronomy;
 
 /* A catalogue star's place (Hipparcos number; found = 0 if it is not in

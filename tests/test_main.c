@@ -75,6 +75,8 @@ int test_failures;
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
+    X(stability_suite)                           \
+    X(stability_date_range_edges)                \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

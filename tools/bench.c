@@ -4,6 +4,7 @@
  * the cheapest thing a sky could possibly be.
  *
  *   sky-bench [--json] [--size WxH] [--frames N]
+ *   sky-bench --stability [--json]
  *
  * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
  * draws, frame ms (median of N) and its ratio to the baseline of the same
@@ -12,9 +13,11 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include "cli.h"
 #include "osmesa_ctx.h"
+#include "stability.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -213,23 +216,62 @@ static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_m
     return 0;
 }
 
+/* sky-bench --stability: the stability suite's table (demo/stability.c).
+ * Exit 0 when every case passes, 1 otherwise. */
+static int stability_table(int json)
+{
+    sky_stability_row rows[SKY_STABILITY_MAX_ROWS];
+    char err[512];
+    int n = sky_stability_run(1, rows, err, sizeof err);
+    if (n < 0) {
+        fprintf(stderr, "sky-bench: %s\n", err);
+        return 1;
+    }
+    int failed = 0;
+    if (json) printf("{\"stability\": [\n");
+    else
+        printf("| case | property | worst | tolerance | samples | pass |\n|---|---|---|---|---|---|\n");
+    for (int i = 0; i < n; i++) {
+        const sky_stability_row *r = &rows[i];
+        failed += !r->pass;
+        if (json) {
+            /* JSON has no infinity: a non-finite worst is written as null */
+            char worst[32] = "null";
+            if (isfinite(r->worst)) snprintf(worst, sizeof worst, "%.6g", r->worst);
+            printf("  {\"case\":\"%s\", \"property\":\"%s\", \"unit\":\"%s\", \"worst\":%s, "
+                   "\"tolerance\":%.6g, \"samples\":%ld, \"pass\":%s}%s\n",
+                   r->name, r->property, r->unit, worst, r->tolerance, r->samples, r->pass ? "true" : "false",
+                   i + 1 < n ? "," : "");
+        } else
+            printf("| %s | %s | %.3g%s%s | %.3g%s%s | %ld | %s |\n", r->name, r->property, r->worst,
+                   r->unit[0] ? " " : "", r->unit, r->tolerance, r->unit[0] ? " " : "", r->unit, r->samples,
+                   r->pass ? "yes" : "**no**");
+    }
+    if (json) printf("], \"failed\": %d}\n", failed);
+    return failed ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
-    int json = 0, w = 1280, h = 720, frames = 20;
+    int json = 0, w = 1280, h = 720, frames = 20, stability = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--json"))
             json = 1;
+        else if (!strcmp(argv[i], "--stability"))
+            stability = 1;
         else if (!strcmp(argv[i], "--size") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &w, &h) == 2 && w > 0 &&
                  h > 0 && w <= 8192 && h <= 8192)
             i++;
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc && (frames = atoi(argv[i + 1])) >= 3 && frames <= 10000)
             i++;
         else {
-            fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3]\n",
+            fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3]\n"
+                    "       sky-bench --stability [--json]\n",
                     argv[i]);
             return 2;
         }
     }
+    if (stability) return stability_table(json);
     static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];

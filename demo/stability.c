@@ -1,0 +1,324 @@
+/*
+ * The numerical-stability suite: every case sweeps the public API over an
+ * extreme and keeps the worst value of one property. A row passes when
+ * that worst value is within its tolerance; tolerances come from physics
+ * (how fast the sky can move in a step), not from a previous run.
+ */
+#include "stability.h"
+
+#include "cli.h"
+#include "osmesa_ctx.h"
+#include "sky.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+typedef struct suite {
+    sky_stability_row *rows;
+    int count;
+} suite;
+
+static sky_stability_row *add_row(suite *st, const char *name, const char *property, const char *unit,
+                                  double tolerance)
+{
+    sky_stability_row *r = &st->rows[st->count++];
+    memset(r, 0, sizeof *r);
+    r->name = name;
+    r->property = property;
+    r->unit = unit;
+    r->tolerance = tolerance;
+    return r;
+}
+
+static void keep_worst(sky_stability_row *r, double v)
+{
+    /* a NaN is the worst value there is */
+    if (!(v <= r->worst)) r->worst = isnan(v) ? INFINITY : v;
+    r->samples++;
+}
+
+static int finish(sky_stability_row *r)
+{
+    r->pass = r->worst <= r->tolerance;
+    return 0;
+}
+
+/* How far one evaluation's outputs fall outside their ranges (0 inside;
+ * a non-finite output is infinitely far). */
+static double out_of_range(const sky_astronomy *a)
+{
+    const double *fields[] = {&a->julian_day_ut, &a->delta_t_s, &a->lmst_deg, &a->sun.distance_km,
+                              &a->moon.distance_km, &a->moon_bright_limb_deg, &a->moon_libration_lat_deg,
+                              &a->moon_libration_lon_deg, &a->moon_axis_angle_deg, &a->moon_parallactic_deg,
+                              &a->sun.ra_deg, &a->moon.ra_deg};
+    for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++)
+        if (!isfinite(*fields[i])) return INFINITY;
+    double excess = 0.0;
+    const sky_body_place *bodies[2] = {&a->sun, &a->moon};
+    for (int b = 0; b < 2; b++) {
+        const sky_body_place *p = bodies[b];
+        double v[4] = {fabs(p->alt_deg) - 90.0, fabs(p->alt_geometric_deg) - 90.0, fabs(p->dec_deg) - 90.0,
+                       fabs(p->az_deg - 180.0) - 180.0};
+        for (int k = 0; k < 4; k++) {
+            if (!isfinite(v[k])) return INFINITY;
+            if (v[k] > excess) excess = v[k];
+        }
+    }
+    double unit[3] = {a->moon_illuminated_fraction, a->star_visibility, a->moon_phase_angle_deg / 180.0};
+    for (int k = 0; k < 3; k++) {
+        if (!isfinite(unit[k])) return INFINITY;
+        double e = unit[k] < 0.0 ? -unit[k] : unit[k] - 1.0;
+        if (e > excess) excess = e;
+    }
+    /* Mueller's moon factor spans 0.5 (day) .. 0.5 + 1/sqrt 2 (night) */
+    double mv = a->moon_visibility, mv_excess = mv < 0.5 ? 0.5 - mv : mv - (0.5 + 1.0 / sqrt(2.0));
+    if (!isfinite(mv)) return INFINITY;
+    if (mv_excess > excess) excess = mv_excess;
+    if (!isfinite(a->umbral_magnitude) || !isfinite(a->penumbral_magnitude)) return INFINITY;
+    return excess;
+}
+
+/* Latitudes ±90 exactly and the antimeridian, over two days in 10-minute
+ * steps, in four seasons: every output finite and in its range. */
+static void case_poles(suite *st)
+{
+    sky_stability_row *r = add_row(st, "poles and antimeridian", "outputs finite, in range", "deg", 0.0);
+    const double lats[] = {-90.0, -89.9999, 0.0, 89.9999, 90.0}, lons[] = {-180.0, 0.0, 180.0};
+    for (int season = 0; season < 4; season++)
+        for (int i = 0; i < 5; i++)
+            for (int j = 0; j < 3; j++)
+                for (int m = 0; m < 2 * 144; m++) {
+                    sky_observer o = {sky_julian_day(2026, 3 + 3 * season, 20, 0, 0, 0.0) + m / 144.0, lats[i],
+                                      lons[j], 0.0, 0};
+                    sky_astronomy a;
+                    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK)
+                        keep_worst(r, INFINITY);
+                    else
+                        keep_worst(r, out_of_range(&a));
+                }
+    finish(r);
+}
+
+/* The supported years -1999..3000 give finite results at every decade;
+ * years outside them are refused. Worst: failures of either kind. */
+static void case_date_range(suite *st)
+{
+    sky_stability_row *r = add_row(st, "dates -4000..+4000", "finite inside -1999..3000, error outside", "cases", 0.0);
+    for (int year = -4000; year <= 4000; year += 10) {
+        sky_observer o = {sky_julian_day(year, 6, 1, 12, 0, 0.0), 45.0, 10.0, 0.0, 0};
+        sky_astronomy a;
+        sky_result rc = sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0);
+        int inside = year >= -1999 && year <= 3000;
+        int bad = inside ? (rc != SKY_OK || out_of_range(&a) > 0.0) : rc == SKY_OK;
+        keep_worst(r, r->worst + bad);
+    }
+    /* the exact edges */
+    const int edges[4][2] = {{-1999, 1}, {3000, 1}, {-2000, 0}, {3001, 0}};
+    for (int k = 0; k < 4; k++) {
+        sky_observer o = {sky_julian_day(edges[k][0], edges[k][1] ? 1 : 12, edges[k][1] ? 1 : 31, 0, 0, 0.0),
+                          0.0, 0.0, 0.0, 0};
+        sky_astronomy a;
+        int ok = sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) == SKY_OK;
+        keep_worst(r, r->worst + (ok != edges[k][1]));
+    }
+    finish(r);
+}
+
+/* The sun's apparent altitude minute by minute across sunrise and sunset,
+ * at the equator (fastest), mid-latitude and the poles: no jump bigger
+ * than the sky's rotation allows. The sun moves at most 0.25 deg per
+ * minute; refraction adds at most its slope (~0.2 deg per deg, Meeus
+ * 16.4 at the horizon), so 0.3 deg per minute bounds an honest step. */
+static void case_sun_continuity(suite *st)
+{
+    sky_stability_row *r =
+        add_row(st, "sun altitude through the horizon", "largest step per minute (refracted)", "deg", 0.30);
+    const double lats[] = {0.0, 45.0, 89.9999, 90.0, -90.0};
+    for (int i = 0; i < 5; i++) {
+        double prev = NAN;
+        for (int m = 0; m < 3 * 1440; m++) {
+            /* the equinox, when the polar sun grazes the horizon */
+            sky_observer o = {sky_julian_day(2026, 3, 19, 0, 0, 0.0) + m / 1440.0, lats[i], 0.0, 0.0, 0};
+            sky_astronomy a;
+            if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+                keep_worst(r, INFINITY);
+                continue;
+            }
+            if (m > 0) keep_worst(r, fabs(a.sun.alt_deg - prev));
+            prev = a.sun.alt_deg;
+        }
+    }
+    finish(r);
+}
+
+/* Phase through the instants of new and full moon (2024-04-08 18:21 and
+ * 2024-04-23 23:49 UTC), 2 hours each side in 10-second steps: phase
+ * angle in 0..180 and the illuminated fraction continuous. The fraction
+ * changes by at most ~0.0001 per 10 s (a 29.5-day cycle), so 0.001 is a
+ * generous bound that still catches a flip at phase 0 or 180. */
+static void case_new_and_full_moon(suite *st)
+{
+    sky_stability_row *r =
+        add_row(st, "new and full moon instants", "illuminated fraction: largest step per 10 s", "", 0.001);
+    const double centres[2] = {sky_julian_day(2024, 4, 8, 18, 21, 0.0), sky_julian_day(2024, 4, 23, 23, 49, 0.0)};
+    for (int c = 0; c < 2; c++) {
+        double prev = NAN;
+        for (int k = -720; k <= 720; k++) {
+            sky_observer o = {centres[c] + k * 10.0 / 86400.0, 30.0, -100.0, 0.0, 0};
+            sky_astronomy a;
+            if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK || out_of_range(&a) > 0.0) {
+                keep_worst(r, INFINITY);
+                continue;
+            }
+            if (k > -720) keep_worst(r, fabs(a.moon_illuminated_fraction - prev));
+            prev = a.moon_illuminated_fraction;
+        }
+    }
+    finish(r);
+}
+
+/* Through the total lunar eclipse of 2022-11-08 (greatest 10:59 UTC),
+ * 4 hours each side in 10-second steps: the magnitudes continuous across
+ * the edges of penumbra and umbra, and the umbral never above the
+ * penumbral. The moon crosses the shadow at ~0.55 deg/h, about 0.003
+ * lunar diameters per 10 s; 0.01 allows three times that. */
+static void case_eclipse_edges(suite *st)
+{
+    sky_stability_row *r = add_row(st, "lunar eclipse edges (2022-11-08)",
+                                   "magnitudes: largest step per 10 s; umbral <= penumbral", "", 0.01);
+    double centre = sky_julian_day(2022, 11, 8, 10, 59, 0.0), prev_u = NAN, prev_p = NAN;
+    for (int k = -1440; k <= 1440; k++) {
+        sky_observer o = {centre + k * 10.0 / 86400.0, 40.0, -100.0, 0.0, 0};
+        sky_astronomy a;
+        if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK || out_of_range(&a) > 0.0) {
+            keep_worst(r, INFINITY);
+            continue;
+        }
+        /* umbral above penumbral is a failure of any size */
+        if (a.umbral_magnitude > a.penumbral_magnitude + 1e-12) keep_worst(r, INFINITY);
+        if (k > -1440) {
+            keep_worst(r, fabs(a.umbral_magnitude - prev_u));
+            keep_worst(r, fabs(a.penumbral_magnitude - prev_p));
+        }
+        prev_u = a.umbral_magnitude;
+        prev_p = a.penumbral_magnitude;
+    }
+    finish(r);
+}
+
+/* ---- render cases: linear HDR output, every pixel finite and >= 0 ------------------------- */
+
+/* Draws one frame into ctx with sliders p, the camera given by yaw/pitch
+ * (fisheye when fisheye is set), and returns the worst pixel: INFINITY
+ * for a non-finite value, else the most negative component's magnitude. */
+static double worst_pixel(sky_osmesa *ctx, sky *s, const sky_params *p, double seconds, int fisheye, double yaw,
+                          double pitch)
+{
+    sky_cli cam;
+    memset(&cam, 0, sizeof cam);
+    cam.width = ctx->width;
+    cam.height = ctx->height;
+    cam.yaw = yaw;
+    cam.pitch = pitch;
+    cam.fov = 90.0;
+    float view[16], proj[16];
+    sky_cli_camera(&cam, view, proj);
+    if (sky_set_params(s, p) < 0 || sky_set_elapsed(s, seconds) != SKY_OK) return INFINITY;
+    if ((fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) != SKY_OK) return INFINITY;
+    sky_osmesa_finish(ctx);
+    const float *px = ctx->pixels;
+    double worst = 0.0;
+    for (size_t i = 0; i < 4u * (size_t)ctx->width * (size_t)ctx->height; i++) {
+        if (i % 4 == 3) continue; /* alpha is not light */
+        if (!isfinite(px[i])) return INFINITY;
+        if (-px[i] > worst) worst = -px[i];
+    }
+    return worst;
+}
+
+/* A sky with every feature in a fresh float context. */
+static sky *open_sky(sky_osmesa *ctx, char *err, size_t err_len)
+{
+    if (sky_osmesa_create(ctx, 48, 32, SKY_GL_AUTO, 1, err, err_len)) return NULL;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.output = SKY_OUTPUT_HDR;
+    cfg.features = SKY_FEATURES_AVAILABLE;
+    sky *s = sky_create(&cfg, err, err_len);
+    if (!s) sky_osmesa_destroy(ctx);
+    return s;
+}
+
+/* All 64 corners of the six sliders (the cloud shader divides by cover;
+ * density and sunset drive powers), looking at the horizon, straight up,
+ * straight down and as a fisheye. */
+static void case_slider_corners(suite *st, sky *s, sky_osmesa *ctx)
+{
+    sky_stability_row *r =
+        add_row(st, "sliders at exactly 0 and 1 (64 corners x 4 views)", "HDR pixels finite, >= 0", "", 0.0);
+    const double views[4][3] = {{0, 0, 5}, {0, 90, 90}, {0, 0, -90}, {1, 0, 0}}; /* fisheye, yaw, pitch */
+    for (int corner = 0; corner < 64; corner++) {
+        sky_params p = sky_default_params();
+        p.cover = (float)(corner & 1);
+        p.height = (float)((corner >> 1) & 1);
+        p.density = (float)((corner >> 2) & 1);
+        p.sunset = (float)((corner >> 3) & 1);
+        p.speed = (float)((corner >> 4) & 1);
+        p.time = (float)((corner >> 5) & 1);
+        for (int v = 0; v < 4; v++)
+            keep_worst(r, worst_pixel(ctx, s, &p, 0.0, (int)views[v][0], views[v][1], views[v][2]));
+    }
+    finish(r);
+}
+
+/* The time slider through sunrise and sunset in steps of 1e-4 (8.6 s),
+ * where the day-night fades and the sun quad cross the horizon. */
+static void case_sun_at_horizon(suite *st, sky *s, sky_osmesa *ctx)
+{
+    sky_stability_row *r = add_row(st, "sun crossing the horizon (time slider)", "HDR pixels finite, >= 0", "", 0.0);
+    const float centres[2] = {0.25f, 0.75f};
+    for (int c = 0; c < 2; c++)
+        for (int k = -100; k <= 100; k++) {
+            sky_params p = sky_default_params();
+            p.cover = 0.5f;
+            p.time = centres[c] + (float)k * 1e-4f;
+            keep_worst(r, worst_pixel(ctx, s, &p, 0.0, 0, c ? 270.0 : 90.0, 2.0));
+            keep_worst(r, worst_pixel(ctx, s, &p, 0.0, 1, 0.0, 0.0));
+        }
+    finish(r);
+}
+
+/* Elapsed time far from zero: 1e9 s (32 years of running) and the
+ * largest doubles the API accepts stay finite. */
+static void case_long_elapsed(suite *st, sky *s, sky_osmesa *ctx)
+{
+    sky_stability_row *r = add_row(st, "elapsed 1e3 .. 1e12 s", "HDR pixels finite, >= 0", "", 0.0);
+    sky_params p = sky_default_params();
+    p.speed = 1.0f;
+    p.time = 0.9f; /* night: flicker stars and clouds both at work */
+    for (double t = 1e3; t <= 1e12; t *= 10.0) keep_worst(r, worst_pixel(ctx, s, &p, t, 1, 0.0, 0.0));
+    finish(r);
+}
+
+int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err, size_t err_len)
+{
+    suite st = {rows, 0};
+    case_poles(&st);
+    case_date_range(&st);
+    case_sun_continuity(&st);
+    case_new_and_full_moon(&st);
+    case_eclipse_edges(&st);
+    if (gpu) {
+        sky_osmesa ctx;
+        sky *s = open_sky(&ctx, err, err_len);
+        if (!s) return -1;
+        case_slider_corners(&st, s, &ctx);
+        case_sun_at_horizon(&st, s, &ctx);
+        case_long_elapsed(&st, s, &ctx);
+        sky_destroy(s);
+        sky_osmesa_destroy(&ctx);
+    }
+    return st.count;
+}
