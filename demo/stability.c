@@ -10,6 +10,8 @@
 #include "osmesa_ctx.h"
 #include "sky.h"
 
+#include <GL/gl.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -209,23 +211,10 @@ static void case_eclipse_edges(suite *st)
 
 /* ---- render cases: linear HDR output, every pixel finite and >= 0 ------------------------- */
 
-/* Draws one frame into ctx with sliders p, the camera given by yaw/pitch
- * (fisheye when fisheye is set), and returns the worst pixel: INFINITY
- * for a non-finite value, else the most negative component's magnitude. */
-static double worst_pixel(sky_osmesa *ctx, sky *s, const sky_params *p, double seconds, int fisheye, double yaw,
-                          double pitch)
+/* The worst pixel of the frame in ctx: INFINITY for a non-finite value,
+ * else the most negative component's magnitude. */
+static double frame_worst(sky_osmesa *ctx)
 {
-    sky_cli cam;
-    memset(&cam, 0, sizeof cam);
-    cam.width = ctx->width;
-    cam.height = ctx->height;
-    cam.yaw = yaw;
-    cam.pitch = pitch;
-    cam.fov = 90.0;
-    float view[16], proj[16];
-    sky_cli_camera(&cam, view, proj);
-    if (sky_set_params(s, p) < 0 || sky_set_elapsed(s, seconds) != SKY_OK) return INFINITY;
-    if ((fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) != SKY_OK) return INFINITY;
     sky_osmesa_finish(ctx);
     const float *px = ctx->pixels;
     double worst = 0.0;
@@ -235,6 +224,32 @@ static double worst_pixel(sky_osmesa *ctx, sky *s, const sky_params *p, double s
         if (-px[i] > worst) worst = -px[i];
     }
     return worst;
+}
+
+/* A camera as sky-render builds it: yaw and pitch in degrees, fov
+ * vertical, for a w x h viewport. */
+static void camera(double yaw, double pitch, double fov, int w, int h, float view[16], float proj[16])
+{
+    sky_cli cam;
+    memset(&cam, 0, sizeof cam);
+    cam.width = w;
+    cam.height = h;
+    cam.yaw = yaw;
+    cam.pitch = pitch;
+    cam.fov = fov;
+    sky_cli_camera(&cam, view, proj);
+}
+
+/* Draws one frame with sliders p at elapsed time seconds, through the
+ * camera at yaw/pitch (or the fisheye), and returns its worst pixel. */
+static double worst_pixel(sky_osmesa *ctx, sky *s, const sky_params *p, double seconds, int fisheye, double yaw,
+                          double pitch)
+{
+    float view[16], proj[16];
+    camera(yaw, pitch, 90.0, ctx->width, ctx->height, view, proj);
+    if (sky_set_params(s, p) < 0 || sky_set_elapsed(s, seconds) != SKY_OK) return INFINITY;
+    if ((fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) != SKY_OK) return INFINITY;
+    return frame_worst(ctx);
 }
 
 /* A sky with every feature in a fresh float context. */
@@ -302,6 +317,68 @@ static void case_long_elapsed(suite *st, sky *s, sky_osmesa *ctx)
     finish(r);
 }
 
+/* Huge, repeated time steps: the clocks must wrap before they overflow.
+ * dt up to the largest double, each applied twice, then a night frame. */
+static void case_huge_steps(suite *st, sky *s, sky_osmesa *ctx)
+{
+    sky_stability_row *r = add_row(st, "sky_update dt 1e6 .. DBL_MAX, twice", "HDR pixels finite, >= 0", "", 0.0);
+    const double steps[] = {1e6, 1e12, 1e100, 1e300, DBL_MAX};
+    sky_params p = sky_default_params();
+    p.speed = 1.0f;
+    p.time = 0.95f;
+    float view[16], proj[16];
+    camera(0.0, 60.0, 90.0, ctx->width, ctx->height, view, proj);
+    for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
+        if (sky_set_params(s, &p) < 0 || sky_set_elapsed(s, 0.0) != SKY_OK) {
+            keep_worst(r, INFINITY);
+            continue;
+        }
+        int ok = sky_update(s, steps[k]) == SKY_OK && sky_update(s, steps[k]) == SKY_OK;
+        keep_worst(r, ok && sky_draw(s, view, proj) == SKY_OK ? frame_worst(ctx) : INFINITY);
+        keep_worst(r, ok && sky_draw_fisheye(s) == SKY_OK ? frame_worst(ctx) : INFINITY);
+    }
+    finish(r);
+}
+
+/* Cameras at the edges: fields of view 0.1..179 degrees, viewports from
+ * 1x1 to 8192x8192 (the billboard and moon size math scales with them),
+ * looking at the zenith, the nadir and the horizon, at night with every
+ * layer on. A degenerate camera (near = far, a collapsed rotation) must be
+ * refused; it then counts as handled. */
+static void case_camera_extremes(suite *st, sky *s, sky_osmesa *ctx)
+{
+    sky_stability_row *r =
+        add_row(st, "fov 0.1..179, viewport 1x1..8192^2, zenith/nadir", "HDR pixels finite, >= 0", "", 0.0);
+    const double fovs[] = {0.1, 1.0, 60.0, 150.0, 179.0}, pitches[] = {90.0, -90.0, 0.5};
+    const int sizes[][2] = {{1, 1}, {ctx->width, ctx->height}, {8192, 8192}};
+    sky_params p = sky_default_params();
+    p.time = 0.0f;
+    p.cover = 0.3f;
+    if (sky_set_params(s, &p) < 0 || sky_set_elapsed(s, 100.0) != SKY_OK) keep_worst(r, INFINITY);
+    for (int v = 0; v < 3; v++)
+        for (int f = 0; f < 5; f++)
+            for (int k = 0; k < 3; k++) {
+                float view[16], proj[16];
+                camera(0.0, pitches[k], fovs[f], sizes[v][0], sizes[v][1], view, proj);
+                glViewport(0, 0, sizes[v][0], sizes[v][1]);
+                keep_worst(r, sky_draw(s, view, proj) == SKY_OK ? frame_worst(ctx) : INFINITY);
+            }
+    glViewport(0, 0, ctx->width, ctx->height);
+    /* refused, not drawn: near = far, and a view matrix with no rotation */
+    float view[16], proj[16];
+    camera(0.0, 0.0, 60.0, ctx->width, ctx->height, view, proj);
+    float flat[16];
+    memcpy(flat, view, sizeof flat);
+    for (int i = 0; i < 3; i++) flat[i * 4 + 1] = flat[i * 4 + 0]; /* two equal axes */
+    float same_planes[16];
+    memcpy(same_planes, proj, sizeof same_planes);
+    same_planes[10] = 0.0f; /* (far + near) / (near - far) with near = far, after the 0/0 is caught */
+    same_planes[14] = 0.0f;
+    keep_worst(r, sky_draw(s, flat, proj) == SKY_OK ? frame_worst(ctx) : 0.0);
+    keep_worst(r, sky_draw(s, view, same_planes) == SKY_OK ? frame_worst(ctx) : 0.0);
+    finish(r);
+}
+
 int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err, size_t err_len)
 {
     suite st = {rows, 0};
@@ -317,6 +394,8 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
         case_slider_corners(&st, s, &ctx);
         case_sun_at_horizon(&st, s, &ctx);
         case_long_elapsed(&st, s, &ctx);
+        case_huge_steps(&st, s, &ctx);
+        case_camera_extremes(&st, s, &ctx);
         sky_destroy(s);
         sky_osmesa_destroy(&ctx);
     }

@@ -49,7 +49,8 @@ void sky_clouds_advance(sky *s, double dt)
      * any amount of running time. */
     for (int l = 0; l < 4; l++)
         for (int i = 0; i < 2; i++)
-            s->cloud_offsets[l][i] = sky_wrap(s->cloud_offsets[l][i] + s->params.speed * sky_cloud_velocity[l][i] * dt, 1.0);
+            s->cloud_offsets[l][i] =
+                sky_phase_advance(s->cloud_offsets[l][i], s->params.speed * sky_cloud_velocity[l][i], dt);
 }
 
 void sky_clouds_frame(sky *s)

@@ -50,7 +50,7 @@ void sky_flicker_advance(sky *s, double dt)
      * tau = RATE_MAX * t / 255 wrapped into [0, 1) advances every star by a
      * whole number of cycles at each wrap, so the wrap is invisible and the
      * float phase k * tau never grows. */
-    s->flicker_phase = sky_wrap(s->flicker_phase + SKY_FLICKER_RATE_MAX * dt / 255.0, 1.0);
+    s->flicker_phase = sky_phase_advance(s->flicker_phase, SKY_FLICKER_RATE_MAX / 255.0, dt);
 }
 
 void sky_flicker_frame(sky *s)

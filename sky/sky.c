@@ -20,6 +20,14 @@ double sky_wrap(double x, double period)
     return r >= period ? 0.0 : r; /* fmod of -tiny + period rounds to period */
 }
 
+double sky_phase_advance(double phase, double rate, double dt)
+{
+    /* whole cycles leave dt first: rate * dt cannot overflow, and a step
+     * shorter than one cycle is used exactly as given */
+    if (rate == 0.0) return phase;
+    return sky_wrap(phase + rate * sky_wrap(dt, 1.0 / fabs(rate)), 1.0);
+}
+
 double sky_smoothstep(double e0, double e1, double x)
 {
     double t = sky_clampd((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -380,7 +388,7 @@ sky_result sky_update(sky *s, double dt)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(dt) || dt < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_update: dt = %g must be finite and >= 0", dt);
-    s->elapsed += dt;
+    s->scintillation_phase = sky_phase_advance(s->scintillation_phase, SKY_SCINTILLATION_RATE / SKY_SCINTILLATION_PERIOD, dt);
     if (s->features & SKY_CLOUDS) sky_clouds_advance(s, dt);
     if (s->features & SKY_FLICKER_STARS) sky_flicker_advance(s, dt);
     compute_frame(s);
@@ -392,7 +400,7 @@ sky_result sky_set_elapsed(sky *s, double seconds)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(seconds) || seconds < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_elapsed: %g must be finite and >= 0", seconds);
-    s->elapsed = 0.0;
+    s->scintillation_phase = 0.0;
     memset(s->cloud_offsets, 0, sizeof s->cloud_offsets);
     s->flicker_phase = 0.0;
     return sky_update(s, seconds);

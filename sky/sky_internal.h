@@ -20,6 +20,14 @@ static inline float sky_clampf(float x, float lo, float hi) { return x < lo ? lo
 /* Wraps x into [0, period): long-running offsets stay small enough for
  * float uniforms. fmod keeps the full double precision of x. */
 double sky_wrap(double x, double period);
+/* A clock's phase in [0, 1) advanced by rate cycles per second over dt
+ * seconds (any finite dt >= 0, up to the largest double). */
+double sky_phase_advance(double phase, double rate, double dt);
+/* The stars' scintillation clock (stars.frag): RATE new random values a
+ * second, counted modulo PERIOD so the float uniform keeps its fraction
+ * after years of running. */
+#define SKY_SCINTILLATION_RATE 10.0
+#define SKY_SCINTILLATION_PERIOD 997.0
 double sky_smoothstep(double e0, double e1, double x);
 
 /* ---- embedded assets (generated at build time by tools/embed) ----------- */
@@ -160,7 +168,7 @@ struct sky {
     sky_observer observer;
     float exposure_bias;          /* stops, sky_set_exposure_bias               */
     sky_astro astro;              /* for observer + time slider; see observer.c */
-    double elapsed;               /* seconds, for callers that ask            */
+    double scintillation_phase;   /* wrapped: the stars' clock (stars.c)       */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */
     double flicker_phase;         /* wrapped (see flicker.c)                   */
     float horizon_to_world[9];

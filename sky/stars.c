@@ -152,9 +152,8 @@ void sky_stars_frame(sky *s)
     f->star_shell[0] = (float)(re + h);
     f->star_shell[1] = (float)(re + te);
     f->star_shell[2] = (float)(te - h);
-    /* the scintillation clock: ten random values a second, wrapped so a
-     * float keeps its fraction after years of running */
-    f->star_seed = (float)sky_wrap(s->elapsed * 10.0, 997.0);
+    /* the scintillation clock, in random values (see sky_internal.h) */
+    f->star_seed = (float)(SKY_SCINTILLATION_PERIOD * s->scintillation_phase);
 }
 
 /* The brightest star (Sirius, V -1.46) would add less than a quarter of

@@ -4,12 +4,16 @@
  * sky-bench --stability.
  */
 #include "test.h"
+#include "sky_internal.h"
 #include "stability.h"
 
+#include <float.h>
 #include <math.h>
+#include <string.h>
 
 void test_stability_suite(void);
 void test_stability_date_range_edges(void);
+void test_stability_clocks_survive_any_step(void);
 
 void test_stability_suite(void)
 {
@@ -46,4 +50,45 @@ void test_stability_date_range_edges(void)
               edges[k].hour, edges[k].ok ? "accepted" : "an error", err);
         if (ok) CHECK(isfinite(a.sun.alt_deg) && isfinite(a.moon.alt_deg), "finite at the edge");
     }
+}
+
+/* The clocks behind cloud drift, flicker and scintillation wrap before
+ * they multiply, so no step overflows them. The frames of the suite do
+ * not show a NaN clock (the star shader's max() swallows it on
+ * llvmpipe), so the clocks are checked here directly: before the fix,
+ * two sky_update(DBL_MAX) left the scintillation clock infinite and the
+ * flicker phase NaN. */
+void test_stability_clocks_survive_any_step(void)
+{
+    const double steps[] = {0.0, 1e-9, 0.016, 1e9, 1e300, DBL_MAX};
+    const double rates[] = {0.0, 2.0 / 255.0, -0.013, 10.0 / 997.0, 1e6};
+    for (size_t i = 0; i < sizeof steps / sizeof steps[0]; i++)
+        for (size_t j = 0; j < sizeof rates / sizeof rates[0]; j++) {
+            double ph = sky_phase_advance(sky_phase_advance(0.25, rates[j], steps[i]), rates[j], steps[i]);
+            CHECK(ph >= 0.0 && ph < 1.0, "phase after two steps of %g at rate %g: %g", steps[i], rates[j], ph);
+        }
+    /* a frame's step is taken exactly: 0.25 + 0.016 * 2/255 */
+    double small = sky_phase_advance(0.25, 2.0 / 255.0, 0.016);
+    CHECK(fabs(small - (0.25 + 0.016 * 2.0 / 255.0)) < 1e-15, "a short step is exact: %.17g", small);
+    /* and across one wrap, a step of 1.5 cycles lands half a cycle on */
+    double wrapped = sky_phase_advance(0.25, 0.5, 3.0);
+    CHECK(fabs(wrapped - 0.75) < 1e-12, "1.5 cycles from 0.25: %.17g", wrapped);
+
+    fixture f;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_FEATURES_AVAILABLE;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no fixture");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.speed = 1.0f;
+    sky_set_params(f.s, &p);
+    CHECK(sky_update(f.s, DBL_MAX) == SKY_OK && sky_update(f.s, DBL_MAX) == SKY_OK, "DBL_MAX is a valid step");
+    int finite = isfinite(f.s->scintillation_phase) && isfinite(f.s->flicker_phase);
+    for (int l = 0; l < 4; l++) finite = finite && isfinite(f.s->cloud_offsets[l][0]) && isfinite(f.s->cloud_offsets[l][1]);
+    CHECK(finite, "every clock finite after two DBL_MAX steps (scint %g, flicker %g)", f.s->scintillation_phase,
+          f.s->flicker_phase);
+    fixture_close(&f);
 }
