@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "osmesa_ctx.h"
 #include "sky.h"
+#include "sky_internal.h" /* the formulas behind the shaders' uniforms */
 
 #include <GL/gl.h>
 #include <float.h>
@@ -209,6 +210,45 @@ static void case_eclipse_edges(suite *st)
     finish(r);
 }
 
+/* ---- formulas the frame is built from ------------------------------------------------------ */
+
+/* B-V from -0.5 to +3 (past both ends of real stars, which the colour
+ * clamps to -0.4..2.5) in steps of 0.001: every colour finite,
+ * non-negative and of unit luminance, as the star shader assumes. */
+static void case_star_colour(suite *st)
+{
+    sky_stability_row *r = add_row(st, "star colour, B-V -0.5..+3", "luminance error; components finite, >= 0", "", 1e-5);
+    for (int k = 0; k <= 3500; k++) {
+        float rgb[3];
+        sky_star_color(-0.5 + k * 0.001, rgb);
+        double lum = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+        int sane = isfinite(rgb[0]) && isfinite(rgb[1]) && isfinite(rgb[2]) && rgb[0] >= 0.0f && rgb[1] >= 0.0f &&
+                   rgb[2] >= 0.0f;
+        keep_worst(r, sane ? fabs(lum - 1.0) : INFINITY);
+    }
+    finish(r);
+}
+
+/* The sun's transmittance (Kasten & Young air mass, whose pole sits at
+ * -6.08 degrees) from the nadir to the zenith in 0.001-degree steps: in
+ * 0..1 and never falling as the sun rises. Worst: the largest fall. */
+static void case_sun_transmittance(suite *st)
+{
+    sky_stability_row *r =
+        add_row(st, "sun transmittance, altitude -90..90", "in 0..1; largest fall as the sun rises", "", 0.0);
+    float prev[3] = {0.0f, 0.0f, 0.0f};
+    for (int k = -90000; k <= 90000; k++) {
+        float t[3];
+        sky_sun_transmittance(k * 0.001 * SKY_PI / 180.0, t);
+        for (int c = 0; c < 3; c++) {
+            if (!(t[c] >= 0.0f && t[c] <= 1.0f)) keep_worst(r, INFINITY);
+            keep_worst(r, prev[c] - t[c] > 0.0f ? prev[c] - t[c] : 0.0);
+            prev[c] = t[c];
+        }
+    }
+    finish(r);
+}
+
 /* ---- render cases: linear HDR output, every pixel finite and >= 0 ------------------------- */
 
 /* The worst pixel of the frame in ctx: INFINITY for a non-finite value,
@@ -305,6 +345,34 @@ static void case_sun_at_horizon(suite *st, sky *s, sky_osmesa *ctx)
     finish(r);
 }
 
+/* The sunlight a game gets (sky_get_lighting) as the sun sets, time
+ * slider steps of 1e-5 (0.86 s): no jump. In 0.86 s the sun sinks
+ * 0.0036 deg, 1.4 % of its radius, so at most ~1 % of the disc sets
+ * (and the horizon's beam is about 1.2 klx in red): 0.05 klx is a step
+ * no honest sunset takes, and the old all-or-nothing cut-off took 1.2. */
+static void case_sunset_light(suite *st, sky *s)
+{
+    sky_stability_row *r = add_row(st, "sunlight through sunset (sky_get_lighting)",
+                                   "largest step of sun_color per 0.86 s; rises count", "klx", 0.05);
+    sky_params p = sky_default_params();
+    double prev[3] = {NAN, NAN, NAN};
+    for (int k = 0; k <= 2000; k++) {
+        p.time = 0.74f + (float)k * 1e-5f;
+        sky_lighting light;
+        if (sky_set_params(s, &p) < 0 || sky_update(s, 0.0) != SKY_OK || sky_get_lighting(s, &light) != SKY_OK) {
+            keep_worst(r, INFINITY);
+            continue;
+        }
+        for (int c = 0; c < 3; c++) {
+            double v = light.sun_color[c];
+            if (!isfinite(v) || v < 0.0) keep_worst(r, INFINITY);
+            if (k > 0) keep_worst(r, v > prev[c] + 1e-6 ? INFINITY : prev[c] - v); /* the sun is sinking */
+            prev[c] = v;
+        }
+    }
+    finish(r);
+}
+
 /* Elapsed time far from zero: 1e9 s (32 years of running) and the
  * largest doubles the API accepts stay finite. */
 static void case_long_elapsed(suite *st, sky *s, sky_osmesa *ctx)
@@ -387,6 +455,8 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
     case_sun_continuity(&st);
     case_new_and_full_moon(&st);
     case_eclipse_edges(&st);
+    case_star_colour(&st);
+    case_sun_transmittance(&st);
     if (gpu) {
         sky_osmesa ctx;
         sky *s = open_sky(&ctx, err, err_len);
@@ -395,6 +465,7 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
         case_sun_at_horizon(&st, s, &ctx);
         case_long_elapsed(&st, s, &ctx);
         case_huge_steps(&st, s, &ctx);
+        case_sunset_light(&st, s);
         case_camera_extremes(&st, s, &ctx);
         sky_destroy(s);
         sky_osmesa_destroy(&ctx);

@@ -759,8 +759,8 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     to_world(s, f->sun_dir, out->sun_direction);
     out->sun_altitude_deg = (float)(f->sun_altitude * 180.0 / SKY_PI);
     /* Solar illuminance above the atmosphere, 128 klx, through the
-     * atmosphere; zero once the disc has set. */
-    float above = f->sun_altitude > -4.65e-3f ? 1.0f : 0.0f;
+     * atmosphere, times the part of the disc not yet set */
+    float above = (float)sky_disc_above_horizon(f->sun_altitude, s->astro.sun_semidiameter);
     for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
     /* Sky irradiance on an upward surface: pi times a mean sky luminance of
      * about 0.35 of the gradient's scale (blue-weighted), plus the night sky. */
@@ -782,7 +782,7 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
         double phase = pow(10.0, -0.4 * (0.026 * fabs(phi) + 4e-9 * phi * phi * phi * phi));
         float t[3];
         sky_sun_transmittance(a->moon.alt, t);
-        float up = a->moon.alt > -4.5e-3 ? 1.0f : 0.0f;
+        float up = (float)sky_disc_above_horizon(a->moon.alt, a->moon_semidiameter);
         for (int i = 0; i < 3; i++) out->moon_color[i] = (float)(2.7e-4 * phase) * t[i] * up;
     }
     return SKY_OK;

@@ -308,7 +308,11 @@ int sky_sun_visible(const sky *s);
 void sky_sun_update_quad(sky *s);
 
 /* Direct-beam transmittance for a ray at the given altitude (radians),
- * Kasten-Young air mass times a Rayleigh+aerosol optical depth. */
+ * Kasten-Young air mass times a Rayleigh+aerosol optical depth; below the
+ * horizon, the horizon's value. Non-decreasing in altitude. */
 void sky_sun_transmittance(double altitude, float out[3]);
+/* The fraction of a disc of the given angular radius (radians) whose
+ * centre is at altitude that stands above the horizon: 0..1, continuous. */
+double sky_disc_above_horizon(double altitude, double radius);
 
 #endif /* SKY_INTERNAL_H */
