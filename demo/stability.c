@@ -132,14 +132,22 @@ static void case_date_range(suite *st)
  * at the equator (fastest), mid-latitude and the poles: no jump bigger
  * than the sky's rotation allows. The sun moves at most 0.25 deg per
  * minute; refraction adds at most its slope (~0.2 deg per deg, Meeus
- * 16.4 at the horizon), so 0.3 deg per minute bounds an honest step. */
+ * 16.4 at the horizon), so 0.3 deg per minute bounds an honest step.
+ * The same sweep drives Mueller's day-night fades (sec. 5), powers x^32 of
+ * the sun's up component s_z: the star fade's steepest slope,
+ * 16 x^31 (1 + x^32)^-1.5, is 6.04 per unit s_z (at x^32 = 31/17; the
+ * moon's is 4.3); s_z moves at most 0.0044 a minute, and the refraction
+ * taper between -1 and -6 degrees speeds the apparent sun by up to 13 %:
+ * 0.030 a minute, held to 0.031. */
 static void case_sun_continuity(suite *st)
 {
     sky_stability_row *r =
         add_row(st, "sun altitude through the horizon", "largest step per minute (refracted)", "deg", 0.30);
+    sky_stability_row *fades = add_row(st, "Mueller day-night fades (x^32)",
+                                       "star and moon fades: largest step per minute", "", 0.031);
     const double lats[] = {0.0, 45.0, 89.9999, 90.0, -90.0};
     for (int i = 0; i < 5; i++) {
-        double prev = NAN;
+        double prev = NAN, prev_star = NAN, prev_moon = NAN;
         for (int m = 0; m < 3 * 1440; m++) {
             /* the equinox, when the polar sun grazes the horizon */
             sky_observer o = {sky_julian_day(2026, 3, 19, 0, 0, 0.0) + m / 1440.0, lats[i], 0.0, 0.0, 0};
@@ -148,11 +156,18 @@ static void case_sun_continuity(suite *st)
                 keep_worst(r, INFINITY);
                 continue;
             }
-            if (m > 0) keep_worst(r, fabs(a.sun.alt_deg - prev));
+            if (m > 0) {
+                keep_worst(r, fabs(a.sun.alt_deg - prev));
+                keep_worst(fades, fabs(a.star_visibility - prev_star));
+                keep_worst(fades, fabs(a.moon_visibility - prev_moon));
+            }
             prev = a.sun.alt_deg;
+            prev_star = a.star_visibility;
+            prev_moon = a.moon_visibility;
         }
     }
     finish(r);
+    finish(fades);
 }
 
 /* Phase through the instants of new and full moon (2024-04-08 18:21 and
