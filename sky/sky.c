@@ -388,7 +388,8 @@ sky_result sky_update(sky *s, double dt)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(dt) || dt < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_update: dt = %g must be finite and >= 0", dt);
-    s->scintillation_phase = sky_phase_advance(s->scintillation_phase, SKY_SCINTILLATION_RATE / SKY_SCINTILLATION_PERIOD, dt);
+    s->scintillation_phase =
+        sky_phase_advance(s->scintillation_phase, SKY_SCINTILLATION_RATE / SKY_SCINTILLATION_PERIOD, dt);
     if (s->features & SKY_CLOUDS) sky_clouds_advance(s, dt);
     if (s->features & SKY_FLICKER_STARS) sky_flicker_advance(s, dt);
     compute_frame(s);

@@ -32,9 +32,9 @@ void sky_sun_transmittance(double altitude, float out[3])
      * depth 0.1 at 550 nm with Angstrom exponent 1.3. */
     static const double tau[3] = {0.046 + 0.076, 0.108 + 0.100, 0.265 + 0.134};
     /* Kasten & Young (1989) air mass, fitted down to the horizon. Below it
-     * the fit is meaningless (its denominator shrinks again towards its
-     * pole at -6.08 degrees, so the beam would brighten as the sun sinks);
-     * a ray there meets the ground, and what still reaches the eye is the
+     * the fit is meaningless (its air mass peaks near -2 degrees and falls
+     * again towards its pole at -6.08, so the beam would brighten as the
+     * sun sinks); a ray there meets the ground, and what still reaches the eye is the
      * rim of a setting disc, seen along the horizon: hold the horizon's
      * value. How much of the disc is left is sky_disc_above_horizon's. */
     double h_deg = sky_clampd(altitude * 180.0 / SKY_PI, 0.0, 90.0);
@@ -44,8 +44,8 @@ void sky_sun_transmittance(double altitude, float out[3])
 
 double sky_disc_above_horizon(double altitude, double radius)
 {
-    /* the part of a disc above a straight horizon through its chord at
-     * height d radii from the centre: 1 - (acos d - d sqrt(1 - d^2)) / pi */
+    /* a disc whose centre is d radii above a straight horizon shows
+     * 1 - (acos d - d sqrt(1 - d^2)) / pi of its area (circular segment) */
     if (!(radius > 0.0)) return altitude >= 0.0 ? 1.0 : 0.0;
     double d = sky_clampd(altitude / radius, -1.0, 1.0);
     return 1.0 - (acos(d) - d * sqrt(fmax(1.0 - d * d, 0.0))) / SKY_PI;
