@@ -19,7 +19,7 @@ typedef struct sky_stability_row {
     int pass;
 } sky_stability_row;
 
-enum { SKY_STABILITY_MAX_ROWS = 16 };
+enum { SKY_STABILITY_MAX_ROWS = 24 };
 
 /* Runs the CPU cases (astronomy) and, when gpu is set, the render cases
  * in fresh OSMesa float contexts. Fills rows, returns how many (or -1

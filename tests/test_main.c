@@ -76,7 +76,6 @@ int test_failures;
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
     X(stability_suite)                           \
-    X(stability_date_range_edges)                \
     X(stability_clocks_survive_any_step)         \
     X(cli_outputs_png_pfm_stats)
 
