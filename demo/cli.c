@@ -407,7 +407,12 @@ double sky_cli_median(double *v, int n)
 
 void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16])
 {
-    double az = cli->yaw * PI / 180.0, alt = cli->pitch * PI / 180.0;
+    sky_cli_camera_at(cli->yaw, cli->pitch, cli->fov, cli->width, cli->height, view, proj);
+}
+
+void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int height, float view[16], float proj[16])
+{
+    double az = yaw * PI / 180.0, alt = pitch * PI / 180.0;
     /* horizon frame: +x east, +y up, +z south; azimuth from north (-z)
      * through east (+x) */
     double f[3] = {sin(az) * cos(alt), sin(alt), -cos(az) * cos(alt)};
@@ -420,8 +425,8 @@ void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16])
         view[c * 4 + 2] = (float)-f[c];
     }
     view[15] = 1.0f;
-    double aspect = (double)cli->width / cli->height, n = 0.1, far = 1000.0;
-    double t = 1.0 / tan(cli->fov * PI / 360.0);
+    double aspect = (double)width / height, n = 0.1, far = 1000.0;
+    double t = 1.0 / tan(fov * PI / 360.0);
     memset(proj, 0, 16 * sizeof(float));
     proj[0] = (float)(t / aspect);
     proj[5] = (float)t;

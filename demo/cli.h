@@ -48,6 +48,9 @@ double sky_cli_median(double *v, int n);
 
 /* Column-major view and projection matrices for --yaw/--pitch/--fov. */
 void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
+/* The same camera from its parts: yaw and pitch in degrees (yaw from
+ * north through east), fov vertical in degrees, for a width x height view. */
+void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int height, float view[16], float proj[16]);
 
 /* Prints the --query JSON object of DESIGN.md. */
 void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count);

@@ -279,27 +279,13 @@ static double frame_worst(sky_osmesa *ctx)
     return worst;
 }
 
-/* A camera as sky-render builds it: yaw and pitch in degrees, fov
- * vertical, for a w x h viewport. */
-static void camera(double yaw, double pitch, double fov, int w, int h, float view[16], float proj[16])
-{
-    sky_cli cam;
-    memset(&cam, 0, sizeof cam);
-    cam.width = w;
-    cam.height = h;
-    cam.yaw = yaw;
-    cam.pitch = pitch;
-    cam.fov = fov;
-    sky_cli_camera(&cam, view, proj);
-}
-
 /* Draws one frame with sliders p at elapsed time seconds, through the
  * camera at yaw/pitch (or the fisheye), and returns its worst pixel. */
 static double worst_pixel(sky_osmesa *ctx, sky *s, const sky_params *p, double seconds, int fisheye, double yaw,
                           double pitch)
 {
     float view[16], proj[16];
-    camera(yaw, pitch, 90.0, ctx->width, ctx->height, view, proj);
+    sky_cli_camera_at(yaw, pitch, 90.0, ctx->width, ctx->height, view, proj);
     if (sky_set_params(s, p) < 0 || sky_set_elapsed(s, seconds) != SKY_OK) return INFINITY;
     if ((fisheye ? sky_draw_fisheye(s) : sky_draw(s, view, proj)) != SKY_OK) return INFINITY;
     return frame_worst(ctx);
@@ -408,7 +394,7 @@ static void case_huge_steps(suite *st, sky *s, sky_osmesa *ctx)
     p.speed = 1.0f;
     p.time = 0.95f;
     float view[16], proj[16];
-    camera(0.0, 60.0, 90.0, ctx->width, ctx->height, view, proj);
+    sky_cli_camera_at(0.0, 60.0, 90.0, ctx->width, ctx->height, view, proj);
     for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
         if (sky_set_params(s, &p) < 0 || sky_set_elapsed(s, 0.0) != SKY_OK) {
             keep_worst(r, INFINITY);
@@ -440,14 +426,14 @@ static void case_camera_extremes(suite *st, sky *s, sky_osmesa *ctx)
         for (int f = 0; f < 5; f++)
             for (int k = 0; k < 3; k++) {
                 float view[16], proj[16];
-                camera(0.0, pitches[k], fovs[f], sizes[v][0], sizes[v][1], view, proj);
+                sky_cli_camera_at(0.0, pitches[k], fovs[f], sizes[v][0], sizes[v][1], view, proj);
                 glViewport(0, 0, sizes[v][0], sizes[v][1]);
                 keep_worst(r, sky_draw(s, view, proj) == SKY_OK ? frame_worst(ctx) : INFINITY);
             }
     glViewport(0, 0, ctx->width, ctx->height);
     /* refused, not drawn: near = far, and a view matrix with no rotation */
     float view[16], proj[16];
-    camera(0.0, 0.0, 60.0, ctx->width, ctx->height, view, proj);
+    sky_cli_camera_at(0.0, 0.0, 60.0, ctx->width, ctx->height, view, proj);
     float flat[16];
     memcpy(flat, view, sizeof flat);
     for (int i = 0; i < 3; i++) flat[i * 4 + 1] = flat[i * 4 + 0]; /* two equal axes */

@@ -100,14 +100,7 @@ scene scene_default(void)
 
 void scene_camera(const scene *sc, float view[16], float proj[16])
 {
-    sky_cli cli;
-    memset(&cli, 0, sizeof cli);
-    cli.width = sc->w;
-    cli.height = sc->h;
-    cli.yaw = sc->yaw;
-    cli.pitch = sc->pitch;
-    cli.fov = sc->fov;
-    sky_cli_camera(&cli, view, proj);
+    sky_cli_camera_at(sc->yaw, sc->pitch, sc->fov, sc->w, sc->h, view, proj);
 }
 
 int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
