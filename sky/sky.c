@@ -191,6 +191,13 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         sky_format(err, err_len, "sky_create: SKY_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
         return NULL;
     }
+    sky_atmosphere_params atm = cfg->atmosphere_params;
+    if (sky_atmosphere_is_zero(&atm)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &atm);
+    char atm_err[160];
+    if (sky_atmosphere_check(&atm, atm_err, sizeof atm_err) != SKY_OK) {
+        sky_format(err, err_len, "sky_create: %s", atm_err);
+        return NULL;
+    }
     int identity = 1;
     for (int i = 0; i < 9; i++)
         if (cfg->horizon_to_world[i] != 0.0f) identity = 0;
@@ -206,6 +213,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     }
     s->cfg = *cfg; /* texture_dir is the caller's string: used during create only */
     s->features = features;
+    s->atm = atm;
     s->world_is_identity = identity;
     for (int i = 0; i < 9; i++) s->horizon_to_world[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : cfg->horizon_to_world[i];
     s->params = sky_default_params();

@@ -97,6 +97,43 @@ typedef enum sky_output {
                            a float render target and the host's own tone map  */
 } sky_output;
 
+/* A planet's atmosphere (Elek 2009; Hillaire 2020 sec. 4): what the
+ * physical paths (RAYLEIGH, HILLAIRE, BLEND) and the CPU reference read.
+ * Lengths in km, coefficients in 1/km at sea level, given at the three
+ * wavelengths the real-time paths use for R, G, B: 680, 550 and 440 nm
+ * (the reference interpolates a smooth spectrum through them). Densities
+ * fall off exponentially with their scale heights; ozone follows a tent
+ * that peaks at ozone_peak_km and reaches zero ozone_half_width_km above
+ * and below. All zero = SKY_ATMOSPHERE_EARTH. */
+typedef struct sky_atmosphere_params {
+    float planet_radius_km;         /* ground                                  */
+    float top_radius_km;            /* top of the shell; > planet radius       */
+    float rayleigh_scattering[3];   /* molecules: they scatter, never absorb   */
+    float rayleigh_scale_height_km;
+    float mie_scattering[3];        /* aerosols (haze, dust)                   */
+    float mie_extinction[3];        /* >= mie_scattering; the rest is absorbed */
+    float mie_scale_height_km;
+    float mie_g;                    /* Cornette-Shanks asymmetry, -0.999..0.999 */
+    float ozone_absorption[3];
+    float ozone_peak_km, ozone_half_width_km;
+    float ground_albedo[3];         /* Lambertian, 0..1                        */
+} sky_atmosphere_params;
+
+typedef enum sky_atmosphere_preset {
+    SKY_ATMOSPHERE_EARTH = 0, /* clear Earth: Hillaire 2020's constants        */
+    SKY_ATMOSPHERE_HAZY,      /* a polluted summer afternoon: 4x the aerosols,
+                                 thicker and less forward-scattering        */
+    SKY_ATMOSPHERE_MARS       /* thin CO2 and a tall layer of red dust       */
+} sky_atmosphere_preset;
+
+/* Fills *out with a preset; SKY_ERR_INVALID_ARGUMENT for an unknown one. */
+SKY_API sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_atmosphere_params *out);
+/* Checks a description: every value finite, radii and scale heights
+ * positive, top above ground by at least 1 km, coefficients >= 0,
+ * extinction >= scattering, |g| <= 0.999, albedo in 0..1. Returns
+ * SKY_OK or SKY_ERR_INVALID_ARGUMENT with the first bad field named in err. */
+SKY_API sky_result sky_atmosphere_check(const sky_atmosphere_params *atm, char *err, size_t err_len);
+
 /* The host's GL loader: glfwGetProcAddress, OSMesaGetProcAddress, or a
  * wrapper around SDL_GL_GetProcAddress. */
 typedef void (*sky_gl_proc)(void);
@@ -125,6 +162,8 @@ typedef struct sky_config {
     /* Mueller's artificial moon scale c_d (eq. 1): the disc is drawn c_d
      * times its true size. 0 = 2.5; range 0.5..50. */
     float moon_scale;
+    /* The atmosphere's composition; all zero = Earth (see above). */
+    sky_atmosphere_params atmosphere_params;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,

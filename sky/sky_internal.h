@@ -167,6 +167,7 @@ struct sky {
     sky_params params;
     sky_observer observer;
     float exposure_bias;          /* stops, sky_set_exposure_bias               */
+    sky_atmosphere_params atm;    /* checked; the Earth preset when zero        */
     sky_astro astro;              /* for observer + time slider; see observer.c */
     double scintillation_phase;   /* wrapped: the stars' clock (stars.c)       */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */
@@ -259,6 +260,8 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st);
 /* ---- phenomena ---------------------------------------------------------- */
 extern const sky_snippet sky_common_snippet;
 extern const sky_snippet sky_gradient_snippet;
+/* atmosphere/params.c: 1 when every field is zero (= the Earth preset). */
+int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
 extern const sky_snippet sky_clouds_snippet;
 extern const sky_snippet sky_flicker_snippet;
 extern const sky_snippet sky_sun_snippet;

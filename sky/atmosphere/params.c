@@ -1,0 +1,102 @@
+/*
+ * Atmosphere descriptions (Elek 2009: a parametrisable atmosphere): the
+ * presets and the check every consumer relies on.
+ */
+#include "../sky_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Clear Earth: Hillaire 2020's reference constants (../shared/ANCHORS.md),
+ * with the ground albedo of mixed land and vegetation, 0.3. Rayleigh is
+ * exactly lambda^-4 through 680/550/440 nm; Mie is grey. */
+static const sky_atmosphere_params earth = {
+    6360.0f, 6460.0f,
+    {5.802e-3f, 13.558e-3f, 33.1e-3f}, 8.0f,
+    {3.996e-3f, 3.996e-3f, 3.996e-3f}, {4.40e-3f, 4.40e-3f, 4.40e-3f}, 1.2f, 0.8f,
+    {0.650e-3f, 1.881e-3f, 0.085e-3f}, 25.0f, 15.0f,
+    {0.3f, 0.3f, 0.3f},
+};
+
+/* Hazy: four times the aerosol load in a deeper mixing layer (1.6 km),
+ * smaller particles (g 0.7), the same single-scattering albedo (0.91). */
+static const sky_atmosphere_params hazy = {
+    6360.0f, 6460.0f,
+    {5.802e-3f, 13.558e-3f, 33.1e-3f}, 8.0f,
+    {15.98e-3f, 15.98e-3f, 15.98e-3f}, {17.6e-3f, 17.6e-3f, 17.6e-3f}, 1.6f, 0.7f,
+    {0.650e-3f, 1.881e-3f, 0.085e-3f}, 25.0f, 15.0f,
+    {0.3f, 0.3f, 0.3f},
+};
+
+/* Mars-like: a 3389.5 km planet. CO2 at 610 Pa and 210 K has 0.83 % of
+ * Earth's sea-level number density and about 2.6 times air's Rayleigh
+ * cross-section, so 2.2 % of Earth's Rayleigh coefficients. Dust of
+ * visible optical depth 0.5 over an 11 km scale height (0.045/km, grey
+ * extinction) that absorbs blue: single-scattering albedo 0.98, 0.90, 0.70
+ * at 680, 550, 440 nm; g 0.7. No ozone; a reddish ground. */
+static const sky_atmosphere_params mars = {
+    3389.5f, 3509.5f,
+    {0.125e-3f, 0.293e-3f, 0.715e-3f}, 11.1f,
+    {44.1e-3f, 40.5e-3f, 31.5e-3f}, {45.0e-3f, 45.0e-3f, 45.0e-3f}, 11.0f, 0.7f,
+    {0.0f, 0.0f, 0.0f}, 25.0f, 15.0f,
+    {0.30f, 0.20f, 0.12f},
+};
+
+sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_atmosphere_params *out)
+{
+    if (!out) return SKY_ERR_INVALID_ARGUMENT;
+    switch (preset) {
+    case SKY_ATMOSPHERE_EARTH: *out = earth; return SKY_OK;
+    case SKY_ATMOSPHERE_HAZY: *out = hazy; return SKY_OK;
+    case SKY_ATMOSPHERE_MARS: *out = mars; return SKY_OK;
+    }
+    return SKY_ERR_INVALID_ARGUMENT;
+}
+
+int sky_atmosphere_is_zero(const sky_atmosphere_params *atm)
+{
+    static const sky_atmosphere_params zero;
+    return memcmp(atm, &zero, sizeof zero) == 0;
+}
+
+static int bad_triple(const float v[3], double lo, double hi)
+{
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(v[i]) || v[i] < lo || v[i] > hi) return 1;
+    return 0;
+}
+
+sky_result sky_atmosphere_check(const sky_atmosphere_params *a, char *err, size_t err_len)
+{
+    if (err && err_len) err[0] = '\0';
+    if (!a) {
+        sky_format(err, err_len, "atmosphere: params is NULL");
+        return SKY_ERR_INVALID_ARGUMENT;
+    }
+    const char *bad = NULL;
+    /* coefficients above 10/km would make the sea-level air opaque within
+     * 100 m: no longer a sky, and past what the 8-bit LUT encoding holds */
+    if (!isfinite(a->planet_radius_km) || a->planet_radius_km < 1.0f || a->planet_radius_km > 1e6f)
+        bad = "planet_radius_km (1..1e6)";
+    else if (!isfinite(a->top_radius_km) || a->top_radius_km < a->planet_radius_km + 1.0f ||
+             a->top_radius_km > 2.0f * a->planet_radius_km)
+        bad = "top_radius_km (planet + 1 km .. 2 x planet)";
+    else if (bad_triple(a->rayleigh_scattering, 0.0, 10.0)) bad = "rayleigh_scattering (0..10 per km)";
+    else if (bad_triple(a->mie_scattering, 0.0, 10.0)) bad = "mie_scattering (0..10 per km)";
+    else if (bad_triple(a->mie_extinction, 0.0, 10.0)) bad = "mie_extinction (0..10 per km)";
+    else if (bad_triple(a->ozone_absorption, 0.0, 10.0)) bad = "ozone_absorption (0..10 per km)";
+    else if (bad_triple(a->ground_albedo, 0.0, 1.0)) bad = "ground_albedo (0..1)";
+    else if (!isfinite(a->mie_g) || fabsf(a->mie_g) > 0.999f) bad = "mie_g (-0.999..0.999)";
+    else if (!isfinite(a->rayleigh_scale_height_km) || a->rayleigh_scale_height_km < 0.01f ||
+             !isfinite(a->mie_scale_height_km) || a->mie_scale_height_km < 0.01f)
+        bad = "scale heights (>= 0.01 km)";
+    else if (!isfinite(a->ozone_peak_km) || !isfinite(a->ozone_half_width_km) || a->ozone_half_width_km < 0.01f)
+        bad = "ozone_peak_km / ozone_half_width_km (finite, half width >= 0.01 km)";
+    for (int i = 0; !bad && i < 3; i++)
+        if (a->mie_extinction[i] < a->mie_scattering[i]) bad = "mie_extinction (must be >= mie_scattering)";
+    if (bad) {
+        sky_format(err, err_len, "atmosphere: %s is out of range", bad);
+        return SKY_ERR_INVALID_ARGUMENT;
+    }
+    return SKY_OK;
+}
