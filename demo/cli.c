@@ -124,7 +124,9 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --yaw DEG --pitch DEG --fov DEG | --fisheye\n"
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
-            "  --atmosphere gradient    atmosphere path\n"
+            "  --atmosphere gradient|preetham|rayleigh   atmosphere path\n"
+            "  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
+            "  --planet earth|hazy|mars the atmosphere's composition (rayleigh)\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse (or none)\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|minimal\n"
@@ -273,6 +275,19 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 0.5, 50.0, &v))
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
             cli->moon_scale = (float)v;
+        } else if (!strcmp(opt, "--turbidity")) {
+            if (!parse_number(val, 1.0, 64.0, &v))
+                return fail(err, len, "--turbidity: expected a turbidity in 1..64, got '%s'", val ? val : "(nothing)");
+            cli->turbidity = (float)v;
+        } else if (!strcmp(opt, "--planet")) {
+            if (val && !strcmp(val, "earth"))
+                cli->planet = SKY_ATMOSPHERE_EARTH;
+            else if (val && !strcmp(val, "hazy"))
+                cli->planet = SKY_ATMOSPHERE_HAZY;
+            else if (val && !strcmp(val, "mars"))
+                cli->planet = SKY_ATMOSPHERE_MARS;
+            else
+                return fail(err, len, "--planet: expected earth, hazy or mars, got '%s'", val ? val : "(nothing)");
         } else if (!strcmp(opt, "--frames")) {
             if (!parse_number(val, 1.0, 1e6, &v) || v != floor(v))
                 return fail(err, len, "--frames: expected a whole number in 1..1000000, got '%s'",
@@ -317,9 +332,12 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         } else if (!strcmp(opt, "--atmosphere")) {
             if (val && !strcmp(val, "gradient"))
                 cli->atmosphere = SKY_ATMOSPHERE_GRADIENT;
-            else if (val && (!strcmp(val, "preetham") || !strcmp(val, "rayleigh") || !strcmp(val, "hillaire") ||
-                             !strcmp(val, "blend")))
-                return fail(err, len, "--atmosphere: '%s' is not available yet (only gradient is built)", val);
+            else if (val && !strcmp(val, "preetham"))
+                cli->atmosphere = SKY_ATMOSPHERE_PREETHAM;
+            else if (val && !strcmp(val, "rayleigh"))
+                cli->atmosphere = SKY_ATMOSPHERE_RAYLEIGH;
+            else if (val && (!strcmp(val, "hillaire") || !strcmp(val, "blend")))
+                return fail(err, len, "--atmosphere: '%s' is not available yet (gradient, preetham and rayleigh are built)", val);
             else
                 return fail(err, len, "--atmosphere: expected gradient|preetham|rayleigh|hillaire|blend, got '%s'",
                             val ? val : "(nothing)");
@@ -381,6 +399,8 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.gl_profile = cli->gl;
     cfg.atmosphere = cli->atmosphere;
     cfg.moon_scale = cli->moon_scale;
+    cfg.turbidity = cli->turbidity;
+    sky_atmosphere_get_preset(cli->planet, &cfg.atmosphere_params);
     cfg.get_proc_address = loader;
     return cfg;
 }

@@ -21,6 +21,8 @@ typedef struct sky_cli {
     sky_gl_profile gl;
     sky_atmosphere_path atmosphere;
     float moon_scale;       /* --moon-scale (0 = the library's default)  */
+    float turbidity;        /* --turbidity (0 = the library's default)   */
+    sky_atmosphere_preset planet; /* --planet earth|hazy|mars          */
     const char *preset;
     const char *out_png, *out_pfm;
     int frames;

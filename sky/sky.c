@@ -121,7 +121,7 @@ static void compute_frame(sky *s)
         }
     f->star_rot[15] = f->starmap_rot[15] = 1.0f;
     sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
-    sky_gradient_frame(s);
+    sky_atmosphere_frame(s);
     if (s->features & SKY_SUN) sky_sun_frame(s);
     if (s->features & SKY_CLOUDS) sky_clouds_frame(s);
     if (s->features & SKY_FLICKER_STARS) sky_flicker_frame(s);
@@ -175,9 +175,14 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
         return NULL;
     }
-    if (cfg->atmosphere != SKY_ATMOSPHERE_DEFAULT && cfg->atmosphere != SKY_ATMOSPHERE_GRADIENT) {
-        sky_format(err, err_len, "sky_create: atmosphere path %d is not built yet (only GRADIENT is)",
+    if (cfg->atmosphere == SKY_ATMOSPHERE_HILLAIRE || cfg->atmosphere == SKY_ATMOSPHERE_BLEND) {
+        sky_format(err, err_len, "sky_create: atmosphere path %d is not built yet (GRADIENT, PREETHAM and RAYLEIGH are)",
                    (int)cfg->atmosphere);
+        return NULL;
+    }
+    if (!isfinite(cfg->turbidity) || (cfg->turbidity != 0.0f && (cfg->turbidity < 1.0f || cfg->turbidity > 64.0f))) {
+        sky_format(err, err_len, "sky_create: turbidity %g is out of range (0 = default, or 1..64)",
+                   (double)cfg->turbidity);
         return NULL;
     }
     unsigned features = cfg->features == 0 ? SKY_FEATURES_DEFAULT
@@ -214,6 +219,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     s->cfg = *cfg; /* texture_dir is the caller's string: used during create only */
     s->features = features;
     s->atm = atm;
+    s->atmosphere = cfg->atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg->atmosphere;
     s->world_is_identity = identity;
     for (int i = 0; i < 9; i++) s->horizon_to_world[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : cfg->horizon_to_world[i];
     s->params = sky_default_params();
@@ -241,13 +247,14 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
      * sides), and a day frame should do no star work at all. */
     const sky_snippet *dome_snippets[SKY_MAX_SNIPPETS];
     int n = 0;
-    dome_snippets[n++] = &sky_gradient_snippet;
+    dome_snippets[n++] = &sky_atmosphere_snippet;
+    dome_snippets[n++] = sky_atmosphere_path_snippet(s->atmosphere);
     if (features & SKY_CLOUDS) dome_snippets[n++] = &sky_clouds_snippet;
     if (sky_program_build(s, &s->dome, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
     /* Below the horizon there are no clouds and no stars: the lower
      * hemisphere gets the atmosphere alone (the host's terrain usually
      * covers it; what shows in a gap is the horizon haze). */
-    if (n > 1 && sky_program_build(s, &s->ground, "dome.vert", "dome.frag", dome_snippets, 1, err, err_len))
+    if (n > 2 && sky_program_build(s, &s->ground, "dome.vert", "dome.frag", dome_snippets, 2, err, err_len))
         goto fail;
     if (features & (SKY_FLICKER_STARS | SKY_STARMAP)) {
         if (features & SKY_FLICKER_STARS) dome_snippets[n++] = &sky_flicker_snippet;
@@ -771,12 +778,10 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
      * atmosphere, times the part of the disc not yet set */
     float above = (float)sky_disc_above_horizon(f->sun_altitude, s->astro.sun_semidiameter);
     for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
-    /* Sky irradiance on an upward surface: pi times a mean sky luminance of
-     * about 0.35 of the gradient's scale (blue-weighted), plus the night sky. */
-    static const float sky_tint[3] = {0.55f, 0.75f, 1.0f};
+    /* sky irradiance and horizon: the atmosphere path's (atmosphere.c) */
     for (int i = 0; i < 3; i++) {
-        out->ambient_color[i] = (float)SKY_PI * (0.35f * f->sky_luminance + f->night_luminance) * sky_tint[i];
-        out->fog_color[i] = (0.8f * f->sky_luminance + f->night_luminance) * (0.75f + 0.25f * sky_tint[i]);
+        out->ambient_color[i] = f->ambient_rgb[i];
+        out->fog_color[i] = f->fog_rgb[i];
     }
     out->daylight = f->daylight;
     out->exposure = f->exposure;

@@ -79,8 +79,9 @@ typedef enum sky_feature {
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
     SKY_ATMOSPHERE_GRADIENT,    /* Roden-Parberry day gradient texture      */
-    SKY_ATMOSPHERE_PREETHAM,    /* (not built yet)                          */
-    SKY_ATMOSPHERE_RAYLEIGH,    /* (not built yet)                          */
+    SKY_ATMOSPHERE_PREETHAM,    /* Preetham's analytic daylight (turbidity) */
+    SKY_ATMOSPHERE_RAYLEIGH,    /* closed-form Rayleigh + Mie single scattering
+                                   of sky_config.atmosphere_params         */
     SKY_ATMOSPHERE_HILLAIRE,    /* (not built yet)                          */
     SKY_ATMOSPHERE_BLEND        /* (not built yet)                          */
 } sky_atmosphere_path;
@@ -162,6 +163,9 @@ typedef struct sky_config {
     /* Mueller's artificial moon scale c_d (eq. 1): the disc is drawn c_d
      * times its true size. 0 = 2.5; range 0.5..50. */
     float moon_scale;
+    /* PREETHAM's turbidity: 0 = 2.5 (a clear day). Accepted 1..64; the
+     * model clamps it into its fitted range, 2..10. */
+    float turbidity;
     /* The atmosphere's composition; all zero = Earth (see above). */
     sky_atmosphere_params atmosphere_params;
 } sky_config;

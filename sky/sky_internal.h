@@ -105,6 +105,13 @@ typedef struct sky_frame {
     float frame_index;       /* dither seed                                     */
     float view_proj[16];     /* horizon direction (w = 0) -> clip                */
     float pixel_angle;       /* radians per pixel at the view centre             */
+    float ambient_rgb[3];    /* sky irradiance on an upward surface, klx         */
+    float fog_rgb[3];        /* horizon luminance, kcd/m^2                       */
+    /* Preetham (preetham.c): Perez A..E and zenith values for (Y, x, y) */
+    float perez[5][3], perez_zenith[3];
+    /* analytic Rayleigh + Mie (rayleigh.c) */
+    float tau_rayleigh[3], tau_mie_sca[3], tau_mie_ext[3], tau_ozone[3];
+    float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
     /* clouds (R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
@@ -168,6 +175,7 @@ struct sky {
     sky_observer observer;
     float exposure_bias;          /* stops, sky_set_exposure_bias               */
     sky_atmosphere_params atm;    /* checked; the Earth preset when zero        */
+    sky_atmosphere_path atmosphere; /* resolved: never DEFAULT                  */
     sky_astro astro;              /* for observer + time slider; see observer.c */
     double scintillation_phase;   /* wrapped: the stars' clock (stars.c)       */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */
@@ -260,8 +268,32 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st);
 /* ---- phenomena ---------------------------------------------------------- */
 extern const sky_snippet sky_common_snippet;
 extern const sky_snippet sky_gradient_snippet;
+extern const sky_snippet sky_preetham_snippet;
+extern const sky_snippet sky_rayleigh_snippet;
+extern const sky_snippet sky_atmosphere_snippet; /* shared by every path */
 /* atmosphere/params.c: 1 when every field is zero (= the Earth preset). */
 int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
+/* atmosphere/atmosphere.c: the selected path's snippet, and its per-frame
+ * state (night sky, path coefficients, the host's ambient and fog). */
+const sky_snippet *sky_atmosphere_path_snippet(sky_atmosphere_path path);
+void sky_atmosphere_frame(sky *s);
+/* The sun above the atmosphere in linear sRGB, klx per channel (a 5778 K
+ * blackbody of 128 klx). */
+extern const double sky_sun_irradiance_klx[3];
+/* CIE 1931 XYZ to linear sRGB (IEC 61966-2-1). */
+void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
+/* atmosphere/preetham.c, rayleigh.c: per-frame coefficients, and CPU twins
+ * of the shaders (radiance in kcd/m^2 for an upper-hemisphere direction,
+ * without the night floor). */
+double sky_preetham_turbidity(float requested); /* the turbidity the model uses */
+void sky_preetham_frame(sky *s);
+void sky_preetham_eval(const sky_frame *f, const double d[3], double rgb[3]);
+void sky_rayleigh_frame(sky *s);
+void sky_rayleigh_eval(const sky_frame *f, const double d[3], double rgb[3]);
+/* Chapman's grazing-incidence function: slant over vertical column of an
+ * exponential atmosphere, X = radius / scale height, mu = cos(zenith angle),
+ * any mu in -1..1 (rayleigh.c). */
+double sky_chapman(double X, double mu);
 extern const sky_snippet sky_clouds_snippet;
 extern const sky_snippet sky_flicker_snippet;
 extern const sky_snippet sky_sun_snippet;

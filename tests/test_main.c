@@ -75,6 +75,13 @@ int test_failures;
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
+    X(atmosphere_paths_finite_for_every_sun_position) \
+    X(atmosphere_clear_sky_colours)              \
+    X(atmosphere_shaders_match_cpu_twins)        \
+    X(atmosphere_continuous_across_horizon)      \
+    X(atmosphere_preetham_outside_its_fit)       \
+    X(atmosphere_chapman_function)               \
+    X(atmosphere_description_checked)            \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
     X(cli_outputs_png_pfm_stats)

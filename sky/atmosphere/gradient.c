@@ -9,7 +9,6 @@
 
 static const sky_uniform_desc gradient_uniforms[] = {
     SKY_UF("u_sky_luminance", SKY_U_F1, sky_luminance),
-    SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
 };
@@ -27,14 +26,19 @@ void sky_gradient_vertex(const unsigned char *gradient, const float d[3], float 
 }
 
 /* Luminance scale of the day sky (kcd/m^2) for a sun at altitude h. Above
- * the horizon it grows like sin(h)^0.6 to about 9 kcd/m^2; below it falls by
- * a decade every 3 degrees, which matches the measured twilight sky: about
+ * the horizon it grows like sin(h)^0.6 to about 9 kcd/m^2, offset by a
+ * sine of 0.02 (1.1 degrees) so the slope at the horizon is finite (a bare
+ * power 0.6 jumps by 16 % in the first 0.01 degree); below it falls by a
+ * decade every 3 degrees, which matches the measured twilight sky: about
  * 3 cd/m^2 at -6 (civil), 0.03 at -12 (nautical) and 3e-4 cd/m^2 at -18
  * degrees. Continuous at h = 0. */
 static double day_sky_luminance(double altitude)
 {
     double h_deg = altitude * 180.0 / SKY_PI;
-    if (h_deg >= 0.0) return 0.3 + 9.0 * pow(sin(altitude), 0.6);
+    if (h_deg >= 0.0) {
+        const double s0 = 0.02, base = pow(s0, 0.6);
+        return 0.3 + 9.0 * (pow(sin(altitude) + s0, 0.6) - base) / (pow(1.0 + s0, 0.6) - base);
+    }
     return 0.3 * pow(10.0, sky_clampd(h_deg, -90.0, 0.0) / 3.0);
 }
 
@@ -42,18 +46,6 @@ void sky_gradient_frame(sky *s)
 {
     sky_frame *f = &s->frame;
     f->sky_luminance = (float)day_sky_luminance(f->sun_altitude);
-    /* A dark, moonless sky: about 0.2 mcd/m^2 (21.6 mag/arcsec^2). With
-     * the moon in the scene, its light scattered by the air brightens the
-     * night: some 25 times at full moon high in the sky (a moonlit sky of
-     * about 5 mcd/m^2), falling faster than the phase (the opposition
-     * surge) and fading as the moon sets. */
-    double moonlight = 0.0;
-    if (s->features & SKY_MOON) {
-        double up = sky_smoothstep(-2.0, 15.0, s->astro.moon.alt * 180.0 / SKY_PI);
-        moonlight = 25.0 * pow(sky_clampd(s->astro.moon_illuminated, 0.0, 1.0), 2.0) * up;
-    }
-    f->night_luminance = (float)(2.0e-7 * (1.0 + moonlight));
-    f->moonlight = (float)moonlight;
     /* The low-sun horizon colour: the square root of the direct beam's
      * transmittance (light that travelled about half the sun's path),
      * normalised to its red channel, and only 70 % saturated: the horizon
@@ -61,4 +53,12 @@ void sky_gradient_frame(sky *s)
      * not per pixel. */
     double red = f->sun_transmittance[0] > 1e-6f ? f->sun_transmittance[0] : 1e-6;
     for (int i = 0; i < 3; i++) f->horizon_tint[i] = (float)(0.3 + 0.7 * sqrt(f->sun_transmittance[i] / red));
+    /* Lighting for the host: the sky irradiance on an upward surface is pi
+     * times a mean sky luminance of about 0.35 of the gradient's scale
+     * (blue-weighted), plus the night sky; fog takes the horizon's. */
+    static const float sky_tint[3] = {0.55f, 0.75f, 1.0f};
+    for (int i = 0; i < 3; i++) {
+        f->ambient_rgb[i] = (float)SKY_PI * (0.35f * f->sky_luminance + f->night_luminance) * sky_tint[i];
+        f->fog_rgb[i] = (0.8f * f->sky_luminance + f->night_luminance) * (0.75f + 0.25f * sky_tint[i]);
+    }
 }

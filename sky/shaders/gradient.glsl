@@ -3,17 +3,13 @@
  * the daylight luminance for the sun's altitude, with a forward-scattering
  * aureole tinted by the sunlight that reaches it and a faint night floor. */
 uniform float u_sky_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
-uniform float u_night_luminance;  /* kcd/m^2 of the moonless night sky      */
 uniform vec3 u_sun_transmittance;
 uniform vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient.c */
 
-/* Elevation sine of a direction, with the ground mirrored to the horizon
- * colour so a host's terrain gap shows haze rather than black. */
-float sky_gradient_elevation(vec3 d) { return clamp(d.y, 0.0, 1.0); }
-
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {
-    float e = sky_gradient_elevation(d);
+    /* the ground takes the horizon's colour (sky_below_horizon darkens it) */
+    float e = clamp(d.y, 0.0, 1.0);
     float mu = max(dot(d, u_sun_dir), 0.0);
     float mu2 = mu * mu, mu4 = mu2 * mu2, mu8 = mu4 * mu4;
     /* aureole: a broad and a narrow lobe, strongest near the horizon where
@@ -23,17 +19,7 @@ vec3 sky_atmosphere(vec3 d, vec3 day)
      * most strongly on the sun's side. */
     float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu) / (1.0 - 6.0 * min(d.y, 0.0));
     vec3 L = u_sky_luminance * (day * mix(vec3(1.0), u_horizon_tint, low) + aureole * u_sun_transmittance);
-    L += u_night_luminance * vec3(0.55, 0.7, 1.0) * (1.0 + (1.0 - e));
-    if (d.y < 0.0) L *= 1.0 / (1.0 - 4.0 * d.y); /* darken below the horizon */
-    return L;
+    return (L + sky_night_floor(d)) * sky_below_horizon(d);
 }
 
-/* Transmittance toward space for light from behind the atmosphere (stars):
- * extinction with a Kasten-Young-like air mass that stays finite at and
- * below the horizon. */
-float sky_atmosphere_transmittance(vec3 d)
-{
-    float s = max(d.y, 0.0);
-    float airmass = 1.0 / (s + 0.025 * exp(-11.0 * s));
-    return d.y < 0.0 ? 0.0 : exp(-0.25 * airmass);
-}
+float sky_atmosphere_transmittance(vec3 d) { return sky_air_mass_transmittance(d); }

@@ -1,0 +1,102 @@
+/*
+ * What every atmosphere path shares: the night sky's own light, the per-
+ * frame dispatch to the selected path, and the CPU summary of a physical
+ * path's sky (its mean luminance for the automatic exposure, the
+ * irradiance it casts on the ground, the horizon's colour for fog).
+ */
+#include "../sky_internal.h"
+
+#include <math.h>
+
+static const sky_uniform_desc atmosphere_uniforms[] = {
+    SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
+};
+const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
+                                            (int)(sizeof atmosphere_uniforms / sizeof atmosphere_uniforms[0])};
+
+/* 5778 K blackbody, chromaticity (0.3260, 0.3354) on the Planckian locus,
+ * in linear sRGB with luminance 128 klx (the solar illuminance above the
+ * atmosphere, 1361 W/m^2 at about 94 lm/W). */
+const double sky_sun_irradiance_klx[3] = {128.0 * 1.1094, 128.0 * 0.9759, 128.0 * 0.9171};
+
+void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
+{
+    rgb[0] = 3.2406 * xyz[0] - 1.5372 * xyz[1] - 0.4986 * xyz[2];
+    rgb[1] = -0.9689 * xyz[0] + 1.8758 * xyz[1] + 0.0415 * xyz[2];
+    rgb[2] = 0.0557 * xyz[0] - 0.2040 * xyz[1] + 1.0570 * xyz[2];
+}
+
+const sky_snippet *sky_atmosphere_path_snippet(sky_atmosphere_path path)
+{
+    switch (path) {
+    case SKY_ATMOSPHERE_PREETHAM: return &sky_preetham_snippet;
+    case SKY_ATMOSPHERE_RAYLEIGH: return &sky_rayleigh_snippet;
+    default: return &sky_gradient_snippet;
+    }
+}
+
+/* The night sky (atmosphere.glsl's floor). A dark, moonless sky: about
+ * 0.2 mcd/m^2 (21.6 mag/arcsec^2). With the moon in the scene, its light
+ * scattered by the air brightens the night: some 25 times at full moon
+ * high in the sky (a moonlit sky of about 5 mcd/m^2), falling faster than
+ * the phase (the opposition surge) and fading as the moon sets. */
+static void night_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    double moonlight = 0.0;
+    if (s->features & SKY_MOON) {
+        double up = sky_smoothstep(-2.0, 15.0, s->astro.moon.alt * 180.0 / SKY_PI);
+        moonlight = 25.0 * pow(sky_clampd(s->astro.moon_illuminated, 0.0, 1.0), 2.0) * up;
+    }
+    f->night_luminance = (float)(2.0e-7 * (1.0 + moonlight));
+    f->moonlight = (float)moonlight;
+}
+
+/* A physical path's sky summarised from its own CPU twin: Gauss-Legendre
+ * in the elevation sine (4 nodes on 0..1) times 8 azimuths. The irradiance
+ * on an upward surface is 2 pi int L mu dmu; the mean luminance is the
+ * solid-angle mean over the upper hemisphere; fog takes the lowest ring. */
+static void summarise(sky *s, void (*eval)(const sky_frame *, const double d[3], double rgb[3]))
+{
+    static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
+    static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
+    sky_frame *f = &s->frame;
+    double irradiance[3] = {0, 0, 0}, fog[3] = {0, 0, 0}, mean = 0.0;
+    for (int k = 0; k < 4; k++) {
+        double ring[3] = {0, 0, 0};
+        double c = sqrt(1.0 - mu_node[k] * mu_node[k]);
+        for (int a = 0; a < 8; a++) {
+            double az = 2.0 * SKY_PI * (a + 0.5) / 8.0, d[3] = {c * sin(az), mu_node[k], -c * cos(az)}, rgb[3];
+            eval(f, d, rgb);
+            for (int i = 0; i < 3; i++) ring[i] += rgb[i] / 8.0;
+        }
+        for (int i = 0; i < 3; i++) irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * ring[i];
+        mean += mu_weight[k] * (0.2126 * ring[0] + 0.7152 * ring[1] + 0.0722 * ring[2]);
+        if (k == 0)
+            for (int i = 0; i < 3; i++) fog[i] = ring[i];
+    }
+    /* The rest of the frame (clouds, moon, exposure) reads sky_luminance
+     * as the gradient path defines it: about 2.5 times the hemisphere's
+     * mean luminance. */
+    f->sky_luminance = (float)(2.5 * mean);
+    for (int i = 0; i < 3; i++) {
+        f->ambient_rgb[i] = (float)(irradiance[i] + SKY_PI * f->night_luminance);
+        f->fog_rgb[i] = (float)(fog[i] + f->night_luminance);
+    }
+}
+
+void sky_atmosphere_frame(sky *s)
+{
+    night_frame(s);
+    switch (s->atmosphere) {
+    case SKY_ATMOSPHERE_PREETHAM:
+        sky_preetham_frame(s);
+        summarise(s, sky_preetham_eval);
+        break;
+    case SKY_ATMOSPHERE_RAYLEIGH:
+        sky_rayleigh_frame(s);
+        summarise(s, sky_rayleigh_eval);
+        break;
+    default: sky_gradient_frame(s); break;
+    }
+}

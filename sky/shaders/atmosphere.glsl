@@ -1,0 +1,24 @@
+/* atmosphere.glsl: what every atmosphere path shares: the night sky's own
+ * light, the darkening below the horizon, and the air-mass extinction the
+ * non-physical paths use for light from behind the atmosphere. */
+uniform float u_night_luminance;  /* kcd/m^2 of the night sky (moonlit or not) */
+
+/* The night sky's airglow and scattered moonlight: bluish, brighter toward
+ * the horizon where the path through the glowing layer is longer. */
+vec3 sky_night_floor(vec3 d)
+{
+    return u_night_luminance * vec3(0.55, 0.7, 1.0) * (2.0 - clamp(d.y, 0.0, 1.0));
+}
+
+/* Below the horizon a path shows the haze of the horizon, darkening with
+ * depth, so a host's terrain gap shows haze rather than black. */
+float sky_below_horizon(vec3 d) { return d.y < 0.0 ? 1.0 / (1.0 - 4.0 * d.y) : 1.0; }
+
+/* Extinction toward space with a Kasten-Young-like air mass that stays
+ * finite at the horizon (zero below it: the ground). */
+float sky_air_mass_transmittance(vec3 d)
+{
+    float s = max(d.y, 0.0);
+    float airmass = 1.0 / (s + 0.025 * exp(-11.0 * s));
+    return d.y < 0.0 ? 0.0 : exp(-0.25 * airmass);
+}

@@ -1,0 +1,498 @@
+/*
+ * The atmosphere paths (issue 6): every path finite and non-negative for
+ * every sun position, the colours a clear sky must have, the shaders
+ * agreeing with their double-precision CPU twins, Preetham outside its fit,
+ * and the checked atmosphere description.
+ */
+#include "test.h"
+#include "sky_internal.h"
+#include "cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void test_atmosphere_paths_finite_for_every_sun_position(void);
+void test_atmosphere_clear_sky_colours(void);
+void test_atmosphere_shaders_match_cpu_twins(void);
+void test_atmosphere_continuous_across_horizon(void);
+void test_atmosphere_preetham_outside_its_fit(void);
+void test_atmosphere_chapman_function(void);
+void test_atmosphere_description_checked(void);
+
+static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH};
+static const char *const path_names[] = {"gradient", "preetham", "rayleigh"};
+#define PATH_COUNT 3
+
+/* An HDR all-sky sky on its own small float context. */
+typedef struct hdr_sky {
+    sky_osmesa ctx;
+    sky *s;
+    int size;
+} hdr_sky;
+
+static int hdr_open(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity)
+{
+    char err[512];
+    memset(h, 0, sizeof *h);
+    h->size = size;
+    if (sky_osmesa_create(&h->ctx, size, size, profile, 1, err, sizeof err)) {
+        printf("    %s\n", err);
+        return -1;
+    }
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.gl_profile = profile;
+    cfg.output = SKY_OUTPUT_HDR;
+    cfg.features = SKY_SUN; /* the sun quad too: its glare must stay finite */
+    cfg.atmosphere = path;
+    cfg.turbidity = turbidity;
+    h->s = sky_create(&cfg, err, sizeof err);
+    if (!h->s) {
+        printf("    sky_create: %s\n", err);
+        sky_osmesa_destroy(&h->ctx);
+        return -1;
+    }
+    return 0;
+}
+
+static void hdr_close(hdr_sky *h)
+{
+    sky_destroy(h->s);
+    sky_osmesa_destroy(&h->ctx);
+}
+
+/* The equator at the 2026 March equinox: the time slider sweeps the sun
+ * from the nadir (0) through the zenith (0.5) with declination ~0. */
+static sky_observer equator_equinox(void)
+{
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
+    o.time_from_params = 1;
+    return o;
+}
+
+static double sun_altitude_at(const sky_observer *o, double t)
+{
+    sky_astronomy a;
+    if (sky_compute_astronomy(o, (float)t, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) return NAN;
+    return a.sun.alt_deg;
+}
+
+/* The morning time-slider value that puts the sun's apparent centre at
+ * alt_deg (bisection; the altitude rises monotonically from 0 to 0.5). */
+static double time_for_altitude(const sky_observer *o, double alt_deg)
+{
+    double lo = 0.0, hi = 0.5;
+    for (int i = 0; i < 60; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (sun_altitude_at(o, mid) < alt_deg)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+static int hdr_draw(hdr_sky *h, const sky_observer *o, double t, const sky_params *base)
+{
+    sky_params p = base ? *base : sky_default_params();
+    p.time = (float)t;
+    if (sky_set_observer(h->s, o) != SKY_OK || sky_set_params(h->s, &p) < 0) return -1;
+    if (sky_draw_fisheye(h->s) != SKY_OK) return -1;
+    sky_osmesa_finish(&h->ctx);
+    return 0;
+}
+
+/* Pixel of the last frame (x, y from the image's top left). */
+static const float *hdr_pixel(const hdr_sky *h, int x, int y)
+{
+    return (const float *)h->ctx.pixels + ((size_t)(h->size - 1 - y) * (size_t)h->size + (size_t)x) * 4u;
+}
+
+/* The pixel showing a direction of the upper hemisphere (sky_fisheye_ndc). */
+static const float *hdr_pixel_dir(const hdr_sky *h, const double d[3])
+{
+    double theta = acos(sky_clampd(d[1], -1.0, 1.0)), hl = sqrt(d[0] * d[0] + d[2] * d[2]);
+    double nx = hl > 1e-9 ? -d[0] / hl * theta / (0.5 * SKY_PI) : 0.0;
+    double ny = hl > 1e-9 ? -d[2] / hl * theta / (0.5 * SKY_PI) : 0.0;
+    int x = (int)floor((nx * 0.5 + 0.5) * h->size), y = (int)floor((0.5 - ny * 0.5) * h->size);
+    x = x < 0 ? 0 : (x >= h->size ? h->size - 1 : x);
+    y = y < 0 ? 0 : (y >= h->size ? h->size - 1 : y);
+    return hdr_pixel(h, x, y);
+}
+
+/* The direction a pixel centre shows (the inverse of the above). */
+static int pixel_dir(const hdr_sky *h, int x, int y, double d[3])
+{
+    double px = ((x + 0.5) / h->size) * 2.0 - 1.0, py = 1.0 - ((y + 0.5) / h->size) * 2.0;
+    double r = sqrt(px * px + py * py);
+    if (r > 0.97) return 0;
+    double theta = r * 0.5 * SKY_PI, hx = r > 1e-9 ? -px / r : 0.0, hz = r > 1e-9 ? -py / r : -1.0;
+    d[0] = sin(theta) * hx, d[1] = cos(theta), d[2] = sin(theta) * hz;
+    return 1;
+}
+
+static void dir_at(double alt_deg, double az_deg, double d[3])
+{
+    double e = alt_deg * SKY_PI / 180.0, a = az_deg * SKY_PI / 180.0;
+    d[0] = cos(e) * sin(a), d[1] = sin(e), d[2] = -cos(e) * cos(a);
+}
+
+void test_atmosphere_paths_finite_for_every_sun_position(void)
+{
+    sky_observer o = equator_equinox();
+    sky_params extremes[2];
+    memset(&extremes[0], 0, sizeof extremes[0]);
+    extremes[1].cover = extremes[1].height = extremes[1].density = extremes[1].sunset = extremes[1].speed = 1.0f;
+    for (int q = 0; q < 2 * PATH_COUNT; q++) {
+        int p = q % PATH_COUNT;
+        sky_gl_profile profile = q < PATH_COUNT ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
+        const char *profile_name = q < PATH_COUNT ? "core" : "compat";
+        hdr_sky h;
+        if (hdr_open(&h, 20, paths[p], profile, 0.0f)) {
+            CHECK(0, "%s %s: no sky", path_names[p], profile_name);
+            continue;
+        }
+        long bad = 0, frames = 0;
+        double lowest = 1e30, brightest = 0.0;
+        /* sun altitude -90..90 in 0.5 degree steps: 0.5 / 360 of a day */
+        for (int k = 0; k <= 360; k++) {
+            double t = k / 720.0;
+            for (int e = 0; e < (k % 30 == 0 ? 3 : 1); e++) { /* slider extremes every 15 degrees */
+                if (hdr_draw(&h, &o, t, e ? &extremes[e - 1] : NULL)) {
+                    bad++;
+                    continue;
+                }
+                frames++;
+                for (int y = 0; y < h.size; y++)
+                    for (int x = 0; x < h.size; x++) {
+                        const float *v = hdr_pixel(&h, x, y);
+                        for (int c = 0; c < 3; c++) {
+                            if (!isfinite(v[c]) || v[c] < 0.0f) bad++;
+                            if (v[c] < lowest) lowest = v[c];
+                            if (v[c] > brightest) brightest = v[c];
+                        }
+                    }
+            }
+        }
+        NOTE("%s %s: %ld frames, pixel values %.3g .. %.3g kcd/m^2", path_names[p], profile_name, frames, lowest,
+             brightest);
+        CHECK(frames >= 361 + 26 && bad == 0, "%s %s: %ld NaN, infinite or negative values (or failed frames)",
+              path_names[p], profile_name, bad);
+        hdr_close(&h);
+    }
+}
+
+/* Mean b/r of a ring of directions at one altitude. */
+static double ring_blue_over_red(const hdr_sky *h, double alt_deg)
+{
+    double r = 0.0, b = 0.0;
+    for (int a = 0; a < 16; a++) {
+        double d[3];
+        dir_at(alt_deg, a * 22.5 + 11.25, d);
+        const float *v = hdr_pixel_dir(h, d);
+        r += v[0], b += v[2];
+    }
+    return b / fmax(r, 1e-30);
+}
+
+void test_atmosphere_clear_sky_colours(void)
+{
+    sky_observer o = equator_equinox();
+    sky_params clear = sky_default_params();
+    clear.cover = 0.0f;
+    for (int p = 0; p < PATH_COUNT; p++) {
+        hdr_sky h;
+        if (hdr_open(&h, 129, paths[p], SKY_GL_AUTO, 0.0f)) {
+            CHECK(0, "%s: no sky", path_names[p]);
+            continue;
+        }
+        /* a high sun (60 degrees): Rayleigh's lambda^-4 makes the zenith
+         * bluer than the horizon, whose long path reddens and whitens it */
+        double t60 = time_for_altitude(&o, 60.0);
+        if (hdr_draw(&h, &o, t60, &clear) == 0) {
+            double d[3];
+            dir_at(90.0, 0.0, d);
+            const float *z = hdr_pixel_dir(&h, d);
+            double zenith = z[2] / fmax(z[0], 1e-30), horizon = ring_blue_over_red(&h, 3.0);
+            NOTE("%s, sun 60: b/r zenith %.2f, horizon %.2f", path_names[p], zenith, horizon);
+            CHECK(zenith > 1.15 * horizon && zenith > 1.3, "%s: the zenith (b/r %.2f) is not bluer than the horizon (%.2f)",
+                  path_names[p], zenith, horizon);
+        }
+        /* a setting sun (2 degrees, in the east): the sky beside it is redder
+         * than the zenith */
+        double t2 = time_for_altitude(&o, 2.0);
+        if (hdr_draw(&h, &o, t2, &clear) == 0) {
+            sky_astronomy a;
+            sky_get_astronomy(h.s, &a);
+            double near[3], zen[3];
+            dir_at(6.0, a.sun.az_deg + 6.0, near);
+            dir_at(90.0, 0.0, zen);
+            const float *n = hdr_pixel_dir(&h, near), *z = hdr_pixel_dir(&h, zen);
+            double near_rb = n[0] / fmax(n[2], 1e-30), zenith_rb = z[0] / fmax(z[2], 1e-30);
+            NOTE("%s, sun 2: r/b beside the sun %.2f, zenith %.2f", path_names[p], near_rb, zenith_rb);
+            CHECK(near_rb > 1.5 * zenith_rb && near_rb > 1.0, "%s: beside a setting sun r/b %.2f, zenith %.2f",
+                  path_names[p], near_rb, zenith_rb);
+        }
+        hdr_close(&h);
+    }
+}
+
+/* The shaders compute in float what preetham.c and rayleigh.c compute in
+ * double: the images must agree with the CPU twins pixel by pixel, at a
+ * high sun, a low one and one just set. Perspective views (where the
+ * interpolated ray is the pixel's exact direction), toward the sun's
+ * azimuth and away from it, from the horizon up to 75 degrees. */
+void test_atmosphere_shaders_match_cpu_twins(void)
+{
+    sky_observer o = equator_equinox();
+    static const double altitudes[] = {60.0, 8.0, 0.5, -1.0};
+    for (int p = 1; p < PATH_COUNT; p++) {
+        hdr_sky h;
+        if (hdr_open(&h, 64, paths[p], SKY_GL_AUTO, 0.0f)) {
+            CHECK(0, "%s: no sky", path_names[p]);
+            continue;
+        }
+        void (*eval)(const sky_frame *, const double *, double *) =
+            paths[p] == SKY_ATMOSPHERE_PREETHAM ? sky_preetham_eval : sky_rayleigh_eval;
+        for (size_t k = 0; k < sizeof altitudes / sizeof altitudes[0]; k++) {
+            sky_params clear = sky_default_params();
+            clear.cover = 0.0f;
+            clear.time = (float)time_for_altitude(&o, altitudes[k]);
+            if (sky_set_observer(h.s, &o) != SKY_OK || sky_set_params(h.s, &clear) < 0) continue;
+            sky_astronomy a;
+            sky_get_astronomy(h.s, &a);
+            double worst = 0.0;
+            int compared = 0;
+            for (int side = 0; side < 2; side++) {
+                double yaw = a.sun.az_deg + 180.0 * side, pitch = 30.0, fov = 90.0;
+                float view[16], proj[16];
+                sky_cli_camera_at(yaw, pitch, fov, h.size, h.size, view, proj);
+                if (sky_draw(h.s, view, proj) != SKY_OK) continue;
+                sky_osmesa_finish(&h.ctx);
+                const float *sd = h.s->frame.sun_dir;
+                double t = tan(fov * SKY_PI / 360.0);
+                for (int y = 0; y < h.size; y++)
+                    for (int x = 0; x < h.size; x++) {
+                        double nx = (x + 0.5) / h.size * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / h.size * 2.0, d[3], len = 0.0;
+                        /* view's rows are the camera's right, up and back axes */
+                        for (int i = 0; i < 3; i++) {
+                            d[i] = nx * t * view[i * 4 + 0] + ny * t * view[i * 4 + 1] - view[i * 4 + 2];
+                            len += d[i] * d[i];
+                        }
+                        for (int i = 0; i < 3; i++) d[i] /= sqrt(len);
+                        /* the sun's quad covers 16 radii around it: compare
+                         * outside it, and above the horizon */
+                        if (d[1] < 0.0 || d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2] > cos(0.1)) continue;
+                        double rgb[3];
+                        eval(&h.s->frame, d, rgb);
+                        const float *v = hdr_pixel(&h, x, y);
+                        for (int c = 0; c < 3; c++) {
+                            /* the night floor, (2 - elevation) times u_night_luminance */
+                            double expect = rgb[c] + (2.0 - d[1]) * h.s->frame.night_luminance;
+                            double rel = fabs(v[c] - expect) / (fabs(expect) + 1e-9);
+                            if (rel > worst) worst = rel;
+                        }
+                        compared++;
+                    }
+            }
+            NOTE("%s, sun %+.1f deg: %d pixels, worst relative difference to the CPU twin %.2g", path_names[p],
+                 altitudes[k], compared, worst);
+            CHECK(compared > 3000 && worst < 0.002, "%s, sun %+.1f: shader differs from the CPU by %.3g", path_names[p],
+                  altitudes[k], worst);
+        }
+        hdr_close(&h);
+    }
+}
+
+/* A sun 0.01 degree above, at and 0.01 below the horizon gives three
+ * nearly identical skies in every path: no step at the horizon. */
+void test_atmosphere_continuous_across_horizon(void)
+{
+    sky_observer o = equator_equinox();
+    static const double altitudes[] = {0.01, 0.0, -0.01};
+    for (int p = 0; p < PATH_COUNT; p++) {
+        hdr_sky h;
+        if (hdr_open(&h, 33, paths[p], SKY_GL_AUTO, 0.0f)) {
+            CHECK(0, "%s: no sky", path_names[p]);
+            continue;
+        }
+        size_t n = (size_t)h.size * (size_t)h.size * 4u;
+        float *prev = malloc(n * sizeof(float));
+        double worst = 0.0;
+        for (int k = 0; k < 3 && prev; k++) {
+            sky_params clear = sky_default_params();
+            clear.cover = 0.0f;
+            if (hdr_draw(&h, &o, time_for_altitude(&o, altitudes[k]), &clear)) {
+                CHECK(0, "%s: frame failed", path_names[p]);
+                break;
+            }
+            const float *cur = (const float *)h.ctx.pixels;
+            const float *sd = h.s->frame.sun_dir;
+            for (int y = 0; k > 0 && y < h.size; y++)
+                for (int x = 0; x < h.size; x++) {
+                    /* the setting disc and its glare (4.3 degrees) change,
+                     * as they should: compare the sky 8 degrees away */
+                    double d[3];
+                    if (!pixel_dir(&h, x, y, d) || d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2] > cos(8.0 * SKY_PI / 180.0))
+                        continue;
+                    size_t i = ((size_t)(h.size - 1 - y) * (size_t)h.size + (size_t)x) * 4u;
+                    for (int c = 0; c < 3; c++) {
+                        double rel = fabs(cur[i + c] - prev[i + c]) / (fabs(prev[i + c]) + 1e-9);
+                        if (rel > worst) worst = rel;
+                    }
+                }
+            memcpy(prev, cur, n * sizeof(float));
+        }
+        NOTE("%s: largest relative change per 0.01 degree of sun across the horizon %.3g", path_names[p], worst);
+        CHECK(worst < 0.05, "%s: the sky jumps by %.3g across the horizon", path_names[p], worst);
+        free(prev);
+        hdr_close(&h);
+    }
+}
+
+/* Preetham's fit covers turbidity 2..10 with the sun up. Turbidity
+ * outside is clamped (1 renders as 2, 64 as 10), and the zenith of the
+ * fitted model stays positive down to a sun at the horizon for both ends. */
+void test_atmosphere_preetham_outside_its_fit(void)
+{
+    sky_observer o = equator_equinox();
+    static const float pairs[2][2] = {{1.0f, 2.0f}, {64.0f, 10.0f}};
+    for (int k = 0; k < 2; k++) {
+        double t = time_for_altitude(&o, 20.0);
+        float *img[2] = {NULL, NULL};
+        for (int j = 0; j < 2; j++) {
+            hdr_sky h;
+            if (hdr_open(&h, 17, SKY_ATMOSPHERE_PREETHAM, SKY_GL_AUTO, pairs[k][j])) {
+                CHECK(0, "turbidity %g refused", (double)pairs[k][j]);
+                continue;
+            }
+            if (hdr_draw(&h, &o, t, NULL) == 0) {
+                img[j] = malloc(sizeof(float) * 4u * 17u * 17u);
+                if (img[j]) memcpy(img[j], h.ctx.pixels, sizeof(float) * 4u * 17u * 17u);
+            }
+            hdr_close(&h);
+        }
+        if (img[0] && img[1])
+            CHECK(memcmp(img[0], img[1], sizeof(float) * 4u * 17u * 17u) == 0, "turbidity %g does not render as %g",
+                  (double)pairs[k][0], (double)pairs[k][1]);
+        free(img[0]);
+        free(img[1]);
+    }
+    CHECK(sky_preetham_turbidity(0.0f) == 2.5 && sky_preetham_turbidity(1.0f) == 2.0 &&
+              sky_preetham_turbidity(64.0f) == 10.0 && sky_preetham_turbidity(5.0f) == 5.0,
+          "turbidity clamp: %g %g %g", sky_preetham_turbidity(0.0f), sky_preetham_turbidity(1.0f),
+          sky_preetham_turbidity(64.0f));
+    /* zenith luminance of eq. A.2 with the sun at the horizon, T = 10:
+     * -0.2155 * 10 + 2.4192 > 0 (at T 11.2 it would reach zero) */
+    CHECK(-0.2155 * 10.0 + 2.4192 > 0.2, "Preetham's horizon-sun zenith at T 10 is not positive");
+}
+
+/* Exact Chapman integral in units of the scale height by Simpson's rule
+ * on t = e^v - 1 (dense near the observer, reaching 1e5 scale heights). */
+static double chapman_exact(double X, double mu)
+{
+    const int n = 20000;
+    double vmax = log(1.0 + 1e5), h = vmax / n, sum = 0.0;
+    for (int i = 0; i <= n; i++) {
+        double v = i * h, t = exp(v) - 1.0;
+        double r = sqrt(X * X + t * t + 2.0 * X * t * mu);
+        double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += w * exp(-(r - X)) * exp(v);
+    }
+    return sum * h / 3.0;
+}
+
+void test_atmosphere_chapman_function(void)
+{
+    static const double Xs[] = {795.0, 5300.0, 300.0};
+    static const double mus[] = {1.0, 0.7, 0.4, 0.2, 0.1, 0.05, 0.02, 0.01, 0.0, -0.01, -0.03};
+    double worst = 0.0;
+    for (size_t i = 0; i < sizeof Xs / sizeof Xs[0]; i++)
+        for (size_t j = 0; j < sizeof mus / sizeof mus[0]; j++) {
+            double exact = chapman_exact(Xs[i], mus[j]), approx = sky_chapman(Xs[i], mus[j]);
+            double rel = fabs(approx / exact - 1.0);
+            if (rel > worst) worst = rel;
+            CHECK(rel < 0.02, "Ch(%g, %g) = %g, exact %g", Xs[i], mus[j], approx, exact);
+        }
+    NOTE("Chapman approximation: worst relative error %.3g (X 300..5300, mu -0.03..1)", worst);
+    /* below the horizon: finite, positive and growing as the sun sinks,
+     * all the way to the nadir */
+    double prev = sky_chapman(795.0, 0.0);
+    int monotone = 1, finite = 1;
+    for (int k = 1; k <= 900; k++) {
+        double mu = -sin(k * 0.1 * SKY_PI / 180.0), c = sky_chapman(795.0, mu);
+        if (!isfinite(c) || c <= 0.0) finite = 0;
+        if (c < prev) monotone = 0;
+        prev = c;
+    }
+    CHECK(finite && monotone, "Ch below the horizon: finite %d, monotone %d", finite, monotone);
+}
+
+void test_atmosphere_description_checked(void)
+{
+    char err[256];
+    for (int p = SKY_ATMOSPHERE_EARTH; p <= SKY_ATMOSPHERE_MARS; p++) {
+        sky_atmosphere_params a;
+        CHECK(sky_atmosphere_get_preset((sky_atmosphere_preset)p, &a) == SKY_OK, "preset %d", p);
+        CHECK(sky_atmosphere_check(&a, err, sizeof err) == SKY_OK, "preset %d fails its own check: %s", p, err);
+    }
+    CHECK(sky_atmosphere_get_preset((sky_atmosphere_preset)7, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL out");
+    CHECK(sky_atmosphere_check(NULL, err, sizeof err) == SKY_ERR_INVALID_ARGUMENT, "NULL params accepted");
+    /* each broken field is refused and named */
+    struct {
+        size_t offset;
+        float value;
+        const char *name;
+    } cases[] = {
+        {offsetof(sky_atmosphere_params, planet_radius_km), NAN, "planet_radius_km"},
+        {offsetof(sky_atmosphere_params, top_radius_km), 6360.5f, "top_radius_km"},
+        {offsetof(sky_atmosphere_params, rayleigh_scattering), -1e-3f, "rayleigh_scattering"},
+        {offsetof(sky_atmosphere_params, mie_scattering) + sizeof(float), INFINITY, "mie_scattering"},
+        {offsetof(sky_atmosphere_params, mie_extinction), 1e-3f, "mie_extinction"},
+        {offsetof(sky_atmosphere_params, mie_g), 1.0f, "mie_g"},
+        {offsetof(sky_atmosphere_params, ozone_absorption) + 2 * sizeof(float), 11.0f, "ozone_absorption"},
+        {offsetof(sky_atmosphere_params, ground_albedo), 1.5f, "ground_albedo"},
+        {offsetof(sky_atmosphere_params, mie_scale_height_km), 0.0f, "scale heights"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sky_atmosphere_params a;
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+        memcpy((char *)&a + cases[i].offset, &cases[i].value, sizeof(float));
+        sky_result r = sky_atmosphere_check(&a, err, sizeof err);
+        CHECK(r == SKY_ERR_INVALID_ARGUMENT && strstr(err, cases[i].name), "%s = %g: result %d, '%s'", cases[i].name,
+              (double)cases[i].value, (int)r, err);
+        /* and sky_create passes the refusal on */
+        sky_osmesa ctx;
+        if (sky_osmesa_create(&ctx, 8, 8, SKY_GL_AUTO, 0, err, sizeof err) == 0) {
+            sky_config cfg;
+            memset(&cfg, 0, sizeof cfg);
+            cfg.get_proc_address = sky_osmesa_loader();
+            cfg.atmosphere = SKY_ATMOSPHERE_RAYLEIGH;
+            cfg.atmosphere_params = a;
+            sky *s = sky_create(&cfg, err, sizeof err);
+            CHECK(!s && strstr(err, cases[i].name), "sky_create with %s = %g: '%s'", cases[i].name,
+                  (double)cases[i].value, err);
+            sky_destroy(s);
+            sky_osmesa_destroy(&ctx);
+        }
+    }
+    /* turbidity outside 1..64 (0 = default) is refused by sky_create */
+    static const float turbidities[] = {0.5f, 65.0f, NAN, -INFINITY};
+    for (size_t i = 0; i < sizeof turbidities / sizeof turbidities[0]; i++) {
+        sky_osmesa ctx;
+        if (sky_osmesa_create(&ctx, 8, 8, SKY_GL_AUTO, 0, err, sizeof err)) continue;
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.get_proc_address = sky_osmesa_loader();
+        cfg.atmosphere = SKY_ATMOSPHERE_PREETHAM;
+        cfg.turbidity = turbidities[i];
+        sky *s = sky_create(&cfg, err, sizeof err);
+        CHECK(!s && strstr(err, "turbidity"), "turbidity %g: '%s'", (double)turbidities[i], err);
+        sky_destroy(s);
+        sky_osmesa_destroy(&ctx);
+    }
+}
