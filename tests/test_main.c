@@ -84,6 +84,11 @@ int test_failures;
     X(atmosphere_description_checked)            \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
+    X(reference_spectrum_and_units)              \
+    X(reference_single_scattering_vs_quadrature) \
+    X(reference_energy_balance)                  \
+    X(reference_converges)                       \
+    X(reference_sky_is_plausible)                \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

@@ -32,14 +32,14 @@ typedef struct sky_ref_options {
                            reported in spectral[0] (xyz and rgb stay zero)     */
 } sky_ref_options;
 
-typedef struct sky_ref_radiance {
+typedef struct sky_ref_result {
     double spectral[SKY_REF_WAVELENGTHS];         /* W m^-2 sr^-1 nm^-1     */
     double spectral_std_err[SKY_REF_WAVELENGTHS]; /* of the Monte Carlo part */
     double single[SKY_REF_WAVELENGTHS];           /* the single-scattering part alone */
     double xyz[3];             /* Y = luminance in kcd/m^2                  */
     double rgb[3];             /* linear sRGB primaries, same scale as xyz  */
     double luminance_std_err;  /* kcd/m^2                                   */
-} sky_ref_radiance;
+} sky_ref_result;
 
 /* Wavelength of spectral sample i, nm. */
 double sky_ref_wavelength_nm(int i);
@@ -51,8 +51,6 @@ void sky_ref_coefficients(const sky_atmosphere_params *atm, double lambda_nm, do
 double sky_ref_solar_irradiance(double lambda_nm);
 /* The sun's illuminance above the atmosphere as CIE XYZ, klx (Y ~ 128). */
 void sky_ref_sun_xyz(double xyz[3]);
-/* CIE 1931 XYZ to linear sRGB. */
-void sky_ref_xyz_to_rgb(const double xyz[3], double rgb[3]);
 /* Transmittance from an observer at altitude_km along dir to space (0 if
  * the ray hits the ground), per spectral sample. */
 void sky_ref_transmittance(const sky_atmosphere_params *atm, double altitude_km, const double dir[3],
@@ -61,6 +59,6 @@ void sky_ref_transmittance(const sky_atmosphere_params *atm, double altitude_km,
  * (0 .. above the top) along view. Returns 0, or -1 for bad input (an
  * invalid atmosphere, non-unit or non-finite vectors, options out of range). */
 int sky_ref_radiance(const sky_atmosphere_params *atm, double altitude_km, const double view[3],
-                     const double sun[3], const sky_ref_options *opt, sky_ref_radiance *out);
+                     const double sun[3], const sky_ref_options *opt, sky_ref_result *out);
 
 #endif
