@@ -1,0 +1,70 @@
+/*
+ * Hillaire's LUT atmosphere (Hillaire 2020, "A Scalable and Production
+ * Ready Sky and Atmosphere Rendering Technique", EGSR): the CPU builder.
+ * COMPAT20 builds every table here and uploads it in 8 bits; CORE33
+ * builds the same tables on the GPU (hillaire_*.glsl) and the CPU tables
+ * serve as its check.
+ *
+ * Tables (all RGB at the 680/550/440 nm coefficients of
+ * sky_atmosphere_params, sun illuminance 1: transfer factors):
+ *   transmittance  T(r, mu) to the top of the atmosphere or 0 where the
+ *                  ray meets the ground; Bruneton's (r, mu) mapping.
+ *   multiscatter   Psi_ms(r, mu_s): second and higher orders as isotropic
+ *                  light, L_2nd / (1 - f_ms) (Hillaire sec. 5.5, eq. 10).
+ *   skyview        L(view) for one observer altitude and sun zenith:
+ *                  u = azimuth from the sun's vertical plane (0..pi,
+ *                  symmetric), v = elevation with the horizon-concentrated
+ *                  mapping of Hillaire sec. 5.3 (sqrt toward the horizon).
+ * Radiance in the sky-view table is per unit of solar illuminance above
+ * the atmosphere (1/sr); the caller multiplies by the sun's irradiance.
+ */
+#ifndef SKY_ATMOSPHERE_HILLAIRE_H
+#define SKY_ATMOSPHERE_HILLAIRE_H
+
+#include "../sky.h"
+
+typedef struct sky_hillaire_settings {
+    int transmittance_width, transmittance_height; /* 0 = 256 x 64          */
+    int transmittance_steps;                       /* 0 = 40                */
+    int multiscatter_size;                         /* 0 = 32 (square)       */
+    int multiscatter_directions;                   /* 0 = 64                */
+    int multiscatter_steps;                        /* 0 = 20                */
+    int skyview_width, skyview_height;             /* 0 = 192 x 108         */
+    int skyview_steps;                             /* 0 = 30 (most; fewer for
+                                                      short rays)           */
+} sky_hillaire_settings;
+
+typedef struct sky_hillaire_tables {
+    sky_hillaire_settings settings;  /* with the defaults filled in         */
+    sky_atmosphere_params atm;
+    float *transmittance;  /* width * height * 3, row-major, v rows        */
+    float *multiscatter;   /* size * size * 3                               */
+    float *skyview;        /* width * height * 3                            */
+    double skyview_altitude_km, skyview_sun_mu; /* inputs of the last build */
+} sky_hillaire_tables;
+
+/* Validates settings (each size 4..1024, steps 1..256) and the atmosphere,
+ * fills defaults, allocates. Returns 0, or -1 with err. */
+int sky_hillaire_init(sky_hillaire_tables *t, const sky_atmosphere_params *atm, const sky_hillaire_settings *s,
+                      char *err, size_t err_len);
+void sky_hillaire_free(sky_hillaire_tables *t);
+void sky_hillaire_build_transmittance(sky_hillaire_tables *t);
+void sky_hillaire_build_multiscatter(sky_hillaire_tables *t); /* needs transmittance */
+/* needs both; altitude_km of the observer, sun_mu = cos(sun zenith) */
+void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu);
+
+/* Table coordinates in 0..1 (texel centres mapped as Bruneton does: a
+ * value at the table's edge samples the edge texel's centre). */
+void sky_hillaire_transmittance_uv(const sky_atmosphere_params *atm, double r, double mu, double *u, double *v);
+void sky_hillaire_skyview_uv(const sky_hillaire_tables *t, double view_mu, double cos_azimuth_from_sun,
+                             double altitude_km, double *u, double *v);
+
+/* Bilinear lookups, as the shaders do them. */
+void sky_hillaire_transmittance(const sky_hillaire_tables *t, double r, double mu, double rgb[3]);
+void sky_hillaire_multiscatter(const sky_hillaire_tables *t, double r, double mu_s, double rgb[3]);
+/* Sky radiance per unit solar illuminance (1/sr) for a view direction in
+ * the horizon frame (+y up) with the sun at sun_dir, from the sky-view
+ * table (built for the same altitude and sun). */
+void sky_hillaire_sky(const sky_hillaire_tables *t, const double view[3], const double sun_dir[3], double rgb[3]);
+
+#endif
