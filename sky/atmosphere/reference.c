@@ -564,8 +564,9 @@ static double sample_hg(double xi, double g)
  * each density follows the same exponential (ozone: linear) form as the
  * optical depth, and the distance is solved by safeguarded Newton. */
 static int free_flight(const ref_medium *md, int i, const double pos[3], const double d[3], int n, double tau_target,
-                       double *t_hit, dens3 *dens, int *ground, double *t_end)
+                       double *t_hit, dens3 *dens, int *ground, double *t_end, double *tau_total)
 {
+    *tau_total = 0.0;
     double r = sqrt(dot3(pos, pos)), mu = dot3(pos, d) / r, t0, t1;
     *ground = 0;
     *t_end = 0.0;
@@ -611,6 +612,7 @@ static int free_flight(const ref_medium *md, int i, const double pos[3], const d
         ta = tb;
         da = db;
     }
+    *tau_total = acc;
     return 0;
 }
 
@@ -630,11 +632,29 @@ static double trace_path(const ref_medium *md, int i, const double start[3], con
     double pos[3] = {start[0], start[1], start[2]}, d[3] = {view[0], view[1], view[2]};
     double w = 1.0, c = 0.0;
     for (int order = 1; w > 0.0; order++) {
-        double t_hit, t_end;
+        double t_hit, t_end, tau_total;
         dens3 dn;
         int ground;
         double tau_target = -log(1.0 - rng_uniform(rng));
-        int scattered = free_flight(md, i, pos, d, n, tau_target, &t_hit, &dn, &ground, &t_end);
+        if (order == 1) {
+            /* Forced first collision: along a thin view ray most free
+             * flights escape and add nothing. Draw the first vertex from
+             * the flight distribution restricted to the ray, and carry the
+             * probability of scattering there, 1 - T, in the weight. Where
+             * the ray ends on the ground, half the paths go there instead
+             * (weight T / 0.5) so the ground's bounce keeps its share. */
+            (void)free_flight(md, i, pos, d, n, INFINITY, &t_hit, &dn, &ground, &t_end, &tau_total);
+            double transmitted = exp(-tau_total), p_force = ground ? 0.5 : 1.0;
+            if (rng_uniform(rng) < p_force) {
+                double xi = rng_uniform(rng);
+                tau_target = -log1p(-xi * -expm1(-tau_total));
+                w *= -expm1(-tau_total) / p_force;
+            } else {
+                tau_target = INFINITY;
+                w *= transmitted / (1.0 - p_force);
+            }
+        }
+        int scattered = free_flight(md, i, pos, d, n, tau_target, &t_hit, &dn, &ground, &t_end, &tau_total);
         if (scattered) {
             for (int j = 0; j < 3; j++) pos[j] += d[j] * t_hit;
             double ssr = md->br[i] * dn.r, ssm = md->bms[i] * dn.m;
