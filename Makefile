@@ -61,8 +61,8 @@ DEMO_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE -Isky -Idemo
 CLI_SRC := demo/cli.c demo/osmesa_ctx.c
 CLI_HDR := demo/cli.h demo/osmesa_ctx.h sky/sky.h
 # the stability suite: sky-bench --stability prints it, the tests assert it
-STAB_SRC := demo/stability.c
-STAB_HDR := demo/stability.h
+STAB_SRC := demo/stability.c demo/atmo_error.c
+STAB_HDR := demo/stability.h demo/atmo_error.h
 
 $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
@@ -76,12 +76,12 @@ $(BIN)/sky-game: demo/game.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ demo/game.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
 
-$(BIN)/sky-bench: tools/bench.c $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(LIB)/libsky.a
+$(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lpthread $(LDLIBS_M)
 
 bench: all
-	$(BIN)/sky-bench
+	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png
 
 $(BIN)/catgen: tools/catgen.c
 	@mkdir -p $(@D)
@@ -98,7 +98,7 @@ run: deps all
 TEST_SRC := $(wildcard tests/*.c)
 $(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lerfa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
 # The leak check links the library with LeakSanitizer in its own build dir.
 $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
@@ -112,7 +112,7 @@ SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-o
 $(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
 	@mkdir -p $(@D)
 	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itests -Wno-missing-prototypes \
-	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa $(LDLIBS_M)
+	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
 # libFuzzer harnesses (clang with compiler-rt); built only where that links
 FUZZ_CC ?= clang

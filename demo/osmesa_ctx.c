@@ -128,3 +128,11 @@ int sky_osmesa_write_pfm(const sky_osmesa *o, const char *path)
     if (!ok) remove(path);
     return ok ? 0 : -1;
 }
+
+int sky_write_png_rgb(const char *path, int width, int height, const unsigned char *rgb)
+{
+    if (!path || !rgb || width <= 0 || height <= 0) return -1;
+    int ok = stbi_write_png(path, width, height, 3, rgb, width * 3);
+    if (!ok) remove(path);
+    return ok ? 0 : -1;
+}

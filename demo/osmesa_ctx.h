@@ -33,5 +33,7 @@ int sky_osmesa_write_png(const sky_osmesa *o, const char *path);
 /* Writes a float buffer as a PFM (RGB, little-endian, bottom row first as
  * the format wants). Returns 0 or -1. */
 int sky_osmesa_write_pfm(const sky_osmesa *o, const char *path);
+/* Writes an 8-bit RGB image (top row first) as a PNG. Returns 0 or -1. */
+int sky_write_png_rgb(const char *path, int width, int height, const unsigned char *rgb);
 
 #endif

@@ -135,6 +135,20 @@ SKY_API sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_a
  * SKY_OK or SKY_ERR_INVALID_ARGUMENT with the first bad field named in err. */
 SKY_API sky_result sky_atmosphere_check(const sky_atmosphere_params *atm, char *err, size_t err_len);
 
+/* HILLAIRE and BLEND: the lookup tables' sizes and sample counts (Hillaire
+ * 2020 sec. 5). Zero fields take Hillaire's values; sizes 4..1024, sample
+ * counts 1..256. Larger tables and more samples: closer to the reference,
+ * slower to build (sky-bench shows both). */
+typedef struct sky_lut_settings {
+    int transmittance_width, transmittance_height; /* 256 x 64                */
+    int transmittance_steps;                       /* 40                      */
+    int multiscatter_size;                         /* 32 (square)             */
+    int multiscatter_directions;                   /* 64                      */
+    int multiscatter_steps;                        /* 20                      */
+    int skyview_width, skyview_height;             /* 192 x 108               */
+    int skyview_steps;                             /* 30 at most per ray      */
+} sky_lut_settings;
+
 /* The host's GL loader: glfwGetProcAddress, OSMesaGetProcAddress, or a
  * wrapper around SDL_GL_GetProcAddress. */
 typedef void (*sky_gl_proc)(void);
@@ -168,6 +182,13 @@ typedef struct sky_config {
     float turbidity;
     /* The atmosphere's composition; all zero = Earth (see above). */
     sky_atmosphere_params atmosphere_params;
+    /* HILLAIRE and BLEND: table sizes and samples; all zero = Hillaire's. */
+    sky_lut_settings luts;
+    /* BLEND: 0 = the weight follows the sun (the analytic RAYLEIGH path by
+     * day, Hillaire's tables toward the horizon and in twilight); 1 = use
+     * blend_weight, 0 (analytic) .. 1 (Hillaire). */
+    int blend_manual;
+    float blend_weight;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,

@@ -6,6 +6,7 @@
  */
 #include "test.h"
 #include "sky_internal.h"
+#include "atmo_error.h"
 #include "cli.h"
 
 #include <math.h>
@@ -19,6 +20,7 @@ void test_atmosphere_continuous_across_horizon(void);
 void test_atmosphere_preetham_outside_its_fit(void);
 void test_atmosphere_chapman_function(void);
 void test_atmosphere_description_checked(void);
+void test_atmosphere_error_against_reference(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH};
 static const char *const path_names[] = {"gradient", "preetham", "rayleigh"};
@@ -494,5 +496,41 @@ void test_atmosphere_description_checked(void)
         CHECK(!s && strstr(err, "turbidity"), "turbidity %g: '%s'", (double)turbidities[i], err);
         sky_destroy(s);
         sky_osmesa_destroy(&ctx);
+    }
+}
+
+/* The paths against the cached CPU reference (tests/data, written by
+ * sky-bench --make-reference): a regression guard on the errors sky-bench
+ * reports, and the two profiles agreeing on every path. */
+void test_atmosphere_error_against_reference(void)
+{
+    static sky_atmo_reference ref;
+    char err[512];
+    if (sky_atmo_reference_load("tests/data/atmosphere_reference.txt", &ref, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    /* guards: the errors measured when each path landed plus a margin for
+     * Mesa versions (sky-bench prints the current figures) */
+    static const double day_limit[PATH_COUNT] = {ATMO_LIMIT_GRADIENT, ATMO_LIMIT_PREETHAM, ATMO_LIMIT_RAYLEIGH};
+    for (int p = 0; p < PATH_COUNT; p++) {
+        sky_atmo_errors e[2];
+        for (int q = 0; q < 2; q++) {
+            sky_config cfg;
+            memset(&cfg, 0, sizeof cfg);
+            cfg.atmosphere = paths[p];
+            cfg.gl_profile = q ? SKY_GL_COMPAT20 : SKY_GL_CORE33;
+            if (sky_atmo_measure(&ref, &cfg, &e[q], err, sizeof err)) {
+                CHECK(0, "%s: %s", path_names[p], err);
+                return;
+            }
+        }
+        NOTE("%s: mean relative luminance error day %.1f %% (max %.0f %%), twilight %.0f %%, mean dE2000 day %.1f",
+             path_names[p], 100.0 * e[0].mean_rel_day, 100.0 * e[0].max_rel_day, 100.0 * e[0].mean_rel_twilight,
+             e[0].mean_de2000_day);
+        CHECK(isfinite(e[0].mean_rel_day) && e[0].mean_rel_day <= day_limit[p], "%s: day error %.3f > %.3f",
+              path_names[p], e[0].mean_rel_day, day_limit[p]);
+        CHECK(fabs(e[0].mean_rel_day - e[1].mean_rel_day) < 0.005, "%s: core %.4f and compat %.4f disagree",
+              path_names[p], e[0].mean_rel_day, e[1].mean_rel_day);
     }
 }

@@ -3,16 +3,21 @@
  * measured in the same run — a full-screen quad with one texture fetch,
  * the cheapest thing a sky could possibly be.
  *
- *   sky-bench [--json] [--size WxH] [--frames N]
+ *   sky-bench [--json] [--size WxH] [--frames N] [--reference FILE] [--only-atmosphere] [--plot FILE.png]
  *   sky-bench --stability [--json]
+ *   sky-bench --make-reference FILE [--paths N]
  *
  * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
  * draws, frame ms (median of N) and its ratio to the baseline of the same
- * profile. The atmosphere error columns arrive with the CPU reference.
+ * profile; then, per atmosphere path, setting and profile: frame ms of the
+ * sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and its
+ * error against the cached CPU reference (demo/atmo_error.c).
  */
 #define GL_GLEXT_PROTOTYPES 1
+#include "atmo_error.h"
 #include "cli.h"
 #include "osmesa_ctx.h"
+#include "plot.h"
 #include "stability.h"
 
 #include <GL/gl.h>
@@ -216,6 +221,122 @@ static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_m
     return 0;
 }
 
+/* ---- atmosphere paths: run time against error ------------------------------------------------ */
+
+typedef struct atmo_setting {
+    const char *path, *setting;
+    const char *args[6];
+} atmo_setting;
+
+static const atmo_setting atmo_settings[] = {
+    {"gradient", "default", {"--atmosphere", "gradient"}},
+    {"preetham", "T 2.5 (default)", {"--atmosphere", "preetham"}},
+    {"preetham", "T 2", {"--atmosphere", "preetham", "--turbidity", "2"}},
+    {"rayleigh", "default", {"--atmosphere", "rayleigh"}},
+};
+enum { ATMO_SETTINGS = sizeof atmo_settings / sizeof atmo_settings[0] };
+
+typedef struct atmo_row {
+    const atmo_setting *setting;
+    const char *profile;
+    double frame_ms, ratio, lut_ms;
+    sky_atmo_errors err;
+} atmo_row;
+
+/* One setting in one profile: the frame of the full sky's atmosphere and
+ * sun at the bench size (the default camera of sky-render, morning sun). */
+static int bench_atmosphere(const atmo_setting *a, sky_gl_profile gl, int w, int h, int frames, double baseline,
+                            atmo_row *out)
+{
+    char *argv[12] = {"sky-bench", "--features", "sun", "--time", "0.35"};
+    int argc = 5;
+    for (int i = 0; i < 6 && a->args[i]; i++) argv[argc++] = (char *)a->args[i];
+    row r;
+    if (bench_args(argc, argv, a->path, gl, w, h, frames, &r)) return -1;
+    out->setting = a;
+    out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
+    out->frame_ms = r.frame_ms;
+    out->ratio = r.frame_ms / baseline;
+    out->lut_ms = r.st.lut_ms;
+    return 0;
+}
+
+/* The error of a row's all-sky image; with no context current (the
+ * measurement makes its own float context). */
+static int measure_atmosphere(atmo_row *out, const sky_atmo_reference *ref, sky_gl_profile gl)
+{
+    char *argv[8] = {"sky-bench"};
+    int argc = 1;
+    for (int i = 0; i < 6 && out->setting->args[i]; i++) argv[argc++] = (char *)out->setting->args[i];
+    sky_cli cli;
+    char err[512];
+    if (sky_cli_parse(&cli, argc, argv, 0, err, sizeof err)) return -1;
+    cli.gl = gl;
+    sky_config cfg = sky_cli_config(&cli, sky_osmesa_loader());
+    if (sky_atmo_measure(ref, &cfg, &out->err, err, sizeof err)) {
+        fprintf(stderr, "sky-bench: %s: %s\n", out->setting->path, err);
+        return -1;
+    }
+    return 0;
+}
+
+static void print_atmosphere_table(const atmo_row *rows, int n, const sky_atmo_reference *ref)
+{
+    double se = 0.0, y = 0.0;
+    for (int s = 0; s < SKY_ATMO_SUNS; s++)
+        for (int k = 0; k < SKY_ATMO_DIRECTIONS; k++) {
+            const double *c = ref->rgb[s][k];
+            se += ref->std_err[s][k] / fmax(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2], 1e-30);
+            y += 1.0;
+        }
+    printf("\nAtmosphere paths against the CPU reference (spectral, %d Monte Carlo paths per wavelength for orders\n"
+           ">= 2; mean relative standard error %.2f %%), Earth preset. Frame: atmosphere + sun at the size above.\n"
+           "Errors over an equal-area all-sky grid; day: sun >= 0 deg, twilight: -6 <= sun < 0 deg.\n\n",
+           ref->paths, 100.0 * se / y);
+    printf("| path | setting | profile | frame ms | x baseline | LUT ms | mean rel err day | max rel err day | "
+           "mean rel err twilight | mean dE2000 day |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < n; i++)
+        printf("| %s | %s | %s | %.2f | %.2f | %.2f | %.1f %% | %.0f %% | %.0f %% | %.1f |\n", rows[i].setting->path,
+               rows[i].setting->setting, rows[i].profile, rows[i].frame_ms, rows[i].ratio, rows[i].lut_ms,
+               100.0 * rows[i].err.mean_rel_day, 100.0 * rows[i].err.max_rel_day,
+               100.0 * rows[i].err.mean_rel_twilight, rows[i].err.mean_de2000_day);
+    printf("\nMean relative luminance error by sun elevation (core profile):\n\n| path | setting |");
+    for (int s = 0; s < SKY_ATMO_SUNS; s++) printf(" %+.0f |", sky_atmo_sun_elevations[s]);
+    printf("\n|---|---|");
+    for (int s = 0; s < SKY_ATMO_SUNS; s++) printf("---|");
+    printf("\n");
+    for (int i = 0; i < n; i++) {
+        if (strcmp(rows[i].profile, "core")) continue;
+        printf("| %s | %s |", rows[i].setting->path, rows[i].setting->setting);
+        for (int s = 0; s < SKY_ATMO_SUNS; s++) printf(" %.0f %% |", 100.0 * rows[i].err.mean_rel[s]);
+        printf("\n");
+    }
+}
+
+/* The chart of error against cost, one colour per path. */
+static int plot_atmosphere(const char *path, const atmo_row *rows, int n)
+{
+    static const char *const paths[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
+    plot_point pts[64];
+    int m = 0;
+    for (int i = 0; i < n && m < 64; i++) {
+        int series = 0;
+        for (int k = 0; k < 5; k++)
+            if (!strcmp(rows[i].setting->path, paths[k])) series = k;
+        pts[m].cost = rows[i].ratio;
+        pts[m].error = rows[i].err.mean_rel_day;
+        pts[m].series = series;
+        pts[m].hollow = strcmp(rows[i].profile, "core") != 0;
+        m++;
+    }
+    if (plot_pareto(path, pts, m, paths, 5, "frame time / one-texture baseline",
+                    "mean relative luminance error, sun >= 0", "atmosphere paths: error against run time")) {
+        fprintf(stderr, "sky-bench: cannot write %s\n", path);
+        return -1;
+    }
+    return 0;
+}
+
 /* sky-bench --stability: the stability suite's table (demo/stability.c).
  * Exit 0 when every case passes, 1 otherwise. */
 static int stability_table(int json)
@@ -253,10 +374,21 @@ static int stability_table(int json)
 
 int main(int argc, char **argv)
 {
-    int json = 0, w = 1280, h = 720, frames = 20, stability = 0;
+    int json = 0, w = 1280, h = 720, frames = 20, stability = 0, paths = 1024, only_atmosphere = 0;
+    const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--json"))
             json = 1;
+        else if (!strcmp(argv[i], "--only-atmosphere"))
+            only_atmosphere = 1;
+        else if (!strcmp(argv[i], "--make-reference") && i + 1 < argc)
+            make_reference = argv[++i];
+        else if (!strcmp(argv[i], "--reference") && i + 1 < argc)
+            reference = argv[++i];
+        else if (!strcmp(argv[i], "--plot") && i + 1 < argc)
+            plot = argv[++i];
+        else if (!strcmp(argv[i], "--paths") && i + 1 < argc && (paths = atoi(argv[i + 1])) >= 1 && paths <= 1000000)
+            i++;
         else if (!strcmp(argv[i], "--stability"))
             stability = 1;
         else if (!strcmp(argv[i], "--size") && i + 1 < argc && sscanf(argv[i + 1], "%dx%d", &w, &h) == 2 && w > 0 &&
@@ -265,13 +397,32 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc && (frames = atoi(argv[i + 1])) >= 3 && frames <= 10000)
             i++;
         else {
-            fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3]\n"
-                    "       sky-bench --stability [--json]\n",
+            fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3] "
+                    "[--reference FILE] [--only-atmosphere] [--plot FILE.png]\n       sky-bench --stability [--json]\n"
+                    "       sky-bench --make-reference FILE [--paths N]\n",
                     argv[i]);
             return 2;
         }
     }
     if (stability) return stability_table(json);
+    if (make_reference) {
+        char err[512];
+        fprintf(stderr, "sky-bench: computing the reference sky (%d x %d directions, %d paths), minutes\n",
+                SKY_ATMO_SUNS, SKY_ATMO_DIRECTIONS, paths);
+        if (sky_atmo_reference_make(make_reference, paths, 2, stderr, err, sizeof err)) {
+            fprintf(stderr, "sky-bench: %s\n", err);
+            return 1;
+        }
+        return 0;
+    }
+    static sky_atmo_reference ref;
+    char ref_err[512];
+    if (sky_atmo_reference_load(reference, &ref, ref_err, sizeof ref_err)) {
+        fprintf(stderr, "sky-bench: %s\n", ref_err);
+        return 1;
+    }
+    atmo_row atmo[2 * ATMO_SETTINGS];
+    int natmo = 0;
     static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];
@@ -290,14 +441,26 @@ int main(int argc, char **argv)
             fprintf(stderr, "sky-bench: baseline shader failed\n");
             return 1;
         }
-        for (int p = 0; p < NP; p++) {
+        for (int p = 0; p < NP && !only_atmosphere; p++) {
             if (bench_preset(presets[p], gl, w, h, frames, &rows[nrows])) return 1;
             rows[nrows].ratio = rows[nrows].frame_ms / base[prof];
             nrows++;
         }
-        if (bench_night(gl, w, h, frames, night[prof])) return 1;
+        if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
+        for (int a = 0; a < ATMO_SETTINGS; a++)
+            if (bench_atmosphere(&atmo_settings[a], gl, w, h, frames, base[prof], &atmo[natmo + a])) return 1;
         sky_osmesa_destroy(&ctx);
+        for (int a = 0; a < ATMO_SETTINGS; a++)
+            if (measure_atmosphere(&atmo[natmo + a], &ref, gl)) return 1;
+        natmo += ATMO_SETTINGS;
     }
+    if (only_atmosphere) {
+        if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
+        printf("baseline (one-texture full-screen quad, %dx%d): core %.2f ms, compat %.2f ms\n", w, h, base[0], base[1]);
+        print_atmosphere_table(atmo, natmo, &ref);
+        return 0;
+    }
+    if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
     double astro = astro_us(2000);
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"astro_update_us\":%.2f,\n"
@@ -315,6 +478,19 @@ int main(int argc, char **argv)
                    "\"moon_cd30_ms\":%.4f}%s\n",
                    prof ? "compat" : "core", night[prof][NIGHT_STARS], night[prof][NIGHT_STARMAP] - night[prof][NIGHT_NONE],
                    night[prof][NIGHT_MOON3], night[prof][NIGHT_MOON30], prof ? "" : ",");
+        printf(" ],\n \"reference\": {\"method\":\"spectral, 16 wavelengths; single scattering by quadrature, orders >= 2 "
+               "by Monte Carlo\", \"paths\":%d, \"std_err\":%.6g},\n \"rows\": [\n",
+               ref.paths, ref.std_err[0][0]);
+        for (int i = 0; i < natmo; i++) {
+            const atmo_row *r = &atmo[i];
+            printf("  {\"path\":\"%s\", \"setting\":\"%s\", \"profile\":\"%s\", \"frame_ms\":%.4f, \"ratio\":%.3f, "
+                   "\"lut_ms\":%.4f, \"mean_rel_err_day\":%.5f, \"max_rel_err_day\":%.5f, "
+                   "\"mean_rel_err_twilight\":%.5f, \"mean_de2000_day\":%.4f, \"mean_rel_err_by_elevation\":[",
+                   r->setting->path, r->setting->setting, r->profile, r->frame_ms, r->ratio, r->lut_ms,
+                   r->err.mean_rel_day, r->err.max_rel_day, r->err.mean_rel_twilight, r->err.mean_de2000_day);
+            for (int s = 0; s < SKY_ATMO_SUNS; s++) printf("%.5f%s", r->err.mean_rel[s], s + 1 < SKY_ATMO_SUNS ? "," : "");
+            printf("]}%s\n", i + 1 < natmo ? "," : "");
+        }
         printf(" ]}\n");
         return 0;
     }
@@ -339,5 +515,6 @@ int main(int argc, char **argv)
             double ms = from[k] < 0 ? night[prof][k] : night[prof][k] - night[prof][from[k]];
             printf("| %s | %s | %.2f | %.2f |\n", names[k], prof ? "compat" : "core", ms, ms / base[prof]);
         }
+    print_atmosphere_table(atmo, natmo, &ref);
     return 0;
 }
