@@ -55,7 +55,13 @@ void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, doub
 
 /* Table coordinates in 0..1 (texel centres mapped as Bruneton does: a
  * value at the table's edge samples the edge texel's centre). */
+/* sky_hillaire_transmittance_uv is for the default 256 x 64 table (it is
+ * not told the size); _sized takes the table's size. mu below the
+ * horizon (the ray meets the ground) clamps to the grazing column: the
+ * table holds rays to the top only. A zero atmosphere is Earth. */
 void sky_hillaire_transmittance_uv(const sky_atmosphere_params *atm, double r, double mu, double *u, double *v);
+void sky_hillaire_transmittance_uv_sized(const sky_atmosphere_params *atm, double r, double mu, int width,
+                                         int height, double *u, double *v);
 void sky_hillaire_skyview_uv(const sky_hillaire_tables *t, double view_mu, double cos_azimuth_from_sun,
                              double altitude_km, double *u, double *v);
 
