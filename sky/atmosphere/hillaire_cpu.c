@@ -83,13 +83,36 @@ static hl_dens density_at(const hl_medium *m, double radius)
 }
 
 /* Integral over a segment of length ds of a density exp(-h / scale)
- * that is exponential in path length between heights ha and hb (value
- * da at ha): da ds (e^x - 1) / x with x = -(hb - ha) / scale. */
-static double seg_exp(double da, double ha, double hb, double scale, double ds)
+ * that is exponential in path length between heights ha and hb (values
+ * da, db): ds (db - da) / x with x = ln(db / da) = -(hb - ha) / scale,
+ * which needs no further exponential; a Taylor term for x near 0. */
+static double seg_exp(double da, double db, double ha, double hb, double scale, double ds)
 {
     double x = -(hb - ha) / scale;
-    if (fabs(x) < 1e-6) return da * ds * (1.0 + 0.5 * x);
-    return da * ds * expm1(x) / x;
+    if (fabs(x) < 1e-4) return da * ds * (1.0 + x * (0.5 + x / 6.0));
+    return ds * (db - da) / x;
+}
+
+/* Antiderivative in altitude of the ozone tent max(0, 1 - |h - p| / w). */
+static double tent_integral(double h, double p, double w)
+{
+    double x = h - p;
+    if (x <= -w) return 0.0;
+    if (x <= 0.0) return 0.5 * (x + w) * (x + w) / w;
+    if (x < w) return 0.5 * w + x - 0.5 * x * x / w;
+    return w;
+}
+
+/* The ozone column of a segment. Every segment lies on one side of the
+ * ray's lowest point (the layout puts a boundary there), so altitude is
+ * monotone along it; taking it as linear in path length, the tent's
+ * kinks are integrated exactly (a trapezoid across the peak at 25 km is
+ * off by several per cent of the column on the long grazing segments). */
+static double seg_ozone(const hl_medium *m, double ha, double hb, double oa, double ob, double ds)
+{
+    double dh = hb - ha;
+    if (fabs(dh) < 1e-6 * m->oz_hw) return 0.5 * (oa + ob) * ds;
+    return ds * (tent_integral(hb, m->oz_peak, m->oz_hw) - tent_integral(ha, m->oz_peak, m->oz_hw)) / dh;
 }
 
 /* The column (sea-level-equivalent km of each constituent) of a segment. */
@@ -99,9 +122,9 @@ static hl_dens seg_column(const hl_medium *m, hl_dens a, double ra, hl_dens b, d
     double ha = ra - m->R, hb = rb - m->R;
     if (ha < 0.0) ha = 0.0;
     if (hb < 0.0) hb = 0.0;
-    c.r = seg_exp(a.r, ha, hb, m->hr, ds);
-    c.m = seg_exp(a.m, ha, hb, m->hm, ds);
-    c.o = 0.5 * (a.o + b.o) * ds;
+    c.r = seg_exp(a.r, b.r, ha, hb, m->hr, ds);
+    c.m = seg_exp(a.m, b.m, ha, hb, m->hm, ds);
+    c.o = seg_ozone(m, ha, hb, a.o, b.o, ds);
     return c;
 }
 
@@ -110,10 +133,12 @@ static double tau_of(const hl_medium *m, int ch, hl_dens col)
     return m->br[ch] * col.r + m->bme[ch] * col.m + m->bo[ch] * col.o;
 }
 
-/* (1 - e^-tau) / tau: the energy-conserving weight of a segment. */
-static double seg_weight(double tau)
+/* (1 - e^-tau) / tau, the energy-conserving weight of a segment, from
+ * e = e^-tau that the caller has anyway; a series where 1 - e cancels. */
+static double seg_weight(double tau, double e)
 {
-    return tau > 1e-9 ? -expm1(-tau) / tau : 1.0 - 0.5 * tau;
+    if (tau > 1e-3) return (1.0 - e) / tau;
+    return 1.0 - tau * (0.5 - tau / 6.0);
 }
 
 /* ---- geometry ---------------------------------------------------------------- */
@@ -478,41 +503,57 @@ static void ms_table(const sky_hillaire_tables *t, const hl_medium *m, double r,
     bilinear(t->multiscatter, n, n, unit_to_tex(x, n), unit_to_tex(y, n), rgb);
 }
 
-/* Direction k of n on the unit sphere: the Fibonacci spiral (equal
- * areas, deterministic), +y up. */
-static void sphere_dir(int k, int n, double d[3])
+/* Direction k of the n_half on the half sphere z > 0: a Fibonacci spiral
+ * about +z (equal areas, deterministic). The observer and the sun lie in
+ * the plane z = 0, so the mirror image (x, y, -z) of each direction sees
+ * the same light: the builder traces the half and counts it twice, a
+ * uniform set of 2 n_half directions over the whole sphere for the price
+ * of n_half. */
+static void half_sphere_dir(int k, int n_half, double d[3])
 {
     const double golden = M_PI * (3.0 - sqrt(5.0));
-    double y = 1.0 - (2.0 * k + 1.0) / n;
-    double s = safe_sqrt(1.0 - y * y), phi = golden * k;
+    double z = 1.0 - (k + 0.5) / n_half;
+    double s = safe_sqrt(1.0 - z * z), phi = golden * k;
     d[0] = s * cos(phi);
-    d[1] = y;
-    d[2] = s * sin(phi);
+    d[1] = s * sin(phi);
+    d[2] = z;
 }
 
-/* One texel of Psi_ms (Hillaire 2020 sec. 5.5). With the isotropic phase
- * p_u = 1/(4 pi) and n equal-area directions, each integral over the
- * sphere times p_u is the mean over the directions:
+/* One row of Psi_ms (Hillaire 2020 sec. 5.5): radius r, every mu_s.
+ * With the isotropic phase p_u = 1/(4 pi) and equal-area directions,
+ * each integral over the sphere times p_u is the mean over the
+ * directions:
  *   L_2nd = mean over w of L'(x, w)            (eq. 5, 6)
  *   f_ms  = mean over w of L_f(x, w)           (eq. 7, 8)
  *   Psi   = L_2nd / (1 - f_ms)                 (eq. 9, 10)
  * L' is the light scattered once toward x along w with the sun's light
- * scattered by p_u, plus the sunlit Lambertian ground where w meets it.
- * L_f is the light transferred to x from unit isotropic radiance
- * scattered along w; where w meets the ground we add the ground's
- * reflection of that unit radiance (albedo x T), the same isotropic
- * assumption applied to the ground (Hillaire's demo leaves it out; the
- * reference path tracer bounces light between ground and air too). */
-static void multiscatter_texel(const sky_hillaire_tables *t, const hl_medium *m, double r, double mu_s,
-                               double psi[3])
+ * scattered by p_u (the phase of Hillaire's eq. 6), plus the sunlit
+ * Lambertian ground where w meets it. L_f is the light transferred to x
+ * from unit isotropic radiance scattered along w; where w meets the
+ * ground we add the ground's reflection of that unit radiance (albedo x
+ * T): the same isotropic assumption applied to the ground (Hillaire's
+ * demo leaves it out; the reference path tracer bounces light between
+ * ground and air, and this brings the table closer to it).
+ * A ray's geometry, optical depths and weights do not depend on the sun,
+ * so each is marched once per row and only the sun's transmittance is
+ * looked up per mu_s: f_ms is one value per row. */
+static void multiscatter_row(const sky_hillaire_tables *t, const hl_medium *m, double r, float *row)
 {
-    int nd = t->settings.multiscatter_directions, ns = t->settings.multiscatter_steps;
+    enum { MAX_ROW = 1024 };
+    int n = t->settings.multiscatter_size;
+    /* multiscatter_directions rounded up to even, as mirrored pairs */
+    int nd = (t->settings.multiscatter_directions + 1) / 2, ns = t->settings.multiscatter_steps;
     const double pu = 1.0 / (4.0 * M_PI);
-    double sun[3] = {safe_sqrt(1.0 - mu_s * mu_s), mu_s, 0.0};
-    double l2[3] = {0, 0, 0}, fms[3] = {0, 0, 0};
+    double sx[MAX_ROW], sy[MAX_ROW], l2[MAX_ROW][3];
+    for (int i = 0; i < n; i++) {
+        sy[i] = clamp(2.0 * i / (n - 1) - 1.0, -1.0, 1.0); /* mu_s of column i */
+        sx[i] = safe_sqrt(1.0 - sy[i] * sy[i]);
+        l2[i][0] = l2[i][1] = l2[i][2] = 0.0;
+    }
+    double fms[3] = {0, 0, 0};
     for (int k = 0; k < nd; k++) {
         double w[3];
-        sphere_dir(k, nd, w);
+        half_sphere_dir(k, nd, w);
         double mu = w[1];
         int ground = hits_ground(m, r, mu);
         double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
@@ -526,18 +567,21 @@ static void multiscatter_texel(const sky_hillaire_tables *t, const hl_medium *m,
                 double tb = layout_t(&ly, s), rb = radius_along(r, mu, tb);
                 hl_dens db = density_at(m, rb);
                 hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
-                /* the sun at the segment's midpoint */
-                double tm = 0.5 * (ta + tb);
-                double p[3] = {w[0] * tm, r + w[1] * tm, w[2] * tm};
-                double rm = radius_along(r, mu, tm);
-                double ts[3];
-                sun_transmittance(t, m, rm, (p[0] * sun[0] + p[1] * sun[1]) / rm, ts);
+                double sc[3];
                 for (int c = 0; c < 3; c++) {
-                    double tau = tau_of(m, c, col);
-                    double sc = (m->br[c] * col.r + m->bms[c] * col.m) * seg_weight(tau) * tr[c];
-                    l2[c] += sc * ts[c] * pu;
-                    fms[c] += sc;
-                    tr[c] *= exp(-tau);
+                    double tau = tau_of(m, c, col), e = exp(-tau);
+                    sc[c] = (m->br[c] * col.r + m->bms[c] * col.m) * seg_weight(tau, e) * tr[c];
+                    fms[c] += sc[c];
+                    tr[c] *= e;
+                }
+                /* the sun at the segment's midpoint, for every mu_s */
+                double tm = 0.5 * (ta + tb);
+                double px = w[0] * tm, py = r + w[1] * tm;
+                double rm = radius_along(r, mu, tm);
+                for (int i = 0; i < n; i++) {
+                    double ts[3];
+                    sun_transmittance(t, m, rm, clamp((px * sx[i] + py * sy[i]) / rm, -1.0, 1.0), ts);
+                    for (int c = 0; c < 3; c++) l2[i][c] += sc[c] * ts[c] * pu;
                 }
                 ta = tb;
                 ra = rb;
@@ -545,24 +589,27 @@ static void multiscatter_texel(const sky_hillaire_tables *t, const hl_medium *m,
             }
         }
         if (ground) {
-            double g[3] = {w[0] * L, r + w[1] * L, w[2] * L};
-            double rg = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-            double mug = (g[0] * sun[0] + g[1] * sun[1]) / rg;
-            double ts[3] = {0, 0, 0};
-            if (mug > 0.0) trans_table(t, m, m->R, mug, ts);
-            for (int c = 0; c < 3; c++) {
-                l2[c] += tr[c] * ts[c] * (mug > 0.0 ? mug : 0.0) * m->albedo[c] / M_PI;
-                fms[c] += tr[c] * m->albedo[c];
+            double gx = w[0] * L, gy = r + w[1] * L, gz = w[2] * L;
+            double rg = sqrt(gx * gx + gy * gy + gz * gz);
+            for (int c = 0; c < 3; c++) fms[c] += tr[c] * m->albedo[c];
+            for (int i = 0; i < n; i++) {
+                double mug = (gx * sx[i] + gy * sy[i]) / rg;
+                if (!(mug > 0.0)) continue;
+                double ts[3];
+                trans_table(t, m, m->R, mug, ts);
+                for (int c = 0; c < 3; c++) l2[i][c] += tr[c] * ts[c] * mug * m->albedo[c] / M_PI;
             }
         }
     }
-    for (int c = 0; c < 3; c++) {
-        double l = l2[c] / nd, f = fms[c] / nd;
-        /* f < 1 whenever anything is absorbed or escapes; the floor only
-         * keeps a lossless, opaque description finite */
-        double den = 1.0 - f;
-        if (den < 1e-3) den = 1e-3;
-        psi[c] = l / den;
+    for (int i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) {
+            double l = l2[i][c] / nd, f = fms[c] / nd;
+            /* f < 1 whenever anything is absorbed or escapes; the floor
+             * only keeps a lossless, opaque description finite */
+            double den = 1.0 - f;
+            if (den < 1e-3) den = 1e-3;
+            row[i * 3 + c] = (float)(l / den);
+        }
     }
 }
 
@@ -572,15 +619,8 @@ void sky_hillaire_build_multiscatter(sky_hillaire_tables *t)
     hl_medium m;
     medium_from(&t->atm, &m);
     int n = t->settings.multiscatter_size;
-    for (int j = 0; j < n; j++) {
-        double r = m.R + (m.Rt - m.R) * j / (n - 1);
-        for (int i = 0; i < n; i++) {
-            double mu_s = clamp(2.0 * i / (n - 1) - 1.0, -1.0, 1.0), psi[3];
-            multiscatter_texel(t, &m, r, mu_s, psi);
-            float *p = t->multiscatter + ((size_t)j * n + i) * 3;
-            for (int c = 0; c < 3; c++) p[c] = (float)psi[c];
-        }
-    }
+    for (int j = 0; j < n; j++)
+        multiscatter_row(t, &m, m.R + (m.Rt - m.R) * j / (n - 1), t->multiscatter + (size_t)j * n * 3);
 }
 
 void sky_hillaire_multiscatter(const sky_hillaire_tables *t, double r, double mu_s, double rgb[3])
@@ -705,11 +745,11 @@ static void skyview_ray(const sky_hillaire_tables *t, const hl_medium *m, double
             sun_transmittance(t, m, rm, mus, ts);
             ms_table(t, m, rm, mus, psi);
             for (int c = 0; c < 3; c++) {
-                double tau = tau_of(m, c, col);
+                double tau = tau_of(m, c, col), e = exp(-tau);
                 double sr = m->br[c] * col.r, sm = m->bms[c] * col.m;
                 double s_in = (sr * pr + sm * pm) * ts[c] + (sr + sm) * psi[c];
-                out[c] += tr[c] * s_in * seg_weight(tau);
-                tr[c] *= exp(-tau);
+                out[c] += tr[c] * s_in * seg_weight(tau, e);
+                tr[c] *= e;
             }
             ta = tb;
             ra = rb;
