@@ -703,72 +703,6 @@ void sky_hillaire_skyview_uv(const sky_hillaire_tables *t, double view_mu, doubl
     if (v) *v = unit_to_tex(y, h);
 }
 
-/* Radiance per unit solar illuminance along one view ray (Hillaire 2020
- * eq. 1-3 for single scattering, eq. 11 for the multiple-scattering
- * term). ground: whether the ray meets the ground, decided by the
- * caller from which side of the horizon it was built on. */
-static void skyview_ray(const sky_hillaire_tables *t, const hl_medium *m, double r0, const double view[3],
-                        int ground, const double sun[3], int steps, double out[3])
-{
-    out[0] = out[1] = out[2] = 0.0;
-    double r = r0, mu = view[1];
-    double start = 0.0; /* distance from the observer to the ray's start */
-    if (r > m->Rt) {
-        double disc = r * r * (mu * mu - 1.0) + m->Rt * m->Rt;
-        if (mu >= 0.0 || disc < 0.0) return; /* misses the shell: space */
-        start = (r * r - m->Rt * m->Rt) / (-r * mu + sqrt(disc));
-        double mu2 = clamp((r * mu + start) / m->Rt, -1.0, 1.0);
-        r = m->Rt;
-        mu = mu2;
-    }
-    double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
-    /* the start point in the observer's frame, and the ray's own
-     * cosines taken there */
-    double o[3] = {view[0] * start, r0 + view[1] * start, view[2] * start};
-    double cos_theta = view[0] * sun[0] + view[1] * sun[1] + view[2] * sun[2];
-    double pr = phase_rayleigh(cos_theta), pm = phase_cs(cos_theta, m->g);
-    double tr[3] = {1.0, 1.0, 1.0};
-    if (L > 0.0) {
-        hl_layout ly;
-        layout_init(&ly, L, -r * mu, steps);
-        double ta = 0.0, ra = r;
-        hl_dens da = density_at(m, ra);
-        for (int s = 1; s <= steps; s++) {
-            double tb = layout_t(&ly, s), rb = radius_along(r, mu, tb);
-            hl_dens db = density_at(m, rb);
-            hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
-            double tm = 0.5 * (ta + tb);
-            double p[3] = {o[0] + view[0] * tm, o[1] + view[1] * tm, o[2] + view[2] * tm};
-            double rm = radius_along(r, mu, tm);
-            double mus = (p[0] * sun[0] + p[1] * sun[1] + p[2] * sun[2]) / rm;
-            double ts[3], psi[3];
-            sun_transmittance(t, m, rm, mus, ts);
-            ms_table(t, m, rm, mus, psi);
-            for (int c = 0; c < 3; c++) {
-                double tau = tau_of(m, c, col), e = exp(-tau);
-                double sr = m->br[c] * col.r, sm = m->bms[c] * col.m;
-                double s_in = (sr * pr + sm * pm) * ts[c] + (sr + sm) * psi[c];
-                out[c] += tr[c] * s_in * seg_weight(tau, e);
-                tr[c] *= e;
-            }
-            ta = tb;
-            ra = rb;
-            da = db;
-        }
-    }
-    if (ground) {
-        /* the sunlit Lambertian ground seen through the air */
-        double g[3] = {o[0] + view[0] * L, o[1] + view[1] * L, o[2] + view[2] * L};
-        double rg = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-        double mug = (g[0] * sun[0] + g[1] * sun[1] + g[2] * sun[2]) / rg;
-        if (mug > 0.0) {
-            double ts[3];
-            trans_table(t, m, m->R, mug, ts);
-            for (int c = 0; c < 3; c++) out[c] += tr[c] * m->albedo[c] / M_PI * mug * ts[c];
-        }
-    }
-}
-
 /* Samples for a ray of length L: the full count for the long rays near
  * the horizon, fewer (never under a third, never under 4) for short
  * ones; the quadratic layout already puts them where the air is. */
@@ -783,6 +717,109 @@ static int skyview_steps_for(const hl_medium *m, int steps, double L)
     return n;
 }
 
+/* The sun's transmittance at a sample whose rho = sqrt(r^2 - R^2) and
+ * table row coordinate are known (they do not depend on the sun). */
+static void sun_transmittance_at(const sky_hillaire_tables *t, const hl_medium *m, double r, double rho, double v_tex,
+                                 double mu_s, double rgb[3])
+{
+    if (hits_ground(m, r, mu_s)) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        return;
+    }
+    double d = dist_to_top(m, r, mu_s), dmin = m->Rt - r, dmax = rho + m->H;
+    double xmu = dmax > dmin ? clamp((d - dmin) / (dmax - dmin), 0.0, 1.0) : 0.0;
+    int w = t->settings.transmittance_width, h = t->settings.transmittance_height;
+    bilinear(t->transmittance, w, h, unit_to_tex(xmu, w), v_tex, rgb);
+}
+
+/* One row of the sky-view table: zenith angle th of every view, ground
+ * telling whether the row is below the horizon (decided from the row,
+ * not re-derived from the rounded angle). Radiance per unit solar
+ * illuminance: Hillaire 2020 eq. 1-3 for single scattering (phase x
+ * sun transmittance x sun visibility), eq. 11 for the multiple
+ * scattering (sigma_s Psi_ms), each segment in the energy-conserving
+ * form, and the sunlit Lambertian ground at the end of rays that meet
+ * it. A ray's geometry, optical depth and weights are the same at every
+ * azimuth (only the angle to the sun changes), so the row's ray is
+ * marched once and each column only looks up the sun's transmittance
+ * and Psi_ms at its own solar cosine. */
+static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double r0, double th, int ground,
+                        const double sun[3], float *row)
+{
+    enum { MAX_STEPS = 256 };
+    int w = t->settings.skyview_width;
+    double ct = cos(th), st = sin(th);
+    for (int i = 0; i < w * 3; i++) row[i] = 0.0f;
+    double r = r0, mu = ct, start = 0.0;
+    if (r > m->Rt) {
+        double disc = r * r * (mu * mu - 1.0) + m->Rt * m->Rt;
+        if (mu >= 0.0 || disc < 0.0) return; /* misses the shell: space */
+        start = (r * r - m->Rt * m->Rt) / (-r * mu + sqrt(disc));
+        r = m->Rt;
+        mu = clamp((r0 * ct + start) / m->Rt, -1.0, 1.0);
+    }
+    double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
+    int n = L > 0.0 ? skyview_steps_for(m, t->settings.skyview_steps, L) : 0;
+    /* per sample: radius, distance from the observer, the table rows of
+     * the two lookups, and the Rayleigh and Mie weights per channel */
+    double rs[MAX_STEPS], ds[MAX_STEPS], rho[MAX_STEPS], vt[MAX_STEPS], vm[MAX_STEPS];
+    double wr[MAX_STEPS][3], wm[MAX_STEPS][3], tr[3] = {1.0, 1.0, 1.0};
+    int tr_h = t->settings.transmittance_height, ms_n = t->settings.multiscatter_size;
+    if (n > 0) {
+        hl_layout ly;
+        layout_init(&ly, L, -r * mu, n);
+        double ta = 0.0, ra = r;
+        hl_dens da = density_at(m, ra);
+        for (int s = 0; s < n; s++) {
+            double tb = layout_t(&ly, s + 1), rb = radius_along(r, mu, tb);
+            hl_dens db = density_at(m, rb);
+            hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
+            double tm = 0.5 * (ta + tb), rm = radius_along(r, mu, tm);
+            rs[s] = rm;
+            ds[s] = start + tm;
+            rho[s] = safe_sqrt(rm * rm - m->R * m->R);
+            vt[s] = unit_to_tex(clamp(rho[s] / m->H, 0.0, 1.0), tr_h);
+            vm[s] = unit_to_tex(clamp((rm - m->R) / (m->Rt - m->R), 0.0, 1.0), ms_n);
+            for (int c = 0; c < 3; c++) {
+                double tau = tau_of(m, c, col), e = exp(-tau), f = tr[c] * seg_weight(tau, e);
+                wr[s][c] = m->br[c] * col.r * f;
+                wm[s][c] = m->bms[c] * col.m * f;
+                tr[c] *= e;
+            }
+            ta = tb;
+            ra = rb;
+            da = db;
+        }
+    }
+    double rg = ground ? radius_along(r, mu, L) : 0.0;
+    for (int i = 0; i < w; i++) {
+        double x = (double)i / (w - 1);
+        double caz = clamp(1.0 - 2.0 * x * x, -1.0, 1.0), saz = safe_sqrt(1.0 - caz * caz);
+        double view[3] = {st * caz, ct, st * saz};
+        double cos_theta = view[0] * sun[0] + view[1] * sun[1] + view[2] * sun[2];
+        double pr = phase_rayleigh(cos_theta), pm = phase_cs(cos_theta, m->g);
+        double out[3] = {0, 0, 0};
+        for (int s = 0; s < n; s++) {
+            /* the sample is observer + view * ds: its solar cosine */
+            double mus = clamp((r0 * sun[1] + ds[s] * cos_theta) / rs[s], -1.0, 1.0);
+            double ts[3], psi[3];
+            sun_transmittance_at(t, m, rs[s], rho[s], vt[s], mus, ts);
+            bilinear(t->multiscatter, ms_n, ms_n, unit_to_tex(0.5 + 0.5 * mus, ms_n), vm[s], psi);
+            for (int c = 0; c < 3; c++)
+                out[c] += wr[s][c] * (pr * ts[c] + psi[c]) + wm[s][c] * (pm * ts[c] + psi[c]);
+        }
+        if (ground && rg > 0.0) {
+            double mug = (r0 * sun[1] + (start + L) * cos_theta) / rg;
+            if (mug > 0.0) {
+                double ts[3];
+                trans_table(t, m, m->R, clamp(mug, 0.0, 1.0), ts);
+                for (int c = 0; c < 3; c++) out[c] += tr[c] * m->albedo[c] / M_PI * mug * ts[c];
+            }
+        }
+        for (int c = 0; c < 3; c++) row[i * 3 + c] = (float)out[c];
+    }
+}
+
 void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu)
 {
     if (!t || !t->skyview || !t->transmittance || !t->multiscatter) return;
@@ -793,7 +830,8 @@ void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, doub
     double r0 = observer_radius(&m, altitude_km);
     t->skyview_altitude_km = r0 - m.R;
     t->skyview_sun_mu = sun_mu;
-    int w = t->settings.skyview_width, h = t->settings.skyview_height, steps = t->settings.skyview_steps;
+    int w = t->settings.skyview_width, h = t->settings.skyview_height;
+    /* the sun at azimuth 0 (+x): u = 0 is its vertical */
     double sun[3] = {sqrt(1.0 - sun_mu * sun_mu), sun_mu, 0.0};
     double th_h = horizon_zenith(&m, r0), beta = M_PI - th_h;
     for (int j = 0; j < h; j++) {
@@ -807,23 +845,7 @@ void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, doub
             double q = 2.0 * y - 1.0;
             th = th_h + beta * q * q;
         }
-        double ct = cos(th), st = sin(th);
-        for (int i = 0; i < w; i++) {
-            double x = (double)i / (w - 1);
-            double caz = clamp(1.0 - 2.0 * x * x, -1.0, 1.0), saz = safe_sqrt(1.0 - caz * caz);
-            double view[3] = {st * caz, ct, st * saz};
-            /* the ray's length for the sample count */
-            double r = r0, mu = ct, L;
-            if (r > m.Rt) {
-                L = 2.0 * m.H;
-            } else {
-                L = below ? dist_to_ground(&m, r, mu) : dist_to_top(&m, r, mu);
-            }
-            double rgb[3];
-            skyview_ray(t, &m, r0, view, below, sun, skyview_steps_for(&m, steps, L), rgb);
-            float *p = t->skyview + ((size_t)j * w + i) * 3;
-            for (int c = 0; c < 3; c++) p[c] = (float)rgb[c];
-        }
+        skyview_row(t, &m, r0, th, below, sun, t->skyview + (size_t)j * w * 3);
     }
 }
 
