@@ -90,6 +90,12 @@ int test_failures;
     X(reference_energy_balance)                  \
     X(reference_converges)                       \
     X(reference_sky_is_plausible)                \
+    X(hillaire_transmittance_table)              \
+    X(hillaire_sky_vs_reference)                 \
+    X(hillaire_error_falls_with_table_size)      \
+    X(hillaire_finite_everywhere)                \
+    X(hillaire_build_times)                      \
+    X(hillaire_bad_input)                        \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);

@@ -17,6 +17,29 @@
  *                  mapping of Hillaire sec. 5.3 (sqrt toward the horizon).
  * Radiance in the sky-view table is per unit of solar illuminance above
  * the atmosphere (1/sr); the caller multiplies by the sun's irradiance.
+ *
+ * Choices of this implementation (hillaire_cpu.c):
+ *   - every table coordinate x in 0..1 maps to 0.5/N + x (1 - 1/N), so
+ *     texel i holds x = i / (N - 1); lookups are GL_LINEAR +
+ *     CLAMP_TO_EDGE.
+ *   - transmittance: rays that meet the ground have no texel (Bruneton);
+ *     sky_hillaire_transmittance returns 0 for them, decided from the
+ *     caller's (r, mu) in double, and the entry-point value (or 1) from
+ *     above the top. T along a ray to the ground point is the caller's:
+ *     T(r, mu) / T(r_ground, mu_ground) with both rays mirrored upward.
+ *   - multiscatter: u = 0.5 + 0.5 mu_s, v = (r - R) / (Rt - R);
+ *     directions a Fibonacci half-sphere mirrored across the sun's plane
+ *     (multiscatter_directions rounded up to even).
+ *   - skyview: u = sqrt((1 - cos az) / 2) = sin(az / 2), the sun's vertical
+ *     at u = 0; v = 0.5 (1 - sqrt(1 - theta / theta_h)) above the
+ *     geometric horizon theta_h = pi - asin(R / r) and 0.5 + 0.5 sqrt((theta
+ *     - theta_h) / (pi - theta_h)) below it. The horizon is v = 0.5: the
+ *     boundary between the two middle rows for an even height (the
+ *     default 108), whose centres lie within 0.01 deg (above) and 0.03 deg
+ *     (below) of it, so a lookup never blends sky far from the horizon
+ *     with ground.
+ * sky_hillaire_init takes settings NULL as all defaults; a NULL table or
+ * atmosphere is an error; an all-zero atmosphere is Earth.
  */
 #ifndef SKY_ATMOSPHERE_HILLAIRE_H
 #define SKY_ATMOSPHERE_HILLAIRE_H
@@ -55,7 +78,13 @@ void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, doub
 
 /* Table coordinates in 0..1 (texel centres mapped as Bruneton does: a
  * value at the table's edge samples the edge texel's centre). */
+/* sky_hillaire_transmittance_uv is for the default 256 x 64 table (it is
+ * not told the size); _sized takes the table's size. mu below the
+ * horizon (the ray meets the ground) clamps to the grazing column: the
+ * table holds rays to the top only. A zero atmosphere is Earth. */
 void sky_hillaire_transmittance_uv(const sky_atmosphere_params *atm, double r, double mu, double *u, double *v);
+void sky_hillaire_transmittance_uv_sized(const sky_atmosphere_params *atm, double r, double mu, int width,
+                                         int height, double *u, double *v);
 void sky_hillaire_skyview_uv(const sky_hillaire_tables *t, double view_mu, double cos_azimuth_from_sun,
                              double altitude_km, double *u, double *v);
 

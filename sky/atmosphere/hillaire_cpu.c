@@ -1,0 +1,871 @@
+/*
+ * Hillaire's LUT atmosphere, the CPU builder (hillaire.h). Pure C, float
+ * tables, double arithmetic. No GL, no global mutable state, no printing.
+ *
+ * Conventions shared by every table (so the GLSL twins can mirror them):
+ *  - a table coordinate x in 0..1 maps to the texture coordinate
+ *    0.5/N + x (1 - 1/N) (Bruneton 2017, GetTextureCoordFromUnitRange):
+ *    x = 0 and x = 1 land on the centres of the edge texels, so texel i
+ *    stores the value at x = i / (N - 1) exactly;
+ *  - lookups are bilinear exactly as GL_LINEAR with CLAMP_TO_EDGE does
+ *    them (texel centres at (i + 0.5) / N, indices clamped to the edge);
+ *  - ray/sphere distances use the discriminant r^2 (mu^2 - 1) + R^2
+ *    clamped at 0 before the sqrt, and the root that cancels is written
+ *    as (r^2 - R^2) / (-r mu + sqrt(disc)) (Bruneton 2017, sec. 2.2);
+ *  - whether a ray meets the ground is decided once from the doubles the
+ *    caller has (or from the table row a texel belongs to), never
+ *    re-derived from a texture coordinate.
+ *
+ * Along every ray the optical depth of each segment is integrated
+ * analytically, with each exponential density exactly exponential in
+ * path length between the segment's ends (exact on a vertical ray) and
+ * the ozone tent by the trapezoid; the in-scattered light of a segment
+ * uses the energy-conserving form (S - S T_seg) / sigma_t (Hillaire 2020,
+ * sec. 5.6.3). Segments close quadratically onto the ray's lowest point
+ * (its start, its end or the tangent point), where the air is densest.
+ */
+#include "hillaire.h"
+#include "../sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* ---- the medium ------------------------------------------------------------ */
+
+typedef struct hl_medium {
+    double R, Rt, H;      /* ground, top, sqrt(Rt^2 - R^2): km */
+    double hr, hm;        /* scale heights */
+    double oz_peak, oz_hw;
+    double g;
+    double br[3], bms[3], bme[3], bo[3], albedo[3];
+} hl_medium;
+
+static void medium_from(const sky_atmosphere_params *a, hl_medium *m)
+{
+    m->R = a->planet_radius_km;
+    m->Rt = a->top_radius_km;
+    m->H = sqrt(m->Rt * m->Rt - m->R * m->R);
+    m->hr = a->rayleigh_scale_height_km;
+    m->hm = a->mie_scale_height_km;
+    m->oz_peak = a->ozone_peak_km;
+    m->oz_hw = a->ozone_half_width_km;
+    m->g = a->mie_g;
+    for (int c = 0; c < 3; c++) {
+        m->br[c] = a->rayleigh_scattering[c];
+        m->bms[c] = a->mie_scattering[c];
+        m->bme[c] = a->mie_extinction[c];
+        m->bo[c] = a->ozone_absorption[c];
+        m->albedo[c] = a->ground_albedo[c];
+    }
+}
+
+/* Relative densities at a radius: Rayleigh, Mie (exponential) and ozone
+ * (the tent of sky.h). */
+typedef struct hl_dens {
+    double r, m, o;
+} hl_dens;
+
+static hl_dens density_at(const hl_medium *m, double radius)
+{
+    double h = radius - m->R;
+    if (h < 0.0) h = 0.0;
+    hl_dens d;
+    d.r = exp(-h / m->hr);
+    d.m = exp(-h / m->hm);
+    double o = 1.0 - fabs(h - m->oz_peak) / m->oz_hw;
+    d.o = o > 0.0 ? o : 0.0;
+    return d;
+}
+
+/* Integral over a segment of length ds of a density exp(-h / scale)
+ * that is exponential in path length between heights ha and hb (values
+ * da, db): ds (db - da) / x with x = ln(db / da) = -(hb - ha) / scale,
+ * which needs no further exponential; a Taylor term for x near 0. */
+static double seg_exp(double da, double db, double ha, double hb, double scale, double ds)
+{
+    double x = -(hb - ha) / scale;
+    if (fabs(x) < 1e-4) return da * ds * (1.0 + x * (0.5 + x / 6.0));
+    return ds * (db - da) / x;
+}
+
+/* Antiderivative in altitude of the ozone tent max(0, 1 - |h - p| / w). */
+static double tent_integral(double h, double p, double w)
+{
+    double x = h - p;
+    if (x <= -w) return 0.0;
+    if (x <= 0.0) return 0.5 * (x + w) * (x + w) / w;
+    if (x < w) return 0.5 * w + x - 0.5 * x * x / w;
+    return w;
+}
+
+/* The ozone column of a segment. Every segment lies on one side of the
+ * ray's lowest point (the layout puts a boundary there), so altitude is
+ * monotone along it; taking it as linear in path length, the tent's
+ * kinks are integrated exactly (a trapezoid across the peak at 25 km is
+ * off by several per cent of the column on the long grazing segments). */
+static double seg_ozone(const hl_medium *m, double ha, double hb, double oa, double ob, double ds)
+{
+    double dh = hb - ha;
+    if (fabs(dh) < 1e-6 * m->oz_hw) return 0.5 * (oa + ob) * ds;
+    return ds * (tent_integral(hb, m->oz_peak, m->oz_hw) - tent_integral(ha, m->oz_peak, m->oz_hw)) / dh;
+}
+
+/* The column (sea-level-equivalent km of each constituent) of a segment. */
+static hl_dens seg_column(const hl_medium *m, hl_dens a, double ra, hl_dens b, double rb, double ds)
+{
+    hl_dens c;
+    double ha = ra - m->R, hb = rb - m->R;
+    if (ha < 0.0) ha = 0.0;
+    if (hb < 0.0) hb = 0.0;
+    c.r = seg_exp(a.r, b.r, ha, hb, m->hr, ds);
+    c.m = seg_exp(a.m, b.m, ha, hb, m->hm, ds);
+    c.o = seg_ozone(m, ha, hb, a.o, b.o, ds);
+    return c;
+}
+
+static double tau_of(const hl_medium *m, int ch, hl_dens col)
+{
+    return m->br[ch] * col.r + m->bme[ch] * col.m + m->bo[ch] * col.o;
+}
+
+/* (1 - e^-tau) / tau, the energy-conserving weight of a segment, from
+ * e = e^-tau that the caller has anyway; a series where 1 - e cancels. */
+static double seg_weight(double tau, double e)
+{
+    if (tau > 1e-3) return (1.0 - e) / tau;
+    return 1.0 - tau * (0.5 - tau / 6.0);
+}
+
+/* ---- geometry ---------------------------------------------------------------- */
+
+static double clamp(double x, double lo, double hi)
+{
+    return x < lo ? lo : x > hi ? hi : x;
+}
+
+static double safe_sqrt(double x)
+{
+    return sqrt(x > 0.0 ? x : 0.0);
+}
+
+/* Distance from radius r (inside the shell) along mu to the top. */
+static double dist_to_top(const hl_medium *m, double r, double mu)
+{
+    double disc = r * r * (mu * mu - 1.0) + m->Rt * m->Rt;
+    double d = -r * mu + safe_sqrt(disc);
+    return d > 0.0 ? d : 0.0;
+}
+
+/* Whether the ray from r along mu meets the ground (r >= R). */
+static int hits_ground(const hl_medium *m, double r, double mu)
+{
+    return mu < 0.0 && r * r * (mu * mu - 1.0) + m->R * m->R >= 0.0;
+}
+
+/* Distance to the ground for a ray that meets it, in the form without
+ * cancellation (the product of the two roots is r^2 - R^2). */
+static double dist_to_ground(const hl_medium *m, double r, double mu)
+{
+    double disc = r * r * (mu * mu - 1.0) + m->R * m->R;
+    double num = r * r - m->R * m->R;
+    double den = -r * mu + safe_sqrt(disc);
+    if (!(num > 0.0) || !(den > 0.0)) return 0.0;
+    return num / den;
+}
+
+/* Segment boundaries on [0, L]: n segments closing quadratically onto
+ * the lowest point tl (clamped into [0, L]) from both sides. The
+ * quadratic map keeps the spacing smooth (the quadrature stays second
+ * order) while the segments in the densest air are short. */
+typedef struct hl_layout {
+    double L, tl;
+    int n1, n2;
+} hl_layout;
+
+static void layout_init(hl_layout *ly, double L, double tl, int n)
+{
+    ly->L = L;
+    if (n < 2 || !(tl > 0.0) || !(L > 0.0)) {
+        ly->tl = 0.0;
+        ly->n1 = 0;
+        ly->n2 = n;
+    } else if (tl >= L) {
+        ly->tl = L;
+        ly->n1 = n;
+        ly->n2 = 0;
+    } else {
+        ly->tl = tl;
+        int n1 = (int)floor(n * tl / L + 0.5);
+        if (n1 < 1) n1 = 1;
+        if (n1 > n - 1) n1 = n - 1;
+        ly->n1 = n1;
+        ly->n2 = n - n1;
+    }
+}
+
+static double layout_t(const hl_layout *ly, int k)
+{
+    if (k <= ly->n1) {
+        if (ly->n1 == 0) return 0.0;
+        double u = (double)(ly->n1 - k) / ly->n1;
+        return ly->tl * (1.0 - u * u);
+    }
+    double u = (double)(k - ly->n1) / ly->n2;
+    return k == ly->n1 + ly->n2 ? ly->L : ly->tl + (ly->L - ly->tl) * u * u;
+}
+
+/* Radius at distance t along a ray from radius r with cosine mu. */
+static double radius_along(double r, double mu, double t)
+{
+    return safe_sqrt(r * r + 2.0 * r * mu * t + t * t);
+}
+
+/* ---- texture coordinates -------------------------------------------------------- */
+
+static double unit_to_tex(double x, int n)
+{
+    return 0.5 / n + x * (1.0 - 1.0 / n);
+}
+
+/* GL_LINEAR + CLAMP_TO_EDGE on a w x h RGB float table. */
+static void bilinear(const float *tab, int w, int h, double u, double v, double rgb[3])
+{
+    if (!isfinite(u)) u = 0.0;
+    if (!isfinite(v)) v = 0.0;
+    double x = clamp(u, 0.0, 1.0) * w - 0.5, y = clamp(v, 0.0, 1.0) * h - 0.5;
+    double fx0 = floor(x), fy0 = floor(y);
+    double fx = x - fx0, fy = y - fy0;
+    int x0 = (int)fx0, y0 = (int)fy0, x1 = x0 + 1, y1 = y0 + 1;
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > w - 1) x1 = w - 1;
+    if (y1 > h - 1) y1 = h - 1;
+    if (x0 > w - 1) x0 = w - 1;
+    if (y0 > h - 1) y0 = h - 1;
+    const float *p00 = tab + ((size_t)y0 * w + x0) * 3, *p10 = tab + ((size_t)y0 * w + x1) * 3;
+    const float *p01 = tab + ((size_t)y1 * w + x0) * 3, *p11 = tab + ((size_t)y1 * w + x1) * 3;
+    for (int c = 0; c < 3; c++) {
+        double a = p00[c] + (p10[c] - p00[c]) * fx;
+        double b = p01[c] + (p11[c] - p01[c]) * fx;
+        rgb[c] = a + (b - a) * fy;
+    }
+}
+
+/* Bruneton 2017 (GetTransmittanceTextureUvFromRMu): x_r = rho / H with
+ * rho = sqrt(r^2 - R^2) the distance to the horizon; x_mu places the
+ * distance d to the top between d_min = Rt - r (straight up) and
+ * d_max = rho + H (the ray that grazes the ground). Only rays that do not
+ * meet the ground have a texel; mu below the horizon clamps to the
+ * grazing column (callers decide ground hits themselves). */
+static void transmittance_unit(const hl_medium *m, double r, double mu, double *xmu, double *xr)
+{
+    r = clamp(r, m->R, m->Rt);
+    mu = clamp(mu, -1.0, 1.0);
+    double rho = safe_sqrt(r * r - m->R * m->R);
+    double d = dist_to_top(m, r, mu);
+    double dmin = m->Rt - r, dmax = rho + m->H;
+    *xmu = dmax > dmin ? clamp((d - dmin) / (dmax - dmin), 0.0, 1.0) : 0.0;
+    *xr = clamp(rho / m->H, 0.0, 1.0);
+}
+
+/* The inverse: the (r, mu) a table coordinate stands for. */
+static void transmittance_rmu(const hl_medium *m, double xmu, double xr, double *r, double *mu)
+{
+    double rho = m->H * xr;
+    double rr = sqrt(rho * rho + m->R * m->R);
+    double dmin = m->Rt - rr, dmax = rho + m->H;
+    double d = dmin + xmu * (dmax - dmin);
+    /* the law of cosines in the triangle centre - point - exit point */
+    double c = d <= 0.0 ? 1.0 : (m->H * m->H - rho * rho - d * d) / (2.0 * rr * d);
+    *r = rr;
+    *mu = clamp(c, -1.0, 1.0);
+}
+
+/* ---- settings and allocation ---------------------------------------------------- */
+
+static int size_ok(int v)
+{
+    return v >= 4 && v <= 1024;
+}
+
+static int steps_ok(int v)
+{
+    return v >= 1 && v <= 256;
+}
+
+static int pick(int v, int dflt)
+{
+    return v == 0 ? dflt : v;
+}
+
+int sky_hillaire_init(sky_hillaire_tables *t, const sky_atmosphere_params *atm, const sky_hillaire_settings *s,
+                      char *err, size_t err_len)
+{
+    if (err && err_len) err[0] = '\0';
+    if (!t) {
+        sky_format(err, err_len, "hillaire: tables is NULL");
+        return -1;
+    }
+    memset(t, 0, sizeof *t);
+    if (!atm) {
+        sky_format(err, err_len, "hillaire: atmosphere is NULL");
+        return -1;
+    }
+    sky_atmosphere_params a;
+    if (sky_atmosphere_is_zero(atm)) {
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+    } else {
+        if (sky_atmosphere_check(atm, err, err_len) != SKY_OK) return -1;
+        a = *atm;
+    }
+    sky_hillaire_settings st;
+    if (s) st = *s;
+    else memset(&st, 0, sizeof st);
+    st.transmittance_width = pick(st.transmittance_width, 256);
+    st.transmittance_height = pick(st.transmittance_height, 64);
+    st.transmittance_steps = pick(st.transmittance_steps, 40);
+    st.multiscatter_size = pick(st.multiscatter_size, 32);
+    st.multiscatter_directions = pick(st.multiscatter_directions, 64);
+    st.multiscatter_steps = pick(st.multiscatter_steps, 20);
+    st.skyview_width = pick(st.skyview_width, 192);
+    st.skyview_height = pick(st.skyview_height, 108);
+    st.skyview_steps = pick(st.skyview_steps, 30);
+    const char *bad = NULL;
+    if (!size_ok(st.transmittance_width) || !size_ok(st.transmittance_height)) bad = "transmittance size (4..1024)";
+    else if (!size_ok(st.multiscatter_size)) bad = "multiscatter_size (4..1024)";
+    else if (!size_ok(st.skyview_width) || !size_ok(st.skyview_height)) bad = "skyview size (4..1024)";
+    else if (!steps_ok(st.transmittance_steps)) bad = "transmittance_steps (1..256)";
+    else if (!steps_ok(st.multiscatter_directions)) bad = "multiscatter_directions (1..256)";
+    else if (!steps_ok(st.multiscatter_steps)) bad = "multiscatter_steps (1..256)";
+    else if (!steps_ok(st.skyview_steps)) bad = "skyview_steps (1..256)";
+    if (bad) {
+        sky_format(err, err_len, "hillaire: %s is out of range", bad);
+        return -1;
+    }
+    size_t nt = (size_t)st.transmittance_width * st.transmittance_height * 3;
+    size_t nm = (size_t)st.multiscatter_size * st.multiscatter_size * 3;
+    size_t ns = (size_t)st.skyview_width * st.skyview_height * 3;
+    t->transmittance = calloc(nt, sizeof(float));
+    t->multiscatter = calloc(nm, sizeof(float));
+    t->skyview = calloc(ns, sizeof(float));
+    if (!t->transmittance || !t->multiscatter || !t->skyview) {
+        sky_hillaire_free(t);
+        sky_format(err, err_len, "hillaire: out of memory");
+        return -1;
+    }
+    t->settings = st;
+    t->atm = a;
+    return 0;
+}
+
+void sky_hillaire_free(sky_hillaire_tables *t)
+{
+    if (!t) return;
+    free(t->transmittance);
+    free(t->multiscatter);
+    free(t->skyview);
+    t->transmittance = t->multiscatter = t->skyview = NULL;
+}
+
+/* ---- transmittance ---------------------------------------------------------------- */
+
+/* Optical depth per channel from r along mu over [0, L] in n segments. */
+static void optical_depth(const hl_medium *m, double r, double mu, double L, int n, double tau[3])
+{
+    hl_layout ly;
+    layout_init(&ly, L, -r * mu, n);
+    hl_dens col = {0.0, 0.0, 0.0};
+    double ta = 0.0, ra = r;
+    hl_dens da = density_at(m, ra);
+    for (int k = 1; k <= n; k++) {
+        double tb = layout_t(&ly, k), rb = radius_along(r, mu, tb);
+        hl_dens db = density_at(m, rb);
+        hl_dens c = seg_column(m, da, ra, db, rb, tb - ta);
+        col.r += c.r;
+        col.m += c.m;
+        col.o += c.o;
+        ta = tb;
+        ra = rb;
+        da = db;
+    }
+    for (int c = 0; c < 3; c++) tau[c] = tau_of(m, c, col);
+}
+
+void sky_hillaire_build_transmittance(sky_hillaire_tables *t)
+{
+    if (!t || !t->transmittance) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    int w = t->settings.transmittance_width, h = t->settings.transmittance_height;
+    int n = t->settings.transmittance_steps;
+    for (int j = 0; j < h; j++) {
+        for (int i = 0; i < w; i++) {
+            /* texel (i, j) holds x = i / (w - 1), y = j / (h - 1) */
+            double r, mu, tau[3];
+            transmittance_rmu(&m, (double)i / (w - 1), (double)j / (h - 1), &r, &mu);
+            optical_depth(&m, r, mu, dist_to_top(&m, r, mu), n, tau);
+            float *p = t->transmittance + ((size_t)j * w + i) * 3;
+            for (int c = 0; c < 3; c++) p[c] = (float)exp(-tau[c]);
+        }
+    }
+}
+
+void sky_hillaire_transmittance_uv_sized(const sky_atmosphere_params *atm, double r, double mu, int width,
+                                         int height, double *u, double *v)
+{
+    double xmu = 0.0, xr = 0.0;
+    sky_atmosphere_params earth;
+    if (atm && sky_atmosphere_is_zero(atm)) {
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
+        atm = &earth;
+    }
+    if (atm && atm->top_radius_km > atm->planet_radius_km && atm->planet_radius_km > 0.0f) {
+        hl_medium m;
+        medium_from(atm, &m);
+        transmittance_unit(&m, isfinite(r) ? r : m.R, isfinite(mu) ? mu : 1.0, &xmu, &xr);
+    }
+    if (width < 1) width = 1;
+    if (height < 1) height = 1;
+    if (u) *u = unit_to_tex(xmu, width);
+    if (v) *v = unit_to_tex(xr, height);
+}
+
+void sky_hillaire_transmittance_uv(const sky_atmosphere_params *atm, double r, double mu, double *u, double *v)
+{
+    sky_hillaire_transmittance_uv_sized(atm, r, mu, 256, 64, u, v);
+}
+
+/* Table transmittance from (r, mu) inside the shell to the top, for a
+ * ray the caller knows does not meet the ground. */
+static void trans_table(const sky_hillaire_tables *t, const hl_medium *m, double r, double mu, double rgb[3])
+{
+    int w = t->settings.transmittance_width, h = t->settings.transmittance_height;
+    double xmu, xr;
+    transmittance_unit(m, r, mu, &xmu, &xr);
+    bilinear(t->transmittance, w, h, unit_to_tex(xmu, w), unit_to_tex(xr, h), rgb);
+}
+
+/* The sun's transmittance at a point (0 in the planet's shadow). */
+static void sun_transmittance(const sky_hillaire_tables *t, const hl_medium *m, double r, double mu_s, double rgb[3])
+{
+    if (hits_ground(m, r, mu_s)) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        return;
+    }
+    trans_table(t, m, r, mu_s, rgb);
+}
+
+void sky_hillaire_transmittance(const sky_hillaire_tables *t, double r, double mu, double rgb[3])
+{
+    if (!rgb) return;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!t || !t->transmittance || !isfinite(r) || !isfinite(mu)) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    mu = clamp(mu, -1.0, 1.0);
+    if (r < m.R) r = m.R;
+    if (r > m.Rt) {
+        /* above the top: the ray enters at the top (or misses the shell) */
+        double disc = r * r * (mu * mu - 1.0) + m.Rt * m.Rt;
+        if (mu >= 0.0 || disc < 0.0) {
+            rgb[0] = rgb[1] = rgb[2] = 1.0;
+            return;
+        }
+        double t0 = (r * r - m.Rt * m.Rt) / (-r * mu + sqrt(disc));
+        double mu2 = (r * mu + t0) / m.Rt;
+        r = m.Rt;
+        mu = clamp(mu2, -1.0, 1.0);
+    }
+    if (hits_ground(&m, r, mu)) return;
+    trans_table(t, &m, r, mu, rgb);
+}
+
+/* ---- multiple scattering ---------------------------------------------------------- */
+
+/* Hillaire 2020 Fig. 7 / sec. 5.5: u = 0.5 + 0.5 mu_s, v = altitude over
+ * the shell's thickness, both through the texel-centre map. */
+static void multiscatter_unit(const hl_medium *m, double r, double mu_s, double *x, double *y)
+{
+    *x = clamp(0.5 + 0.5 * mu_s, 0.0, 1.0);
+    *y = clamp((r - m->R) / (m->Rt - m->R), 0.0, 1.0);
+}
+
+static void ms_table(const sky_hillaire_tables *t, const hl_medium *m, double r, double mu_s, double rgb[3])
+{
+    int n = t->settings.multiscatter_size;
+    double x, y;
+    multiscatter_unit(m, r, mu_s, &x, &y);
+    bilinear(t->multiscatter, n, n, unit_to_tex(x, n), unit_to_tex(y, n), rgb);
+}
+
+/* Direction k of the n_half on the half sphere z > 0: a Fibonacci spiral
+ * about +z (equal areas, deterministic). The observer and the sun lie in
+ * the plane z = 0, so the mirror image (x, y, -z) of each direction sees
+ * the same light: the builder traces the half and counts it twice, a
+ * uniform set of 2 n_half directions over the whole sphere for the price
+ * of n_half. */
+static void half_sphere_dir(int k, int n_half, double d[3])
+{
+    const double golden = M_PI * (3.0 - sqrt(5.0));
+    double z = 1.0 - (k + 0.5) / n_half;
+    double s = safe_sqrt(1.0 - z * z), phi = golden * k;
+    d[0] = s * cos(phi);
+    d[1] = s * sin(phi);
+    d[2] = z;
+}
+
+/* One row of Psi_ms (Hillaire 2020 sec. 5.5): radius r, every mu_s.
+ * With the isotropic phase p_u = 1/(4 pi) and equal-area directions,
+ * each integral over the sphere times p_u is the mean over the
+ * directions:
+ *   L_2nd = mean over w of L'(x, w)            (eq. 5, 6)
+ *   f_ms  = mean over w of L_f(x, w)           (eq. 7, 8)
+ *   Psi   = L_2nd / (1 - f_ms)                 (eq. 9, 10)
+ * L' is the light scattered once toward x along w with the sun's light
+ * scattered by p_u (the phase of Hillaire's eq. 6), plus the sunlit
+ * Lambertian ground where w meets it. L_f is the light transferred to x
+ * from unit isotropic radiance scattered along w; where w meets the
+ * ground we add the ground's reflection of that unit radiance (albedo x
+ * T): the same isotropic assumption applied to the ground (Hillaire's
+ * demo leaves it out; the reference path tracer bounces light between
+ * ground and air, and this brings the table closer to it).
+ * A ray's geometry, optical depths and weights do not depend on the sun,
+ * so each is marched once per row and only the sun's transmittance is
+ * looked up per mu_s: f_ms is one value per row. */
+static void multiscatter_row(const sky_hillaire_tables *t, const hl_medium *m, double r, float *row)
+{
+    enum { MAX_ROW = 1024 };
+    int n = t->settings.multiscatter_size;
+    /* multiscatter_directions rounded up to even, as mirrored pairs */
+    int nd = (t->settings.multiscatter_directions + 1) / 2, ns = t->settings.multiscatter_steps;
+    const double pu = 1.0 / (4.0 * M_PI);
+    double sx[MAX_ROW], sy[MAX_ROW], l2[MAX_ROW][3];
+    for (int i = 0; i < n; i++) {
+        sy[i] = clamp(2.0 * i / (n - 1) - 1.0, -1.0, 1.0); /* mu_s of column i */
+        sx[i] = safe_sqrt(1.0 - sy[i] * sy[i]);
+        l2[i][0] = l2[i][1] = l2[i][2] = 0.0;
+    }
+    double fms[3] = {0, 0, 0};
+    for (int k = 0; k < nd; k++) {
+        double w[3];
+        half_sphere_dir(k, nd, w);
+        double mu = w[1];
+        int ground = hits_ground(m, r, mu);
+        double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
+        double tr[3] = {1.0, 1.0, 1.0};
+        if (L > 0.0) {
+            hl_layout ly;
+            layout_init(&ly, L, -r * mu, ns);
+            double ta = 0.0, ra = r;
+            hl_dens da = density_at(m, ra);
+            for (int s = 1; s <= ns; s++) {
+                double tb = layout_t(&ly, s), rb = radius_along(r, mu, tb);
+                hl_dens db = density_at(m, rb);
+                hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
+                double sc[3];
+                for (int c = 0; c < 3; c++) {
+                    double tau = tau_of(m, c, col), e = exp(-tau);
+                    sc[c] = (m->br[c] * col.r + m->bms[c] * col.m) * seg_weight(tau, e) * tr[c];
+                    fms[c] += sc[c];
+                    tr[c] *= e;
+                }
+                /* the sun at the segment's midpoint, for every mu_s */
+                double tm = 0.5 * (ta + tb);
+                double px = w[0] * tm, py = r + w[1] * tm;
+                double rm = radius_along(r, mu, tm);
+                for (int i = 0; i < n; i++) {
+                    double ts[3];
+                    sun_transmittance(t, m, rm, clamp((px * sx[i] + py * sy[i]) / rm, -1.0, 1.0), ts);
+                    for (int c = 0; c < 3; c++) l2[i][c] += sc[c] * ts[c] * pu;
+                }
+                ta = tb;
+                ra = rb;
+                da = db;
+            }
+        }
+        if (ground) {
+            double gx = w[0] * L, gy = r + w[1] * L, gz = w[2] * L;
+            double rg = sqrt(gx * gx + gy * gy + gz * gz);
+            for (int c = 0; c < 3; c++) fms[c] += tr[c] * m->albedo[c];
+            for (int i = 0; i < n; i++) {
+                double mug = (gx * sx[i] + gy * sy[i]) / rg;
+                if (!(mug > 0.0)) continue;
+                double ts[3];
+                trans_table(t, m, m->R, mug, ts);
+                for (int c = 0; c < 3; c++) l2[i][c] += tr[c] * ts[c] * mug * m->albedo[c] / M_PI;
+            }
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) {
+            double l = l2[i][c] / nd, f = fms[c] / nd;
+            /* f < 1 whenever anything is absorbed or escapes; the floor
+             * only keeps a lossless, opaque description finite */
+            double den = 1.0 - f;
+            if (den < 1e-3) den = 1e-3;
+            row[i * 3 + c] = (float)(l / den);
+        }
+    }
+}
+
+void sky_hillaire_build_multiscatter(sky_hillaire_tables *t)
+{
+    if (!t || !t->multiscatter || !t->transmittance) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    int n = t->settings.multiscatter_size;
+    for (int j = 0; j < n; j++)
+        multiscatter_row(t, &m, m.R + (m.Rt - m.R) * j / (n - 1), t->multiscatter + (size_t)j * n * 3);
+}
+
+void sky_hillaire_multiscatter(const sky_hillaire_tables *t, double r, double mu_s, double rgb[3])
+{
+    if (!rgb) return;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!t || !t->multiscatter || !isfinite(r) || !isfinite(mu_s)) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    ms_table(t, &m, r, mu_s, rgb);
+}
+
+/* ---- sky view ------------------------------------------------------------------------ */
+
+static double phase_rayleigh(double c)
+{
+    return 3.0 / (16.0 * M_PI) * (1.0 + c * c);
+}
+
+/* Cornette & Shanks 1992 (Hillaire 2020 eq. 4 uses it for Mie). */
+static double phase_cs(double c, double g)
+{
+    double g2 = g * g, den = 1.0 + g2 - 2.0 * g * c;
+    return 3.0 / (8.0 * M_PI) * (1.0 - g2) * (1.0 + c * c) / ((2.0 + g2) * den * sqrt(den));
+}
+
+/* The observer's radius for an altitude (below the ground = on it). */
+static double observer_radius(const hl_medium *m, double altitude_km)
+{
+    if (!isfinite(altitude_km) || altitude_km < 0.0) altitude_km = 0.0;
+    if (altitude_km > 1e6) altitude_km = 1e6;
+    return m->R + altitude_km;
+}
+
+/* The zenith angle of the geometric horizon seen from radius r: the
+ * tangent to the ground is asin(R / r) from the nadir (Hillaire 2020
+ * sec. 5.3; pi/2 on the ground, dipping below it with altitude). */
+static double horizon_zenith(const hl_medium *m, double r)
+{
+    return M_PI - asin(clamp(m->R / r, 0.0, 1.0));
+}
+
+/* Hillaire 2020 sec. 5.3: elevation to v with the horizon at v = 0.5 and
+ * a square-root concentration of texels toward it from both sides:
+ *   above: v = 0.5 (1 - sqrt(1 - theta / theta_h))
+ *   below: v = 0.5 + 0.5 sqrt((theta - theta_h) / (pi - theta_h))
+ * azimuth to u = sqrt((1 - cos az) / 2) = sin(az / 2): the sun's vertical
+ * at u = 0, the anti-solar one at u = 1, texels denser toward the sun
+ * where the Mie lobe is. Both go through the texel-centre map. */
+static void skyview_unit(const hl_medium *m, double r, double view_mu, double cos_az, double *x, double *y)
+{
+    double th_h = horizon_zenith(m, r);
+    double th = acos(clamp(view_mu, -1.0, 1.0));
+    if (th < th_h) {
+        double q = 1.0 - th / th_h;
+        *y = 0.5 * (1.0 - sqrt(q > 0.0 ? q : 0.0));
+    } else {
+        double beta = M_PI - th_h;
+        double q = beta > 0.0 ? (th - th_h) / beta : 1.0;
+        *y = 0.5 + 0.5 * sqrt(clamp(q, 0.0, 1.0));
+    }
+    *x = sqrt(clamp(0.5 - 0.5 * cos_az, 0.0, 1.0));
+}
+
+void sky_hillaire_skyview_uv(const sky_hillaire_tables *t, double view_mu, double cos_azimuth_from_sun,
+                             double altitude_km, double *u, double *v)
+{
+    double x = 0.0, y = 0.0;
+    int w = 192, h = 108;
+    if (t) {
+        hl_medium m;
+        medium_from(&t->atm, &m);
+        if (!isfinite(view_mu)) view_mu = 1.0;
+        if (!isfinite(cos_azimuth_from_sun)) cos_azimuth_from_sun = 1.0;
+        skyview_unit(&m, observer_radius(&m, altitude_km), view_mu, cos_azimuth_from_sun, &x, &y);
+        w = t->settings.skyview_width;
+        h = t->settings.skyview_height;
+    }
+    if (u) *u = unit_to_tex(x, w);
+    if (v) *v = unit_to_tex(y, h);
+}
+
+/* Samples for a ray of length L: the full count for the long rays near
+ * the horizon, fewer (never under a third, never under 4) for short
+ * ones; the quadratic layout already puts them where the air is. */
+static int skyview_steps_for(const hl_medium *m, int steps, double L)
+{
+    double full = 2.0 * m->H; /* about the longest ray in the shell */
+    double f = L / full;
+    f = clamp(sqrt(f > 0.0 ? f : 0.0), 1.0 / 3.0, 1.0);
+    int n = (int)ceil(steps * f);
+    if (n < 4) n = 4;
+    if (n > steps) n = steps;
+    return n;
+}
+
+/* The sun's transmittance at a sample whose rho = sqrt(r^2 - R^2) and
+ * table row coordinate are known (they do not depend on the sun). */
+static void sun_transmittance_at(const sky_hillaire_tables *t, const hl_medium *m, double r, double rho, double v_tex,
+                                 double mu_s, double rgb[3])
+{
+    if (hits_ground(m, r, mu_s)) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        return;
+    }
+    double d = dist_to_top(m, r, mu_s), dmin = m->Rt - r, dmax = rho + m->H;
+    double xmu = dmax > dmin ? clamp((d - dmin) / (dmax - dmin), 0.0, 1.0) : 0.0;
+    int w = t->settings.transmittance_width, h = t->settings.transmittance_height;
+    bilinear(t->transmittance, w, h, unit_to_tex(xmu, w), v_tex, rgb);
+}
+
+/* One row of the sky-view table: zenith angle th of every view, ground
+ * telling whether the row is below the horizon (decided from the row,
+ * not re-derived from the rounded angle). Radiance per unit solar
+ * illuminance: Hillaire 2020 eq. 1-3 for single scattering (phase x
+ * sun transmittance x sun visibility), eq. 11 for the multiple
+ * scattering (sigma_s Psi_ms), each segment in the energy-conserving
+ * form, and the sunlit Lambertian ground at the end of rays that meet
+ * it. A ray's geometry, optical depth and weights are the same at every
+ * azimuth (only the angle to the sun changes), so the row's ray is
+ * marched once and each column only looks up the sun's transmittance
+ * and Psi_ms at its own solar cosine. */
+static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double r0, double th, int ground,
+                        const double sun[3], float *row)
+{
+    enum { MAX_STEPS = 256 };
+    int w = t->settings.skyview_width;
+    double ct = cos(th), st = sin(th);
+    for (int i = 0; i < w * 3; i++) row[i] = 0.0f;
+    double r = r0, mu = ct, start = 0.0;
+    if (r > m->Rt) {
+        double disc = r * r * (mu * mu - 1.0) + m->Rt * m->Rt;
+        if (mu >= 0.0 || disc < 0.0) return; /* misses the shell: space */
+        start = (r * r - m->Rt * m->Rt) / (-r * mu + sqrt(disc));
+        r = m->Rt;
+        mu = clamp((r0 * ct + start) / m->Rt, -1.0, 1.0);
+    }
+    double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
+    int n = L > 0.0 ? skyview_steps_for(m, t->settings.skyview_steps, L) : 0;
+    /* per sample: radius, distance from the observer, the table rows of
+     * the two lookups, and the Rayleigh and Mie weights per channel */
+    double rs[MAX_STEPS], ds[MAX_STEPS], rho[MAX_STEPS], vt[MAX_STEPS], vm[MAX_STEPS];
+    double wr[MAX_STEPS][3], wm[MAX_STEPS][3], tr[3] = {1.0, 1.0, 1.0};
+    int tr_h = t->settings.transmittance_height, ms_n = t->settings.multiscatter_size;
+    if (n > 0) {
+        hl_layout ly;
+        layout_init(&ly, L, -r * mu, n);
+        double ta = 0.0, ra = r;
+        hl_dens da = density_at(m, ra);
+        for (int s = 0; s < n; s++) {
+            double tb = layout_t(&ly, s + 1), rb = radius_along(r, mu, tb);
+            hl_dens db = density_at(m, rb);
+            hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
+            double tm = 0.5 * (ta + tb), rm = radius_along(r, mu, tm);
+            rs[s] = rm;
+            ds[s] = start + tm;
+            rho[s] = safe_sqrt(rm * rm - m->R * m->R);
+            vt[s] = unit_to_tex(clamp(rho[s] / m->H, 0.0, 1.0), tr_h);
+            vm[s] = unit_to_tex(clamp((rm - m->R) / (m->Rt - m->R), 0.0, 1.0), ms_n);
+            for (int c = 0; c < 3; c++) {
+                double tau = tau_of(m, c, col), e = exp(-tau), f = tr[c] * seg_weight(tau, e);
+                wr[s][c] = m->br[c] * col.r * f;
+                wm[s][c] = m->bms[c] * col.m * f;
+                tr[c] *= e;
+            }
+            ta = tb;
+            ra = rb;
+            da = db;
+        }
+    }
+    double rg = ground ? radius_along(r, mu, L) : 0.0;
+    for (int i = 0; i < w; i++) {
+        double x = (double)i / (w - 1);
+        double caz = clamp(1.0 - 2.0 * x * x, -1.0, 1.0), saz = safe_sqrt(1.0 - caz * caz);
+        double view[3] = {st * caz, ct, st * saz};
+        double cos_theta = view[0] * sun[0] + view[1] * sun[1] + view[2] * sun[2];
+        double pr = phase_rayleigh(cos_theta), pm = phase_cs(cos_theta, m->g);
+        double out[3] = {0, 0, 0};
+        for (int s = 0; s < n; s++) {
+            /* the sample is observer + view * ds: its solar cosine */
+            double mus = clamp((r0 * sun[1] + ds[s] * cos_theta) / rs[s], -1.0, 1.0);
+            double ts[3], psi[3];
+            sun_transmittance_at(t, m, rs[s], rho[s], vt[s], mus, ts);
+            bilinear(t->multiscatter, ms_n, ms_n, unit_to_tex(0.5 + 0.5 * mus, ms_n), vm[s], psi);
+            for (int c = 0; c < 3; c++)
+                out[c] += wr[s][c] * (pr * ts[c] + psi[c]) + wm[s][c] * (pm * ts[c] + psi[c]);
+        }
+        if (ground && rg > 0.0) {
+            double mug = (r0 * sun[1] + (start + L) * cos_theta) / rg;
+            if (mug > 0.0) {
+                double ts[3];
+                trans_table(t, m, m->R, clamp(mug, 0.0, 1.0), ts);
+                for (int c = 0; c < 3; c++) out[c] += tr[c] * m->albedo[c] / M_PI * mug * ts[c];
+            }
+        }
+        for (int c = 0; c < 3; c++) row[i * 3 + c] = (float)out[c];
+    }
+}
+
+void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu)
+{
+    if (!t || !t->skyview || !t->transmittance || !t->multiscatter) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    if (!isfinite(sun_mu)) sun_mu = 1.0;
+    sun_mu = clamp(sun_mu, -1.0, 1.0);
+    double r0 = observer_radius(&m, altitude_km);
+    t->skyview_altitude_km = r0 - m.R;
+    t->skyview_sun_mu = sun_mu;
+    int w = t->settings.skyview_width, h = t->settings.skyview_height;
+    /* the sun at azimuth 0 (+x): u = 0 is its vertical */
+    double sun[3] = {sqrt(1.0 - sun_mu * sun_mu), sun_mu, 0.0};
+    double th_h = horizon_zenith(&m, r0), beta = M_PI - th_h;
+    for (int j = 0; j < h; j++) {
+        /* row j holds y = j / (h - 1); the inverse of skyview_unit */
+        double y = (double)j / (h - 1), th;
+        int below = y > 0.5;
+        if (!below) {
+            double q = 1.0 - 2.0 * y;
+            th = th_h * (1.0 - q * q);
+        } else {
+            double q = 2.0 * y - 1.0;
+            th = th_h + beta * q * q;
+        }
+        skyview_row(t, &m, r0, th, below, sun, t->skyview + (size_t)j * w * 3);
+    }
+}
+
+void sky_hillaire_sky(const sky_hillaire_tables *t, const double view[3], const double sun_dir[3], double rgb[3])
+{
+    if (!rgb) return;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!t || !t->skyview || !view || !sun_dir) return;
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(view[k]) || !isfinite(sun_dir[k])) return;
+    double vl = sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
+    if (!(vl > 0.0)) return;
+    double vmu = view[1] / vl;
+    /* azimuth between the vertical planes of the view and the sun; either
+     * one vertical leaves it free (the table is the same along a row's
+     * zenith/nadir edge), so 1 */
+    double hv = hypot(view[0], view[2]), hs = hypot(sun_dir[0], sun_dir[2]);
+    double caz = 1.0;
+    if (hv > 1e-12 * vl && hs > 1e-12) caz = clamp((view[0] * sun_dir[0] + view[2] * sun_dir[2]) / (hv * hs), -1.0, 1.0);
+    double u, v;
+    sky_hillaire_skyview_uv(t, vmu, caz, t->skyview_altitude_km, &u, &v);
+    bilinear(t->skyview, t->settings.skyview_width, t->settings.skyview_height, u, v, rgb);
+}
