@@ -510,9 +510,11 @@ void test_atmosphere_error_against_reference(void)
         CHECK(0, "%s", err);
         return;
     }
-    /* guards: the errors measured when each path landed plus a margin for
-     * Mesa versions (sky-bench prints the current figures) */
-    static const double day_limit[PATH_COUNT] = {ATMO_LIMIT_GRADIENT, ATMO_LIMIT_PREETHAM, ATMO_LIMIT_RAYLEIGH};
+    /* guards: the errors measured when each path landed (gradient 39 %,
+     * Preetham at T 2.5 330 %: a hazier sky than the reference's clear
+     * Earth, Rayleigh single scattering 28 %) plus a margin for Mesa
+     * versions; sky-bench prints the current figures */
+    static const double day_limit[PATH_COUNT] = {0.45, 3.6, 0.32};
     for (int p = 0; p < PATH_COUNT; p++) {
         sky_atmo_errors e[2];
         for (int q = 0; q < 2; q++) {

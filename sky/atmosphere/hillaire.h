@@ -46,16 +46,8 @@
 
 #include "../sky.h"
 
-typedef struct sky_hillaire_settings {
-    int transmittance_width, transmittance_height; /* 0 = 256 x 64          */
-    int transmittance_steps;                       /* 0 = 40                */
-    int multiscatter_size;                         /* 0 = 32 (square)       */
-    int multiscatter_directions;                   /* 0 = 64                */
-    int multiscatter_steps;                        /* 0 = 20                */
-    int skyview_width, skyview_height;             /* 0 = 192 x 108         */
-    int skyview_steps;                             /* 0 = 30 (most; fewer for
-                                                      short rays)           */
-} sky_hillaire_settings;
+/* The public sky_lut_settings of sky.h (zero fields = Hillaire's). */
+typedef sky_lut_settings sky_hillaire_settings;
 
 typedef struct sky_hillaire_tables {
     sky_hillaire_settings settings;  /* with the defaults filled in         */
