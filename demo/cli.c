@@ -124,7 +124,9 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --yaw DEG --pitch DEG --fov DEG | --fisheye\n"
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
-            "  --atmosphere gradient|preetham|rayleigh   atmosphere path\n"
+            "  --atmosphere gradient|preetham|rayleigh|hillaire|blend   atmosphere path\n"
+            "  --luts small|default|large   hillaire/blend: table sizes and samples (x0.5, Hillaire's, x2)\n"
+            "  --blend W                blend: fixed weight 0 (analytic) .. 1 (Hillaire); default follows the sun\n"
             "  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
             "  --planet earth|hazy|mars the atmosphere's composition (rayleigh)\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse (or none)\n"
@@ -275,6 +277,21 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 0.5, 50.0, &v))
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
             cli->moon_scale = (float)v;
+        } else if (!strcmp(opt, "--luts")) {
+            /* Hillaire's tables: his sizes and samples scaled */
+            double k = val && !strcmp(val, "small") ? 0.5 : val && !strcmp(val, "large") ? 2.0 : val && !strcmp(val, "default") ? 1.0 : 0.0;
+            if (k == 0.0) return fail(err, len, "--luts: expected small, default or large, got '%s'", val ? val : "(nothing)");
+            sky_lut_settings *l = &cli->luts;
+            l->transmittance_width = (int)(256 * k), l->transmittance_height = (int)(64 * k);
+            l->transmittance_steps = (int)(40 * k), l->multiscatter_size = (int)(32 * k);
+            l->multiscatter_directions = (int)(64 * k), l->multiscatter_steps = (int)(20 * k);
+            l->skyview_width = (int)(192 * k), l->skyview_height = (int)(108 * k), l->skyview_steps = (int)(30 * k);
+        } else if (!strcmp(opt, "--blend")) {
+            if (!parse_number(val, 0.0, 1.0, &v))
+                return fail(err, len, "--blend: expected a weight in 0..1 (0 analytic, 1 Hillaire), got '%s'",
+                            val ? val : "(nothing)");
+            cli->blend_manual = 1;
+            cli->blend_weight = (float)v;
         } else if (!strcmp(opt, "--turbidity")) {
             if (!parse_number(val, 1.0, 64.0, &v))
                 return fail(err, len, "--turbidity: expected a turbidity in 1..64, got '%s'", val ? val : "(nothing)");
@@ -336,8 +353,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                 cli->atmosphere = SKY_ATMOSPHERE_PREETHAM;
             else if (val && !strcmp(val, "rayleigh"))
                 cli->atmosphere = SKY_ATMOSPHERE_RAYLEIGH;
-            else if (val && (!strcmp(val, "hillaire") || !strcmp(val, "blend")))
-                return fail(err, len, "--atmosphere: '%s' is not available yet (gradient, preetham and rayleigh are built)", val);
+            else if (val && !strcmp(val, "hillaire"))
+                cli->atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+            else if (val && !strcmp(val, "blend"))
+                cli->atmosphere = SKY_ATMOSPHERE_BLEND;
             else
                 return fail(err, len, "--atmosphere: expected gradient|preetham|rayleigh|hillaire|blend, got '%s'",
                             val ? val : "(nothing)");
@@ -400,6 +419,9 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.atmosphere = cli->atmosphere;
     cfg.moon_scale = cli->moon_scale;
     cfg.turbidity = cli->turbidity;
+    cfg.luts = cli->luts;
+    cfg.blend_manual = cli->blend_manual;
+    cfg.blend_weight = cli->blend_weight;
     sky_atmosphere_get_preset(cli->planet, &cfg.atmosphere_params);
     cfg.get_proc_address = loader;
     return cfg;

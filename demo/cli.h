@@ -23,6 +23,9 @@ typedef struct sky_cli {
     float moon_scale;       /* --moon-scale (0 = the library's default)  */
     float turbidity;        /* --turbidity (0 = the library's default)   */
     sky_atmosphere_preset planet; /* --planet earth|hazy|mars          */
+    sky_lut_settings luts;  /* --luts small|default|large              */
+    int blend_manual;       /* --blend W                               */
+    float blend_weight;
     const char *preset;
     const char *out_png, *out_pfm;
     int frames;

@@ -175,10 +175,28 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
         return NULL;
     }
-    if (cfg->atmosphere == SKY_ATMOSPHERE_HILLAIRE || cfg->atmosphere == SKY_ATMOSPHERE_BLEND) {
-        sky_format(err, err_len, "sky_create: atmosphere path %d is not built yet (GRADIENT, PREETHAM and RAYLEIGH are)",
-                   (int)cfg->atmosphere);
+    if (cfg->blend_manual && !(cfg->blend_weight >= 0.0f && cfg->blend_weight <= 1.0f)) {
+        sky_format(err, err_len, "sky_create: blend_weight %g is out of range (0..1)", (double)cfg->blend_weight);
         return NULL;
+    }
+    {
+        const sky_lut_settings *l = &cfg->luts;
+        const int sizes[] = {l->transmittance_width, l->transmittance_height, l->multiscatter_size,
+                             l->skyview_width, l->skyview_height};
+        const int steps[] = {l->transmittance_steps, l->multiscatter_directions, l->multiscatter_steps,
+                             l->skyview_steps};
+        for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
+            if (sizes[i] != 0 && (sizes[i] < 4 || sizes[i] > 1024)) {
+                sky_format(err, err_len, "sky_create: luts: a table size of %d is out of range (0 = default, 4..1024)",
+                           sizes[i]);
+                return NULL;
+            }
+        for (size_t i = 0; i < sizeof steps / sizeof steps[0]; i++)
+            if (steps[i] != 0 && (steps[i] < 1 || steps[i] > 256)) {
+                sky_format(err, err_len, "sky_create: luts: a sample count of %d is out of range (0 = default, 1..256)",
+                           steps[i]);
+                return NULL;
+            }
     }
     if (!isfinite(cfg->turbidity) || (cfg->turbidity != 0.0f && (cfg->turbidity < 1.0f || cfg->turbidity > 64.0f))) {
         sky_format(err, err_len, "sky_create: turbidity %g is out of range (0 = default, or 1..64)",
@@ -219,6 +237,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     s->cfg = *cfg; /* texture_dir is the caller's string: used during create only */
     s->features = features;
     s->atm = atm;
+    sky_atmosphere_effective(&atm, &s->atm_rgb);
     s->atmosphere = cfg->atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg->atmosphere;
     s->world_is_identity = identity;
     for (int i = 0; i < 9; i++) s->horizon_to_world[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : cfg->horizon_to_world[i];
@@ -232,6 +251,9 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         gl->glBindVertexArray(s->vao);
     }
     if (sky_dome_create(s, err, err_len)) goto fail;
+    if ((s->atmosphere == SKY_ATMOSPHERE_HILLAIRE || s->atmosphere == SKY_ATMOSPHERE_BLEND) &&
+        sky_hillaire_create(s, err, err_len))
+        goto fail;
     if ((features & SKY_CLOUDS) && sky_clouds_create(s, err, err_len)) goto fail;
     if ((features & SKY_FLICKER_STARS) && sky_flicker_create(s, err, err_len)) goto fail;
     if ((features & SKY_STARMAP) && sky_starmap_create(s, err, err_len)) goto fail;
@@ -246,15 +268,15 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
      * uniform branch is not free on every GPU (llvmpipe pays for both
      * sides), and a day frame should do no star work at all. */
     const sky_snippet *dome_snippets[SKY_MAX_SNIPPETS];
-    int n = 0;
-    dome_snippets[n++] = &sky_atmosphere_snippet;
-    dome_snippets[n++] = sky_atmosphere_path_snippet(s->atmosphere);
+    int n = sky_atmosphere_snippets(s->atmosphere, dome_snippets);
+    int atmosphere_snippets = n;
     if (features & SKY_CLOUDS) dome_snippets[n++] = &sky_clouds_snippet;
     if (sky_program_build(s, &s->dome, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;
     /* Below the horizon there are no clouds and no stars: the lower
      * hemisphere gets the atmosphere alone (the host's terrain usually
      * covers it; what shows in a gap is the horizon haze). */
-    if (n > 2 && sky_program_build(s, &s->ground, "dome.vert", "dome.frag", dome_snippets, 2, err, err_len))
+    if (n > atmosphere_snippets &&
+        sky_program_build(s, &s->ground, "dome.vert", "dome.frag", dome_snippets, atmosphere_snippets, err, err_len))
         goto fail;
     if (features & (SKY_FLICKER_STARS | SKY_STARMAP)) {
         if (features & SKY_FLICKER_STARS) dome_snippets[n++] = &sky_flicker_snippet;
@@ -324,6 +346,7 @@ void sky_destroy(sky *s)
         gl->glDeleteBuffers(5, buffers);
         if (s->vao) gl->glDeleteVertexArrays(1, &s->vao);
     }
+    sky_hillaire_destroy(s);
     free(s);
 }
 
@@ -552,7 +575,7 @@ static void setup_fisheye(sky *s, const GLint viewport[4])
 
 /* ---- drawing --------------------------------------------------------------------- */
 
-static double now_ms(void)
+double sky_now_ms(void)
 {
     struct timespec ts;
     timespec_get(&ts, TIME_UTC);
@@ -579,6 +602,9 @@ static void reset_layer_stats(sky *s)
         s->stats.layers[l].ms = -1.0;
     }
     s->stats.draws_per_frame = 0;
+    /* table builds since the last draw (sky_update, sky_set_params, ...) */
+    s->stats.lut_ms = s->lut_ms;
+    s->lut_ms = 0.0;
 }
 
 /* Draws one layer: a quad buffer, or the dome's hemispheres (quad 0). */
@@ -589,7 +615,7 @@ static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint 
     double t0 = 0.0;
     if (timed) {
         gl->glFinish();
-        t0 = now_ms();
+        t0 = sky_now_ms();
     }
     sky_program_apply(s, prog);
     if (quad) {
@@ -610,7 +636,7 @@ static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint 
     }
     if (timed) {
         gl->glFinish();
-        s->stats.layers[layer].ms = now_ms() - t0;
+        s->stats.layers[layer].ms = sky_now_ms() - t0;
     }
     s->stats.layers[layer].drawn = 1;
     s->stats.layers[layer].draws++;
@@ -636,6 +662,7 @@ static sky_result draw_frame(sky *s)
      * 15 makes every cloud texel vanish there anyway) */
     int clear = (s->features & SKY_CLOUDS) && !sky_clouds_visible(s);
     const sky_program *dome = night ? (clear ? &s->dome_night_clear : &s->dome_night) : (clear ? &s->ground : &s->dome);
+    sky_hillaire_upload(s); /* a sky-view table rebuilt since the last draw */
     draw_layer(s, SKY_LAYER_ATMOSPHERE, dome, 0);
     if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night && s->frame.star_luminance > 0;
     if (s->features & SKY_STARMAP) s->stats.layers[SKY_LAYER_STARMAP].drawn = night && s->frame.starmap_scale > 0;
@@ -652,12 +679,12 @@ static sky_result draw_frame(sky *s)
             gl->glEnable(GL_BLEND);
             gl->glBlendEquation(GL_FUNC_ADD);
             gl->glBlendFunc(GL_ONE, GL_ONE);
-            double t0 = s->cfg.profile_layers ? (gl->glFinish(), now_ms()) : 0.0;
+            double t0 = s->cfg.profile_layers ? (gl->glFinish(), sky_now_ms()) : 0.0;
             sky_program_apply(s, &s->stars);
             sky_stars_draw(s);
             if (s->cfg.profile_layers) {
                 gl->glFinish();
-                s->stats.layers[SKY_LAYER_STARS].ms = now_ms() - t0;
+                s->stats.layers[SKY_LAYER_STARS].ms = sky_now_ms() - t0;
             }
             s->stats.layers[SKY_LAYER_STARS].drawn = 1;
             s->stats.layers[SKY_LAYER_STARS].draws++;
@@ -694,7 +721,7 @@ static sky_result draw_frame(sky *s)
 
 static sky_result draw_with(sky *s, const float *view, const float *proj)
 {
-    double t0 = now_ms();
+    double t0 = sky_now_ms();
     sky_gl_state host;
     const sky_gl *gl = &s->gl;
     while (gl->glGetError() != GL_NO_ERROR) {} /* the host's errors are not ours */
@@ -704,7 +731,7 @@ static sky_result draw_with(sky *s, const float *view, const float *proj)
     if (rc == SKY_OK) rc = draw_frame(s);
     sky_gl_state_restore(s, &host);
     if (s->cfg.profile_layers) gl->glFinish();
-    s->stats.frame_ms = now_ms() - t0;
+    s->stats.frame_ms = sky_now_ms() - t0;
     return rc;
 }
 
@@ -730,7 +757,7 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
     out->gl_version = s->gl_version;
     out->profile = s->profile;
     out->features = s->features;
-    out->lut_ms = 0.0;
+    out->lut_ms = s->stats.lut_ms;
     out->textures = 0;
     out->gpu_bytes = s->buffer_bytes;
     for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layers[l].bytes = 0;

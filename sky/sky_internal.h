@@ -29,6 +29,8 @@ double sky_phase_advance(double phase, double rate, double dt);
 #define SKY_SCINTILLATION_RATE 10.0
 #define SKY_SCINTILLATION_PERIOD 997.0
 double sky_smoothstep(double e0, double e1, double x);
+/* Wall-clock milliseconds (C11 timespec_get), for statistics. */
+double sky_now_ms(void);
 
 /* ---- embedded assets (generated at build time by tools/embed) ----------- */
 typedef struct sky_blob {
@@ -54,6 +56,7 @@ typedef enum sky_texture_id {
     SKY_TEX_STARMAP,    /* equirectangular J2000 faint stars + Milky Way (Mueller 4.4) */
     SKY_TEX_MOON,       /* 256x128 lunar albedo, selenographic (Mueller 2.2.2)       */
     SKY_TEX_ECLIPSE,    /* 128x1 eclipse colour h(t), log10-encoded (Mueller 3.2)    */
+    SKY_TEX_SKYVIEW,    /* Hillaire's sky-view table (atmosphere/hillaire.c)       */
     SKY_TEX_COUNT
 } sky_texture_id;
 
@@ -112,6 +115,8 @@ typedef struct sky_frame {
     /* analytic Rayleigh + Mie (rayleigh.c) */
     float tau_rayleigh[3], tau_mie_sca[3], tau_mie_ext[3], tau_ozone[3];
     float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
+    /* Hillaire's sky-view table (hillaire.c) and the blend */
+    float skyview_map[4], skyview_horizon[2], skyview_decode[3], blend_weight;
     /* clouds (R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
@@ -153,8 +158,8 @@ typedef struct sky_snippet {
     int uniform_count;
 } sky_snippet;
 
-#define SKY_MAX_SNIPPETS 6
-#define SKY_MAX_UNIFORMS 48
+#define SKY_MAX_SNIPPETS 8
+#define SKY_MAX_UNIFORMS 64
 typedef struct sky_program {
     GLuint id;
     int uniform_count;
@@ -175,7 +180,13 @@ struct sky {
     sky_observer observer;
     float exposure_bias;          /* stops, sky_set_exposure_bias               */
     sky_atmosphere_params atm;    /* checked; the Earth preset when zero        */
+    sky_atmosphere_params atm_rgb; /* atm at the channels' effective wavelengths */
     sky_atmosphere_path atmosphere; /* resolved: never DEFAULT                  */
+    struct sky_hillaire_tables *hillaire; /* HILLAIRE, BLEND (hillaire.c)       */
+    unsigned char *skyview_encoded;       /* COMPAT20's 8-bit sky-view table   */
+    int skyview_valid, skyview_uploaded;
+    double skyview_sun_mu, skyview_altitude_km, skyview_log2_floor;
+    double lut_ms;                        /* table builds since the last draw  */
     sky_astro astro;              /* for observer + time slider; see observer.c */
     double scintillation_phase;   /* wrapped: the stars' clock (stars.c)       */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */
@@ -236,6 +247,13 @@ void sky_program_destroy(sky *s, sky_program *p);
 /* Sets every uniform of the program from s->frame and binds its textures. */
 void sky_program_apply(sky *s, const sky_program *p);
 /* Uploads an RGBA8 image. repeat: wrap mode. Power-of-two sizes only. */
+/* A power-of-two lookup texture without contents: RGB32F with linear
+ * filtering (is_float) or RGBA8 for an encoding, unfiltered;
+ * sky_texture_update_lut fills its w x h corner (one of the two data
+ * pointers). */
+int sky_texture_create_lut(sky *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
+                           size_t err_len);
+void sky_texture_update_lut(sky *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f);
 int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
                        int repeat, char *err, size_t err_len);
 /* Loads a texture by file name: the override directory first, then the
@@ -271,12 +289,27 @@ extern const sky_snippet sky_gradient_snippet;
 extern const sky_snippet sky_preetham_snippet;
 extern const sky_snippet sky_rayleigh_snippet;
 extern const sky_snippet sky_atmosphere_snippet; /* shared by every path */
+extern const sky_snippet sky_extinction_snippet; /* the physical paths' optical depth */
+extern const sky_snippet sky_hillaire_snippet;
+extern const sky_snippet sky_blend_snippet;
 /* atmosphere/params.c: 1 when every field is zero (= the Earth preset). */
 int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
-/* atmosphere/atmosphere.c: the selected path's snippet, and its per-frame
- * state (night sky, path coefficients, the host's ambient and fog). */
-const sky_snippet *sky_atmosphere_path_snippet(sky_atmosphere_path path);
+/* The description's coefficients re-sampled at the wavelengths the sRGB
+ * channels of scattered sunlight come from (sky_ref_effective_wavelengths):
+ * what the real-time physical paths render with. */
+void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out);
+/* atmosphere/atmosphere.c: the snippets of the selected path (up to 5, in
+ * order), and its per-frame state (night sky, path coefficients, the
+ * host's ambient and fog). */
+int sky_atmosphere_snippets(sky_atmosphere_path path, const sky_snippet **out);
 void sky_atmosphere_frame(sky *s);
+/* atmosphere/hillaire.c: tables at creation, the sky-view rebuild per
+ * frame (CPU), its upload in sky_draw, the CPU twin of the shader. */
+int sky_hillaire_create(sky *s, char *err, size_t err_len);
+void sky_hillaire_destroy(sky *s);
+void sky_hillaire_frame(sky *s);
+void sky_hillaire_upload(sky *s);
+void sky_hillaire_eval(const sky *s, const double d[3], double rgb[3]);
 /* The sun above the atmosphere in linear sRGB, klx per channel (a 5778 K
  * blackbody of 128 klx). */
 extern const double sky_sun_irradiance_klx[3];

@@ -64,7 +64,18 @@ void test_api_rejects_null_and_bad_config(void)
     cfg.atmosphere = (sky_atmosphere_path)99;
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "out of range"), "bad path: %s", err);
     cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
-    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "not built yet"), "unbuilt path: %s", err);
+    cfg.luts.skyview_width = 2000; /* tables: 4..1024 */
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "luts"), "bad table size: %s", err);
+    cfg.luts.skyview_width = 0;
+    cfg.luts.skyview_steps = 300; /* samples: 1..256 */
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "luts"), "bad sample count: %s", err);
+    cfg.luts.skyview_steps = 0;
+    cfg.atmosphere = SKY_ATMOSPHERE_BLEND;
+    cfg.blend_manual = 1;
+    cfg.blend_weight = NAN;
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "blend_weight"), "NaN blend: %s", err);
+    cfg.blend_manual = 0;
+    cfg.blend_weight = 0.0f;
     cfg.atmosphere = SKY_ATMOSPHERE_DEFAULT;
     cfg.features = 1u << 20; /* no such feature */
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "not built yet"), "unknown feature: %s", err);

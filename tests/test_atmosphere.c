@@ -22,9 +22,10 @@ void test_atmosphere_chapman_function(void);
 void test_atmosphere_description_checked(void);
 void test_atmosphere_error_against_reference(void);
 
-static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH};
-static const char *const path_names[] = {"gradient", "preetham", "rayleigh"};
-#define PATH_COUNT 3
+static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
+                                            SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
+static const char *const path_names[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
+#define PATH_COUNT 5
 
 /* An HDR all-sky sky on its own small float context. */
 typedef struct hdr_sky {
@@ -33,7 +34,23 @@ typedef struct hdr_sky {
     int size;
 } hdr_sky;
 
+/* Hillaire's tables at half size: sweeps that rebuild the sky-view table
+ * every frame stay fast (the paths' code is the same at any size). */
+static sky_lut_settings small_luts(void)
+{
+    sky_lut_settings l = {128, 32, 20, 16, 32, 10, 96, 54, 15};
+    return l;
+}
+
+static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
+                         const sky_lut_settings *luts);
 static int hdr_open(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity)
+{
+    return hdr_open_luts(h, size, path, profile, turbidity, NULL);
+}
+
+static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
+                         const sky_lut_settings *luts)
 {
     char err[512];
     memset(h, 0, sizeof *h);
@@ -50,6 +67,7 @@ static int hdr_open(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profi
     cfg.features = SKY_SUN; /* the sun quad too: its glare must stay finite */
     cfg.atmosphere = path;
     cfg.turbidity = turbidity;
+    if (luts) cfg.luts = *luts;
     h->s = sky_create(&cfg, err, sizeof err);
     if (!h->s) {
         printf("    sky_create: %s\n", err);
@@ -154,7 +172,8 @@ void test_atmosphere_paths_finite_for_every_sun_position(void)
         sky_gl_profile profile = q < PATH_COUNT ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
         const char *profile_name = q < PATH_COUNT ? "core" : "compat";
         hdr_sky h;
-        if (hdr_open(&h, 20, paths[p], profile, 0.0f)) {
+        sky_lut_settings small = small_luts();
+        if (hdr_open_luts(&h, 20, paths[p], profile, 0.0f, &small)) {
             CHECK(0, "%s %s: no sky", path_names[p], profile_name);
             continue;
         }
@@ -243,6 +262,22 @@ void test_atmosphere_clear_sky_colours(void)
     }
 }
 
+/* The CPU twin of the sky's path (atmosphere.c's summary uses the same). */
+static void twin_eval(const sky *s, const double d[3], double rgb[3])
+{
+    double a[3], b[3];
+    switch (s->atmosphere) {
+    case SKY_ATMOSPHERE_PREETHAM: sky_preetham_eval(&s->frame, d, rgb); return;
+    case SKY_ATMOSPHERE_RAYLEIGH: sky_rayleigh_eval(&s->frame, d, rgb); return;
+    case SKY_ATMOSPHERE_HILLAIRE: sky_hillaire_eval(s, d, rgb); return;
+    default:
+        sky_rayleigh_eval(&s->frame, d, a);
+        sky_hillaire_eval(s, d, b);
+        for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * s->frame.blend_weight;
+        return;
+    }
+}
+
 /* The shaders compute in float what preetham.c and rayleigh.c compute in
  * double: the images must agree with the CPU twins pixel by pixel, at a
  * high sun, a low one and one just set. Perspective views (where the
@@ -252,14 +287,26 @@ void test_atmosphere_shaders_match_cpu_twins(void)
 {
     sky_observer o = equator_equinox();
     static const double altitudes[] = {60.0, 8.0, 0.5, -1.0};
-    for (int p = 1; p < PATH_COUNT; p++) {
+    /* path, profile, tolerance: the analytic shaders to float rounding;
+     * the tables to the GPU's bilinear weights (8 fraction bits on
+     * llvmpipe: a 1/256 step of a texel-to-texel change); COMPAT20's 8-bit
+     * chromaticity, a step of 1/255 of the channel sum, relative to the
+     * luminance */
+    static const struct {
+        int path;
+        sky_gl_profile profile;
+        double tolerance;
+    } cases[] = {{1, SKY_GL_CORE33, 0.002}, {2, SKY_GL_CORE33, 0.002}, {3, SKY_GL_CORE33, 0.005},
+                 {4, SKY_GL_CORE33, 0.005}, {3, SKY_GL_COMPAT20, 0.03}};
+    for (size_t q = 0; q < sizeof cases / sizeof cases[0]; q++) {
+        int p = cases[q].path;
+        const char *profile_name = cases[q].profile == SKY_GL_CORE33 ? "core" : "compat";
         hdr_sky h;
-        if (hdr_open(&h, 64, paths[p], SKY_GL_AUTO, 0.0f)) {
+        if (hdr_open(&h, 64, paths[p], cases[q].profile, 0.0f)) {
             CHECK(0, "%s: no sky", path_names[p]);
             continue;
         }
-        void (*eval)(const sky_frame *, const double *, double *) =
-            paths[p] == SKY_ATMOSPHERE_PREETHAM ? sky_preetham_eval : sky_rayleigh_eval;
+
         for (size_t k = 0; k < sizeof altitudes / sizeof altitudes[0]; k++) {
             sky_params clear = sky_default_params();
             clear.cover = 0.0f;
@@ -290,32 +337,44 @@ void test_atmosphere_shaders_match_cpu_twins(void)
                          * outside it, and above the horizon */
                         if (d[1] < 0.0 || d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2] > cos(0.1)) continue;
                         double rgb[3];
-                        eval(&h.s->frame, d, rgb);
+                        twin_eval(h.s, d, rgb);
                         const float *v = hdr_pixel(&h, x, y);
+                        double expect[3], y_expect = 0.0;
                         for (int c = 0; c < 3; c++) {
                             /* the night floor, (2 - elevation) times u_night_luminance */
-                            double expect = rgb[c] + (2.0 - d[1]) * h.s->frame.night_luminance;
-                            double rel = fabs(v[c] - expect) / (fabs(expect) + 1e-9);
+                            expect[c] = rgb[c] + (2.0 - d[1]) * h.s->frame.night_luminance;
+                            y_expect += expect[c] * (c == 0 ? 0.2126 : c == 1 ? 0.7152 : 0.0722);
+                        }
+                        for (int c = 0; c < 3; c++) {
+                            /* float paths: each channel relative to itself;
+                             * the 8-bit encoding stores luminance and
+                             * chromaticity: each channel relative to the
+                             * pixel's luminance */
+                            double scale = cases[q].profile == SKY_GL_CORE33 ? fabs(expect[c]) : y_expect;
+                            double rel = fabs(v[c] - expect[c]) / (scale + 1e-9);
                             if (rel > worst) worst = rel;
                         }
                         compared++;
                     }
             }
-            NOTE("%s, sun %+.1f deg: %d pixels, worst relative difference to the CPU twin %.2g", path_names[p],
-                 altitudes[k], compared, worst);
-            CHECK(compared > 3000 && worst < 0.002, "%s, sun %+.1f: shader differs from the CPU by %.3g", path_names[p],
-                  altitudes[k], worst);
+            NOTE("%s %s, sun %+.1f deg: %d pixels, worst relative difference to the CPU twin %.2g", path_names[p],
+                 profile_name, altitudes[k], compared, worst);
+            CHECK(compared > 3000 && worst < cases[q].tolerance, "%s %s, sun %+.1f: shader differs from the CPU by %.3g",
+                  path_names[p], profile_name, altitudes[k], worst);
         }
         hdr_close(&h);
     }
 }
 
-/* A sun 0.01 degree above, at and 0.01 below the horizon gives three
- * nearly identical skies in every path: no step at the horizon. */
+/* A sun 0.1 degree above, at and 0.1 below the horizon gives three
+ * nearly identical skies in every path: no step at the horizon. The
+ * twilight sky darkens by a decade in 3 degrees, 8 % per 0.1 degree;
+ * anything past 12 % is a step. (0.1 degree: more than the sun movement
+ * that rebuilds Hillaire's sky-view table, 0.05.) */
 void test_atmosphere_continuous_across_horizon(void)
 {
     sky_observer o = equator_equinox();
-    static const double altitudes[] = {0.01, 0.0, -0.01};
+    static const double altitudes[] = {0.1, 0.0, -0.1};
     for (int p = 0; p < PATH_COUNT; p++) {
         hdr_sky h;
         if (hdr_open(&h, 33, paths[p], SKY_GL_AUTO, 0.0f)) {
@@ -349,8 +408,8 @@ void test_atmosphere_continuous_across_horizon(void)
                 }
             memcpy(prev, cur, n * sizeof(float));
         }
-        NOTE("%s: largest relative change per 0.01 degree of sun across the horizon %.3g", path_names[p], worst);
-        CHECK(worst < 0.05, "%s: the sky jumps by %.3g across the horizon", path_names[p], worst);
+        NOTE("%s: largest relative change per 0.1 degree of sun across the horizon %.3g", path_names[p], worst);
+        CHECK(worst < 0.12, "%s: the sky jumps by %.3g across the horizon", path_names[p], worst);
         free(prev);
         hdr_close(&h);
     }
@@ -510,11 +569,12 @@ void test_atmosphere_error_against_reference(void)
         CHECK(0, "%s", err);
         return;
     }
-    /* guards: the errors measured when each path landed (gradient 39 %,
+    /* Hillaire's default tables: issue 6's target, 5 %. The others are
+     * guards: the errors measured when each path landed (gradient 45 %,
      * Preetham at T 2.5 330 %: a hazier sky than the reference's clear
-     * Earth, Rayleigh single scattering 28 %) plus a margin for Mesa
-     * versions; sky-bench prints the current figures */
-    static const double day_limit[PATH_COUNT] = {0.45, 3.6, 0.32};
+     * Earth, Rayleigh single scattering 27 %, the blend 7 %) plus a margin
+     * for Mesa versions; sky-bench prints the current figures */
+    static const double day_limit[PATH_COUNT] = {0.52, 3.6, 0.30, 0.05, 0.09};
     for (int p = 0; p < PATH_COUNT; p++) {
         sky_atmo_errors e[2];
         for (int q = 0; q < 2; q++) {

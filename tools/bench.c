@@ -99,6 +99,7 @@ typedef struct row {
     const char *profile;
     double frame_ms, ratio;
     double layer_ms[SKY_LAYER_COUNT]; /* medians with profile_layers, -1 if never drawn alone */
+    double lut_start_ms, lut_rebuild_ms; /* tables built by creation; a rebuild after the sun moved */
     sky_stats st;
 } row;
 
@@ -151,6 +152,28 @@ static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl
     double *t = malloc(sizeof(double) * (size_t)frames);
     sky_draw(s, view, proj); /* warm-up: shader JIT */
     glFinish();
+    /* lookup tables: what creation built (reported by the first draw),
+     * then the rebuild when the sun has moved (0.36 degree a step) */
+    sky_stats first;
+    sky_get_stats(s, &first);
+    out->lut_start_ms = first.lut_ms;
+    out->lut_rebuild_ms = 0.0;
+    if (first.lut_ms > 0.0 && t) {
+        sky_params moved = cli.params;
+        int n = frames < 10 ? frames : 10;
+        for (int i = 0; i < n; i++) {
+            moved.time = cli.params.time + 0.001f * (float)(i + 1);
+            sky_set_params(s, &moved);
+            sky_draw(s, view, proj);
+            sky_stats st;
+            sky_get_stats(s, &st);
+            t[i] = st.lut_ms;
+        }
+        out->lut_rebuild_ms = sky_cli_median(t, n);
+        sky_set_params(s, &cli.params);
+        sky_draw(s, view, proj);
+        glFinish();
+    }
     for (int i = 0; i < frames; i++) {
         sky_update(s, 1.0 / 60.0);
         double t0 = sky_cli_now_ms();
@@ -233,13 +256,17 @@ static const atmo_setting atmo_settings[] = {
     {"preetham", "T 2.5 (default)", {"--atmosphere", "preetham"}},
     {"preetham", "T 2", {"--atmosphere", "preetham", "--turbidity", "2"}},
     {"rayleigh", "default", {"--atmosphere", "rayleigh"}},
+    {"hillaire", "tables x0.5", {"--atmosphere", "hillaire", "--luts", "small"}},
+    {"hillaire", "default", {"--atmosphere", "hillaire"}},
+    {"hillaire", "tables x2", {"--atmosphere", "hillaire", "--luts", "large"}},
+    {"blend", "automatic", {"--atmosphere", "blend"}},
 };
 enum { ATMO_SETTINGS = sizeof atmo_settings / sizeof atmo_settings[0] };
 
 typedef struct atmo_row {
     const atmo_setting *setting;
     const char *profile;
-    double frame_ms, ratio, lut_ms;
+    double frame_ms, ratio, lut_start_ms, lut_rebuild_ms;
     sky_atmo_errors err;
 } atmo_row;
 
@@ -257,7 +284,8 @@ static int bench_atmosphere(const atmo_setting *a, sky_gl_profile gl, int w, int
     out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
     out->frame_ms = r.frame_ms;
     out->ratio = r.frame_ms / baseline;
-    out->lut_ms = r.st.lut_ms;
+    out->lut_start_ms = r.lut_start_ms;
+    out->lut_rebuild_ms = r.lut_rebuild_ms;
     return 0;
 }
 
@@ -293,11 +321,13 @@ static void print_atmosphere_table(const atmo_row *rows, int n, const sky_atmo_r
            ">= 2; mean relative standard error %.2f %%), Earth preset. Frame: atmosphere + sun at the size above.\n"
            "Errors over an equal-area all-sky grid; day: sun >= 0 deg, twilight: -6 <= sun < 0 deg.\n\n",
            ref->paths, 100.0 * se / y);
-    printf("| path | setting | profile | frame ms | x baseline | LUT ms | mean rel err day | max rel err day | "
-           "mean rel err twilight | mean dE2000 day |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("| path | setting | profile | frame ms | x baseline | LUT ms at start | sky-view rebuild ms | "
+           "mean rel err day | max rel err day | mean rel err twilight | mean dE2000 day |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++)
-        printf("| %s | %s | %s | %.2f | %.2f | %.2f | %.1f %% | %.0f %% | %.0f %% | %.1f |\n", rows[i].setting->path,
-               rows[i].setting->setting, rows[i].profile, rows[i].frame_ms, rows[i].ratio, rows[i].lut_ms,
+        printf("| %s | %s | %s | %.2f | %.2f | %.1f | %.1f | %.1f %% | %.0f %% | %.0f %% | %.1f |\n",
+               rows[i].setting->path, rows[i].setting->setting, rows[i].profile, rows[i].frame_ms, rows[i].ratio,
+               rows[i].lut_start_ms, rows[i].lut_rebuild_ms,
                100.0 * rows[i].err.mean_rel_day, 100.0 * rows[i].err.max_rel_day,
                100.0 * rows[i].err.mean_rel_twilight, rows[i].err.mean_de2000_day);
     printf("\nMean relative luminance error by sun elevation (core profile):\n\n| path | setting |");
@@ -484,9 +514,10 @@ int main(int argc, char **argv)
         for (int i = 0; i < natmo; i++) {
             const atmo_row *r = &atmo[i];
             printf("  {\"path\":\"%s\", \"setting\":\"%s\", \"profile\":\"%s\", \"frame_ms\":%.4f, \"ratio\":%.3f, "
-                   "\"lut_ms\":%.4f, \"mean_rel_err_day\":%.5f, \"max_rel_err_day\":%.5f, "
+                   "\"lut_ms\":%.4f, \"lut_rebuild_ms\":%.4f, \"mean_rel_err_day\":%.5f, \"max_rel_err_day\":%.5f, "
                    "\"mean_rel_err_twilight\":%.5f, \"mean_de2000_day\":%.4f, \"mean_rel_err_by_elevation\":[",
-                   r->setting->path, r->setting->setting, r->profile, r->frame_ms, r->ratio, r->lut_ms,
+                   r->setting->path, r->setting->setting, r->profile, r->frame_ms, r->ratio, r->lut_start_ms,
+                   r->lut_rebuild_ms,
                    r->err.mean_rel_day, r->err.max_rel_day, r->err.mean_rel_twilight, r->err.mean_de2000_day);
             for (int s = 0; s < SKY_ATMO_SUNS; s++) printf("%.5f%s", r->err.mean_rel[s], s + 1 < SKY_ATMO_SUNS ? "," : "");
             printf("]}%s\n", i + 1 < natmo ? "," : "");

@@ -26,13 +26,35 @@ void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
     rgb[2] = 0.0557 * xyz[0] - 0.2040 * xyz[1] + 1.0570 * xyz[2];
 }
 
-const sky_snippet *sky_atmosphere_path_snippet(sky_atmosphere_path path)
+static const sky_uniform_desc blend_uniforms[] = {
+    SKY_UF("u_blend_weight", SKY_U_F1, blend_weight),
+};
+const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
+                                       (int)(sizeof blend_uniforms / sizeof blend_uniforms[0])};
+
+int sky_atmosphere_snippets(sky_atmosphere_path path, const sky_snippet **out)
 {
+    int n = 0;
+    out[n++] = &sky_atmosphere_snippet;
     switch (path) {
-    case SKY_ATMOSPHERE_PREETHAM: return &sky_preetham_snippet;
-    case SKY_ATMOSPHERE_RAYLEIGH: return &sky_rayleigh_snippet;
-    default: return &sky_gradient_snippet;
+    case SKY_ATMOSPHERE_PREETHAM: out[n++] = &sky_preetham_snippet; break;
+    case SKY_ATMOSPHERE_RAYLEIGH:
+        out[n++] = &sky_extinction_snippet;
+        out[n++] = &sky_rayleigh_snippet;
+        break;
+    case SKY_ATMOSPHERE_HILLAIRE:
+        out[n++] = &sky_extinction_snippet;
+        out[n++] = &sky_hillaire_snippet;
+        break;
+    case SKY_ATMOSPHERE_BLEND:
+        out[n++] = &sky_extinction_snippet;
+        out[n++] = &sky_rayleigh_snippet;
+        out[n++] = &sky_hillaire_snippet;
+        out[n++] = &sky_blend_snippet;
+        break;
+    default: out[n++] = &sky_gradient_snippet; break;
     }
+    return n;
 }
 
 /* The night sky (atmosphere.glsl's floor). A dark, moonless sky: about
@@ -52,11 +74,25 @@ static void night_frame(sky *s)
     f->moonlight = (float)moonlight;
 }
 
+/* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
+ * floor. The blend weighs the analytic sky by day (where it is cheapest)
+ * and hands the horizon band and twilight, where single scattering from
+ * one column falls short, to Hillaire's tables. */
+static void eval_preetham(const sky *s, const double d[3], double rgb[3]) { sky_preetham_eval(&s->frame, d, rgb); }
+static void eval_rayleigh(const sky *s, const double d[3], double rgb[3]) { sky_rayleigh_eval(&s->frame, d, rgb); }
+static void eval_blend(const sky *s, const double d[3], double rgb[3])
+{
+    double a[3], b[3], w = s->frame.blend_weight;
+    sky_rayleigh_eval(&s->frame, d, a);
+    sky_hillaire_eval(s, d, b);
+    for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * w;
+}
+
 /* A physical path's sky summarised from its own CPU twin: Gauss-Legendre
  * in the elevation sine (4 nodes on 0..1) times 8 azimuths. The irradiance
  * on an upward surface is 2 pi int L mu dmu; the mean luminance is the
  * solid-angle mean over the upper hemisphere; fog takes the lowest ring. */
-static void summarise(sky *s, void (*eval)(const sky_frame *, const double d[3], double rgb[3]))
+static void summarise(sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]))
 {
     static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
     static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
@@ -67,7 +103,7 @@ static void summarise(sky *s, void (*eval)(const sky_frame *, const double d[3],
         double c = sqrt(1.0 - mu_node[k] * mu_node[k]);
         for (int a = 0; a < 8; a++) {
             double az = 2.0 * SKY_PI * (a + 0.5) / 8.0, d[3] = {c * sin(az), mu_node[k], -c * cos(az)}, rgb[3];
-            eval(f, d, rgb);
+            eval(s, d, rgb);
             for (int i = 0; i < 3; i++) ring[i] += rgb[i] / 8.0;
         }
         for (int i = 0; i < 3; i++) irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * ring[i];
@@ -85,17 +121,35 @@ static void summarise(sky *s, void (*eval)(const sky_frame *, const double d[3],
     }
 }
 
+/* The blend's automatic weight: Hillaire's tables (1) with the sun below
+ * 15 degrees, an even mix above 60. */
+static float blend_weight(const sky *s)
+{
+    if (s->cfg.blend_manual) return s->cfg.blend_weight;
+    double h_deg = s->frame.sun_altitude * 180.0 / SKY_PI;
+    return (float)(1.0 - 0.5 * sky_smoothstep(15.0, 60.0, h_deg));
+}
+
 void sky_atmosphere_frame(sky *s)
 {
     night_frame(s);
     switch (s->atmosphere) {
     case SKY_ATMOSPHERE_PREETHAM:
         sky_preetham_frame(s);
-        summarise(s, sky_preetham_eval);
+        summarise(s, eval_preetham);
         break;
     case SKY_ATMOSPHERE_RAYLEIGH:
         sky_rayleigh_frame(s);
-        summarise(s, sky_rayleigh_eval);
+        summarise(s, eval_rayleigh);
+        break;
+    case SKY_ATMOSPHERE_HILLAIRE:
+        sky_hillaire_frame(s);
+        summarise(s, sky_hillaire_eval);
+        break;
+    case SKY_ATMOSPHERE_BLEND:
+        sky_hillaire_frame(s); /* computes the analytic path's state too */
+        s->frame.blend_weight = blend_weight(s);
+        summarise(s, eval_blend);
         break;
     default: sky_gradient_frame(s); break;
     }

@@ -26,17 +26,17 @@ void sky_gradient_vertex(const unsigned char *gradient, const float d[3], float 
 }
 
 /* Luminance scale of the day sky (kcd/m^2) for a sun at altitude h. Above
- * the horizon it grows like sin(h)^0.6 to about 9 kcd/m^2, offset by a
- * sine of 0.02 (1.1 degrees) so the slope at the horizon is finite (a bare
- * power 0.6 jumps by 16 % in the first 0.01 degree); below it falls by a
- * decade every 3 degrees, which matches the measured twilight sky: about
- * 3 cd/m^2 at -6 (civil), 0.03 at -12 (nautical) and 3e-4 cd/m^2 at -18
- * degrees. Continuous at h = 0. */
+ * the horizon it grows like (sin h + 0.25)^0.6 to 9.3 kcd/m^2 at the
+ * zenith; below it falls by a decade every 3 degrees, which matches the
+ * measured twilight sky: about 3 cd/m^2 at -6 (civil), 0.03 at -12
+ * (nautical) and 3e-4 cd/m^2 at -18 degrees. The offset 0.25 makes the
+ * two sides meet with the same slope (a bare sin^0.6 has an infinite one:
+ * the sky jumped by 16 % in the first 0.01 degree of sunrise). */
 static double day_sky_luminance(double altitude)
 {
     double h_deg = altitude * 180.0 / SKY_PI;
     if (h_deg >= 0.0) {
-        const double s0 = 0.02, base = pow(s0, 0.6);
+        const double s0 = 0.25, base = pow(s0, 0.6);
         return 0.3 + 9.0 * (pow(sin(altitude) + s0, 0.6) - base) / (pow(1.0 + s0, 0.6) - base);
     }
     return 0.3 * pow(10.0, sky_clampd(h_deg, -90.0, 0.0) / 3.0);

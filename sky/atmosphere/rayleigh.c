@@ -26,14 +26,18 @@
 
 #include <math.h>
 
-static const sky_uniform_desc rayleigh_uniforms[] = {
+static const sky_uniform_desc extinction_uniforms[] = {
     SKY_UF("u_tau_rayleigh", SKY_U_F3, tau_rayleigh),
     SKY_UF("u_tau_mie_sca", SKY_U_F3, tau_mie_sca),
     SKY_UF("u_tau_mie_ext", SKY_U_F3, tau_mie_ext),
     SKY_UF("u_tau_ozone", SKY_U_F3, tau_ozone),
     SKY_UF("u_chapman_x", SKY_U_F3, chapman_x),
-    SKY_UF("u_sun_depth", SKY_U_F3, sun_depth),
     SKY_UF("u_sun_irradiance", SKY_U_F3, sun_irradiance),
+};
+const sky_snippet sky_extinction_snippet = {"SKY_HAS_EXTINCTION", "extinction.glsl", extinction_uniforms,
+                                            (int)(sizeof extinction_uniforms / sizeof extinction_uniforms[0])};
+static const sky_uniform_desc rayleigh_uniforms[] = {
+    SKY_UF("u_sun_depth", SKY_U_F3, sun_depth),
     SKY_UF("u_mie_phase", SKY_U_F3, mie_phase),
 };
 const sky_snippet sky_rayleigh_snippet = {"SKY_HAS_RAYLEIGH", "rayleigh.glsl", rayleigh_uniforms,
@@ -75,7 +79,7 @@ static double ozone_column_above(double h, double peak, double half)
 void sky_rayleigh_frame(sky *s)
 {
     sky_frame *f = &s->frame;
-    const sky_atmosphere_params *a = &s->atm;
+    const sky_atmosphere_params *a = &s->atm_rgb;
     /* the observer inside the shell: an observer above it sees it from
      * just under the top (a closed form for the outside is Hillaire's) */
     double h = sky_clampd(s->observer.altitude_m / 1000.0, -0.5, a->top_radius_km - a->planet_radius_km - 0.01);

@@ -143,6 +143,24 @@ static void spectrum_to_xyz(const double s[SKY_REF_WAVELENGTHS], double xyz[3])
     for (int k = 0; k < 3; k++) xyz[k] *= REF_LM_PER_W * REF_DLAMBDA / 1000.0;
 }
 
+void sky_ref_effective_wavelengths(double lambda_nm[3])
+{
+    /* sRGB channel c of sunlight scattered by a lambda^-4 medium, over
+     * the same channel of the sunlight itself: the wavelength whose
+     * Rayleigh coefficient scales sunlight's channel c alike. */
+    double sun[SKY_REF_WAVELENGTHS], scattered[SKY_REF_WAVELENGTHS], xyz_sun[3], xyz_sc[3], rgb_sun[3], rgb_sc[3];
+    for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
+        double l = sky_ref_wavelength_nm(i);
+        sun[i] = sky_ref_solar_irradiance(l);
+        scattered[i] = sun[i] * pow(550.0 / l, 4.0);
+    }
+    spectrum_to_xyz(sun, xyz_sun);
+    spectrum_to_xyz(scattered, xyz_sc);
+    sky_xyz_to_linear_srgb(xyz_sun, rgb_sun);
+    sky_xyz_to_linear_srgb(xyz_sc, rgb_sc);
+    for (int c = 0; c < 3; c++) lambda_nm[c] = 550.0 * pow(rgb_sc[c] / rgb_sun[c], -0.25);
+}
+
 void sky_ref_sun_xyz(double xyz[3])
 {
     double e[SKY_REF_WAVELENGTHS];

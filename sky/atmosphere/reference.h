@@ -47,6 +47,11 @@ double sky_ref_wavelength_nm(int i);
  * interpolated through the 680/550/440 nm values of the description. */
 void sky_ref_coefficients(const sky_atmosphere_params *atm, double lambda_nm, double *rayleigh_scattering,
                           double *mie_scattering, double *mie_extinction, double *ozone_absorption);
+/* The wavelengths at which the real-time paths' R, G, B coefficients are
+ * best taken: where a lambda^-4 scatterer changes the sun's sRGB channel by
+ * the same factor as it does the whole spectrum (about 610, 549, 464 nm
+ * rather than the primaries' 680/550/440). */
+void sky_ref_effective_wavelengths(double lambda_nm[3]);
 /* Solar spectral irradiance at the top of the atmosphere, W m^-2 nm^-1. */
 double sky_ref_solar_irradiance(double lambda_nm);
 /* The sun's illuminance above the atmosphere as CIE XYZ, klx (Y ~ 128). */

@@ -355,6 +355,61 @@ int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *nam
     return rc;
 }
 
+int sky_texture_create_lut(sky *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
+                           size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    if (!is_pow2(w) || !is_pow2(h)) {
+        sky_format(err, err_len, "lookup texture %dx%d is not a power of two", w, h);
+        return -1;
+    }
+    sky_texture *t = &s->textures[id];
+    gl->glGenTextures(1, &t->id);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_2D, t->id);
+    /* float (CORE33): RGB32F, the precision twilight needs (16F would
+     * lose the darkest tables' low bits); else RGBA8 for an encoding */
+    if (is_float)
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, w, h, 0, GL_RGB, GL_FLOAT, NULL);
+    else
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    /* an encoded table is decoded before it is blended: no filtering */
+    GLint filter = is_float ? GL_LINEAR : GL_NEAREST;
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    GLenum e = gl->glGetError();
+    if (e != GL_NO_ERROR) {
+        gl->glDeleteTextures(1, &t->id);
+        t->id = 0;
+        sky_format(err, err_len, "creating a %dx%d %s lookup texture failed (GL error 0x%04x)", w, h,
+                   is_float ? "float" : "RGBA8", e);
+        return -1;
+    }
+    t->width = w;
+    t->height = h;
+    t->bytes = (size_t)w * (size_t)h * (is_float ? 12u : 4u);
+    t->owner = owner;
+    return 0;
+}
+
+void sky_texture_update_lut(sky *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_2D, s->textures[id].id);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (rgba8)
+        gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba8);
+    else
+        gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, rgb32f);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 void sky_texture_destroy(sky *s, sky_texture_id id)
 {
     sky_texture *t = &s->textures[id];

@@ -79,6 +79,7 @@ typedef ptrdiff_t GLintptr;
 #define GL_TEXTURE_MAX_LEVEL 0x813D
 #define GL_RGBA8 0x8058
 #define GL_RGBA32F 0x8814
+#define GL_RGB32F 0x8815
 #define GL_TEXTURE0 0x84C0
 #define GL_ACTIVE_TEXTURE 0x84E0
 #define GL_MAX_TEXTURE_IMAGE_UNITS 0x8872
@@ -147,6 +148,8 @@ typedef ptrdiff_t GLintptr;
     X(void, glTexParameteri, (GLenum target, GLenum pname, GLint param))                      \
     X(void, glTexImage2D, (GLenum target, GLint level, GLint ifmt, GLsizei w, GLsizei h,      \
                            GLint border, GLenum fmt, GLenum type, const void *pixels))        \
+    X(void, glTexSubImage2D, (GLenum target, GLint level, GLint x, GLint y, GLsizei w,        \
+                              GLsizei h, GLenum fmt, GLenum type, const void *pixels))        \
     X(void, glGenBuffers, (GLsizei n, GLuint *b))                                             \
     X(void, glDeleteBuffers, (GLsizei n, const GLuint *b))                                    \
     X(void, glBindBuffer, (GLenum target, GLuint b))                                          \

@@ -1,0 +1,171 @@
+/*
+ * The Hillaire path in the sky (Hillaire 2020): its tables are built by
+ * hillaire_cpu.c: transmittance and multiple scattering once at creation
+ * (they depend on the atmosphere alone), the sky-view table whenever the
+ * sun's elevation or the observer's altitude has moved past a threshold
+ * (the table is relative to the sun's azimuth, so a sun that only turns
+ * costs nothing). The sky-view table goes to the GPU as a float texture
+ * (CORE33) or in an 8-bit log-luminance + chromaticity encoding
+ * (COMPAT20, hillaire.glsl decodes it).
+ *
+ * Limit of this build: both profiles build on the CPU; CORE33 does not yet
+ * build on the GPU (see the README's figures for the rebuild cost).
+ */
+#include "hillaire.h"
+#include "../sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Rebuild the sky-view table when the sun's elevation has moved by more
+ * than this (radians; 0.05 degree: a tenth of the sun's diameter, about
+ * 12 s of a mid-latitude sunset) or the observer by more than 10 m. */
+#define SKYVIEW_SUN_THRESHOLD (0.05 * SKY_PI / 180.0)
+#define SKYVIEW_ALTITUDE_THRESHOLD_KM 0.01
+/* the 8-bit encoding covers this many stops below the table's brightest
+ * value (the sun's aureole): 2^-24 is darker than anything the tone map
+ * shows next to it */
+#define SKYVIEW_STOPS 24.0
+
+static const sky_uniform_desc hillaire_uniforms[] = {
+    SKY_UT("u_skyview", SKY_TEX_SKYVIEW),
+    SKY_UF("u_skyview_map", SKY_U_F4, skyview_map),
+    SKY_UF("u_skyview_horizon", SKY_U_F2, skyview_horizon),
+    SKY_UF("u_skyview_decode", SKY_U_F3, skyview_decode),
+};
+const sky_snippet sky_hillaire_snippet = {"SKY_HAS_HILLAIRE", "hillaire.glsl", hillaire_uniforms,
+                                          (int)(sizeof hillaire_uniforms / sizeof hillaire_uniforms[0])};
+
+static int next_pow2(int n)
+{
+    int p = 1;
+    while (p < n) p <<= 1;
+    return p;
+}
+
+int sky_hillaire_create(sky *s, char *err, size_t err_len)
+{
+    s->hillaire = calloc(1, sizeof *s->hillaire);
+    if (!s->hillaire) {
+        sky_format(err, err_len, "out of memory for the Hillaire tables");
+        return -1;
+    }
+    char why[200];
+    if (sky_hillaire_init(s->hillaire, &s->atm_rgb, &s->cfg.luts, why, sizeof why)) {
+        sky_format(err, err_len, "sky_create: luts: %s", why);
+        return -1;
+    }
+    double t0 = sky_now_ms();
+    sky_hillaire_build_transmittance(s->hillaire);
+    sky_hillaire_build_multiscatter(s->hillaire);
+    s->lut_ms += sky_now_ms() - t0;
+    const sky_hillaire_settings *set = &s->hillaire->settings;
+    int w = next_pow2(set->skyview_width), h = next_pow2(set->skyview_height);
+    /* COMPAT20 wants power-of-two RGBA8 textures: the table sits in the
+     * corner of one, and the shader maps its texel centres there */
+    if (sky_texture_create_lut(s, SKY_TEX_SKYVIEW, SKY_LAYER_ATMOSPHERE, w, h, s->profile == SKY_GL_CORE33, err,
+                               err_len))
+        return -1;
+    s->skyview_encoded = s->profile != SKY_GL_CORE33 ? malloc((size_t)set->skyview_width * set->skyview_height * 4)
+                                                      : NULL;
+    if (s->profile != SKY_GL_CORE33 && !s->skyview_encoded) {
+        sky_format(err, err_len, "out of memory for the sky-view texture");
+        return -1;
+    }
+    s->skyview_valid = 0;
+    return 0;
+}
+
+void sky_hillaire_destroy(sky *s)
+{
+    if (s->hillaire) sky_hillaire_free(s->hillaire);
+    free(s->hillaire);
+    free(s->skyview_encoded);
+    s->hillaire = NULL;
+    s->skyview_encoded = NULL;
+}
+
+/* COMPAT20's encoding: a 16-bit level of log2 luminance over the table's
+ * top SKYVIEW_STOPS stops, high byte in R and low byte in G, and the rg
+ * chromaticity in B and A. */
+static void encode_skyview(sky *s, double log2_floor)
+{
+    const sky_hillaire_settings *set = &s->hillaire->settings;
+    int n = set->skyview_width * set->skyview_height;
+    const float *t = s->hillaire->skyview;
+    for (int i = 0; i < n; i++) {
+        double r = fmax(t[3 * i], 0.0), g = fmax(t[3 * i + 1], 0.0), b = fmax(t[3 * i + 2], 0.0);
+        double sum = r + g + b, Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        double level = Y > 0.0 ? (log2(Y) - log2_floor) / SKYVIEW_STOPS : 0.0;
+        unsigned q = (unsigned)lround(sky_clampd(level, 0.0, 1.0) * 65535.0);
+        unsigned char *o = s->skyview_encoded + 4 * i;
+        o[0] = (unsigned char)(q >> 8);
+        o[1] = (unsigned char)(q & 255u);
+        o[2] = (unsigned char)lround(255.0 * (sum > 0.0 ? r / sum : 1.0 / 3.0));
+        o[3] = (unsigned char)lround(255.0 * (sum > 0.0 ? g / sum : 1.0 / 3.0));
+    }
+}
+
+void sky_hillaire_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    sky_rayleigh_frame(s); /* the closed-form extinction: sun disc and night layers */
+    sky_hillaire_tables *t = s->hillaire;
+    if (!t) return;
+    const sky_hillaire_settings *set = &t->settings;
+    double R = s->atm.planet_radius_km, top = s->atm.top_radius_km;
+    double alt_km = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, top - R);
+    double mu = sky_clampd(f->sun_dir[1], -1.0, 1.0);
+    if (!s->skyview_valid || fabs(asin(mu) - asin(s->skyview_sun_mu)) > SKYVIEW_SUN_THRESHOLD ||
+        fabs(alt_km - s->skyview_altitude_km) > SKYVIEW_ALTITUDE_THRESHOLD_KM) {
+        double t0 = sky_now_ms();
+        sky_hillaire_build_skyview(t, alt_km, mu);
+        double brightest = 0.0;
+        int n = set->skyview_width * set->skyview_height;
+        for (int i = 0; i < n; i++)
+            brightest = fmax(brightest, 0.2126 * t->skyview[3 * i] + 0.7152 * t->skyview[3 * i + 1] +
+                                            0.0722 * t->skyview[3 * i + 2]);
+        s->skyview_log2_floor = log2(fmax(brightest, 1e-30)) - SKYVIEW_STOPS;
+        if (s->skyview_encoded) encode_skyview(s, s->skyview_log2_floor);
+        s->lut_ms += sky_now_ms() - t0;
+        s->skyview_sun_mu = mu;
+        s->skyview_altitude_km = alt_km;
+        s->skyview_valid = 1;
+        s->skyview_uploaded = 0;
+    }
+    const sky_texture *tex = &s->textures[SKY_TEX_SKYVIEW];
+    f->skyview_map[0] = (float)set->skyview_width;
+    f->skyview_map[1] = (float)set->skyview_height;
+    f->skyview_map[2] = tex->width ? (float)set->skyview_width / (float)tex->width : 1.0f;
+    f->skyview_map[3] = tex->height ? (float)set->skyview_height / (float)tex->height : 1.0f;
+    /* the geometric horizon of an observer at r: the tangent to the ground */
+    double theta_h = SKY_PI - asin(sky_clampd(R / (R + alt_km), 0.0, 1.0));
+    f->skyview_horizon[0] = (float)theta_h;
+    f->skyview_horizon[1] = (float)(SKY_PI - theta_h);
+    f->skyview_decode[0] = s->skyview_encoded ? 1.0f : 0.0f;
+    f->skyview_decode[1] = (float)s->skyview_log2_floor;
+    f->skyview_decode[2] = (float)SKYVIEW_STOPS;
+}
+
+void sky_hillaire_upload(sky *s)
+{
+    if (!s->hillaire || s->skyview_uploaded || !s->skyview_valid) return;
+    const sky_hillaire_settings *set = &s->hillaire->settings;
+    if (s->skyview_encoded)
+        sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, s->skyview_encoded, NULL);
+    else
+        sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, NULL,
+                               s->hillaire->skyview);
+    s->skyview_uploaded = 1;
+}
+
+void sky_hillaire_eval(const sky *s, const double d[3], double rgb[3])
+{
+    const sky_frame *f = &s->frame;
+    double sun[3] = {f->sun_dir[0], f->sun_dir[1], f->sun_dir[2]};
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!s->hillaire) return;
+    sky_hillaire_sky(s->hillaire, d, sun, rgb);
+    for (int i = 0; i < 3; i++) rgb[i] *= f->sun_irradiance[i];
+}
