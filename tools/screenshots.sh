@@ -14,6 +14,19 @@ $r --size 640x360 --preset minimal --time 0.02 --pitch 35 --out $out/flicker.png
 $r --size 360x360 --fisheye --time 0.3 --cover 0.5 --out $out/fisheye.png
 $r --size 640x360 --preset minimal --pitch 25 --out $out/minimal-compat.png
 $r --size 640x360 --preset moonlit --out $out/moonlit.png
+# the atmosphere paths (issue 6): a clear morning at 40 N on the 2026
+# equinox, looking east toward the sun: day (sun 27 deg), sunrise (1.6
+# deg) and civil twilight (-4 deg)
+for a in gradient preetham rayleigh hillaire blend; do
+    $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.35 --yaw 100 --pitch 20 --fov 70 --out $out/atm-$a-day.png
+    $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.255 --yaw 91 --pitch 15 --fov 70 --out $out/atm-$a-sunrise.png
+    $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.235 --yaw 87 --pitch 15 --fov 70 --out $out/atm-$a-twilight.png
+done
+# one description, three planets (Hillaire's tables)
+for p in earth hazy mars; do
+    $r --size 320x180 --atmosphere hillaire --planet $p --features sun --cover 0 --time 0.35 --yaw 100 --pitch 20 --fov 70 --out $out/planet-$p-day.png
+    $r --size 320x180 --atmosphere hillaire --planet $p --features sun --cover 0 --time 0.255 --yaw 91 --pitch 15 --fov 70 --out $out/planet-$p-sunrise.png
+done
 # moon close-ups: the camera on the moon, a 4-degree field, the disc at c_d = 2.5
 moon() { # name date lat lon extra-features
     q=$($r --query --date "$2" --lat "$3" --lon "$4" | grep '"moon"')

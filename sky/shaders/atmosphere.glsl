@@ -11,7 +11,15 @@ vec3 sky_night_floor(vec3 d)
 }
 
 /* Below the horizon a path shows the haze of the horizon, darkening with
- * depth, so a host's terrain gap shows haze rather than black. */
+ * depth, so a host's terrain gap shows haze rather than black: the
+ * direction to evaluate is the horizon's below the point (else a sun
+ * under the horizon would shine through the ground), and the factor
+ * that darkens it. */
+vec3 sky_horizon_clamp(vec3 d)
+{
+    float h = length(d.xz);
+    return d.y < 0.0 ? (h > 1e-6 ? vec3(d.x / h, 0.0, d.z / h) : vec3(0.0, 0.0, -1.0)) : d;
+}
 float sky_below_horizon(vec3 d) { return d.y < 0.0 ? 1.0 / (1.0 - 4.0 * d.y) : 1.0; }
 
 /* Extinction toward space with a Kasten-Young-like air mass that stays

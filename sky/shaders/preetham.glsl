@@ -5,10 +5,11 @@
 uniform vec3 u_perez_a, u_perez_b, u_perez_c, u_perez_d, u_perez_e; /* for (Y, x, y) */
 uniform vec3 u_perez_zenith; /* (Y_z, x_z, y_z) / F(0, theta_s), Y in kcd/m^2, times the twilight fade */
 
-vec3 sky_atmosphere(vec3 d, vec3 day)
+vec3 sky_atmosphere(vec3 view, vec3 day)
 {
     /* At and below the horizon the distribution takes its horizon value
      * (cos theta held at 1e-3: B / cos theta -> -inf, the term -> 0). */
+    vec3 d = sky_horizon_clamp(view);
     float cos_theta = max(d.y, 1e-3);
     float cos_gamma = clamp(dot(d, u_sun_dir), -1.0, 1.0);
     float gamma = acos(cos_gamma);
@@ -20,7 +21,7 @@ vec3 sky_atmosphere(vec3 d, vec3 day)
     vec3 XYZ = vec3(Yxy.y / y, 1.0, (1.0 - Yxy.y - Yxy.z) / y) * Yxy.x;
     vec3 rgb = vec3(dot(vec3(3.2406, -1.5372, -0.4986), XYZ), dot(vec3(-0.9689, 1.8758, 0.0415), XYZ),
                     dot(vec3(0.0557, -0.2040, 1.0570), XYZ));
-    return (max(rgb, vec3(0.0)) + sky_night_floor(d)) * sky_below_horizon(d);
+    return (max(rgb, vec3(0.0)) + sky_night_floor(view)) * sky_below_horizon(view);
 }
 
 float sky_atmosphere_transmittance(vec3 d) { return sky_air_mass_transmittance(d); }
