@@ -268,7 +268,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
      * uniform branch is not free on every GPU (llvmpipe pays for both
      * sides), and a day frame should do no star work at all. */
     const sky_snippet *dome_snippets[SKY_MAX_SNIPPETS];
-    int n = sky_atmosphere_snippets(s->atmosphere, dome_snippets);
+    int n = sky_atmosphere_snippets(s->atmosphere, s->profile != SKY_GL_CORE33, dome_snippets);
     int atmosphere_snippets = n;
     if (features & SKY_CLOUDS) dome_snippets[n++] = &sky_clouds_snippet;
     if (sky_program_build(s, &s->dome, "dome.vert", "dome.frag", dome_snippets, n, err, err_len)) goto fail;

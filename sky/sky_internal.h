@@ -291,6 +291,7 @@ extern const sky_snippet sky_rayleigh_snippet;
 extern const sky_snippet sky_atmosphere_snippet; /* shared by every path */
 extern const sky_snippet sky_extinction_snippet; /* the physical paths' optical depth */
 extern const sky_snippet sky_hillaire_snippet;
+extern const sky_snippet sky_hillaire_encoded_snippet; /* COMPAT20's 8-bit table */
 extern const sky_snippet sky_blend_snippet;
 /* atmosphere/params.c: 1 when every field is zero (= the Earth preset). */
 int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
@@ -299,9 +300,10 @@ int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
  * what the real-time physical paths render with. */
 void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out);
 /* atmosphere/atmosphere.c: the snippets of the selected path (up to 5, in
- * order), and its per-frame state (night sky, path coefficients, the
- * host's ambient and fog). */
-int sky_atmosphere_snippets(sky_atmosphere_path path, const sky_snippet **out);
+ * order; encoded_tables: COMPAT20's 8-bit sky-view table), and its
+ * per-frame state (night sky, path coefficients, the host's ambient and
+ * fog). */
+int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out);
 void sky_atmosphere_frame(sky *s);
 /* atmosphere/hillaire.c: tables at creation, the sky-view rebuild per
  * frame (CPU), its upload in sky_draw, the CPU twin of the shader. */

@@ -32,8 +32,9 @@ static const sky_uniform_desc blend_uniforms[] = {
 const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
                                        (int)(sizeof blend_uniforms / sizeof blend_uniforms[0])};
 
-int sky_atmosphere_snippets(sky_atmosphere_path path, const sky_snippet **out)
+int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out)
 {
+    const sky_snippet *tables = encoded_tables ? &sky_hillaire_encoded_snippet : &sky_hillaire_snippet;
     int n = 0;
     out[n++] = &sky_atmosphere_snippet;
     switch (path) {
@@ -44,12 +45,12 @@ int sky_atmosphere_snippets(sky_atmosphere_path path, const sky_snippet **out)
         break;
     case SKY_ATMOSPHERE_HILLAIRE:
         out[n++] = &sky_extinction_snippet;
-        out[n++] = &sky_hillaire_snippet;
+        out[n++] = tables;
         break;
     case SKY_ATMOSPHERE_BLEND:
         out[n++] = &sky_extinction_snippet;
         out[n++] = &sky_rayleigh_snippet;
-        out[n++] = &sky_hillaire_snippet;
+        out[n++] = tables;
         out[n++] = &sky_blend_snippet;
         break;
     default: out[n++] = &sky_gradient_snippet; break;

@@ -36,6 +36,11 @@ static const sky_uniform_desc hillaire_uniforms[] = {
 };
 const sky_snippet sky_hillaire_snippet = {"SKY_HAS_HILLAIRE", "hillaire.glsl", hillaire_uniforms,
                                           (int)(sizeof hillaire_uniforms / sizeof hillaire_uniforms[0])};
+/* The same for COMPAT20's 8-bit table: the decoding is compiled in only
+ * there (a uniform branch would cost both sides on llvmpipe, twice the
+ * float path's frame). */
+const sky_snippet sky_hillaire_encoded_snippet = {"SKY_HILLAIRE_ENCODED", "hillaire.glsl", hillaire_uniforms,
+                                                  (int)(sizeof hillaire_uniforms / sizeof hillaire_uniforms[0])};
 
 static int next_pow2(int n)
 {

@@ -11,6 +11,7 @@ uniform vec4 u_skyview_map;     /* xy: table size in texels, zw: table size / te
 uniform vec2 u_skyview_horizon; /* theta_h (zenith angle of the horizon), pi - theta_h */
 uniform vec3 u_skyview_decode;  /* x: 1 = 8-bit encoding, y: log2 of the dimmest value, z: stops covered */
 
+#ifdef SKY_HILLAIRE_ENCODED
 vec3 sky_skyview_decode(vec2 uv)
 {
     vec4 t = SKY_TEX2D(u_skyview, uv);
@@ -19,6 +20,7 @@ vec3 sky_skyview_decode(vec2 uv)
     vec3 c = vec3(t.b, t.a, 1.0 - t.b - t.a);
     return c * (Y / max(dot(c, vec3(0.2126, 0.7152, 0.0722)), 1e-4));
 }
+#endif
 
 vec3 sky_hillaire_radiance(vec3 d)
 {
@@ -33,18 +35,17 @@ vec3 sky_hillaire_radiance(vec3 d)
     /* position in table texels, 0 .. size - 1 between the edge centres */
     vec2 p = vec2(u, v) * (u_skyview_map.xy - 1.0);
     vec2 texture_size = u_skyview_map.xy / u_skyview_map.zw;
-    vec3 L;
-    if (u_skyview_decode.x > 0.5) {
-        vec2 i0 = floor(p), f = p - i0;
-        vec2 i1 = min(i0 + 1.0, u_skyview_map.xy - 1.0);
-        vec3 a = mix(sky_skyview_decode((vec2(i0.x, i0.y) + 0.5) / texture_size),
-                     sky_skyview_decode((vec2(i1.x, i0.y) + 0.5) / texture_size), f.x);
-        vec3 b = mix(sky_skyview_decode((vec2(i0.x, i1.y) + 0.5) / texture_size),
-                     sky_skyview_decode((vec2(i1.x, i1.y) + 0.5) / texture_size), f.x);
-        L = mix(a, b, f.y);
-    } else {
-        L = SKY_TEX2D(u_skyview, (p + 0.5) / texture_size).rgb;
-    }
+#ifdef SKY_HILLAIRE_ENCODED
+    vec2 i0 = floor(p), f = p - i0;
+    vec2 i1 = min(i0 + 1.0, u_skyview_map.xy - 1.0);
+    vec3 a = mix(sky_skyview_decode((vec2(i0.x, i0.y) + 0.5) / texture_size),
+                 sky_skyview_decode((vec2(i1.x, i0.y) + 0.5) / texture_size), f.x);
+    vec3 b = mix(sky_skyview_decode((vec2(i0.x, i1.y) + 0.5) / texture_size),
+                 sky_skyview_decode((vec2(i1.x, i1.y) + 0.5) / texture_size), f.x);
+    vec3 L = mix(a, b, f.y);
+#else
+    vec3 L = SKY_TEX2D(u_skyview, (p + 0.5) / texture_size).rgb;
+#endif
     return u_sun_irradiance * L;
 }
 
