@@ -11,6 +11,8 @@
 #include "osmesa_ctx.h"
 #include "sky.h"
 #include "sky_internal.h" /* the formulas behind the shaders' uniforms */
+#include "atmosphere/hillaire.h"
+#include "atmosphere/reference.h"
 
 #include <GL/gl.h>
 #include <float.h>
@@ -446,6 +448,177 @@ static void case_camera_extremes(suite *st, sky *s, sky_osmesa *ctx)
     finish(r);
 }
 
+/* ---- the atmosphere's stiff cases ------------------------------------------------------------- */
+
+/* Exact Chapman integral (in scale heights) by Simpson's rule on
+ * t = e^v - 1: dense near the observer, out to 1e5 scale heights. */
+static double chapman_exact(double X, double mu)
+{
+    const int n = 20000;
+    double vmax = log(1.0 + 1e5), h = vmax / n, sum = 0.0;
+    for (int i = 0; i <= n; i++) {
+        double v = i * h, t = exp(v) - 1.0;
+        double r = sqrt(X * X + t * t + 2.0 * X * t * mu);
+        double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += w * exp(-(r - X)) * exp(v);
+    }
+    return sum * h / 3.0;
+}
+
+/* The closed-form air mass the analytic path and the night layers' extinction
+ * use: against the exact integral above the horizon and just below it,
+ * then finite, positive and non-decreasing down to the nadir. */
+static void case_chapman(suite *st)
+{
+    sky_stability_row *r = add_row(st, "Chapman air mass, X 300..5300, mu 1..-1",
+                                   "relative error (mu >= -0.03); finite, rising as the sun sinks", "", 0.01);
+    static const double Xs[] = {300.0, 795.0, 5300.0};
+    static const double mus[] = {1.0, 0.7, 0.4, 0.2, 0.1, 0.05, 0.02, 0.01, 0.0, -0.01, -0.03};
+    for (size_t i = 0; i < sizeof Xs / sizeof Xs[0]; i++) {
+        for (size_t j = 0; j < sizeof mus / sizeof mus[0]; j++, r->samples++)
+            keep_worst(r, fabs(sky_chapman(Xs[i], mus[j]) / chapman_exact(Xs[i], mus[j]) - 1.0));
+        double prev = sky_chapman(Xs[i], 0.0);
+        for (int k = 1; k <= 900; k++, r->samples++) {
+            double c = sky_chapman(Xs[i], -sin(k * 0.1 * SKY_PI / 180.0));
+            if (!isfinite(c) || c <= 0.0 || c < prev) keep_worst(r, INFINITY);
+            prev = c;
+        }
+    }
+    finish(r);
+}
+
+/* An Earth whose scatterers are scaled by k (each coefficient held at the
+ * description's limit, 10/km) and whose Mie asymmetry is g. */
+static sky_atmosphere_params scaled_earth(double k, float g)
+{
+    sky_atmosphere_params a;
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+    for (int c = 0; c < 3; c++) {
+        a.rayleigh_scattering[c] = (float)fmin(a.rayleigh_scattering[c] * k, 10.0);
+        a.mie_scattering[c] = (float)fmin(a.mie_scattering[c] * k, 10.0);
+        a.mie_extinction[c] = (float)fmin(a.mie_extinction[c] * k, 10.0);
+        a.ozone_absorption[c] = (float)fmin(a.ozone_absorption[c] * k, 10.0);
+    }
+    a.mie_g = g;
+    return a;
+}
+
+/* The reference's transmittance on grazing paths whose optical depth
+ * passes 100: in 0..1 and falling as the ray lowers (a longer path),
+ * however thick the air. */
+static void case_grazing_transmittance(suite *st)
+{
+    sky_stability_row *r = add_row(st, "grazing paths, densities x1e-3..x1e3 (tau > 100)",
+                                   "transmittance in 0..1; largest rise as the ray lowers (rounding: 1e-12)", "", 1e-12);
+    static const double scales[] = {1e-3, 1.0, 1e3};
+    static const double altitudes[] = {0.0, 0.001, 8.0, 100.0, 150.0};
+    for (size_t i = 0; i < sizeof scales / sizeof scales[0]; i++) {
+        sky_atmosphere_params a = scaled_earth(scales[i], 0.8f);
+        for (size_t j = 0; j < sizeof altitudes / sizeof altitudes[0]; j++) {
+            double prev[SKY_REF_WAVELENGTHS];
+            for (int k = 0; k <= 90; k++, r->samples++) {
+                /* elevation 90 .. -2 degrees, finest near the horizon */
+                double e = (90.0 - 92.0 * pow(k / 90.0, 0.5)) * SKY_PI / 180.0, d[3] = {cos(e), sin(e), 0.0}, t[SKY_REF_WAVELENGTHS];
+                sky_ref_transmittance(&a, altitudes[j], d, t);
+                for (int w = 0; w < SKY_REF_WAVELENGTHS; w++) {
+                    if (!(t[w] >= 0.0 && t[w] <= 1.0)) keep_worst(r, INFINITY);
+                    if (k > 0) keep_worst(r, t[w] - prev[w]);
+                    prev[w] = t[w];
+                }
+            }
+        }
+    }
+    finish(r);
+}
+
+/* Hillaire's tables for stiff atmospheres: thin and 1000 times thick air,
+ * Mie g at +-0.999, the sun from the zenith to the nadir. Every table
+ * value finite and >= 0, transmittance <= 1, and the sky's irradiance on
+ * the ground no more than the sun supplies (per unit solar illuminance,
+ * at most 1 + the ground's bounce, 1 / (1 - albedo)). */
+static void case_stiff_tables(suite *st)
+{
+    sky_stability_row *r = add_row(st, "Hillaire tables: densities x1e-3..x1e3, g +-0.999",
+                                   "finite, >= 0, T <= 1; sky irradiance over what the sun gives", "", 1.0 / 0.7);
+    static const double scales[] = {1e-3, 1.0, 1e3};
+    static const float gs[] = {-0.999f, 0.0f, 0.999f};
+    sky_lut_settings small = {64, 16, 20, 16, 32, 10, 48, 28, 15};
+    for (size_t i = 0; i < sizeof scales / sizeof scales[0]; i++)
+        for (size_t j = 0; j < sizeof gs / sizeof gs[0]; j++) {
+            sky_atmosphere_params a = scaled_earth(scales[i], gs[j]);
+            sky_hillaire_tables t;
+            if (sky_hillaire_init(&t, &a, &small, NULL, 0)) {
+                keep_worst(r, INFINITY);
+                continue;
+            }
+            sky_hillaire_build_transmittance(&t);
+            sky_hillaire_build_multiscatter(&t);
+            for (int k = 0; k < 64 * 16 * 3; k++)
+                if (!(t.transmittance[k] >= 0.0f && t.transmittance[k] <= 1.0f)) keep_worst(r, INFINITY);
+            for (int k = 0; k < 16 * 16 * 3; k++)
+                if (!(t.multiscatter[k] >= 0.0f) || !isfinite(t.multiscatter[k])) keep_worst(r, INFINITY);
+            for (int e = 90; e >= -90; e -= 30) {
+                double mu = sin(e * SKY_PI / 180.0), sun[3] = {sqrt(1.0 - mu * mu), mu, 0.0};
+                sky_hillaire_build_skyview(&t, 0.0, mu);
+                for (int k = 0; k < 48 * 28 * 3; k++)
+                    if (!(t.skyview[k] >= 0.0f) || !isfinite(t.skyview[k])) keep_worst(r, INFINITY);
+                /* irradiance on the ground: 2 pi int L mu dmu (8 rings x
+                 * 16 azimuths), over the sun's own (1 at normal incidence) */
+                double irradiance = 0.0;
+                for (int ring = 0; ring < 8; ring++) {
+                    double vm = (ring + 0.5) / 8.0, c = sqrt(1.0 - vm * vm);
+                    for (int az = 0; az < 16; az++) {
+                        double phi = 2.0 * SKY_PI * (az + 0.5) / 16.0, v[3] = {c * cos(phi), vm, c * sin(phi)}, rgb[3];
+                        sky_hillaire_sky(&t, v, sun, rgb);
+                        irradiance += 2.0 * SKY_PI * vm * (1.0 / 8.0) * (1.0 / 16.0) * rgb[1];
+                    }
+                }
+                keep_worst(r, irradiance);
+                r->samples++;
+            }
+            sky_hillaire_free(&t);
+        }
+    finish(r);
+}
+
+/* Preetham outside its fit: turbidity 1..64 (clamped into 2..10) and the
+ * sun 0.01 degree above and below the horizon: the CPU twin of the shader
+ * finite, >= 0, and changing by no more than the fit's own slope there
+ * plus the twilight fade: at T 10 the zenith luminance of eq. A.2 starts
+ * from 0.26 kcd/m^2 at a horizon sun and grows 1.7 % in the first 0.01
+ * degree; the fade below is a decade in 3 degrees, 0.8 % per 0.01. */
+static void case_preetham_fit(suite *st)
+{
+    sky_stability_row *r = add_row(st, "Preetham: turbidity 1..64, sun +-0.01 deg at the horizon",
+                                   "finite, >= 0; largest relative change of luminance per 0.01 deg", "", 0.03);
+    static const float turbidities[] = {1.0f, 2.0f, 10.0f, 64.0f};
+    static sky fake; /* the frame fields preetham.c reads, without GL */
+    for (size_t i = 0; i < sizeof turbidities / sizeof turbidities[0]; i++) {
+        double before[16];
+        for (int side = 0; side < 2; side++) {
+            double alt = (side ? -0.01 : 0.01) * SKY_PI / 180.0;
+            memset(&fake, 0, sizeof fake);
+            fake.cfg.turbidity = turbidities[i];
+            fake.frame.sun_altitude = (float)alt;
+            fake.frame.sun_dir[0] = (float)cos(alt), fake.frame.sun_dir[1] = (float)sin(alt);
+            sky_preetham_frame(&fake);
+            for (int k = 0; k < 16; k++, r->samples++) {
+                double e = (k / 4) * 20.0 * SKY_PI / 180.0 + 0.001, az = (k % 4) * SKY_PI / 2.0, rgb[3];
+                double d[3] = {cos(e) * cos(az), sin(e), cos(e) * sin(az)};
+                sky_preetham_eval(&fake.frame, d, rgb);
+                for (int c = 0; c < 3; c++)
+                    if (!(rgb[c] >= 0.0) || !isfinite(rgb[c])) keep_worst(r, INFINITY);
+                /* luminance: a channel clipped at 0 out of the sRGB gamut
+                 * (blue beside a yellow horizon sun) has no relative change */
+                double y = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+                if (side) keep_worst(r, fabs(y - before[k]) / fmax(before[k], 1e-12));
+                else before[k] = y;
+            }
+        }
+    }
+    finish(r);
+}
+
 int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err, size_t err_len)
 {
     suite st = {rows, 0, {0}};
@@ -456,6 +629,10 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
     case_eclipse_edges(&st);
     case_star_colour(&st);
     case_sun_transmittance(&st);
+    case_chapman(&st);
+    case_grazing_transmittance(&st);
+    case_stiff_tables(&st);
+    case_preetham_fit(&st);
     if (gpu) {
         sky_osmesa ctx;
         sky *s = open_sky(&ctx, err, err_len);

@@ -18,7 +18,6 @@ void test_atmosphere_clear_sky_colours(void);
 void test_atmosphere_shaders_match_cpu_twins(void);
 void test_atmosphere_continuous_across_horizon(void);
 void test_atmosphere_preetham_outside_its_fit(void);
-void test_atmosphere_chapman_function(void);
 void test_atmosphere_description_checked(void);
 void test_atmosphere_error_against_reference(void);
 
@@ -450,47 +449,6 @@ void test_atmosphere_preetham_outside_its_fit(void)
     /* zenith luminance of eq. A.2 with the sun at the horizon, T = 10:
      * -0.2155 * 10 + 2.4192 > 0 (at T 11.2 it would reach zero) */
     CHECK(-0.2155 * 10.0 + 2.4192 > 0.2, "Preetham's horizon-sun zenith at T 10 is not positive");
-}
-
-/* Exact Chapman integral in units of the scale height by Simpson's rule
- * on t = e^v - 1 (dense near the observer, reaching 1e5 scale heights). */
-static double chapman_exact(double X, double mu)
-{
-    const int n = 20000;
-    double vmax = log(1.0 + 1e5), h = vmax / n, sum = 0.0;
-    for (int i = 0; i <= n; i++) {
-        double v = i * h, t = exp(v) - 1.0;
-        double r = sqrt(X * X + t * t + 2.0 * X * t * mu);
-        double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-        sum += w * exp(-(r - X)) * exp(v);
-    }
-    return sum * h / 3.0;
-}
-
-void test_atmosphere_chapman_function(void)
-{
-    static const double Xs[] = {795.0, 5300.0, 300.0};
-    static const double mus[] = {1.0, 0.7, 0.4, 0.2, 0.1, 0.05, 0.02, 0.01, 0.0, -0.01, -0.03};
-    double worst = 0.0;
-    for (size_t i = 0; i < sizeof Xs / sizeof Xs[0]; i++)
-        for (size_t j = 0; j < sizeof mus / sizeof mus[0]; j++) {
-            double exact = chapman_exact(Xs[i], mus[j]), approx = sky_chapman(Xs[i], mus[j]);
-            double rel = fabs(approx / exact - 1.0);
-            if (rel > worst) worst = rel;
-            CHECK(rel < 0.02, "Ch(%g, %g) = %g, exact %g", Xs[i], mus[j], approx, exact);
-        }
-    NOTE("Chapman approximation: worst relative error %.3g (X 300..5300, mu -0.03..1)", worst);
-    /* below the horizon: finite, positive and growing as the sun sinks,
-     * all the way to the nadir */
-    double prev = sky_chapman(795.0, 0.0);
-    int monotone = 1, finite = 1;
-    for (int k = 1; k <= 900; k++) {
-        double mu = -sin(k * 0.1 * SKY_PI / 180.0), c = sky_chapman(795.0, mu);
-        if (!isfinite(c) || c <= 0.0) finite = 0;
-        if (c < prev) monotone = 0;
-        prev = c;
-    }
-    CHECK(finite && monotone, "Ch below the horizon: finite %d, monotone %d", finite, monotone);
 }
 
 void test_atmosphere_description_checked(void)

@@ -80,7 +80,6 @@ int test_failures;
     X(atmosphere_shaders_match_cpu_twins)        \
     X(atmosphere_continuous_across_horizon)      \
     X(atmosphere_preetham_outside_its_fit)       \
-    X(atmosphere_chapman_function)               \
     X(atmosphere_description_checked)            \
     X(atmosphere_error_against_reference)        \
     X(stability_suite)                           \
