@@ -57,6 +57,8 @@ typedef enum sky_texture_id {
     SKY_TEX_MOON,       /* 256x128 lunar albedo, selenographic (Mueller 2.2.2)       */
     SKY_TEX_ECLIPSE,    /* 128x1 eclipse colour h(t), log10-encoded (Mueller 3.2)    */
     SKY_TEX_SKYVIEW,    /* Hillaire's sky-view table (atmosphere/hillaire.c)       */
+    SKY_TEX_TRANSMITTANCE, /* Hillaire's transmittance table (CORE33: GPU builds)  */
+    SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
     SKY_TEX_COUNT
 } sky_texture_id;
 
@@ -117,6 +119,9 @@ typedef struct sky_frame {
     float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
     /* Hillaire's sky-view table (hillaire.c) and the blend */
     float skyview_map[4], skyview_horizon[2], skyview_decode[3], blend_weight;
+    /* the GPU build of the sky-view table (skyview_build.frag) */
+    float hl_geometry[4], hl_profile[4], hl_rayleigh[3], hl_mie_sca[3], hl_mie_ext[3], hl_ozone[3], hl_albedo[3];
+    float hl_sizes[4], hl_misc[4];
     /* clouds (R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
@@ -184,7 +189,7 @@ struct sky {
     sky_atmosphere_path atmosphere; /* resolved: never DEFAULT                  */
     struct sky_hillaire_tables *hillaire; /* HILLAIRE, BLEND (hillaire.c)       */
     unsigned char *skyview_encoded;       /* COMPAT20's 8-bit sky-view table   */
-    int skyview_valid, skyview_uploaded;
+    int skyview_valid, skyview_uploaded; /* CPU table (COMPAT20) or GPU build done */
     double skyview_sun_mu, skyview_altitude_km, skyview_log2_floor;
     double lut_ms;                        /* table builds since the last draw  */
     sky_astro astro;              /* for observer + time slider; see observer.c */
@@ -200,6 +205,8 @@ struct sky {
     sky_program dome_night_clear; /* night layers without clouds (cover 0)       */
     sky_program ground;           /* below the horizon: atmosphere only          */
     sky_program sun;              /* sun quad                                  */
+    sky_program skyview_build;    /* CORE33: Hillaire's sky-view table on the GPU */
+    GLuint skyview_fbo;
     sky_program stars;            /* catalogue stars (points)                  */
     sky_program moon;             /* moon billboard                            */
     GLuint moon_buffer;           /* 4 corners: disc uv, direction              */
@@ -247,7 +254,7 @@ void sky_program_destroy(sky *s, sky_program *p);
 /* Sets every uniform of the program from s->frame and binds its textures. */
 void sky_program_apply(sky *s, const sky_program *p);
 /* Uploads an RGBA8 image. repeat: wrap mode. Power-of-two sizes only. */
-/* A power-of-two lookup texture without contents: RGB32F with linear
+/* A power-of-two lookup texture without contents: RGBA32F with linear
  * filtering (is_float) or RGBA8 for an encoding, unfiltered;
  * sky_texture_update_lut fills its w x h corner (one of the two data
  * pointers). */

@@ -312,6 +312,7 @@ typedef struct gl_snapshot {
     GLboolean blend, depth, cull, scissor, stencil, depth_mask, color_mask[4];
     GLint bsrc, bdst, bsrca, bdsta, beq, beqa, depth_func;
     GLint attrib_enabled[3], attrib_size[3], attrib_stride[3], attrib_buffer[3];
+    GLint framebuffer;
 } gl_snapshot;
 
 static void snapshot(gl_snapshot *g, int core)
@@ -321,6 +322,7 @@ static void snapshot(gl_snapshot *g, int core)
     glGetIntegerv(GL_ACTIVE_TEXTURE, &g->active);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &g->array_buffer);
     if (core) glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
+    if (core) glGetIntegerv(GL_FRAMEBUFFER_BINDING, &g->framebuffer);
     glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &g->element_buffer);
     glGetIntegerv(GL_VIEWPORT, g->viewport);
     glGetIntegerv(GL_SCISSOR_BOX, g->scissor_box);
@@ -376,7 +378,12 @@ static GLuint host_program(int core)
 static void state_restored(sky_gl_profile profile)
 {
     fixture f;
-    if (fixture_open(&f, profile, NULL)) {
+    /* Hillaire's path: its first draw builds the sky-view table (CORE33:
+     * into a framebuffer of its own, with a viewport of its own) */
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    if (fixture_open(&f, profile, &cfg)) {
         CHECK(0, "fixture");
         return;
     }

@@ -6,6 +6,7 @@
  */
 #include "test.h"
 #include "sky_internal.h"
+#include "atmosphere/hillaire.h"
 #include "atmo_error.h"
 #include "cli.h"
 
@@ -261,25 +262,39 @@ void test_atmosphere_clear_sky_colours(void)
     }
 }
 
-/* The CPU twin of the sky's path (atmosphere.c's summary uses the same). */
+/* Hillaire's sky from the CPU-built sky-view table for the sky's sun and
+ * altitude: what the shader samples (built on the GPU in CORE33). */
+static void table_eval(const sky *s, const double d[3], double rgb[3])
+{
+    sky_hillaire_tables *t = s->hillaire;
+    if (t->skyview_sun_mu != s->skyview_sun_mu || t->skyview_altitude_km != s->skyview_altitude_km)
+        sky_hillaire_build_skyview(t, s->skyview_altitude_km, s->skyview_sun_mu);
+    double sun[3] = {s->frame.sun_dir[0], s->frame.sun_dir[1], s->frame.sun_dir[2]};
+    sky_hillaire_sky(t, d, sun, rgb);
+    for (int i = 0; i < 3; i++) rgb[i] *= s->frame.sun_irradiance[i];
+}
+
+/* The CPU twin of the sky's path. */
 static void twin_eval(const sky *s, const double d[3], double rgb[3])
 {
     double a[3], b[3];
     switch (s->atmosphere) {
     case SKY_ATMOSPHERE_PREETHAM: sky_preetham_eval(&s->frame, d, rgb); return;
     case SKY_ATMOSPHERE_RAYLEIGH: sky_rayleigh_eval(&s->frame, d, rgb); return;
-    case SKY_ATMOSPHERE_HILLAIRE: sky_hillaire_eval(s, d, rgb); return;
+    case SKY_ATMOSPHERE_HILLAIRE: table_eval(s, d, rgb); return;
     default:
         sky_rayleigh_eval(&s->frame, d, a);
-        sky_hillaire_eval(s, d, b);
+        table_eval(s, d, b);
         for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * s->frame.blend_weight;
         return;
     }
 }
 
 /* The shaders compute in float what preetham.c and rayleigh.c compute in
- * double: the images must agree with the CPU twins pixel by pixel, at a
- * high sun, a low one and one just set. Perspective views (where the
+ * double, and CORE33 builds Hillaire's sky-view table on the GPU
+ * (skyview_build.frag) as hillaire_cpu.c does on the CPU: the images must
+ * agree with the CPU twins pixel by pixel, at a high sun, a low one and one
+ * just set. Perspective views (where the
  * interpolated ray is the pixel's exact direction), toward the sun's
  * azimuth and away from it, from the horizon up to 75 degrees. */
 void test_atmosphere_shaders_match_cpu_twins(void)

@@ -4,12 +4,11 @@
  * (they depend on the atmosphere alone), the sky-view table whenever the
  * sun's elevation or the observer's altitude has moved past a threshold
  * (the table is relative to the sun's azimuth, so a sun that only turns
- * costs nothing). The sky-view table goes to the GPU as a float texture
- * (CORE33) or in an 8-bit log-luminance + chromaticity encoding
- * (COMPAT20, hillaire.glsl decodes it).
- *
- * Limit of this build: both profiles build on the CPU; CORE33 does not yet
- * build on the GPU (see the README's figures for the rebuild cost).
+ * costs nothing). CORE33 builds the sky-view table on the GPU into a float
+ * texture (skyview_build.frag, from the first two tables uploaded as float
+ * textures); COMPAT20 builds it on the CPU and uploads it in an 8-bit
+ * log-luminance + chromaticity encoding (hillaire.glsl decodes it). The
+ * host's lighting comes from a few rays marched on the CPU.
  */
 #include "hillaire.h"
 #include "../sky_internal.h"
@@ -49,6 +48,83 @@ static int next_pow2(int n)
     return p;
 }
 
+static const sky_uniform_desc build_uniforms[] = {
+    SKY_UT("u_transmittance_table", SKY_TEX_TRANSMITTANCE),
+    SKY_UT("u_multiscatter_table", SKY_TEX_MULTISCATTER),
+    SKY_UF("u_hl_geometry", SKY_U_F4, hl_geometry),
+    SKY_UF("u_hl_profile", SKY_U_F4, hl_profile),
+    SKY_UF("u_hl_rayleigh", SKY_U_F3, hl_rayleigh),
+    SKY_UF("u_hl_mie_sca", SKY_U_F3, hl_mie_sca),
+    SKY_UF("u_hl_mie_ext", SKY_U_F3, hl_mie_ext),
+    SKY_UF("u_hl_ozone", SKY_U_F3, hl_ozone),
+    SKY_UF("u_hl_albedo", SKY_U_F3, hl_albedo),
+    SKY_UF("u_hl_sizes", SKY_U_F4, hl_sizes),
+    SKY_UF("u_hl_misc", SKY_U_F4, hl_misc),
+};
+static const sky_snippet build_snippet = {NULL, NULL, build_uniforms,
+                                          (int)(sizeof build_uniforms / sizeof build_uniforms[0])};
+
+/* CORE33: the two fixed tables as float textures, the framebuffer that
+ * renders into the sky-view texture, and its program. The tables' sizes
+ * must be powers of two here (the build reads them edge to edge). */
+static int create_gpu_build(sky *s, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    const sky_hillaire_settings *set = &s->hillaire->settings;
+    int tw = set->transmittance_width, th = set->transmittance_height, mn = set->multiscatter_size;
+    if (next_pow2(tw) != tw || next_pow2(th) != th || next_pow2(mn) != mn) {
+        sky_format(err, err_len, "sky_create: luts: the transmittance (%dx%d) and multiple-scattering (%d) tables "
+                   "must be powers of two", tw, th, mn);
+        return -1;
+    }
+    if (sky_texture_create_lut(s, SKY_TEX_TRANSMITTANCE, SKY_LAYER_ATMOSPHERE, tw, th, 1, err, err_len) ||
+        sky_texture_create_lut(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, 1, err, err_len))
+        return -1;
+    sky_texture_update_lut(s, SKY_TEX_TRANSMITTANCE, tw, th, NULL, s->hillaire->transmittance);
+    sky_texture_update_lut(s, SKY_TEX_MULTISCATTER, mn, mn, NULL, s->hillaire->multiscatter);
+    const sky_snippet *snippets[1] = {&build_snippet};
+    if (sky_program_build(s, &s->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
+        return -1;
+    GLint previous = 0;
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+    gl->glGenFramebuffers(1, &s->skyview_fbo);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[SKY_TEX_SKYVIEW].id, 0);
+    GLenum status = gl->glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        sky_format(err, err_len, "sky_create: the context cannot render into a float texture (status 0x%04x)", status);
+        return -1;
+    }
+    /* the constants of the build */
+    const sky_atmosphere_params *a = &s->hillaire->atm;
+    sky_frame *f = &s->frame;
+    double R = a->planet_radius_km, Rt = a->top_radius_km;
+    f->hl_geometry[0] = (float)R;
+    f->hl_geometry[1] = (float)Rt;
+    f->hl_geometry[2] = (float)sqrt(Rt * Rt - R * R);
+    f->hl_geometry[3] = (float)R;
+    f->hl_profile[0] = a->rayleigh_scale_height_km;
+    f->hl_profile[1] = a->mie_scale_height_km;
+    f->hl_profile[2] = a->ozone_peak_km;
+    f->hl_profile[3] = a->ozone_half_width_km;
+    for (int c = 0; c < 3; c++) {
+        f->hl_rayleigh[c] = a->rayleigh_scattering[c];
+        f->hl_mie_sca[c] = a->mie_scattering[c];
+        f->hl_mie_ext[c] = a->mie_extinction[c];
+        f->hl_ozone[c] = a->ozone_absorption[c];
+        f->hl_albedo[c] = a->ground_albedo[c];
+    }
+    f->hl_sizes[0] = (float)set->skyview_width;
+    f->hl_sizes[1] = (float)set->skyview_height;
+    f->hl_sizes[2] = (float)tw;
+    f->hl_sizes[3] = (float)th;
+    f->hl_misc[0] = (float)mn;
+    f->hl_misc[2] = (float)set->skyview_steps;
+    f->hl_misc[3] = a->mie_g;
+    return 0;
+}
+
 int sky_hillaire_create(sky *s, char *err, size_t err_len)
 {
     s->hillaire = calloc(1, sizeof *s->hillaire);
@@ -72,11 +148,14 @@ int sky_hillaire_create(sky *s, char *err, size_t err_len)
     if (sky_texture_create_lut(s, SKY_TEX_SKYVIEW, SKY_LAYER_ATMOSPHERE, w, h, s->profile == SKY_GL_CORE33, err,
                                err_len))
         return -1;
-    s->skyview_encoded = s->profile != SKY_GL_CORE33 ? malloc((size_t)set->skyview_width * set->skyview_height * 4)
-                                                      : NULL;
-    if (s->profile != SKY_GL_CORE33 && !s->skyview_encoded) {
-        sky_format(err, err_len, "out of memory for the sky-view texture");
-        return -1;
+    if (s->profile == SKY_GL_CORE33) {
+        if (create_gpu_build(s, err, err_len)) return -1;
+    } else {
+        s->skyview_encoded = malloc((size_t)set->skyview_width * set->skyview_height * 4);
+        if (!s->skyview_encoded) {
+            sky_format(err, err_len, "out of memory for the sky-view texture");
+            return -1;
+        }
     }
     s->skyview_valid = 0;
     return 0;
@@ -84,6 +163,8 @@ int sky_hillaire_create(sky *s, char *err, size_t err_len)
 
 void sky_hillaire_destroy(sky *s)
 {
+    if (s->skyview_fbo && s->gl.glDeleteFramebuffers) s->gl.glDeleteFramebuffers(1, &s->skyview_fbo);
+    s->skyview_fbo = 0;
     if (s->hillaire) sky_hillaire_free(s->hillaire);
     free(s->hillaire);
     free(s->skyview_encoded);
@@ -124,16 +205,20 @@ void sky_hillaire_frame(sky *s)
     double mu = sky_clampd(f->sun_dir[1], -1.0, 1.0);
     if (!s->skyview_valid || fabs(asin(mu) - asin(s->skyview_sun_mu)) > SKYVIEW_SUN_THRESHOLD ||
         fabs(alt_km - s->skyview_altitude_km) > SKYVIEW_ALTITUDE_THRESHOLD_KM) {
-        double t0 = sky_now_ms();
-        sky_hillaire_build_skyview(t, alt_km, mu);
-        double brightest = 0.0;
-        int n = set->skyview_width * set->skyview_height;
-        for (int i = 0; i < n; i++)
-            brightest = fmax(brightest, 0.2126 * t->skyview[3 * i] + 0.7152 * t->skyview[3 * i + 1] +
-                                            0.0722 * t->skyview[3 * i + 2]);
-        s->skyview_log2_floor = log2(fmax(brightest, 1e-30)) - SKYVIEW_STOPS;
-        if (s->skyview_encoded) encode_skyview(s, s->skyview_log2_floor);
-        s->lut_ms += sky_now_ms() - t0;
+        if (s->skyview_encoded) { /* COMPAT20: on the CPU now; CORE33: on the GPU in sky_draw */
+            double t0 = sky_now_ms();
+            sky_hillaire_build_skyview(t, alt_km, mu);
+            double brightest = 0.0;
+            int n = set->skyview_width * set->skyview_height;
+            for (int i = 0; i < n; i++)
+                brightest = fmax(brightest, 0.2126 * t->skyview[3 * i] + 0.7152 * t->skyview[3 * i + 1] +
+                                                0.0722 * t->skyview[3 * i + 2]);
+            s->skyview_log2_floor = log2(fmax(brightest, 1e-30)) - SKYVIEW_STOPS;
+            encode_skyview(s, s->skyview_log2_floor);
+            s->lut_ms += sky_now_ms() - t0;
+        }
+        f->hl_geometry[3] = (float)(R + alt_km);
+        f->hl_misc[1] = (float)mu;
         s->skyview_sun_mu = mu;
         s->skyview_altitude_km = alt_km;
         s->skyview_valid = 1;
@@ -153,6 +238,29 @@ void sky_hillaire_frame(sky *s)
     f->skyview_decode[2] = (float)SKYVIEW_STOPS;
 }
 
+/* CORE33: one pass over the table's corner of the sky-view texture. The
+ * host's framebuffer and viewport come back right after it (the rest of
+ * the state is sky_draw's to restore). */
+static void build_on_gpu(sky *s)
+{
+    const sky_gl *gl = &s->gl;
+    const sky_hillaire_settings *set = &s->hillaire->settings;
+    double t0 = sky_now_ms();
+    GLint previous = 0, viewport[4];
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+    gl->glGetIntegerv(GL_VIEWPORT, viewport);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
+    gl->glViewport(0, 0, set->skyview_width, set->skyview_height);
+    sky_program_apply(s, &s->skyview_build);
+    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
+    gl->glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    /* the time it takes: only where the host asked for GPU timings (a
+     * glFinish stalls the pipeline); else what the submission cost */
+    if (s->cfg.profile_layers) gl->glFinish();
+    s->lut_ms += sky_now_ms() - t0;
+}
+
 void sky_hillaire_upload(sky *s)
 {
     if (!s->hillaire || s->skyview_uploaded || !s->skyview_valid) return;
@@ -160,8 +268,7 @@ void sky_hillaire_upload(sky *s)
     if (s->skyview_encoded)
         sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, s->skyview_encoded, NULL);
     else
-        sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, NULL,
-                               s->hillaire->skyview);
+        build_on_gpu(s);
     s->skyview_uploaded = 1;
 }
 
@@ -171,6 +278,6 @@ void sky_hillaire_eval(const sky *s, const double d[3], double rgb[3])
     double sun[3] = {f->sun_dir[0], f->sun_dir[1], f->sun_dir[2]};
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     if (!s->hillaire) return;
-    sky_hillaire_sky(s->hillaire, d, sun, rgb);
+    sky_hillaire_ray(s->hillaire, s->skyview_altitude_km, d, sun, rgb);
     for (int i = 0; i < 3; i++) rgb[i] *= f->sun_irradiance[i];
 }

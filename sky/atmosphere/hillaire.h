@@ -88,4 +88,10 @@ void sky_hillaire_multiscatter(const sky_hillaire_tables *t, double r, double mu
  * table (built for the same altitude and sun). */
 void sky_hillaire_sky(const sky_hillaire_tables *t, const double view[3], const double sun_dir[3], double rgb[3]);
 
+/* The same radiance marched along one view ray (no sky-view table; the
+ * transmittance and multiple-scattering tables must be built): what the
+ * sky-view table holds at that direction, before its interpolation. */
+void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
+                      double rgb[3]);
+
 #endif

@@ -744,10 +744,9 @@ static void sun_transmittance_at(const sky_hillaire_tables *t, const hl_medium *
  * marched once and each column only looks up the sun's transmittance
  * and Psi_ms at its own solar cosine. */
 static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double r0, double th, int ground,
-                        const double sun[3], float *row)
+                        const double sun[3], int w, float *row)
 {
     enum { MAX_STEPS = 256 };
-    int w = t->settings.skyview_width;
     double ct = cos(th), st = sin(th);
     for (int i = 0; i < w * 3; i++) row[i] = 0.0f;
     double r = r0, mu = ct, start = 0.0;
@@ -793,7 +792,7 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
     }
     double rg = ground ? radius_along(r, mu, L) : 0.0;
     for (int i = 0; i < w; i++) {
-        double x = (double)i / (w - 1);
+        double x = w > 1 ? (double)i / (w - 1) : 0.0;
         double caz = clamp(1.0 - 2.0 * x * x, -1.0, 1.0), saz = safe_sqrt(1.0 - caz * caz);
         double view[3] = {st * caz, ct, st * saz};
         double cos_theta = view[0] * sun[0] + view[1] * sun[1] + view[2] * sun[2];
@@ -845,8 +844,37 @@ void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, doub
             double q = 2.0 * y - 1.0;
             th = th_h + beta * q * q;
         }
-        skyview_row(t, &m, r0, th, below, sun, t->skyview + (size_t)j * w * 3);
+        skyview_row(t, &m, r0, th, below, sun, w, t->skyview + (size_t)j * w * 3);
     }
+}
+
+void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
+                      double rgb[3])
+{
+    if (!rgb) return;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!t || !t->transmittance || !t->multiscatter || !view || !sun_dir) return;
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(view[k]) || !isfinite(sun_dir[k])) return;
+    double vl = sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
+    double sl = sqrt(sun_dir[0] * sun_dir[0] + sun_dir[1] * sun_dir[1] + sun_dir[2] * sun_dir[2]);
+    if (!(vl > 0.0) || !(sl > 0.0)) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    double r0 = observer_radius(&m, altitude_km);
+    double th = acos(clamp(view[1] / vl, -1.0, 1.0));
+    /* the row's column 0 looks along its own azimuth: turn the sun into
+     * that frame (only the azimuth between the two matters) */
+    double hv = hypot(view[0], view[2]), hs = hypot(sun_dir[0], sun_dir[2]);
+    double caz = 1.0, saz = 0.0;
+    if (hv > 1e-12 * vl && hs > 1e-12 * sl) {
+        caz = (view[0] * sun_dir[0] + view[2] * sun_dir[2]) / (hv * hs);
+        saz = (view[0] * sun_dir[2] - view[2] * sun_dir[0]) / (hv * hs);
+    }
+    double sun[3] = {hs / sl * caz, sun_dir[1] / sl, hs / sl * saz};
+    float out[3];
+    skyview_row(t, &m, r0, th, th > horizon_zenith(&m, r0), sun, 1, out);
+    for (int c = 0; c < 3; c++) rgb[c] = out[c];
 }
 
 void sky_hillaire_sky(const sky_hillaire_tables *t, const double view[3], const double sun_dir[3], double rgb[3])

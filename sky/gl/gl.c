@@ -65,7 +65,8 @@ int sky_gl_init(sky *s, char *err, size_t err_len)
         while (gl->glGetError() != GL_NO_ERROR) {}
     }
     int can_core = gl_ver >= 33 && glsl_ver >= 33 && gl->glGenVertexArrays && gl->glBindVertexArray &&
-                   gl->glDeleteVertexArrays;
+                   gl->glDeleteVertexArrays && gl->glGenFramebuffers && gl->glBindFramebuffer &&
+                   gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus && gl->glDeleteFramebuffers;
 
     sky_gl_profile want = s->cfg.gl_profile;
     if (want == SKY_GL_AUTO) want = can_core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
@@ -367,10 +368,11 @@ int sky_texture_create_lut(sky *s, sky_texture_id id, sky_layer owner, int w, in
     gl->glGenTextures(1, &t->id);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_2D, t->id);
-    /* float (CORE33): RGB32F, the precision twilight needs (16F would
-     * lose the darkest tables' low bits); else RGBA8 for an encoding */
+    /* float (CORE33): RGBA32F, the precision twilight needs (16F would
+     * lose the darkest tables' low bits) and a format every GL 3.3 can
+     * render into; else RGBA8 for an encoding */
     if (is_float)
-        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, w, h, 0, GL_RGB, GL_FLOAT, NULL);
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
     else
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
@@ -391,7 +393,7 @@ int sky_texture_create_lut(sky *s, sky_texture_id id, sky_layer owner, int w, in
     }
     t->width = w;
     t->height = h;
-    t->bytes = (size_t)w * (size_t)h * (is_float ? 12u : 4u);
+    t->bytes = (size_t)w * (size_t)h * (is_float ? 16u : 4u);
     t->owner = owner;
     return 0;
 }

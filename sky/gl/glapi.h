@@ -191,7 +191,13 @@ typedef ptrdiff_t GLintptr;
     X(const GLubyte *, glGetStringi, (GLenum name, GLuint i))                                 \
     X(void, glGenVertexArrays, (GLsizei n, GLuint *a))                                        \
     X(void, glDeleteVertexArrays, (GLsizei n, const GLuint *a))                               \
-    X(void, glBindVertexArray, (GLuint a))
+    X(void, glBindVertexArray, (GLuint a))                                                    \
+    X(void, glGenFramebuffers, (GLsizei n, GLuint *f))                                        \
+    X(void, glDeleteFramebuffers, (GLsizei n, const GLuint *f))                               \
+    X(void, glBindFramebuffer, (GLenum target, GLuint f))                                     \
+    X(void, glFramebufferTexture2D, (GLenum target, GLenum att, GLenum textarget, GLuint t,   \
+                                     GLint level))                                            \
+    X(GLenum, glCheckFramebufferStatus, (GLenum target))
 
 typedef struct sky_gl {
 #define SKY_GL_MEMBER(ret, name, params) ret(SKY_APIENTRY *name) params;
