@@ -342,6 +342,8 @@ void sky_destroy(sky *s)
         sky_program_destroy(s, &s->moon);
         sky_stars_destroy(s);
         sky_program_destroy(s, &s->sun);
+        sky_program_destroy(s, &s->transmittance_build);
+        sky_program_destroy(s, &s->multiscatter_build);
         sky_program_destroy(s, &s->skyview_build);
         GLuint buffers[5] = {s->dome_vertices, s->dome_indices, s->sun_buffer, s->star_buffer, s->moon_buffer};
         gl->glDeleteBuffers(5, buffers);

@@ -121,7 +121,7 @@ typedef struct sky_frame {
     float skyview_map[4], skyview_horizon[2], skyview_decode[3], blend_weight;
     /* the GPU build of the sky-view table (skyview_build.frag) */
     float hl_geometry[4], hl_profile[4], hl_rayleigh[3], hl_mie_sca[3], hl_mie_ext[3], hl_ozone[3], hl_albedo[3];
-    float hl_sizes[4], hl_misc[4];
+    float hl_sizes[4], hl_misc[4], hl_steps[4];
     /* clouds (R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
@@ -205,8 +205,8 @@ struct sky {
     sky_program dome_night_clear; /* night layers without clouds (cover 0)       */
     sky_program ground;           /* below the horizon: atmosphere only          */
     sky_program sun;              /* sun quad                                  */
-    sky_program skyview_build;    /* CORE33: Hillaire's sky-view table on the GPU */
-    GLuint skyview_fbo;
+    sky_program transmittance_build, multiscatter_build, skyview_build; /* CORE33: Hillaire's tables on the GPU */
+    GLuint skyview_fbo;           /* renders into each of the tables in turn    */
     sky_program stars;            /* catalogue stars (points)                  */
     sky_program moon;             /* moon billboard                            */
     GLuint moon_buffer;           /* 4 corners: disc uv, direction              */

@@ -21,6 +21,7 @@ void test_atmosphere_continuous_across_horizon(void);
 void test_atmosphere_preetham_outside_its_fit(void);
 void test_atmosphere_description_checked(void);
 void test_atmosphere_error_against_reference(void);
+void test_atmosphere_gpu_tables_match_cpu(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
@@ -568,4 +569,43 @@ void test_atmosphere_error_against_reference(void)
         CHECK(fabs(e[0].mean_rel_day - e[1].mean_rel_day) < 0.005, "%s: core %.4f and compat %.4f disagree",
               path_names[p], e[0].mean_rel_day, e[1].mean_rel_day);
     }
+}
+
+/* CORE33 builds Hillaire's transmittance and multiple-scattering tables on
+ * the GPU (and reads them back for the host's lighting): they must be the
+ * tables hillaire_cpu.c builds, to float rounding. */
+void test_atmosphere_gpu_tables_match_cpu(void)
+{
+    hdr_sky h;
+    if (hdr_open(&h, 16, SKY_ATMOSPHERE_HILLAIRE, SKY_GL_CORE33, 0.0f)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_hillaire_tables cpu;
+    char err[256];
+    if (sky_hillaire_init(&cpu, &h.s->hillaire->atm, &h.s->hillaire->settings, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        hdr_close(&h);
+        return;
+    }
+    sky_hillaire_build_transmittance(&cpu);
+    sky_hillaire_build_multiscatter(&cpu);
+    const sky_hillaire_settings *set = &cpu.settings;
+    double worst_t = 0.0, worst_ms = 0.0;
+    int nt = set->transmittance_width * set->transmittance_height * 3, nm = set->multiscatter_size * set->multiscatter_size * 3;
+    for (int i = 0; i < nt; i++) {
+        /* optical depth, which is what the table integrates (T itself
+         * underflows toward 0 on grazing rays) */
+        double a = -log(fmax(cpu.transmittance[i], 1e-30)), b = -log(fmax(h.s->hillaire->transmittance[i], 1e-30));
+        if (cpu.transmittance[i] > 1e-6) worst_t = fmax(worst_t, fabs(a - b) / fmax(a, 1e-3));
+    }
+    for (int i = 0; i < nm; i++)
+        worst_ms = fmax(worst_ms, fabs(cpu.multiscatter[i] - h.s->hillaire->multiscatter[i]) /
+                                      fmax(fabs(cpu.multiscatter[i]), 1e-9));
+    NOTE("GPU vs CPU: optical depth of the transmittance table %.2g, multiple scattering %.2g (worst relative)",
+         worst_t, worst_ms);
+    CHECK(worst_t < 2e-3 && worst_ms < 5e-3, "GPU tables differ: transmittance %g, multiple scattering %g", worst_t,
+          worst_ms);
+    sky_hillaire_free(&cpu);
+    hdr_close(&h);
 }

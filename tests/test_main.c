@@ -82,6 +82,7 @@ int test_failures;
     X(atmosphere_preetham_outside_its_fit)       \
     X(atmosphere_description_checked)            \
     X(atmosphere_error_against_reference)        \
+    X(atmosphere_gpu_tables_match_cpu)           \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
     X(reference_spectrum_and_units)              \

@@ -60,13 +60,48 @@ static const sky_uniform_desc build_uniforms[] = {
     SKY_UF("u_hl_albedo", SKY_U_F3, hl_albedo),
     SKY_UF("u_hl_sizes", SKY_U_F4, hl_sizes),
     SKY_UF("u_hl_misc", SKY_U_F4, hl_misc),
+    SKY_UF("u_hl_steps", SKY_U_F4, hl_steps),
 };
-static const sky_snippet build_snippet = {NULL, NULL, build_uniforms,
+static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
                                           (int)(sizeof build_uniforms / sizeof build_uniforms[0])};
 
-/* CORE33: the two fixed tables as float textures, the framebuffer that
- * renders into the sky-view texture, and its program. The tables' sizes
- * must be powers of two here (the build reads them edge to edge). */
+/* One full-screen pass of a build program into the w x h corner of a
+ * texture, through the tables' framebuffer; the host's framebuffer and
+ * viewport come back after it (the rest is sky_draw's or sky_create's to
+ * restore). */
+static void gpu_pass(sky *s, sky_program *prog, sky_texture_id target, int w, int h)
+{
+    const sky_gl *gl = &s->gl;
+    GLint previous = 0, viewport[4];
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+    gl->glGetIntegerv(GL_VIEWPORT, viewport);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
+    gl->glViewport(0, 0, w, h);
+    sky_program_apply(s, prog);
+    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
+    gl->glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+}
+
+/* Reads a table back from its texture into the CPU copy (RGB floats). */
+static void gpu_read(sky *s, sky_texture_id source, int w, int h, float *rgb)
+{
+    const sky_gl *gl = &s->gl;
+    GLint previous = 0;
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[source].id, 0);
+    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->glReadPixels(0, 0, w, h, GL_RGB, GL_FLOAT, rgb);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
+}
+
+/* CORE33: the three tables as float textures, the framebuffer that
+ * renders into them and the three build programs; the transmittance and
+ * multiple-scattering tables are built here (once: they depend on the
+ * atmosphere alone). Their sizes must be powers of two here (the builds
+ * read them edge to edge). */
 static int create_gpu_build(sky *s, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
@@ -80,10 +115,12 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
     if (sky_texture_create_lut(s, SKY_TEX_TRANSMITTANCE, SKY_LAYER_ATMOSPHERE, tw, th, 1, err, err_len) ||
         sky_texture_create_lut(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, 1, err, err_len))
         return -1;
-    sky_texture_update_lut(s, SKY_TEX_TRANSMITTANCE, tw, th, NULL, s->hillaire->transmittance);
-    sky_texture_update_lut(s, SKY_TEX_MULTISCATTER, mn, mn, NULL, s->hillaire->multiscatter);
     const sky_snippet *snippets[1] = {&build_snippet};
-    if (sky_program_build(s, &s->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
+    if (sky_program_build(s, &s->transmittance_build, "fullscreen.vert", "transmittance_build.frag", snippets, 1, err,
+                          err_len) ||
+        sky_program_build(s, &s->multiscatter_build, "fullscreen.vert", "multiscatter_build.frag", snippets, 1, err,
+                          err_len) ||
+        sky_program_build(s, &s->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
         return -1;
     GLint previous = 0;
     gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
@@ -122,6 +159,15 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
     f->hl_misc[0] = (float)mn;
     f->hl_misc[2] = (float)set->skyview_steps;
     f->hl_misc[3] = a->mie_g;
+    f->hl_steps[0] = (float)set->transmittance_steps;
+    f->hl_steps[1] = (float)((set->multiscatter_directions + 1) / 2); /* mirrored pairs, as on the CPU */
+    f->hl_steps[2] = (float)set->multiscatter_steps;
+    /* the two fixed tables, built here and read back for the CPU's rays
+     * (the host's lighting) */
+    gpu_pass(s, &s->transmittance_build, SKY_TEX_TRANSMITTANCE, tw, th);
+    gpu_pass(s, &s->multiscatter_build, SKY_TEX_MULTISCATTER, mn, mn);
+    gpu_read(s, SKY_TEX_TRANSMITTANCE, tw, th, s->hillaire->transmittance);
+    gpu_read(s, SKY_TEX_MULTISCATTER, mn, mn, s->hillaire->multiscatter);
     return 0;
 }
 
@@ -138,9 +184,6 @@ int sky_hillaire_create(sky *s, char *err, size_t err_len)
         return -1;
     }
     double t0 = sky_now_ms();
-    sky_hillaire_build_transmittance(s->hillaire);
-    sky_hillaire_build_multiscatter(s->hillaire);
-    s->lut_ms += sky_now_ms() - t0;
     const sky_hillaire_settings *set = &s->hillaire->settings;
     int w = next_pow2(set->skyview_width), h = next_pow2(set->skyview_height);
     /* COMPAT20 wants power-of-two RGBA8 textures: the table sits in the
@@ -149,14 +192,22 @@ int sky_hillaire_create(sky *s, char *err, size_t err_len)
                                err_len))
         return -1;
     if (s->profile == SKY_GL_CORE33) {
-        if (create_gpu_build(s, err, err_len)) return -1;
+        /* the builds bind programs and textures: the host's state comes back */
+        sky_gl_state host;
+        sky_gl_state_save(s, &host);
+        int rc = create_gpu_build(s, err, err_len);
+        sky_gl_state_restore(s, &host);
+        if (rc) return -1;
     } else {
+        sky_hillaire_build_transmittance(s->hillaire);
+        sky_hillaire_build_multiscatter(s->hillaire);
         s->skyview_encoded = malloc((size_t)set->skyview_width * set->skyview_height * 4);
         if (!s->skyview_encoded) {
             sky_format(err, err_len, "out of memory for the sky-view texture");
             return -1;
         }
     }
+    s->lut_ms += sky_now_ms() - t0; /* both tables: the GPU's finished by the read-back */
     s->skyview_valid = 0;
     return 0;
 }
@@ -238,26 +289,15 @@ void sky_hillaire_frame(sky *s)
     f->skyview_decode[2] = (float)SKYVIEW_STOPS;
 }
 
-/* CORE33: one pass over the table's corner of the sky-view texture. The
- * host's framebuffer and viewport come back right after it (the rest of
- * the state is sky_draw's to restore). */
+/* CORE33: one pass over the table's corner of the sky-view texture. */
 static void build_on_gpu(sky *s)
 {
-    const sky_gl *gl = &s->gl;
     const sky_hillaire_settings *set = &s->hillaire->settings;
     double t0 = sky_now_ms();
-    GLint previous = 0, viewport[4];
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
-    gl->glGetIntegerv(GL_VIEWPORT, viewport);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
-    gl->glViewport(0, 0, set->skyview_width, set->skyview_height);
-    sky_program_apply(s, &s->skyview_build);
-    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
-    gl->glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    gpu_pass(s, &s->skyview_build, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height);
     /* the time it takes: only where the host asked for GPU timings (a
      * glFinish stalls the pipeline); else what the submission cost */
-    if (s->cfg.profile_layers) gl->glFinish();
+    if (s->cfg.profile_layers) s->gl.glFinish();
     s->lut_ms += sky_now_ms() - t0;
 }
 

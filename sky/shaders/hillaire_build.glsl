@@ -1,0 +1,92 @@
+/* hillaire_build.glsl: what the GPU builds of Hillaire 2020's tables
+ * share (CORE33; the GLSL twins of hillaire_cpu.c): the atmosphere's
+ * constants, densities, segment columns integrated as exponential in path
+ * length (the ozone tent exactly), ray geometry, the segment layout that
+ * closes quadratically onto a ray's lowest point, and the transmittance
+ * table's lookup. */
+uniform sampler2D u_transmittance_table;
+uniform sampler2D u_multiscatter_table;
+uniform vec4 u_hl_geometry;   /* R, Rt, H = sqrt(Rt^2 - R^2), r0 (observer radius) */
+uniform vec4 u_hl_profile;    /* Rayleigh and Mie scale heights, ozone peak and half width */
+uniform vec3 u_hl_rayleigh;   /* scattering, 1/km */
+uniform vec3 u_hl_mie_sca;
+uniform vec3 u_hl_mie_ext;
+uniform vec3 u_hl_ozone;
+uniform vec3 u_hl_albedo;
+uniform vec4 u_hl_sizes;      /* sky-view w, h; transmittance w, h */
+uniform vec4 u_hl_misc;       /* multiscatter size, sun mu, sky-view steps, Mie g */
+uniform vec4 u_hl_steps;      /* transmittance steps, multiscatter directions (half), multiscatter steps */
+
+float hl_clamp_sqrt(float x) { return sqrt(max(x, 0.0)); }
+
+float hl_unit_to_tex(float x, float n) { return 0.5 / n + x * (1.0 - 1.0 / n); }
+
+vec3 hl_density(float r)
+{
+    float h = max(r - u_hl_geometry.x, 0.0);
+    return vec3(exp(-h / u_hl_profile.x), exp(-h / u_hl_profile.y),
+                max(1.0 - abs(h - u_hl_profile.z) / u_hl_profile.w, 0.0));
+}
+
+float hl_seg_exp(float da, float db, float ha, float hb, float scale, float ds)
+{
+    float x = -(hb - ha) / scale;
+    return abs(x) < 1e-4 ? da * ds * (1.0 + x * (0.5 + x / 6.0)) : ds * (db - da) / x;
+}
+
+float hl_tent(float h)
+{
+    float x = h - u_hl_profile.z, w = u_hl_profile.w;
+    if (x <= -w) return 0.0;
+    if (x <= 0.0) return 0.5 * (x + w) * (x + w) / w;
+    if (x < w) return 0.5 * w + x - 0.5 * x * x / w;
+    return w;
+}
+
+/* column of each constituent over a segment between radii ra and rb */
+vec3 hl_column(vec3 a, float ra, vec3 b, float rb, float ds)
+{
+    float ha = max(ra - u_hl_geometry.x, 0.0), hb = max(rb - u_hl_geometry.x, 0.0);
+    float oz = abs(hb - ha) < 1e-6 * u_hl_profile.w ? 0.5 * (a.z + b.z) * ds : ds * (hl_tent(hb) - hl_tent(ha)) / (hb - ha);
+    return vec3(hl_seg_exp(a.x, b.x, ha, hb, u_hl_profile.x, ds), hl_seg_exp(a.y, b.y, ha, hb, u_hl_profile.y, ds), oz);
+}
+
+float hl_dist_to_top(float r, float mu)
+{
+    return max(-r * mu + hl_clamp_sqrt(r * r * (mu * mu - 1.0) + u_hl_geometry.y * u_hl_geometry.y), 0.0);
+}
+
+vec3 hl_sun_transmittance(float r, float rho, float mu_s)
+{
+    float R = u_hl_geometry.x;
+    if (mu_s < 0.0 && r * r * (mu_s * mu_s - 1.0) + R * R >= 0.0) return vec3(0.0); /* the planet's shadow */
+    float d = hl_dist_to_top(r, mu_s), dmin = u_hl_geometry.y - r, dmax = rho + u_hl_geometry.z;
+    float xmu = dmax > dmin ? clamp((d - dmin) / (dmax - dmin), 0.0, 1.0) : 0.0;
+    float xr = clamp(rho / u_hl_geometry.z, 0.0, 1.0);
+    return SKY_TEX2D(u_transmittance_table, vec2(hl_unit_to_tex(xmu, u_hl_sizes.z), hl_unit_to_tex(xr, u_hl_sizes.w))).rgb;
+}
+
+/* Segment boundary k of n on [0, len], n1 of them before the lowest
+ * point tl (hillaire_cpu.c's layout). */
+float hl_layout_t(float kf, float n1, float n2, float tl, float len)
+{
+    if (kf <= n1) {
+        float u = (n1 - kf) / n1;
+        return tl * (1.0 - u * u);
+    }
+    float u = (kf - n1) / n2;
+    return kf == n1 + n2 ? len : tl + (len - tl) * u * u;
+}
+
+float hl_layout_n1(float n, float tl, float len)
+{
+    return tl <= 0.0 ? 0.0 : (tl >= len ? n : clamp(floor(n * tl / len + 0.5), 1.0, n - 1.0));
+}
+
+float hl_radius(float r, float mu, float t) { return hl_clamp_sqrt(r * r + 2.0 * r * mu * t + t * t); }
+
+/* (1 - e^-tau) / tau, a series where 1 - e cancels */
+vec3 hl_seg_weight(vec3 tau, vec3 e)
+{
+    return mix((1.0 - e) / max(tau, vec3(1e-30)), 1.0 - tau * (0.5 - tau / 6.0), step(tau, vec3(1e-3)));
+}
