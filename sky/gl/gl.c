@@ -513,7 +513,11 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st)
         gl->glBindTexture(GL_TEXTURE_2D, (GLuint)st->textures[i]);
     }
     gl->glActiveTexture((GLenum)st->active_texture);
-    gl->glUseProgram((GLuint)st->program);
+    /* A host may delete its program while it is current: GL keeps it
+     * alive only until another one is used, which sky_draw did. Putting
+     * back a name that no longer exists would be an error; 0 is what GL
+     * itself leaves then. */
+    gl->glUseProgram(st->program && gl->glIsProgram((GLuint)st->program) ? (GLuint)st->program : 0u);
     gl->glViewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
     gl->glScissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
     gl->glClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);

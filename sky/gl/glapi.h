@@ -178,6 +178,7 @@ typedef ptrdiff_t GLintptr;
     X(void, glGetProgramInfoLog, (GLuint p, GLsizei max, GLsizei *len, GLchar *log))          \
     X(void, glDeleteProgram, (GLuint p))                                                      \
     X(void, glUseProgram, (GLuint p))                                                         \
+    X(GLboolean, glIsProgram, (GLuint p))                                                     \
     X(GLint, glGetUniformLocation, (GLuint p, const GLchar *name))                            \
     X(void, glUniform1i, (GLint loc, GLint v))                                                \
     X(void, glUniform1f, (GLint loc, GLfloat v))                                              \
