@@ -170,6 +170,8 @@ void sky_ref_sun_xyz(double xyz[3])
 }
 
 /* ---- the medium --------------------------------------------------------------- */
+/* Written apart from hillaire_cpu.c on purpose, density profiles included:
+ * the reference shares no code with what it is the yardstick for. */
 
 typedef struct ref_medium {
     double R, Rt;         /* ground and top radii, km */
