@@ -186,8 +186,8 @@ void sky_moon_frame(sky *s)
     double e = (-0.0061 * pow(phase, 3) + 0.0289 * phase * phase - 0.0105 * sin(phase)) / es;
     e = sky_clampd(e, 0.0, 1.0) * MOON_EARTHSHINE;
     /* extinction over the moon's air mass, as for the stars */
-    float zenith[3];
-    sky_sun_transmittance(SKY_PI / 2, zenith);
+    double depth[3];
+    sky_atmosphere_zenith_depth(s, depth);
     double cos_t = sky_clampd(m[1], -1.0, 1.0), re = 6371.0, te = 8.0;
     double hkm = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
     double ash = re + hkm, bsh = re + te;
@@ -197,7 +197,7 @@ void sky_moon_frame(sky *s)
     double fade = a->moon_visibility;
     double scale = MOON_FULL_LUMINANCE / (s->moon_albedo_mean > 0.01f ? s->moon_albedo_mean : 0.01f);
     for (int i = 0; i < 3; i++) {
-        double ext = exp(log(zenith[i]) * airmass * exp(-s->observer.altitude_m / 8000.0));
+        double ext = exp(-depth[i] * airmass);
         f->moon_color[i] = (float)(scale * k_lambda[i] * ext * fade);
     }
     f->moon_terms[0] = (float)phase_factor;

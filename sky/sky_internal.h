@@ -312,6 +312,10 @@ void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_pa
  * fog). */
 int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out);
 void sky_atmosphere_frame(sky *s);
+/* Vertical optical depth above the observer per channel: the atmosphere
+ * description's for the physical paths, the sun model's otherwise; what
+ * dims the stars and the moon (Mueller sec. 5). */
+void sky_atmosphere_zenith_depth(const sky *s, double depth[3]);
 /* atmosphere/hillaire.c: tables at creation, the sky-view rebuild per
  * frame (CPU), its upload in sky_draw, the CPU twin of the shader. */
 int sky_hillaire_create(sky *s, char *err, size_t err_len);

@@ -141,12 +141,10 @@ void sky_stars_frame(sky *s)
     double r = STAR_Q_PX * f->pixel_angle;
     double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
     f->star_flux_scale = (float)(peak * a->star_visibility);
-    /* the same zenith optical depths as the sun's beam (sun.c), thinning
-     * with the observer's altitude */
-    float zenith[3];
-    sky_sun_transmittance(SKY_PI / 2, zenith);
-    double thin = exp(-s->observer.altitude_m / 8000.0);
-    for (int i = 0; i < 3; i++) f->star_extinction[i] = (float)(-log(zenith[i]) * thin);
+    /* the atmosphere's zenith optical depths above the observer */
+    double depth[3];
+    sky_atmosphere_zenith_depth(s, depth);
+    for (int i = 0; i < 3; i++) f->star_extinction[i] = (float)depth[i];
     const double re = 6371.0, te = 8.0;
     double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
     f->star_shell[0] = (float)(re + h);

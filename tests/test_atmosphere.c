@@ -22,6 +22,7 @@ void test_atmosphere_preetham_outside_its_fit(void);
 void test_atmosphere_description_checked(void);
 void test_atmosphere_error_against_reference(void);
 void test_atmosphere_gpu_tables_match_cpu(void);
+void test_atmosphere_extinction_follows_the_description(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
@@ -608,4 +609,38 @@ void test_atmosphere_gpu_tables_match_cpu(void)
           worst_ms);
     sky_hillaire_free(&cpu);
     hdr_close(&h);
+}
+
+/* Stars and moon behind a physical atmosphere are dimmed by its own
+ * columns (Mueller sec. 5): the zenith optical depth above a sea-level
+ * observer is sum(beta H) of the description (ozone: its tent's area),
+ * for Earth and for the Mars-like preset alike. */
+void test_atmosphere_extinction_follows_the_description(void)
+{
+    for (int p = SKY_ATMOSPHERE_EARTH; p <= SKY_ATMOSPHERE_MARS; p += SKY_ATMOSPHERE_MARS - SKY_ATMOSPHERE_EARTH) {
+        fixture f;
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.atmosphere = SKY_ATMOSPHERE_RAYLEIGH;
+        sky_atmosphere_get_preset((sky_atmosphere_preset)p, &cfg.atmosphere_params);
+        if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+            CHECK(0, "no sky");
+            continue;
+        }
+        sky_observer o;
+        sky_get_observer(f.s, &o);
+        o.altitude_m = 0.0;
+        sky_set_observer(f.s, &o);
+        double depth[3];
+        sky_atmosphere_zenith_depth(f.s, depth);
+        const sky_atmosphere_params *a = &f.s->atm_rgb; /* at the channels' effective wavelengths */
+        for (int c = 0; c < 3; c++) {
+            double expect = a->rayleigh_scattering[c] * a->rayleigh_scale_height_km +
+                            a->mie_extinction[c] * a->mie_scale_height_km + a->ozone_absorption[c] * a->ozone_half_width_km;
+            CHECK(fabs(depth[c] - expect) <= 1e-5 * expect, "preset %d channel %d: depth %g, expected %g", p, c, depth[c],
+                  expect);
+        }
+        NOTE("preset %d: zenith optical depth %.4f %.4f %.4f", p, depth[0], depth[1], depth[2]);
+        fixture_close(&f);
+    }
 }

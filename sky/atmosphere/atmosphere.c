@@ -131,6 +131,23 @@ static float blend_weight(const sky *s)
     return (float)(1.0 - 0.5 * sky_smoothstep(15.0, 60.0, h_deg));
 }
 
+void sky_atmosphere_zenith_depth(const sky *s, double depth[3])
+{
+    const sky_frame *f = &s->frame;
+    if (s->atmosphere == SKY_ATMOSPHERE_RAYLEIGH || s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ||
+        s->atmosphere == SKY_ATMOSPHERE_BLEND) {
+        /* the description's columns above the observer (rayleigh.c) */
+        for (int i = 0; i < 3; i++) depth[i] = f->tau_rayleigh[i] + f->tau_mie_ext[i] + f->tau_ozone[i];
+        return;
+    }
+    /* the sun's beam model (sun.c), its air thinning with the observer's
+     * altitude over an 8 km scale height */
+    float zenith[3];
+    sky_sun_transmittance(SKY_PI / 2, zenith);
+    double thin = exp(-s->observer.altitude_m / 8000.0);
+    for (int i = 0; i < 3; i++) depth[i] = -log(zenith[i]) * thin;
+}
+
 void sky_atmosphere_frame(sky *s)
 {
     night_frame(s);
