@@ -23,6 +23,7 @@ void test_atmosphere_description_checked(void);
 void test_atmosphere_error_against_reference(void);
 void test_atmosphere_gpu_tables_match_cpu(void);
 void test_atmosphere_extinction_follows_the_description(void);
+void test_atmosphere_observer_altitudes(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
@@ -642,5 +643,49 @@ void test_atmosphere_extinction_follows_the_description(void)
         }
         NOTE("preset %d: zenith optical depth %.4f %.4f %.4f", p, depth[0], depth[1], depth[2]);
         fixture_close(&f);
+    }
+}
+
+/* The physical paths from every height an observer may have (sea level,
+ * 1 m, 8 km, 100 km: the top of the supported range, at Hillaire's
+ * shell's top), in float on the GPU and both profiles: rays tangent to
+ * the ground and to the shell, the horizon dipping below 0 with height;
+ * every pixel of an all-sky image finite and >= 0 for the sun from the
+ * nadir to the zenith. */
+void test_atmosphere_observer_altitudes(void)
+{
+    static const double heights[] = {0.0, 1.0, 8000.0, 100000.0};
+    sky_observer o = equator_equinox();
+    for (int q = 0; q < 6; q++) {
+        int p = 2 + q % 3;
+        sky_gl_profile profile = q < 3 ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
+        hdr_sky h;
+        sky_lut_settings small = small_luts();
+        if (hdr_open_luts(&h, 24, paths[p], profile, 0.0f, &small)) {
+            CHECK(0, "%s: no sky", path_names[p]);
+            continue;
+        }
+        long bad = 0, frames = 0;
+        for (size_t a = 0; a < sizeof heights / sizeof heights[0]; a++) {
+            o.altitude_m = heights[a];
+            for (int k = 0; k <= 72; k++) { /* 2.5 degrees of sun a step */
+                if (hdr_draw(&h, &o, k / 144.0, NULL)) {
+                    bad++;
+                    continue;
+                }
+                frames++;
+                for (int y = 0; y < h.size; y++)
+                    for (int x = 0; x < h.size; x++) {
+                        const float *v = hdr_pixel(&h, x, y);
+                        for (int c = 0; c < 3; c++)
+                            if (!isfinite(v[c]) || v[c] < 0.0f) bad++;
+                    }
+            }
+        }
+        NOTE("%s %s: %ld frames from 0 m to 100 km, %ld bad values", path_names[p],
+             profile == SKY_GL_CORE33 ? "core" : "compat", frames, bad);
+        CHECK(frames == 4 * 73 && bad == 0, "%s: %ld NaN, infinite or negative values (or failed frames)",
+              path_names[p], bad);
+        hdr_close(&h);
     }
 }

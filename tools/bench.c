@@ -307,19 +307,24 @@ static int measure_atmosphere(atmo_row *out, const sky_atmo_reference *ref, sky_
     return 0;
 }
 
-static void print_atmosphere_table(const atmo_row *rows, int n, const sky_atmo_reference *ref)
+/* The reference's mean standard error relative to its luminance. */
+static double reference_rel_std_err(const sky_atmo_reference *ref)
 {
-    double se = 0.0, y = 0.0;
+    double se = 0.0;
     for (int s = 0; s < SKY_ATMO_SUNS; s++)
         for (int k = 0; k < SKY_ATMO_DIRECTIONS; k++) {
             const double *c = ref->rgb[s][k];
             se += ref->std_err[s][k] / fmax(0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2], 1e-30);
-            y += 1.0;
         }
+    return se / (SKY_ATMO_SUNS * SKY_ATMO_DIRECTIONS);
+}
+
+static void print_atmosphere_table(const atmo_row *rows, int n, const sky_atmo_reference *ref)
+{
     printf("\nAtmosphere paths against the CPU reference (spectral, %d Monte Carlo paths per wavelength for orders\n"
            ">= 2; mean relative standard error %.2f %%), Earth preset. Frame: atmosphere + sun at the size above.\n"
            "Errors over an equal-area all-sky grid; day: sun >= 0 deg, twilight: -6 <= sun < 0 deg.\n\n",
-           ref->paths, 100.0 * se / y);
+           ref->paths, 100.0 * reference_rel_std_err(ref));
     printf("| path | setting | profile | frame ms | x baseline | LUT ms at start | sky-view rebuild ms | "
            "mean rel err day | max rel err day | mean rel err twilight | mean dE2000 day |\n"
            "|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -509,7 +514,7 @@ int main(int argc, char **argv)
                    night[prof][NIGHT_MOON3], night[prof][NIGHT_MOON30], prof ? "" : ",");
         printf(" ],\n \"reference\": {\"method\":\"spectral, 16 wavelengths; single scattering by quadrature, orders >= 2 "
                "by Monte Carlo\", \"paths\":%d, \"std_err\":%.6g},\n \"rows\": [\n",
-               ref.paths, ref.std_err[0][0]);
+               ref.paths, reference_rel_std_err(&ref));
         for (int i = 0; i < natmo; i++) {
             const atmo_row *r = &atmo[i];
             printf("  {\"path\":\"%s\", \"setting\":\"%s\", \"profile\":\"%s\", \"frame_ms\":%.4f, \"ratio\":%.3f, "
