@@ -1,14 +1,15 @@
 /*
- * The Hillaire path in the sky (Hillaire 2020): its tables are built by
- * hillaire_cpu.c: transmittance and multiple scattering once at creation
- * (they depend on the atmosphere alone), the sky-view table whenever the
- * sun's elevation or the observer's altitude has moved past a threshold
- * (the table is relative to the sun's azimuth, so a sun that only turns
- * costs nothing). CORE33 builds the sky-view table on the GPU into a float
- * texture (skyview_build.frag, from the first two tables uploaded as float
- * textures); COMPAT20 builds it on the CPU and uploads it in an 8-bit
- * log-luminance + chromaticity encoding (hillaire.glsl decodes it). The
- * host's lighting comes from a few rays marched on the CPU.
+ * The Hillaire path in the sky (Hillaire 2020): transmittance and
+ * multiple-scattering tables once at creation (they depend on the
+ * atmosphere alone), the sky-view table whenever the sun's elevation or
+ * the observer's altitude has moved past a threshold (the table is
+ * relative to the sun's azimuth, so a sun that only turns costs nothing).
+ * CORE33 builds all three on the GPU into float textures
+ * (*_build.frag, GLSL twins of hillaire_cpu.c) and reads the first two
+ * back; COMPAT20 builds them with hillaire_cpu.c and uploads the sky-view
+ * table in an 8-bit log-luminance + chromaticity encoding (hillaire.glsl
+ * decodes it). The host's lighting comes from a few rays marched on the
+ * CPU through the first two tables.
  */
 #include "hillaire.h"
 #include "../sky_internal.h"
@@ -84,17 +85,24 @@ static void gpu_pass(sky *s, sky_program *prog, sky_texture_id target, int w, in
     gl->glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
-/* Reads a table back from its texture into the CPU copy (RGB floats). */
-static void gpu_read(sky *s, sky_texture_id source, int w, int h, float *rgb)
+/* Reads a table back from its texture into the CPU copy (RGB floats).
+ * RGBA/FLOAT is the read-back every float framebuffer must support. */
+static int gpu_read(sky *s, sky_texture_id source, int w, int h, float *rgb)
 {
     const sky_gl *gl = &s->gl;
+    float *rgba = malloc(sizeof(float) * 4u * (size_t)w * (size_t)h);
+    if (!rgba) return -1;
     GLint previous = 0;
     gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
     gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[source].id, 0);
     gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl->glReadPixels(0, 0, w, h, GL_RGB, GL_FLOAT, rgb);
+    gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        for (int c = 0; c < 3; c++) rgb[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
+    free(rgba);
+    return 0;
 }
 
 /* CORE33: the three tables as float textures, the framebuffer that
@@ -166,8 +174,11 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
      * (the host's lighting) */
     gpu_pass(s, &s->transmittance_build, SKY_TEX_TRANSMITTANCE, tw, th);
     gpu_pass(s, &s->multiscatter_build, SKY_TEX_MULTISCATTER, mn, mn);
-    gpu_read(s, SKY_TEX_TRANSMITTANCE, tw, th, s->hillaire->transmittance);
-    gpu_read(s, SKY_TEX_MULTISCATTER, mn, mn, s->hillaire->multiscatter);
+    if (gpu_read(s, SKY_TEX_TRANSMITTANCE, tw, th, s->hillaire->transmittance) ||
+        gpu_read(s, SKY_TEX_MULTISCATTER, mn, mn, s->hillaire->multiscatter)) {
+        sky_format(err, err_len, "out of memory reading the lookup tables back");
+        return -1;
+    }
     return 0;
 }
 
