@@ -329,6 +329,60 @@ static void case_slider_corners(suite *st, sky *s, sky_osmesa *ctx)
     finish(r);
 }
 
+/* Stars the catalogue does not hold: V -30 (the sun's magnitude) to +15,
+ * B-V -0.5 to +3, placed at the zenith and the nadir (their J2000 places
+ * for the default observer at midnight, within the 0.4 degree of
+ * precession since), seen straight up, straight down and in a fisheye:
+ * the point sizes, glare, extinction over Mueller's optical path (0/0 at
+ * the zenith, beyond 90 degrees at the nadir) and scintillation stay
+ * finite. The catalogue's first 46 stars stand in for them and come back
+ * afterwards. */
+static void case_star_extremes(suite *st, sky *s, sky_osmesa *ctx)
+{
+    sky_stability_row *r = add_row(st, "stars V -30..+15, B-V -0.5..+3, at zenith and nadir",
+                                   "HDR pixels finite, >= 0 (3 views); the V -30 star drawn", "", 0.0);
+    enum { N = 46 };
+    if (s->catalog.count < N) {
+        keep_worst(r, INFINITY);
+        finish(r);
+        return;
+    }
+    sky_star saved[N];
+    memcpy(saved, s->catalog.stars, sizeof saved);
+    sky_params night = sky_default_params();
+    night.time = 0.0f;
+    night.cover = 0.0f;
+    sky_set_params(s, &night);
+    sky_astronomy a;
+    sky_observer o;
+    sky_get_astronomy(s, &a);
+    sky_get_observer(s, &o);
+    double lst = a.lmst_deg * SKY_PI / 180.0, lat = o.latitude_deg * SKY_PI / 180.0;
+    for (int i = 0; i < N; i++) {
+        sky_star *star = &s->catalog.stars[i];
+        int up = i % 2 == 0;
+        star->ra = fmod(lst + (up ? 0.0 : SKY_PI) + 2.0 * SKY_PI, 2.0 * SKY_PI);
+        star->dec = up ? lat : -lat;
+        star->pm_ra = star->pm_dec = 0.0;
+        star->vmag = (float)(-30 + i);
+        star->bv = (float)(-0.5 + 3.5 * i / (N - 1));
+    }
+    s->star_epoch = -1e9; /* the next frame uploads them */
+    const double views[3][3] = {{0, 0, 90}, {0, 0, -90}, {1, 0, 0}}; /* fisheye, yaw, pitch */
+    for (int v = 0; v < 3; v++) {
+        keep_worst(r, worst_pixel(ctx, s, &night, 5.0, (int)views[v][0], views[v][1], views[v][2]));
+        /* looking up, the V -30 star must be there: brighter than any
+         * night sky (1 kcd/m^2), else the sweep tested nothing */
+        double brightest = 0.0;
+        const float *px = ctx->pixels;
+        for (int i = 0; i < ctx->width * ctx->height * 4; i++) brightest = fmax(brightest, px[i]);
+        if (v == 0 && !(brightest > 1.0)) keep_worst(r, INFINITY);
+    }
+    memcpy(s->catalog.stars, saved, sizeof saved);
+    s->star_epoch = -1e9;
+    finish(r);
+}
+
 /* The time slider through sunrise and sunset in steps of 1e-4 (8.6 s),
  * where the day-night fades and the sun quad cross the horizon. */
 static void case_sun_at_horizon(suite *st, sky *s, sky_osmesa *ctx)
@@ -643,6 +697,7 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
         case_huge_steps(&st, s, &ctx);
         case_sunset_light(&st, s);
         case_camera_extremes(&st, s, &ctx);
+        case_star_extremes(&st, s, &ctx);
         sky_destroy(s);
         sky_osmesa_destroy(&ctx);
     }
