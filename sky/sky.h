@@ -184,9 +184,9 @@ typedef struct sky_config {
     sky_atmosphere_params atmosphere_params;
     /* HILLAIRE and BLEND: table sizes and samples; all zero = Hillaire's. */
     sky_lut_settings luts;
-    /* BLEND: 0 = the weight follows the sun (the analytic RAYLEIGH path by
-     * day, Hillaire's tables toward the horizon and in twilight); 1 = use
-     * blend_weight, 0 (analytic) .. 1 (Hillaire). */
+    /* BLEND: 0 = the weight follows the sun (Hillaire's tables alone with
+     * the sun below 15 degrees, half tables and half the analytic RAYLEIGH
+     * path above 60); 1 = use blend_weight, 0 (analytic) .. 1 (Hillaire). */
     int blend_manual;
     float blend_weight;
 } sky_config;
