@@ -238,6 +238,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     s->features = features;
     s->atm = atm;
     sky_atmosphere_effective(&atm, &s->atm_rgb);
+    sky_sun_irradiance_rgb(s->sun_irradiance_klx);
     s->atmosphere = cfg->atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg->atmosphere;
     s->world_is_identity = identity;
     for (int i = 0; i < 9; i++) s->horizon_to_world[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : cfg->horizon_to_world[i];

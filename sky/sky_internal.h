@@ -187,6 +187,7 @@ struct sky {
     sky_atmosphere_params atm;    /* checked; the Earth preset when zero        */
     sky_atmosphere_params atm_rgb; /* atm at the channels' effective wavelengths */
     sky_atmosphere_path atmosphere; /* resolved: never DEFAULT                  */
+    double sun_irradiance_klx[3];   /* sky_sun_irradiance_rgb, once            */
     struct sky_hillaire_tables *hillaire; /* HILLAIRE, BLEND (hillaire.c)       */
     unsigned char *skyview_encoded;       /* COMPAT20's 8-bit sky-view table   */
     int skyview_valid, skyview_uploaded; /* CPU table (COMPAT20) or GPU build done */
@@ -323,9 +324,10 @@ void sky_hillaire_destroy(sky *s);
 void sky_hillaire_frame(sky *s);
 void sky_hillaire_upload(sky *s);
 void sky_hillaire_eval(const sky *s, const double d[3], double rgb[3]);
-/* The sun above the atmosphere in linear sRGB, klx per channel (a 5778 K
- * blackbody of 128 klx). */
-extern const double sky_sun_irradiance_klx[3];
+/* The sun above the atmosphere in linear sRGB, klx per channel: the
+ * reference's (atmosphere/reference.c), so the physical paths and their
+ * yardstick are lit alike. */
+void sky_sun_irradiance_rgb(double rgb[3]);
 /* CIE 1931 XYZ to linear sRGB (IEC 61966-2-1). */
 void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 /* atmosphere/preetham.c, rayleigh.c: per-frame coefficients, and CPU twins

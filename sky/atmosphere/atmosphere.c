@@ -5,6 +5,7 @@
  * irradiance it casts on the ground, the horizon's colour for fog).
  */
 #include "../sky_internal.h"
+#include "reference.h"
 
 #include <math.h>
 
@@ -14,10 +15,14 @@ static const sky_uniform_desc atmosphere_uniforms[] = {
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
                                             (int)(sizeof atmosphere_uniforms / sizeof atmosphere_uniforms[0])};
 
-/* 5778 K blackbody, chromaticity (0.3260, 0.3354) on the Planckian locus,
- * in linear sRGB with luminance 128 klx (the solar illuminance above the
- * atmosphere, 1361 W/m^2 at about 94 lm/W). */
-const double sky_sun_irradiance_klx[3] = {128.0 * 1.1094, 128.0 * 0.9759, 128.0 * 0.9171};
+void sky_sun_irradiance_rgb(double rgb[3])
+{
+    /* the reference's sun: a 5778 K blackbody of 1361 W/m^2 through the
+     * same colour matching functions (125 klx) */
+    double xyz[3];
+    sky_ref_sun_xyz(xyz);
+    sky_xyz_to_linear_srgb(xyz, rgb);
+}
 
 void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
 {

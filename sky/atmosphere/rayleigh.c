@@ -105,7 +105,7 @@ void sky_rayleigh_frame(sky *s)
         f->tau_ozone[i] = (float)(a->ozone_absorption[i] * ozone_column);
         double depth = f->tau_rayleigh[i] * m_rayleigh + f->tau_mie_ext[i] * m_mie + f->tau_ozone[i] * m_ozone;
         f->sun_depth[i] = (float)fmin(depth, SLANT_DEPTH_MAX);
-        f->sun_irradiance[i] = (float)sky_sun_irradiance_klx[i];
+        f->sun_irradiance[i] = (float)s->sun_irradiance_klx[i];
         /* the direct beam (sun disc, sunlight on clouds and the host's
          * scene) through the same atmosphere */
         f->sun_transmittance[i] = (float)exp(-f->sun_depth[i]);
