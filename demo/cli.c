@@ -128,7 +128,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --luts small|default|large   hillaire/blend: table sizes and samples (x0.5, Hillaire's, x2)\n"
             "  --blend W                blend: fixed weight 0 (analytic) .. 1 (Hillaire); default follows the sun\n"
             "  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
-            "  --planet earth|hazy|mars the atmosphere's composition (rayleigh)\n"
+            "  --planet earth|hazy|mars the atmosphere's composition (rayleigh, hillaire, blend)\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse (or none)\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|minimal\n"
@@ -279,8 +279,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             cli->moon_scale = (float)v;
         } else if (!strcmp(opt, "--luts")) {
             /* Hillaire's tables: his sizes and samples scaled */
-            double k = val && !strcmp(val, "small") ? 0.5 : val && !strcmp(val, "large") ? 2.0 : val && !strcmp(val, "default") ? 1.0 : 0.0;
-            if (k == 0.0) return fail(err, len, "--luts: expected small, default or large, got '%s'", val ? val : "(nothing)");
+            double k = 0.0;
+            if (val && !strcmp(val, "small")) k = 0.5;
+            else if (val && !strcmp(val, "default")) k = 1.0;
+            else if (val && !strcmp(val, "large")) k = 2.0;
+            else return fail(err, len, "--luts: expected small, default or large, got '%s'", val ? val : "(nothing)");
             sky_lut_settings *l = &cli->luts;
             l->transmittance_width = (int)(256 * k), l->transmittance_height = (int)(64 * k);
             l->transmittance_steps = (int)(40 * k), l->multiscatter_size = (int)(32 * k);
