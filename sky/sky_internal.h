@@ -98,6 +98,8 @@ typedef struct sky_frame {
     float sun_transmittance[3]; /* direct sunlight through the atmosphere       */
     float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
     float sun_radius;        /* angular radius of the drawn disc, radians        */
+    float sun_true_dir[3];   /* the sun's centre without refraction              */
+    float refraction_pressure; /* Saemundsson's scale at the observer (astro.c)  */
     float sky_luminance;     /* kcd/m^2: scale of the day gradient               */
     float horizon_tint[3];   /* colour of the horizon under a low sun            */
     float night_luminance;   /* kcd/m^2: scale of the night sky background       */

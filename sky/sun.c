@@ -21,6 +21,8 @@ static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
     SKY_UF("u_sun_luminance", SKY_U_F1, sun_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
+    SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
+    SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
 const sky_snippet sky_sun_snippet = {NULL, NULL, sun_uniforms, (int)(sizeof sun_uniforms / sizeof sun_uniforms[0])};
@@ -66,6 +68,13 @@ void sky_sun_frame(sky *s)
     sky_frame *f = &s->frame;
     f->sun_radius = (float)SKY_SUN_RADIUS_RAD;
     f->sun_luminance = (float)SKY_SUN_LUMINANCE;
+    /* the disc is drawn where refraction puts each of its points
+     * (sun.frag): it needs the centre's true direction and the refraction
+     * scale of the observer's pressure */
+    double d[3];
+    sky_horizon_vector(s->astro.sun.alt_geometric, s->astro.sun.az, d);
+    for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)d[i];
+    f->refraction_pressure = (float)s->astro.pressure_factor;
 }
 
 int sky_sun_visible(const sky *s)

@@ -24,6 +24,7 @@ void test_atmosphere_error_against_reference(void);
 void test_atmosphere_gpu_tables_match_cpu(void);
 void test_atmosphere_extinction_follows_the_description(void);
 void test_atmosphere_observer_altitudes(void);
+void test_atmosphere_setting_sun_flattened(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
@@ -686,6 +687,76 @@ void test_atmosphere_observer_altitudes(void)
              profile == SKY_GL_CORE33 ? "core" : "compat", frames, bad);
         CHECK(frames == 4 * 73 && bad == 0, "%s: %ld NaN, infinite or negative values (or failed frames)",
               path_names[p], bad);
+        hdr_close(&h);
+    }
+}
+
+/* Refraction at every point of the sun's disc (sun.frag): a sun low over
+ * the horizon is flattened as the refraction formula says. Measured on a
+ * 1.5 degree view centred on the sun's apparent centre: the limb is where
+ * the disc falls below a fifth of its centre (the limb-darkened edge keeps
+ * 0.4). With the whole disc above the horizon (centre at 0.55 degree) the
+ * full height over the width; with the centre at 0 degree, where the
+ * horizon cuts the lower half away, the upper half-height over the
+ * half-width. Predicted: the true limbs (centre +- the radius) through
+ * astro.c's refraction. */
+void test_atmosphere_setting_sun_flattened(void)
+{
+    static const double targets[] = {0.55, 0.0};
+    const int size = 256;
+    const double fov = 1.5;
+    for (size_t k = 0; k < sizeof targets / sizeof targets[0]; k++) {
+        hdr_sky h;
+        if (hdr_open(&h, size, SKY_ATMOSPHERE_GRADIENT, SKY_GL_AUTO, 0.0f)) {
+            CHECK(0, "no sky");
+            return;
+        }
+        sky_observer o;
+        sky_get_observer(h.s, &o);
+        double t = time_for_altitude(&o, targets[k]);
+        sky_params p = sky_default_params();
+        p.cover = 0.0f;
+        p.time = (float)t;
+        sky_set_params(h.s, &p);
+        const sky_astro *a = &h.s->astro;
+        float view[16], proj[16];
+        sky_cli_camera_at(a->sun.az * 180.0 / SKY_PI, a->sun.alt * 180.0 / SKY_PI, fov, size, size, view, proj);
+        if (sky_draw(h.s, view, proj) != SKY_OK) {
+            CHECK(0, "draw: %s", sky_last_error(h.s));
+            hdr_close(&h);
+            continue;
+        }
+        sky_osmesa_finish(&h.ctx);
+        int c = size / 2; /* the centre falls on the corner of four pixels */
+        double centre = 0.25 * (hdr_pixel(&h, c - 1, c - 1)[1] + hdr_pixel(&h, c, c - 1)[1] + hdr_pixel(&h, c - 1, c)[1] +
+                                hdr_pixel(&h, c, c)[1]);
+        double edge = 0.2 * centre;
+        /* distances from the centre (pixel edges) to the last pixel over the threshold */
+        int up = 0, down = 0, left = 0, right = 0;
+        /* the width on the centre row; at the horizon that row is half
+         * ground, so two rows up (a chord 0.1 % shorter) */
+        int row = targets[k] > 0.3 ? c : c - 2;
+        while (up < c && hdr_pixel(&h, c, c - 1 - up)[1] > edge) up++;
+        while (down < c && hdr_pixel(&h, c, c + down)[1] > edge) down++;
+        while (left < c && hdr_pixel(&h, c - 1 - left, row)[1] > edge) left++;
+        while (right < c && hdr_pixel(&h, c + right, row)[1] > edge) right++;
+        double half_width = 0.5 * (left + right);
+        double r = h.s->frame.sun_radius, ht = a->sun.alt_geometric, pf = a->pressure_factor;
+        double top = ht + r + sky_refraction(ht + r, pf), bottom = ht - r + sky_refraction(ht - r, pf);
+        double centre_app = ht + sky_refraction(ht, pf);
+        double measured, expected;
+        if (targets[k] > 0.3) {
+            measured = (up + down) / (2.0 * half_width);
+            expected = (top - bottom) / (2.0 * r);
+        } else {
+            measured = up / half_width;
+            expected = (top - centre_app) / r;
+        }
+        NOTE("sun centre at %.2f deg apparent (%.2f true): %s height/width %.3f, predicted %.3f (%d up, %d down, "
+             "%.1f half-width px)", a->sun.alt * 180.0 / SKY_PI, ht * 180.0 / SKY_PI,
+             targets[k] > 0.3 ? "full" : "upper half", measured, expected, up, down, half_width);
+        CHECK(fabs(measured - expected) <= 0.05 && expected < 0.95, "flattening %.3f, predicted %.3f", measured,
+              expected);
         hdr_close(&h);
     }
 }

@@ -85,6 +85,7 @@ int test_failures;
     X(atmosphere_gpu_tables_match_cpu)           \
     X(atmosphere_extinction_follows_the_description) \
     X(atmosphere_observer_altitudes)             \
+    X(atmosphere_setting_sun_flattened)          \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
     X(reference_spectrum_and_units)              \
