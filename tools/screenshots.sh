@@ -27,6 +27,12 @@ for p in earth hazy mars; do
     $r --size 320x180 --atmosphere hillaire --planet $p --features sun --cover 0 --time 0.35 --yaw 100 --pitch 20 --fov 70 --out $out/planet-$p-day.png
     $r --size 320x180 --atmosphere hillaire --planet $p --features sun --cover 0 --time 0.255 --yaw 91 --pitch 15 --fov 70 --out $out/planet-$p-sunrise.png
 done
+# a setting sun flattened by refraction (issue 11): 2026-03-20, 40 N 0 E,
+# the centre 0.5 degree above the horizon, a 1.5-degree field on the sun
+q=$($r --query --time 0.2505 | grep '"sun"')
+alt=$(echo "$q" | sed 's/.*"sun": {"alt":\([-0-9.]*\).*/\1/')
+az=$(echo "$q" | sed 's/.*"sun": {[^}]*"az":\([-0-9.]*\).*/\1/')
+$r --size 240x240 --features sun --cover 0 --atmosphere hillaire --time 0.2505 --yaw "$az" --pitch "$alt" --fov 1.5 --out $out/sun-flattened.png
 # moon close-ups: the camera on the moon, a 4-degree field, the disc at c_d = 2.5
 moon() { # name date lat lon extra-features
     q=$($r --query --date "$2" --lat "$3" --lon "$4" | grep '"moon"')
