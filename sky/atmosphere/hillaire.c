@@ -66,43 +66,86 @@ static const sky_uniform_desc build_uniforms[] = {
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
                                           (int)(sizeof build_uniforms / sizeof build_uniforms[0])};
 
-/* One full-screen pass of a build program into the w x h corner of a
- * texture, through the tables' framebuffer; the host's framebuffer and
- * viewport come back after it (the rest is sky_draw's or sky_create's to
- * restore). */
-static void gpu_pass(sky *s, sky_program *prog, sky_texture_id target, int w, int h)
+/* Rendering into a table: the framebuffer bindings (draw and read),
+ * viewport, scissor and rasterizer-discard state the host had, put back by
+ * leave_table. Blending, depth, stencil, culling and the colour mask are
+ * set here too; sky_draw and sky_create restore those with the rest of the
+ * host's state. */
+typedef struct table_target {
+    GLint draw, read, viewport[4];
+    GLboolean scissor, discard;
+} table_target;
+
+static void enter_table(sky *s, sky_texture_id target, int w, int h, table_target *t)
 {
     const sky_gl *gl = &s->gl;
-    GLint previous = 0, viewport[4];
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
-    gl->glGetIntegerv(GL_VIEWPORT, viewport);
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &t->draw);
+    gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
+    gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
+    t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
+    t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
     gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
     gl->glViewport(0, 0, w, h);
-    sky_program_apply(s, prog);
-    gl->glDrawArrays(GL_TRIANGLES, 0, 3);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
-    gl->glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    gl->glDisable(GL_SCISSOR_TEST);
+    gl->glDisable(GL_RASTERIZER_DISCARD);
+    gl->glDisable(GL_BLEND);
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDisable(GL_STENCIL_TEST);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-/* Reads a table back from its texture into the CPU copy (RGB floats).
- * RGBA/FLOAT is the read-back every float framebuffer must support. */
+static void leave_table(sky *s, const table_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)t->draw);
+    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)t->read);
+    gl->glViewport(t->viewport[0], t->viewport[1], t->viewport[2], t->viewport[3]);
+    if (t->scissor) gl->glEnable(GL_SCISSOR_TEST);
+    if (t->discard) gl->glEnable(GL_RASTERIZER_DISCARD);
+}
+
+/* One full-screen pass of a build program into the w x h corner of a
+ * texture. */
+static void gpu_pass(sky *s, sky_program *prog, sky_texture_id target, int w, int h)
+{
+    table_target t;
+    enter_table(s, target, w, h, &t);
+    sky_program_apply(s, prog);
+    s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+    leave_table(s, &t);
+}
+
+/* Reads a table back from its texture into the CPU copy (RGB floats):
+ * RGBA/FLOAT, the read-back every float framebuffer supports, with the
+ * host's pixel-pack state set aside (a row length or a bound pack buffer
+ * would send the pixels elsewhere). Returns 0, or -1 on a GL error. */
 static int gpu_read(sky *s, sky_texture_id source, int w, int h, float *rgb)
 {
     const sky_gl *gl = &s->gl;
     float *rgba = malloc(sizeof(float) * 4u * (size_t)w * (size_t)h);
     if (!rgba) return -1;
-    GLint previous = 0;
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
-    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[source].id, 0);
+    GLint pack[4], pack_buffer = 0;
+    static const GLenum pack_names[4] = {GL_PACK_ROW_LENGTH, GL_PACK_SKIP_ROWS, GL_PACK_SKIP_PIXELS, GL_PACK_ALIGNMENT};
+    for (int i = 0; i < 4; i++) gl->glGetIntegerv(pack_names[i], &pack[i]);
+    gl->glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+    for (int i = 0; i < 3; i++) gl->glPixelStorei(pack_names[i], 0);
     gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    while (gl->glGetError() != GL_NO_ERROR) {}
+    table_target t;
+    enter_table(s, source, w, h, &t);
     gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
-    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-        for (int c = 0; c < 3; c++) rgb[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
+    GLenum e = gl->glGetError();
+    leave_table(s, &t);
+    for (int i = 0; i < 4; i++) gl->glPixelStorei(pack_names[i], pack[i]);
+    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
+    if (e == GL_NO_ERROR)
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+            for (int c = 0; c < 3; c++) rgb[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
     free(rgba);
-    return 0;
+    return e == GL_NO_ERROR ? 0 : -1;
 }
 
 /* CORE33: the three tables as float textures, the framebuffer that
@@ -130,13 +173,11 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
                           err_len) ||
         sky_program_build(s, &s->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
         return -1;
-    GLint previous = 0;
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
     gl->glGenFramebuffers(1, &s->skyview_fbo);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
-    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[SKY_TEX_SKYVIEW].id, 0);
+    table_target target;
+    enter_table(s, SKY_TEX_SKYVIEW, 1, 1, &target);
     GLenum status = gl->glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)previous);
+    leave_table(s, &target);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         sky_format(err, err_len, "sky_create: the context cannot render into a float texture (status 0x%04x)", status);
         return -1;
@@ -176,7 +217,7 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
     gpu_pass(s, &s->multiscatter_build, SKY_TEX_MULTISCATTER, mn, mn);
     if (gpu_read(s, SKY_TEX_TRANSMITTANCE, tw, th, s->hillaire->transmittance) ||
         gpu_read(s, SKY_TEX_MULTISCATTER, mn, mn, s->hillaire->multiscatter)) {
-        sky_format(err, err_len, "out of memory reading the lookup tables back");
+        sky_format(err, err_len, "sky_create: reading the lookup tables back failed (out of memory or a GL error)");
         return -1;
     }
     return 0;
@@ -235,8 +276,8 @@ void sky_hillaire_destroy(sky *s)
 }
 
 /* COMPAT20's encoding: a 16-bit level of log2 luminance over the table's
- * top SKYVIEW_STOPS stops, high byte in R and low byte in G, and the rg
- * chromaticity in B and A. */
+ * top SKYVIEW_STOPS stops (0: black, below them), high byte in R and low
+ * byte in G, and the rg chromaticity in B and A. */
 static void encode_skyview(sky *s, double log2_floor)
 {
     const sky_hillaire_settings *set = &s->hillaire->settings;
@@ -245,8 +286,10 @@ static void encode_skyview(sky *s, double log2_floor)
     for (int i = 0; i < n; i++) {
         double r = fmax(t[3 * i], 0.0), g = fmax(t[3 * i + 1], 0.0), b = fmax(t[3 * i + 2], 0.0);
         double sum = r + g + b, Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-        double level = Y > 0.0 ? (log2(Y) - log2_floor) / SKYVIEW_STOPS : 0.0;
-        unsigned q = (unsigned)lround(sky_clampd(level, 0.0, 1.0) * 65535.0);
+        /* level 0 is black (the ground in the planet's shadow), the rest
+         * the log scale from the floor up */
+        double level = Y > 0.0 ? (log2(Y) - log2_floor) / SKYVIEW_STOPS : -1.0;
+        unsigned q = level > 0.0 ? (unsigned)lround(sky_clampd(level, 1.0 / 65535.0, 1.0) * 65535.0) : 0u;
         unsigned char *o = s->skyview_encoded + 4 * i;
         o[0] = (unsigned char)(q >> 8);
         o[1] = (unsigned char)(q & 255u);

@@ -115,9 +115,13 @@ void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_pa
     for (int c = 0; c < 3; c++) {
         double r, ms, me, oz;
         sky_ref_coefficients(in, lambda[c], &r, &ms, &me, &oz);
-        out->rayleigh_scattering[c] = (float)r;
-        out->mie_scattering[c] = (float)ms;
-        out->mie_extinction[c] = (float)me;
-        out->ozone_absorption[c] = (float)oz;
+        /* between the nodes the smooth spectrum may overshoot a node's
+         * value: held within the description's own limits (0..10/km,
+         * extinction >= scattering) so every valid description stays
+         * valid here */
+        out->rayleigh_scattering[c] = (float)sky_clampd(r, 0.0, 10.0);
+        out->mie_scattering[c] = (float)sky_clampd(ms, 0.0, 10.0);
+        out->mie_extinction[c] = (float)sky_clampd(fmax(me, ms), 0.0, 10.0);
+        out->ozone_absorption[c] = (float)sky_clampd(oz, 0.0, 10.0);
     }
 }

@@ -16,7 +16,7 @@ vec3 sky_skyview_decode(vec2 uv)
 {
     vec4 t = SKY_TEX2D(u_skyview, uv);
     float level = (t.r * 65280.0 + t.g * 255.0) / 65535.0;
-    float Y = exp2(u_skyview_decode.y + level * u_skyview_decode.z);
+    float Y = level > 0.0 ? exp2(u_skyview_decode.y + level * u_skyview_decode.z) : 0.0; /* 0: black */
     vec3 c = vec3(t.b, t.a, 1.0 - t.b - t.a);
     return c * (Y / max(dot(c, vec3(0.2126, 0.7152, 0.0722)), 1e-4));
 }

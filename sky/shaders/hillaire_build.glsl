@@ -80,7 +80,10 @@ float hl_layout_t(float kf, float n1, float n2, float tl, float len)
 
 float hl_layout_n1(float n, float tl, float len)
 {
-    return tl <= 0.0 ? 0.0 : (tl >= len ? n : clamp(floor(n * tl / len + 0.5), 1.0, n - 1.0));
+    /* (GLSL's clamp is undefined for min > max: the C code's order) */
+    if (n < 2.0 || tl <= 0.0) return 0.0;
+    if (tl >= len) return n;
+    return min(max(floor(n * tl / len + 0.5), 1.0), n - 1.0);
 }
 
 float hl_radius(float r, float mu, float t) { return hl_clamp_sqrt(r * r + 2.0 * r * mu * t + t * t); }

@@ -50,7 +50,7 @@ void main()
     }
     /* samples: all of them for the longest rays, a third for short ones */
     float full = 2.0 * u_hl_geometry.z;
-    float n = clamp(ceil(u_hl_misc.z * clamp(sqrt(max(len / full, 0.0)), 1.0 / 3.0, 1.0)), 4.0, u_hl_misc.z);
+    float n = min(max(ceil(u_hl_misc.z * clamp(sqrt(max(len / full, 0.0)), 1.0 / 3.0, 1.0)), 4.0), u_hl_misc.z);
     /* segments close quadratically onto the ray's lowest point */
     float tl = clamp(-r * mu, 0.0, len);
     float n1 = hl_layout_n1(n, tl, len), n2 = n - n1;
@@ -80,7 +80,7 @@ void main()
         ra = rb;
         da = db;
     }
-    if (ground && len > 0.0) {
+    if (ground) { /* at altitude 0 the ray has no length, the ground still light */
         float rg = hl_radius(r, mu, len);
         float mug = (r0 * sun.y + (start + len) * cos_theta) / rg;
         if (mug > 0.0) L += transmittance * u_hl_albedo / SKY_PI * mug * hl_sun_transmittance(R, 0.0, clamp(mug, 0.0, 1.0));
