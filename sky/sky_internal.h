@@ -174,6 +174,13 @@ typedef struct sky_program {
     GLint locations[SKY_MAX_UNIFORMS];
 } sky_program;
 
+/* A physical path's sky in a few numbers (atmosphere.c): the mean
+ * luminance over the upper hemisphere, the irradiance on an upward surface
+ * and the horizon's luminance, without the night sky's own light. */
+typedef struct sky_summary {
+    double mean, irradiance[3], fog[3];
+} sky_summary;
+
 /* ---- the sky ------------------------------------------------------------ */
 struct sky {
     sky_config cfg;
@@ -195,6 +202,8 @@ struct sky {
     int skyview_valid, skyview_uploaded; /* CPU table (COMPAT20) or GPU build done */
     double skyview_sun_mu, skyview_altitude_km, skyview_log2_floor;
     double lut_ms;                        /* table builds since the last draw  */
+    sky_summary summary;                  /* of the last table rebuild (atmosphere.c) */
+    int summary_valid;                    /* 0: the tables changed since         */
     sky_astro astro;              /* for observer + time slider; see observer.c */
     double scintillation_phase;   /* wrapped: the stars' clock (stars.c)       */
     double cloud_offsets[4][2];   /* wrapped into [0,1): layers 0, 1, detail, upper */

@@ -8,6 +8,7 @@
 #include "reference.h"
 
 #include <math.h>
+#include <string.h>
 
 static const sky_uniform_desc atmosphere_uniforms[] = {
     SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
@@ -98,12 +99,11 @@ static void eval_blend(const sky *s, const double d[3], double rgb[3])
  * in the elevation sine (4 nodes on 0..1) times 8 azimuths. The irradiance
  * on an upward surface is 2 pi int L mu dmu; the mean luminance is the
  * solid-angle mean over the upper hemisphere; fog takes the lowest ring. */
-static void summarise(sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]))
+static void summarise(const sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]), sky_summary *out)
 {
     static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
     static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
-    sky_frame *f = &s->frame;
-    double irradiance[3] = {0, 0, 0}, fog[3] = {0, 0, 0}, mean = 0.0;
+    memset(out, 0, sizeof *out);
     for (int k = 0; k < 4; k++) {
         double ring[3] = {0, 0, 0};
         double c = sqrt(1.0 - mu_node[k] * mu_node[k]);
@@ -112,19 +112,36 @@ static void summarise(sky *s, void (*eval)(const sky *, const double d[3], doubl
             eval(s, d, rgb);
             for (int i = 0; i < 3; i++) ring[i] += rgb[i] / 8.0;
         }
-        for (int i = 0; i < 3; i++) irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * ring[i];
-        mean += mu_weight[k] * (0.2126 * ring[0] + 0.7152 * ring[1] + 0.0722 * ring[2]);
+        for (int i = 0; i < 3; i++) out->irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * ring[i];
+        out->mean += mu_weight[k] * (0.2126 * ring[0] + 0.7152 * ring[1] + 0.0722 * ring[2]);
         if (k == 0)
-            for (int i = 0; i < 3; i++) fog[i] = ring[i];
+            for (int i = 0; i < 3; i++) out->fog[i] = ring[i];
     }
+}
+
+/* The summary into the frame, with the night sky's own light added. */
+static void apply_summary(sky *s, const sky_summary *sum)
+{
+    sky_frame *f = &s->frame;
     /* The rest of the frame (clouds, moon, exposure) reads sky_luminance
      * as the gradient path defines it: about 2.5 times the hemisphere's
      * mean luminance. */
-    f->sky_luminance = (float)(2.5 * mean);
+    f->sky_luminance = (float)(2.5 * sum->mean);
     for (int i = 0; i < 3; i++) {
-        f->ambient_rgb[i] = (float)(irradiance[i] + SKY_PI * f->night_luminance);
-        f->fog_rgb[i] = (float)(fog[i] + f->night_luminance);
+        f->ambient_rgb[i] = (float)(sum->irradiance[i] + SKY_PI * f->night_luminance);
+        f->fog_rgb[i] = (float)(sum->fog[i] + f->night_luminance);
     }
+}
+
+/* The analytic paths summarise every frame (32 closed-form evaluations);
+ * the tables' paths march rays, 85 us a frame, so their summary is kept
+ * until the sky-view table is rebuilt: it depends on the sun's elevation
+ * and the observer's altitude alone (azimuthal means), like the table. */
+static void summarise_path(sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]), int cached)
+{
+    if (!cached || !s->summary_valid) summarise(s, eval, &s->summary);
+    s->summary_valid = cached;
+    apply_summary(s, &s->summary);
 }
 
 /* The blend's automatic weight: Hillaire's tables (1) with the sun below
@@ -159,20 +176,20 @@ void sky_atmosphere_frame(sky *s)
     switch (s->atmosphere) {
     case SKY_ATMOSPHERE_PREETHAM:
         sky_preetham_frame(s);
-        summarise(s, eval_preetham);
+        summarise_path(s, eval_preetham, 0);
         break;
     case SKY_ATMOSPHERE_RAYLEIGH:
         sky_rayleigh_frame(s);
-        summarise(s, eval_rayleigh);
+        summarise_path(s, eval_rayleigh, 0);
         break;
     case SKY_ATMOSPHERE_HILLAIRE:
         sky_hillaire_frame(s);
-        summarise(s, sky_hillaire_eval);
+        summarise_path(s, sky_hillaire_eval, 1);
         break;
     case SKY_ATMOSPHERE_BLEND:
         sky_hillaire_frame(s); /* computes the analytic path's state too */
         s->frame.blend_weight = blend_weight(s);
-        summarise(s, eval_blend);
+        summarise_path(s, eval_blend, 1);
         break;
     default: sky_gradient_frame(s); break;
     }

@@ -327,6 +327,7 @@ void sky_hillaire_frame(sky *s)
         s->skyview_sun_mu = mu;
         s->skyview_altitude_km = alt_km;
         s->skyview_valid = 1;
+        s->summary_valid = 0; /* the host's lighting follows the new table */
         s->skyview_uploaded = 0;
     }
     const sky_texture *tex = &s->textures[SKY_TEX_SKYVIEW];
