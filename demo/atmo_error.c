@@ -3,6 +3,7 @@
  */
 #include "atmo_error.h"
 
+#include "astro.h"
 #include "atmosphere/reference.h"
 #include "cli.h"
 #include "osmesa_ctx.h"
@@ -28,13 +29,23 @@ void sky_atmo_direction(int k, double sun_az_deg, double *elevation_deg, double 
     *weight = w_az / ((SKY_ATMO_AZIMUTHS - 1) * (double)SKY_ATMO_RINGS);
 }
 
-/* Horizon-frame unit vector: +x east, +y up, +z south; azimuth from north. */
+/* Horizon-frame unit vector for degrees (astro.c's, which takes radians). */
 static void horizon_dir(double elevation_deg, double azimuth_deg, double d[3])
 {
-    double e = elevation_deg * PI / 180.0, a = azimuth_deg * PI / 180.0;
-    d[0] = cos(e) * sin(a);
-    d[1] = sin(e);
-    d[2] = -cos(e) * cos(a);
+    sky_horizon_vector(elevation_deg * PI / 180.0, azimuth_deg * PI / 180.0, d);
+}
+
+double sky_atmo_time_for_altitude(const sky_observer *o, double alt_deg)
+{
+    double lo = 0.0, hi = 0.5;
+    for (int i = 0; i < 60; i++) {
+        double mid = 0.5 * (lo + hi);
+        sky_astronomy a;
+        if (sky_compute_astronomy(o, (float)mid, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) return 0.5 * (lo + hi);
+        if (a.sun.alt_deg < alt_deg) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
 }
 
 /* ---- the reference, computed and cached ----------------------------------------------------- */
@@ -313,15 +324,8 @@ int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *base, sky_
     if (sky_compute_astronomy(&o, 0.5f, NULL, 0, NULL, &a, NULL, 0) == SKY_OK) o.latitude_deg = a.sun.dec_deg;
     double day_weight = 0.0, tw_weight = 0.0;
     for (int si = 0; si < SKY_ATMO_SUNS && !rc; si++) {
-        /* morning: the sun's elevation rises with the slider up to noon */
-        double lo = 0.0, hi = 0.5, el = 0.0, az = 0.0, target = sky_atmo_sun_elevations[si];
-        for (int i = 0; i < 50; i++) {
-            double mid = 0.5 * (lo + hi);
-            sun_of(s, &o, mid, &el, &az);
-            if (el < target) lo = mid;
-            else hi = mid;
-        }
-        sun_of(s, &o, target >= 89.99 ? 0.5 : 0.5 * (lo + hi), &el, &az);
+        double el = 0.0, az = 0.0, target = sky_atmo_sun_elevations[si];
+        sun_of(s, &o, sky_atmo_time_for_altitude(&o, target), &el, &az);
         for (int f = 0; f < FACES && !rc; f++) {
             if (sky_draw(s, faces[f].view, faces[f].proj) != SKY_OK) {
                 snprintf(err, err_len, "sky_draw: %s", sky_last_error(s));

@@ -52,6 +52,11 @@ typedef struct sky_atmo_errors {
 int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *cfg, sky_atmo_errors *out, char *err,
                      size_t err_len);
 
+/* The morning time-slider value (0..0.5) that puts the sun's apparent
+ * centre at alt_deg for the observer (bisection; at the highest the sun
+ * gets, noon). */
+double sky_atmo_time_for_altitude(const sky_observer *o, double alt_deg);
+
 /* CIEDE2000 colour difference of two CIELAB colours (Sharma, Wu & Dalal
  * 2005). */
 double sky_atmo_de2000(const double lab1[3], const double lab2[3]);

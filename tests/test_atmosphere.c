@@ -98,28 +98,6 @@ static sky_observer equator_equinox(void)
     return o;
 }
 
-static double sun_altitude_at(const sky_observer *o, double t)
-{
-    sky_astronomy a;
-    if (sky_compute_astronomy(o, (float)t, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) return NAN;
-    return a.sun.alt_deg;
-}
-
-/* The morning time-slider value that puts the sun's apparent centre at
- * alt_deg (bisection; the altitude rises monotonically from 0 to 0.5). */
-static double time_for_altitude(const sky_observer *o, double alt_deg)
-{
-    double lo = 0.0, hi = 0.5;
-    for (int i = 0; i < 60; i++) {
-        double mid = 0.5 * (lo + hi);
-        if (sun_altitude_at(o, mid) < alt_deg)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
 static int hdr_draw(hdr_sky *h, const sky_observer *o, double t, const sky_params *base)
 {
     sky_params p = base ? *base : sky_default_params();
@@ -161,8 +139,7 @@ static int pixel_dir(const hdr_sky *h, int x, int y, double d[3])
 
 static void dir_at(double alt_deg, double az_deg, double d[3])
 {
-    double e = alt_deg * SKY_PI / 180.0, a = az_deg * SKY_PI / 180.0;
-    d[0] = cos(e) * sin(a), d[1] = sin(e), d[2] = -cos(e) * cos(a);
+    sky_horizon_vector(alt_deg * SKY_PI / 180.0, az_deg * SKY_PI / 180.0, d);
 }
 
 void test_atmosphere_paths_finite_for_every_sun_position(void)
@@ -237,7 +214,7 @@ void test_atmosphere_clear_sky_colours(void)
         }
         /* a high sun (60 degrees): Rayleigh's lambda^-4 makes the zenith
          * bluer than the horizon, whose long path reddens and whitens it */
-        double t60 = time_for_altitude(&o, 60.0);
+        double t60 = sky_atmo_time_for_altitude(&o, 60.0);
         if (hdr_draw(&h, &o, t60, &clear) == 0) {
             double d[3];
             dir_at(90.0, 0.0, d);
@@ -249,7 +226,7 @@ void test_atmosphere_clear_sky_colours(void)
         }
         /* a setting sun (2 degrees, in the east): the sky beside it is redder
          * than the zenith */
-        double t2 = time_for_altitude(&o, 2.0);
+        double t2 = sky_atmo_time_for_altitude(&o, 2.0);
         if (hdr_draw(&h, &o, t2, &clear) == 0) {
             sky_astronomy a;
             sky_get_astronomy(h.s, &a);
@@ -328,7 +305,7 @@ void test_atmosphere_shaders_match_cpu_twins(void)
         for (size_t k = 0; k < sizeof altitudes / sizeof altitudes[0]; k++) {
             sky_params clear = sky_default_params();
             clear.cover = 0.0f;
-            clear.time = (float)time_for_altitude(&o, altitudes[k]);
+            clear.time = (float)sky_atmo_time_for_altitude(&o, altitudes[k]);
             if (sky_set_observer(h.s, &o) != SKY_OK || sky_set_params(h.s, &clear) < 0) continue;
             sky_astronomy a;
             sky_get_astronomy(h.s, &a);
@@ -413,7 +390,7 @@ void test_atmosphere_continuous_across_horizon(void)
         for (int k = 0; k < 3 && prev; k++) {
             sky_params clear = sky_default_params();
             clear.cover = 0.0f;
-            if (hdr_draw(&h, &o, time_for_altitude(&o, altitudes[k]), &clear)) {
+            if (hdr_draw(&h, &o, sky_atmo_time_for_altitude(&o, altitudes[k]), &clear)) {
                 CHECK(0, "%s: frame failed", path_names[p]);
                 break;
             }
@@ -449,7 +426,7 @@ void test_atmosphere_preetham_outside_its_fit(void)
     sky_observer o = equator_equinox();
     static const float pairs[2][2] = {{1.0f, 2.0f}, {64.0f, 10.0f}};
     for (int k = 0; k < 2; k++) {
-        double t = time_for_altitude(&o, 20.0);
+        double t = sky_atmo_time_for_altitude(&o, 20.0);
         float *img[2] = {NULL, NULL};
         for (int j = 0; j < 2; j++) {
             hdr_sky h;
@@ -721,7 +698,7 @@ void test_atmosphere_setting_sun_flattened(void)
         }
         sky_observer o;
         sky_get_observer(h.s, &o);
-        double t = time_for_altitude(&o, targets[k]);
+        double t = sky_atmo_time_for_altitude(&o, targets[k]);
         sky_params p = sky_default_params();
         p.cover = 0.0f;
         p.time = (float)t;

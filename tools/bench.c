@@ -269,14 +269,20 @@ typedef struct atmo_row {
     sky_atmo_errors err;
 } atmo_row;
 
+/* A setting's options after the given leading ones; returns argc. */
+static int setting_argv(const atmo_setting *a, char **argv, int argc)
+{
+    for (int i = 0; i < 6 && a->args[i]; i++) argv[argc++] = (char *)a->args[i];
+    return argc;
+}
+
 /* One setting in one profile: the frame of the full sky's atmosphere and
  * sun at the bench size (the default camera of sky-render, morning sun). */
 static int bench_atmosphere(const atmo_setting *a, sky_gl_profile gl, int w, int h, int frames, double baseline,
                             atmo_row *out)
 {
     char *argv[12] = {"sky-bench", "--features", "sun", "--time", "0.35"};
-    int argc = 5;
-    for (int i = 0; i < 6 && a->args[i]; i++) argv[argc++] = (char *)a->args[i];
+    int argc = setting_argv(a, argv, 5);
     row r;
     if (bench_args(argc, argv, a->path, gl, w, h, frames, &r)) return -1;
     out->setting = a;
@@ -293,8 +299,7 @@ static int bench_atmosphere(const atmo_setting *a, sky_gl_profile gl, int w, int
 static int measure_atmosphere(atmo_row *out, const sky_atmo_reference *ref, sky_gl_profile gl)
 {
     char *argv[8] = {"sky-bench"};
-    int argc = 1;
-    for (int i = 0; i < 6 && out->setting->args[i]; i++) argv[argc++] = (char *)out->setting->args[i];
+    int argc = setting_argv(out->setting, argv, 1);
     sky_cli cli;
     char err[512];
     if (sky_cli_parse(&cli, argc, argv, 0, err, sizeof err)) return -1;
