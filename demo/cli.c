@@ -499,8 +499,10 @@ void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place
             "\"axis_angle\":%.6f, \"parallactic_angle\":%.6f},\n",
             a->moon.distance_km, a->moon_illuminated_fraction, a->moon_phase_angle_deg, a->moon_bright_limb_deg,
             a->moon_libration_lat_deg, a->moon_libration_lon_deg, a->moon_axis_angle_deg, a->moon_parallactic_deg);
-    fprintf(out, " \"eclipse\": {\"umbral_magnitude\":%.6f, \"penumbral_magnitude\":%.6f},\n \"stars\": [",
-            a->umbral_magnitude, a->penumbral_magnitude);
+    fprintf(out, " \"eclipse\": {\"umbral_magnitude\":%.6f, \"penumbral_magnitude\":%.6f},\n", a->umbral_magnitude,
+            a->penumbral_magnitude);
+    fprintf(out, " \"solar_eclipse\": {\"obscuration\":%.6f, \"magnitude\":%.6f, \"flux_fraction\":%.6f},\n \"stars\": [",
+            a->solar_obscuration, a->solar_magnitude, a->solar_flux_fraction);
     for (int i = 0; i < count; i++) {
         const sky_star_place *p = &stars[i];
         if (p->found)

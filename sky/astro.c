@@ -358,6 +358,7 @@ static void body_place(const sky_astro *a, const double obs_eq[3], sky_astro_bod
     double v[3], h[3];
     spherical_to_vec(b->ra, b->dec, v);
     for (int i = 0; i < 3; i++) v[i] = v[i] * b->distance_km - obs_eq[i];
+    b->topo_distance_km = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     mat_vec(a->horizon, v, h);
     horizon_from_vector(h, a->pressure_factor, &b->alt, &b->alt_geometric, &b->az, b->dir);
 }
@@ -378,6 +379,60 @@ static double separation(double ra1, double dec1, double ra2, double dec2)
     double sd = sin((dec2 - dec1) / 2), sr = sin((ra2 - ra1) / 2);
     double h = sd * sd + cos(dec1) * cos(dec2) * sr * sr;
     return 2.0 * safe_asin(sqrt(clamp(h, 0.0, 1.0)));
+}
+
+/* Area of the lens where two discs of radii r1, r2 at distance d overlap. */
+static double overlap_area(double r1, double r2, double d)
+{
+    if (d >= r1 + r2) return 0.0;
+    double rmin = fmin(r1, r2);
+    if (d <= fabs(r1 - r2)) return PI * rmin * rmin;
+    double c1 = clamp((d * d + r1 * r1 - r2 * r2) / (2.0 * d * r1), -1.0, 1.0);
+    double c2 = clamp((d * d + r2 * r2 - r1 * r1) / (2.0 * d * r2), -1.0, 1.0);
+    double k = (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2);
+    return r1 * r1 * acos(c1) + r2 * r2 * acos(c2) - 0.5 * sqrt(fmax(k, 0.0));
+}
+
+void sky_solar_eclipse(double sun_radius, double moon_radius, double separation, double *obscuration,
+                       double *magnitude, double *flux_fraction)
+{
+    double rs = fmax(sun_radius, 1e-12), rm = fmax(moon_radius, 0.0), d = fmax(separation, 0.0);
+    double covered = 0.0, mag = 0.0, flux = 1.0;
+    if (isfinite(rs) && isfinite(rm) && isfinite(d) && d < rs + rm) {
+        covered = clamp(overlap_area(rs, rm, d) / (PI * rs * rs), 0.0, 1.0);
+        mag = (rs + rm - d) / (2.0 * rs);
+        /* The limb-darkened light behind the moon (Schneegans et al.
+         * eq. 1), over rings of the sun's disc at mu = sqrt(1 - (rho/R)^2),
+         * where rho drho = -R^2 mu dmu: each ring weighted by its
+         * brightness and the arc of it inside the moon's disc. Rings
+         * nearer the sun's centre than |d - r_m| lie wholly inside (or
+         * outside) the moon: closed form. Between |d - r_m| and d + r_m
+         * the arc opens like a square root at both ends: mu = c + h cos t
+         * with the midpoint rule in t takes the roots out. */
+        const double u = SKY_SUN_LIMB_DARKENING;
+        double rho_a = fmin(fabs(d - rm), rs), rho_b = fmin(d + rm, rs);
+        double mu_a = sqrt(fmax(1.0 - (rho_a / rs) * (rho_a / rs), 0.0));
+        double mu_b = sqrt(fmax(1.0 - (rho_b / rs) * (rho_b / rs), 0.0));
+        double hidden = 0.0;
+        if (rm > d) /* the rings inside rho_a are covered whole */
+            hidden = 2.0 * PI * ((1.0 - u) * (1.0 - mu_a * mu_a) / 2.0 + u * (1.0 - mu_a * mu_a * mu_a) / 3.0);
+        const int n = 256;
+        double c = 0.5 * (mu_a + mu_b), h = 0.5 * (mu_a - mu_b), partial = 0.0;
+        for (int i = 0; h > 0.0 && i < n; i++) {
+            double t = (i + 0.5) * PI / n, mu = c + h * cos(t), rho = rs * sqrt(fmax(1.0 - mu * mu, 0.0));
+            double arc = rho > 0.0 && d > 0.0
+                             ? 2.0 * acos(clamp((rho * rho + d * d - rm * rm) / (2.0 * rho * d), -1.0, 1.0))
+                             : 0.0;
+            partial += (1.0 - u * (1.0 - mu)) * arc * mu * h * sin(t);
+        }
+        hidden += partial * PI / n;
+        /* per unit R^2; the whole disc gives pi (1 - u/3) */
+        hidden *= rs * rs;
+        flux = clamp(1.0 - hidden / (PI * rs * rs * (1.0 - u / 3.0)), 0.0, 1.0);
+    }
+    if (obscuration) *obscuration = covered;
+    if (magnitude) *magnitude = mag;
+    if (flux_fraction) *flux_fraction = flux;
 }
 
 static void set_error(char *err, size_t len, const char *fmt, ...)
@@ -492,11 +547,40 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
     a->penumbral_magnitude =
         (a->penumbra_radius + a->moon_semidiameter - a->shadow_distance) / (2.0 * a->moon_semidiameter);
 
+    /* solar eclipse: the discs as the observer sees them (topocentric,
+     * before refraction, which moves both alike) */
+    double sun_h[3], moon_h[3], cr[3];
+    sky_horizon_vector(a->sun.alt_geometric, a->sun.az, sun_h);
+    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, moon_h);
+    cr[0] = sun_h[1] * moon_h[2] - sun_h[2] * moon_h[1];
+    cr[1] = sun_h[2] * moon_h[0] - sun_h[0] * moon_h[2];
+    cr[2] = sun_h[0] * moon_h[1] - sun_h[1] * moon_h[0];
+    a->sun_moon_separation = atan2(sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]),
+                                   sun_h[0] * moon_h[0] + sun_h[1] * moon_h[1] + sun_h[2] * moon_h[2]);
+    a->sun_topo_semidiameter = atan(SUN_RADIUS_KM / a->sun.topo_distance_km);
+    a->moon_topo_semidiameter = safe_asin(MOON_RADIUS_KM / a->moon.topo_distance_km);
+    sky_solar_eclipse(a->sun_topo_semidiameter, a->moon_topo_semidiameter, a->sun_moon_separation,
+                      &a->solar_obscuration, &a->solar_magnitude, &a->solar_flux_fraction);
+
     /* day-night fades (Mueller sec. 5), s_z the sun's up component; the
      * powers act on clamped bases so they stay finite */
     double s_z = a->sun.dir[1];
     a->star_visibility = 1.0 / sqrt(1.0 + pow(clamp(s_z + 1.14, 0.0, 2.14), 32.0));
     a->moon_visibility = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(clamp(s_z + 1.05, 0.0, 2.05), 32.0));
+    /* A deep solar eclipse darkens the sky like a sun 6 degrees below the
+     * horizon: once the zenith keeps less than 1 % of its light, the fades
+     * move toward their values there (fully at 0.1 %, reached within a
+     * minute of totality), so the bright stars come out. */
+    double residual = a->solar_flux_fraction + (1.0 - a->solar_flux_fraction) * SKY_ECLIPSE_ZENITH_RESIDUAL;
+    double dark = log10(fmax(residual, 1e-12));
+    dark = clamp((dark + 2.0) / -1.0, 0.0, 1.0);
+    dark = dark * dark * (3.0 - 2.0 * dark);
+    if (dark > 0.0) {
+        double s6 = sin(-6.0 * DEG);
+        double star6 = 1.0 / sqrt(1.0 + pow(s6 + 1.14, 32.0)), moon6 = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(s6 + 1.05, 32.0));
+        a->star_visibility += dark * fmax(star6 - a->star_visibility, 0.0);
+        a->moon_visibility += dark * fmax(moon6 - a->moon_visibility, 0.0);
+    }
 
     /* stars: one precession-nutation matrix for the frame (Mueller eq. 7-8)
      * and the annual aberration as Earth's velocity over c (Meeus 23.2 in

@@ -42,7 +42,8 @@ typedef struct sky_astro_observer {
 
 typedef struct sky_astro_body {
     double ra, dec;            /* geocentric apparent, of date              */
-    double distance_km;
+    double distance_km;        /* geocentric                                */
+    double topo_distance_km;   /* from the observer                         */
     double alt, alt_geometric; /* topocentric; alt includes refraction     */
     double az;
     double dir[3];             /* horizon frame (+x east, +y up, +z south),
@@ -68,7 +69,16 @@ typedef struct sky_astro {
     /* lunar eclipse (Danjon's enlarged shadow) */
     double umbral_magnitude, penumbral_magnitude;
     double umbra_radius, penumbra_radius, shadow_distance; /* angles        */
-    /* day-night fade factors (Mueller sec. 5) */
+    /* solar eclipse seen by the observer (topocentric, unrefracted) */
+    double sun_topo_semidiameter, moon_topo_semidiameter;
+    double sun_moon_separation;    /* between the discs' centres               */
+    double solar_obscuration;      /* fraction of the sun's disc area covered  */
+    double solar_magnitude;        /* fraction of its diameter covered (> 1:
+                                      total), 0 without contact              */
+    double solar_flux_fraction;    /* the limb-darkened sun's light still
+                                      reaching the observer, 0..1          */
+    /* day-night fade factors (Mueller sec. 5; during a deep solar eclipse
+     * they follow the dimmed sun) */
     double star_visibility, moon_visibility;
     /* stars: J2000 unit vector -> apparent direction of date in the
      * horizon frame = horizon * normalize(precession_nutation * v + aberration) */
@@ -102,6 +112,25 @@ void sky_astro_star(const sky_astro *a, const sky_star *star, double *alt, doubl
  * altitude h, scaled by pressure_factor; continuous and finite for every
  * h: below -1 degree it tapers linearly to 0 at -6 degrees. */
 double sky_refraction(double h, double pressure_factor);
+
+/* Limb darkening of the drawn and eclipsed sun: I(mu) = 1 - u (1 - mu)
+ * (Schneegans et al. eq. 1, u = 0.6; sun.frag uses the same profile). */
+#define SKY_SUN_LIMB_DARKENING 0.6
+
+/* A solar eclipse from its discs: angular radii of sun and moon and the
+ * separation of their centres (radians, any non-negative values). Gives
+ * the fraction of the sun's area covered, the eclipse magnitude (fraction
+ * of the sun's diameter covered; above 1 when total) and the fraction of
+ * the limb-darkened disc's light left uncovered. */
+void sky_solar_eclipse(double sun_radius, double moon_radius, double separation, double *obscuration,
+                       double *magnitude, double *flux_fraction);
+
+/* The sky's brightness left at the zenith and at the horizon during a
+ * solar eclipse, as fractions of the uneclipsed sky's: the light of the
+ * uncovered sun plus, around totality, what the air outside the moon's
+ * shadow scatters in (brightest along the horizon). */
+#define SKY_ECLIPSE_ZENITH_RESIDUAL 3e-4
+#define SKY_ECLIPSE_HORIZON_RESIDUAL 1.5e-3
 
 /* Horizon-frame unit vector of an altitude and azimuth. */
 void sky_horizon_vector(double alt, double az, double out[3]);

@@ -104,6 +104,9 @@ void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *o)
     o->moon_parallactic_deg = a->moon_parallactic / DEG;
     o->umbral_magnitude = a->umbral_magnitude;
     o->penumbral_magnitude = a->penumbral_magnitude;
+    o->solar_obscuration = a->solar_obscuration;
+    o->solar_magnitude = a->solar_magnitude;
+    o->solar_flux_fraction = a->solar_flux_fraction;
     o->star_visibility = a->star_visibility;
     o->moon_visibility = a->moon_visibility;
 }

@@ -286,6 +286,10 @@ typedef struct sky_astronomy {
     double moon_axis_angle_deg;        /* position angle of the moon's axis   */
     double moon_parallactic_deg;       /* parallactic angle at the moon       */
     double umbral_magnitude, penumbral_magnitude; /* lunar eclipse, Danjon   */
+    /* solar eclipse as the observer sees it: fraction of the sun's disc
+     * area covered, fraction of its diameter covered (> 1 when total, 0
+     * without contact), fraction of its limb-darkened light left */
+    double solar_obscuration, solar_magnitude, solar_flux_fraction;
     double star_visibility;  /* Mueller sec. 5 star fade: 0 day .. 1 night      */
     double moon_visibility;  /* Mueller sec. 5 moon factor: 0.5 day .. 1.207
                                 (0.5 + 1/sqrt 2) with the sun well down       */

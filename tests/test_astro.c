@@ -26,6 +26,8 @@ void test_astro_stars_vs_erfa(void);
 void test_astro_phase_and_eclipse_vs_erfa(void);
 void test_astro_historic_lunar_eclipses(void);
 void test_astro_refraction(void);
+void test_astro_solar_eclipse_totality(void);
+void test_astro_solar_eclipse_partial_vs_erfa(void);
 void test_astro_bad_input(void);
 void test_astro_time_slider_is_solar_time(void);
 void test_astro_query_json(void);
@@ -347,6 +349,180 @@ void test_astro_historic_lunar_eclipses(void)
         if (!isnan(ecl[i].penumbral))
             CHECK(fabs(a.penumbral_magnitude - ecl[i].penumbral) < 0.01, "%s penumbral magnitude", ecl[i].name);
     }
+}
+
+/* ---- solar eclipses ------------------------------------------------------------ */
+
+static sky_astro solar_at(double jd, double lat_deg, double lon_deg)
+{
+    sky_astro a;
+    sky_astro_observer obs = {lat_deg * DEG, lon_deg * DEG, 0.0};
+    if (sky_astro_compute(jd, &obs, &a, NULL, 0)) memset(&a, 0, sizeof a);
+    return a;
+}
+
+void test_astro_solar_eclipse_totality(void)
+{
+    /* Points on the central lines near greatest eclipse (NASA / Espenak's
+     * local circumstances): 2017-08-21 near Hopkinsville, Kentucky, greatest
+     * at 18:25:32 UT, moon/sun diameter ratio 1.0306; 2024-04-08 near
+     * Nazas, Durango, greatest at 18:17:20 UT, ratio 1.0566. The paths are
+     * 115 and 198 km wide, so a few km of error in the point stays inside. */
+    static const struct {
+        const char *name;
+        int y, mo, d, h, mi, s;
+        double lat, lon, ratio;
+    } cases[] = {{"2017-08-21 Hopkinsville", 2017, 8, 21, 18, 25, 32, 36.9664, -87.6709, 1.0306},
+                 {"2024-04-08 Nazas", 2024, 4, 8, 18, 17, 20, 25.2900, -104.1383, 1.0566}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        double jd0 = sky_jd_from_calendar(cases[c].y, cases[c].mo, cases[c].d, cases[c].h, cases[c].mi, cases[c].s);
+        /* the instant of greatest eclipse there: the least separation
+         * within 5 minutes, to the second */
+        double best_jd = jd0, best_sep = 1e9;
+        for (int k = -300; k <= 300; k++) {
+            double jd = jd0 + k / 86400.0;
+            sky_astro a = solar_at(jd, cases[c].lat, cases[c].lon);
+            if (a.sun_moon_separation < best_sep) best_sep = a.sun_moon_separation, best_jd = jd;
+        }
+        sky_astro a = solar_at(best_jd, cases[c].lat, cases[c].lon);
+        double ratio = a.moon_topo_semidiameter / a.sun_topo_semidiameter;
+        NOTE("%s: greatest %+.0f s from the published instant, separation %.1f arcsec, obscuration %.6f, magnitude "
+             "%.4f, diameter ratio %.4f (published %.4f), light left %.2e",
+             cases[c].name, (best_jd - jd0) * 86400.0, best_sep / DEG * 3600.0, a.solar_obscuration, a.solar_magnitude,
+             ratio, cases[c].ratio, a.solar_flux_fraction);
+        CHECK(a.solar_obscuration >= 0.999, "%s: obscuration %.6f < 0.999 at totality", cases[c].name,
+              a.solar_obscuration);
+        CHECK(a.solar_flux_fraction <= 1e-3, "%s: %.3g of the sun's light left at totality", cases[c].name,
+              a.solar_flux_fraction);
+        CHECK(fabs(ratio - cases[c].ratio) < 0.003, "%s: diameter ratio %.4f, published %.4f", cases[c].name, ratio,
+              cases[c].ratio);
+        CHECK(fabs(best_jd - jd0) * 86400.0 < 60.0, "%s: greatest eclipse %.0f s from the published instant",
+              cases[c].name, (best_jd - jd0) * 86400.0);
+        /* an hour later: the moon has moved off (about its own diameter
+         * an hour) */
+        sky_astro later = solar_at(best_jd + 1.0 / 24.0, cases[c].lat, cases[c].lon);
+        CHECK(later.solar_obscuration < 0.5 && later.solar_flux_fraction > 0.5,
+              "%s: an hour later obscuration %.3f, light %.3f", cases[c].name, later.solar_obscuration,
+              later.solar_flux_fraction);
+    }
+    /* the limb-darkened light behind a central disc of radius k R has a
+     * closed form: with m0 = sqrt(1 - k^2), hidden / total =
+     * [(1 - u)(1 - m0^2) + 2u/3 (1 - m0^3)] / (1 - u/3) */
+    const double u = SKY_SUN_LIMB_DARKENING;
+    double worst = 0.0;
+    for (double k = 0.1; k < 0.99; k += 0.1) {
+        double obsc, mag, flux, m0 = sqrt(1.0 - k * k);
+        sky_solar_eclipse(1.0, k, 0.0, &obsc, &mag, &flux);
+        double hidden = ((1.0 - u) * (1.0 - m0 * m0) + 2.0 * u / 3.0 * (1.0 - m0 * m0 * m0)) / (1.0 - u / 3.0);
+        worst = fmax(worst, fabs((1.0 - flux) - hidden));
+        CHECK(fabs(obsc - k * k) < 1e-12, "central disc of radius %.1f covers %.6f of the area", k, obsc);
+    }
+    NOTE("annular, central: limb-darkened light hidden within %.1e of the closed form", worst);
+    CHECK(worst < 1e-3, "limb-darkened light hidden by a central disc off by %.2e", worst);
+    /* off-centre discs against a brute-force sum over a grid on the disc */
+    static const double geometry[][2] = {{0.5, 0.3}, {1.03, 0.2}, {0.95, 1.2}, {0.3, 0.9}, {2.0, 2.5}, {1.0, 1.0}};
+    double worst_grid = 0.0;
+    for (size_t g = 0; g < sizeof geometry / sizeof geometry[0]; g++) {
+        double rm = geometry[g][0], dd = geometry[g][1], total = 0.0, behind = 0.0, flux;
+        const int n = 1200;
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                double x = (i + 0.5) / n * 2.0 - 1.0, y = (j + 0.5) / n * 2.0 - 1.0, r2 = x * x + y * y;
+                if (r2 >= 1.0) continue;
+                double w = 1.0 - u * (1.0 - sqrt(1.0 - r2));
+                total += w;
+                if ((x - dd) * (x - dd) + y * y < rm * rm) behind += w;
+            }
+        sky_solar_eclipse(1.0, rm, dd, NULL, NULL, &flux);
+        worst_grid = fmax(worst_grid, fabs((1.0 - flux) - behind / total));
+    }
+    NOTE("off-centre discs: limb-darkened light hidden within %.1e of a 1200^2 grid sum", worst_grid);
+    CHECK(worst_grid < 1e-3, "limb-darkened light hidden off by %.2e against the grid", worst_grid);
+    /* a disc covering the limb hides less light than area (the limb is
+     * dark), one covering the centre more */
+    double o1, f1, o2, f2;
+    sky_solar_eclipse(1.0, 0.3, 0.9, &o1, NULL, &f1);
+    sky_solar_eclipse(1.0, 0.3, 0.0, &o2, NULL, &f2);
+    CHECK(1.0 - f1 < o1 && 1.0 - f2 > o2, "limb darkening: limb %.4f light vs %.4f area; centre %.4f vs %.4f",
+          1.0 - f1, o1, 1.0 - f2, o2);
+    /* degenerate and bad input: finite, in range */
+    double bad[][3] = {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {NAN, 1.0, 0.5}, {1.0, INFINITY, 0.1},
+                       {1.0, 1.0, -1.0}, {1e-9, 1.0, 1e-9}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        double obsc, mag, flux;
+        sky_solar_eclipse(bad[i][0], bad[i][1], bad[i][2], &obsc, &mag, &flux);
+        CHECK(isfinite(obsc) && isfinite(mag) && isfinite(flux) && obsc >= 0.0 && obsc <= 1.0 && flux >= 0.0 &&
+                  flux <= 1.0,
+              "sky_solar_eclipse(%g, %g, %g) -> %g %g %g", bad[i][0], bad[i][1], bad[i][2], obsc, mag, flux);
+    }
+}
+
+/* The fraction of the sun's disc behind the moon from ERFA's topocentric
+ * vectors, counted on a grid over the sun's disc in its tangent plane:
+ * no lens formula shared with the library. */
+static double oracle_obscuration(double jd_ut, double delta_t, double lat, double lon)
+{
+    oracle o;
+    oracle_init(&o, jd_ut, delta_t, lat, lon, 0.0);
+    double sun_g[3], moon_g[3], sun[3], moon[3];
+    oracle_sun(&o, sun_g);
+    oracle_moon(&o, moon_g);
+    eraRxp(o.rc2t, sun_g, sun);
+    eraRxp(o.rc2t, moon_g, moon);
+    for (int i = 0; i < 3; i++) sun[i] -= o.obs_itrs_km[i], moon[i] -= o.obs_itrs_km[i];
+    double ds = eraPm(sun), dm = eraPm(moon);
+    double rs = atan(696000.0 / ds), rm = asin(1737.4 / dm);
+    /* tangent-plane coordinates of the moon's centre around the sun's */
+    double s[3], m[3], e1[3], e2[3];
+    for (int i = 0; i < 3; i++) s[i] = sun[i] / ds, m[i] = moon[i] / dm;
+    double a[3] = {0.0, 0.0, 1.0};
+    eraPxp(a, s, e1);
+    double n1 = eraPm(e1);
+    for (int i = 0; i < 3; i++) e1[i] /= n1;
+    eraPxp(s, e1, e2);
+    double sm = eraPdp(s, m);
+    double mx = tan(atan2(eraPdp(m, e1), sm)), my = tan(atan2(eraPdp(m, e2), sm));
+    double tr_s = tan(rs), tr_m = tan(rm);
+    const int n = 800;
+    long inside = 0, covered = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double x = ((i + 0.5) / n * 2.0 - 1.0) * tr_s, y = ((j + 0.5) / n * 2.0 - 1.0) * tr_s;
+            if (x * x + y * y > tr_s * tr_s) continue;
+            inside++;
+            if ((x - mx) * (x - mx) + (y - my) * (y - my) < tr_m * tr_m) covered++;
+        }
+    return (double)covered / (double)inside;
+}
+
+void test_astro_solar_eclipse_partial_vs_erfa(void)
+{
+    /* partial phases of the 2024-04-08 eclipse from New York and of the
+     * 2017-08-21 eclipse from Los Angeles, every 10 minutes from first to
+     * last contact (and a little beyond) */
+    static const struct {
+        const char *name;
+        int y, mo, d, h0, h1;
+        double lat, lon;
+    } places[] = {{"2024-04-08 New York", 2024, 4, 8, 18, 21, 40.7128, -74.0060},
+                  {"2017-08-21 Los Angeles", 2017, 8, 21, 16, 19, 34.0522, -118.2437}};
+    double worst = 0.0, peak = 0.0;
+    int partial = 0;
+    for (size_t p = 0; p < sizeof places / sizeof places[0]; p++)
+        for (int minutes = places[p].h0 * 60; minutes <= places[p].h1 * 60; minutes += 10) {
+            double jd = sky_jd_from_calendar(places[p].y, places[p].mo, places[p].d, minutes / 60, minutes % 60, 0.0);
+            sky_astro a = solar_at(jd, places[p].lat, places[p].lon);
+            double ref = oracle_obscuration(jd, a.delta_t, places[p].lat * DEG, places[p].lon * DEG);
+            double e = fabs(a.solar_obscuration - ref);
+            if (ref > 0.0 && ref < 1.0) partial++;
+            if (e > worst) worst = e;
+            if (ref > peak) peak = ref;
+            CHECK(e <= 0.01, "%s %02d:%02d UT: obscuration %.4f, ERFA %.4f", places[p].name, minutes / 60,
+                  minutes % 60, a.solar_obscuration, ref);
+        }
+    NOTE("%d partial instants, deepest %.3f: worst obscuration error %.4f against ERFA's positions", partial, peak,
+         worst);
+    CHECK(partial >= 20, "only %d instants were partial", partial);
 }
 
 void test_astro_refraction(void)

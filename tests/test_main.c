@@ -55,6 +55,8 @@ int test_failures;
     X(astro_phase_and_eclipse_vs_erfa)           \
     X(astro_historic_lunar_eclipses)             \
     X(astro_refraction)                          \
+    X(astro_solar_eclipse_totality)              \
+    X(astro_solar_eclipse_partial_vs_erfa)       \
     X(astro_bad_input)                           \
     X(astro_time_slider_is_solar_time)           \
     X(astro_query_json)                          \
