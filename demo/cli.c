@@ -131,9 +131,10 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --planet earth|hazy|mars the atmosphere's composition (rayleigh, hillaire, blend)\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse (or none)\n"
             "  --gl auto|core|compat    GL profile\n"
-            "  --preset noon|overcast|sunset|starry|minimal\n"
+            "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
             "  --moon-scale C           draw the moon C times its true size (0.5..50; default 2.5)\n"
+            "  --exposure STOPS         on top of the automatic exposure (-20..20; a filter for the sun: -12)\n"
             "  --date YYYY-MM-DDTHH:MM:SSZ   UTC instant (years -1999..3000); with --time,\n"
             "                           --time sets the local solar time on that date\n"
             "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
@@ -149,7 +150,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
 }
 
 /* Presets: the features and sliders a game would use for a scene; the
- * moonlit and eclipse ones also bring a date, place and view that show
+ * moonlit and both eclipse ones also bring a date, place and view that show
  * their moon (used unless --date, --lat, --lon, --yaw, --pitch are given).
  * Options given explicitly win over the preset, whatever their order. */
 typedef struct preset {
@@ -173,6 +174,10 @@ static const preset presets[] = {
      * from Hawaii where the moon stands at 69 degrees */
     {"eclipse", SKY_MOON | SKY_ECLIPSE | SKY_STARS | SKY_STARMAP, SKY_GL_AUTO, 0.0f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f,
      "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0},
+    /* the total solar eclipse of 2024-04-08 near Nazas, Durango, at its
+     * greatest (18:17:20 UT), looking up toward the sun at 70 degrees */
+    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.1f, 0.6f, 0.2f, 0.0f,
+     0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0},
     {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f, 0.2f, 0.45f, NULL, 0, 0,
      0, 0},
 };
@@ -277,6 +282,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 0.5, 50.0, &v))
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
             cli->moon_scale = (float)v;
+        } else if (!strcmp(opt, "--exposure")) {
+            if (!parse_number(val, -20.0, 20.0, &v))
+                return fail(err, len, "--exposure: expected stops in -20..20, got '%s'", val ? val : "(nothing)");
+            cli->exposure = (float)v;
         } else if (!strcmp(opt, "--luts")) {
             /* Hillaire's tables: his sizes and samples scaled */
             double k = 0.0;
@@ -368,7 +377,7 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!find_preset(val))
                 return fail(err, len,
                             "--preset: unknown preset '%s' (accepted: noon, overcast, sunset, starry, moonlit, eclipse, "
-                            "minimal)",
+                            "solar-eclipse, minimal)",
                             val);
             cli->preset = val;
         } else if (!is_demo && !strcmp(opt, "--out")) {

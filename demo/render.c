@@ -44,7 +44,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     }
     int rc = 0;
     if (sky_set_params(s, &cli->params) < 0 || sky_set_observer(s, &cli->observer) < 0 ||
-        sky_set_elapsed(s, cli->seconds) < 0) {
+        sky_set_elapsed(s, cli->seconds) < 0 || sky_set_exposure_bias(s, cli->exposure) < 0) {
         fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
         rc = 1;
     }

@@ -567,19 +567,21 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
     double s_z = a->sun.dir[1];
     a->star_visibility = 1.0 / sqrt(1.0 + pow(clamp(s_z + 1.14, 0.0, 2.14), 32.0));
     a->moon_visibility = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(clamp(s_z + 1.05, 0.0, 2.05), 32.0));
-    /* A deep solar eclipse darkens the sky like a sun 6 degrees below the
-     * horizon: once the zenith keeps less than 1 % of its light, the fades
-     * move toward their values there (fully at 0.1 %, reached within a
-     * minute of totality), so the bright stars come out. */
+    /* A deep solar eclipse darkens the sky like a sun 8 degrees below the
+     * horizon (the zenith keeps some 3e-4 of its light, about 1 cd/m^2,
+     * which the twilight sky has there): once the zenith keeps less than
+     * 1 % of its light, the fades move toward their values at -8 degrees
+     * (fully at 0.1 %, reached within a minute of totality), so the bright
+     * stars come out. */
     double residual = a->solar_flux_fraction + (1.0 - a->solar_flux_fraction) * SKY_ECLIPSE_ZENITH_RESIDUAL;
     double dark = log10(fmax(residual, 1e-12));
     dark = clamp((dark + 2.0) / -1.0, 0.0, 1.0);
     dark = dark * dark * (3.0 - 2.0 * dark);
     if (dark > 0.0) {
-        double s6 = sin(-6.0 * DEG);
-        double star6 = 1.0 / sqrt(1.0 + pow(s6 + 1.14, 32.0)), moon6 = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(s6 + 1.05, 32.0));
-        a->star_visibility += dark * fmax(star6 - a->star_visibility, 0.0);
-        a->moon_visibility += dark * fmax(moon6 - a->moon_visibility, 0.0);
+        double s8 = sin(-8.0 * DEG);
+        double star8 = 1.0 / sqrt(1.0 + pow(s8 + 1.14, 32.0)), moon8 = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(s8 + 1.05, 32.0));
+        a->star_visibility += dark * fmax(star8 - a->star_visibility, 0.0);
+        a->moon_visibility += dark * fmax(moon8 - a->moon_visibility, 0.0);
     }
 
     /* stars: one precession-nutation matrix for the frame (Mueller eq. 7-8)

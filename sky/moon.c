@@ -32,6 +32,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_UF("u_moon_color", SKY_U_F3, moon_color),
     SKY_UF("u_moon_terms", SKY_U_F4, moon_terms),
     SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
+    SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
 };
 const sky_snippet sky_moon_snippet = {NULL, NULL, moon_uniforms, (int)(sizeof moon_uniforms / sizeof moon_uniforms[0])};
 
@@ -125,16 +126,41 @@ static void normalize3(double v[3])
     if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
 }
 
+double sky_moon_drawn_scale(const sky *s)
+{
+    const sky_astro *a = &s->astro;
+    double cd = s->cfg.moon_scale > 0.0f ? sky_clampd(s->cfg.moon_scale, 0.5, 50.0) : 2.5;
+    /* Mueller's c_d enlarges the moon; a solar eclipse needs both discs at
+     * one scale for its contacts to fall at the right times. Near the sun
+     * the moon returns to its true size: there it is a new moon, dark
+     * against the day sky, so the change goes unseen (the sun growing
+     * instead would be seen). The scale moves linearly with the
+     * separation between `far`, where the enlarged disc is still clear of
+     * the sun, and `near`, outside true contact; both the separation and
+     * the radius sum rs + k rm are linear there, so no drawn disc touches
+     * the sun before the true discs do. */
+    double rs = a->sun_topo_semidiameter, rm = a->moon_topo_semidiameter;
+    double near = 1.2 * (rs + rm), far = rs + fmax(cd, 1.0) * rm + 0.5 * (rs + rm);
+    double w = sky_clampd((far - a->sun_moon_separation) / (far - near), 0.0, 1.0);
+    return cd + (1.0 - cd) * w;
+}
+
 void sky_moon_frame(sky *s)
 {
     sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
     double m[3] = {a->moon.dir[0], a->moon.dir[1], a->moon.dir[2]}; /* refracted, topocentric */
-    /* billboard frame: z toward the viewer, y toward the zenith, x right */
-    double z[3] = {-m[0], -m[1], -m[2]}, up[3] = {0.0, 1.0, 0.0}, x[3], y[3];
-    if (fabs(m[1]) > 0.999) up[1] = 0.0, up[2] = -1.0; /* at the zenith: north up */
-    double dz = up[0] * m[0] + up[1] * m[1] + up[2] * m[2];
-    for (int i = 0; i < 3; i++) y[i] = up[i] - dz * m[i];
+    /* The disc is shaped around the moon's true centre (moon.frag takes
+     * each fragment back through refraction, so a low moon is flattened
+     * like the sun); the quad that holds it is centred where refraction
+     * shows the centre. Billboard frame: z toward the viewer, y toward
+     * the zenith, x right; x is horizontal, so it is the same for both. */
+    double mt[3];
+    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, mt);
+    double z[3] = {-mt[0], -mt[1], -mt[2]}, up[3] = {0.0, 1.0, 0.0}, x[3], y[3];
+    if (fabs(mt[1]) > 0.999) up[1] = 0.0, up[2] = -1.0; /* at the zenith: north up */
+    double dz = up[0] * mt[0] + up[1] * mt[1] + up[2] * mt[2];
+    for (int i = 0; i < 3; i++) y[i] = up[i] - dz * mt[i];
     normalize3(y);
     cross3(y, z, x);
     for (int i = 0; i < 3; i++) {
@@ -226,10 +252,11 @@ void sky_moon_frame(sky *s)
             for (int i = 0; i < 3; i++) f->moon_earthshine[i] *= (float)(cap / es_mean);
     }
     f->moon_terms[1] = (float)k;
-    /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2) */
-    double cd = s->cfg.moon_scale > 0.0f ? sky_clampd(s->cfg.moon_scale, 0.5, 50.0) : 2.5;
-    double topo_km = a->moon.distance_km; /* geocentric; the topocentric size differs by < 2 % */
-    s->moon_radius_tan = tan(cd * asin(sky_clampd(MOON_RADIUS_KM / topo_km, 0.0, 1.0)));
+    /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2),
+     * delta the topocentric diameter (up to 2 % larger than the
+     * geocentric one with the moon high: an eclipse's totality needs it) */
+    s->moon_radius_tan = tan(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
+    f->moon_radius_tan = (float)s->moon_radius_tan;
     /* eclipse: geocentric geometry in the horizon frame */
     if (s->features & SKY_ECLIPSE) {
         double mg[3], sg[3], v[3];

@@ -77,6 +77,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
     SKY_UF("u_view_proj", SKY_U_M4, view_proj),
     SKY_UF("u_night_shift", SKY_U_F1, night_shift),
+    SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
                                         (int)(sizeof common_uniforms / sizeof common_uniforms[0])};
@@ -96,6 +97,7 @@ static void compute_frame(sky *s)
     for (int i = 0; i < 3; i++) f->sun_dir[i] = (float)s->astro.sun.dir[i];
     for (int i = 0; i < 3; i++) f->moon_dir[i] = (float)s->astro.moon.dir[i];
     f->sun_altitude = (float)s->astro.sun.alt; /* apparent: what the eye sees */
+    f->refraction_pressure = (float)s->astro.pressure_factor;
     double sin_alt = sin(f->sun_altitude);
     /* R-P's "amount of sunlight" from the time of day: full above 10
      * degrees, none below -6 (end of civil twilight). */
@@ -129,12 +131,24 @@ static void compute_frame(sky *s)
      * scale maps to the filmic curve's shoulder (common.glsl); at night a
      * floor 75 times the night sky (moonlit or not) keeps the sky dark blue
      * and the stars bright. */
-    f->exposure = (float)(pow(2.0, s->exposure_bias) / (f->sky_luminance + 75.0 * f->night_luminance));
+    /* The few minutes of a total solar eclipse are too short for the eye
+     * to adapt to its dimmed sky (the rods take tens of minutes): the
+     * exposure follows the square root of the eclipse's dimming (the mean
+     * that atmosphere.c applied to sky_luminance), so totality looks like
+     * deep twilight around a bright corona, not like day. The stars are
+     * judged against the sky around them, as the moon is (moon.c): in LDR
+     * they keep the contrast a full adaptation would give them. */
+    double eclipse_dim = f->eclipse_sky[0] + (0.2126 * f->eclipse_sky[1] + 0.7152 * f->eclipse_sky[2] +
+                                              0.0722 * f->eclipse_sky[3]) / 9.0;
+    double withheld = 1.0 / sqrt(sky_clampd(eclipse_dim, 1e-6, 1.0));
+    f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
+    f->exposure =
+        (float)(pow(2.0, s->exposure_bias) / (f->sky_luminance * withheld + 75.0 * f->night_luminance));
     /* Night vision: the adaptation luminance (what the exposure maps to
      * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
      * cd/m^2, on a log scale; the shift is at most 60 % (the moon and
      * stars keep a little colour in the eye of a game player). */
-    double adapt = f->sky_luminance + 75.0 * f->night_luminance; /* the automatic exposure's reference */
+    double adapt = f->sky_luminance * withheld + 75.0 * f->night_luminance; /* the automatic exposure's reference */
     f->night_shift = (float)(0.6 * sky_smoothstep(log10(3e-3), log10(1e-5), log10(adapt)));
     /* Leave out what adds nothing: a star layer whose brightest texel would
      * not reach a quarter of an 8-bit step is not evaluated at all. */
@@ -808,6 +822,8 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     /* Solar illuminance above the atmosphere, 128 klx, through the
      * atmosphere, times the part of the disc not yet set */
     float above = (float)sky_disc_above_horizon(f->sun_altitude, s->astro.sun_semidiameter);
+    /* and the share of its light a solar eclipse leaves */
+    above *= (float)s->astro.solar_flux_fraction;
     for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
     /* sky irradiance and horizon: the atmosphere path's (atmosphere.c) */
     for (int i = 0; i < 3; i++) {

@@ -100,7 +100,15 @@ typedef struct sky_frame {
     float sun_radius;        /* angular radius of the drawn disc, radians        */
     float sun_true_dir[3];   /* the sun's centre without refraction              */
     float refraction_pressure; /* Saemundsson's scale at the observer (astro.c)  */
-    float sky_luminance;     /* kcd/m^2: scale of the day gradient               */
+    float sky_luminance;     /* kcd/m^2: the day sky's scale (exposure, clouds,
+                                moon), dimmed by a solar eclipse               */
+    float day_luminance;     /* kcd/m^2: the gradient path's own scale, before
+                                the eclipse (its shader applies that per pixel) */
+    float eclipse_sky[4];    /* x: the day sky's light left everywhere by a solar
+                                eclipse; yzw: the extra at the horizon, rgb     */
+    float eclipse_sun[4];    /* x: the moon's true angular radius, y: the sun's
+                                light left (glare), z: corona's scale (kcd/m^2) */
+    float eclipse_moon_dir[3]; /* the moon's centre, topocentric, unrefracted   */
     float horizon_tint[3];   /* colour of the horizon under a low sun            */
     float night_luminance;   /* kcd/m^2: scale of the night sky background       */
     float moonlight;         /* 0..25: the moon's brightening of the night sky    */
@@ -136,10 +144,13 @@ typedef struct sky_frame {
     /* catalogue stars (stars.c) */
     float star_rot[16], star_aberration[3], star_size[4], star_viewport[4], star_pressure[3];
     float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
+    float star_local_gain;   /* LDR: the stars' gain against a sky the eye has
+                                not adapted to (a solar eclipse; sky.c)        */
     /* star map (starmap.c) */
     float starmap_rot[16], starmap_scale;
     /* moon (moon.c) */
     float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_terms[4], moon_earthshine[3];
+    float moon_radius_tan;   /* the drawn disc's radius on its tangent plane     */
     float moon_center_km[3], shadow_axis[3], shadow[4];
 } sky_frame;
 
@@ -393,6 +404,9 @@ int sky_starmap_create(sky *s, char *err, size_t err_len);
 void sky_starmap_frame(sky *s); /* after the camera is set up */
 int sky_moon_create(sky *s, char *err, size_t err_len);
 void sky_moon_frame(sky *s);
+/* The factor the moon is drawn larger than its true size (cfg.moon_scale,
+ * back to 1 near the sun, where it eclipses) */
+double sky_moon_drawn_scale(const sky *s);
 int sky_moon_visible(const sky *s);
 void sky_moon_update_quad(sky *s);
 int sky_sun_create(sky *s, char *err, size_t err_len);

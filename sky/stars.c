@@ -140,7 +140,7 @@ void sky_stars_frame(sky *s)
      * radius q pixels (pixel_angle radians each) */
     double r = STAR_Q_PX * f->pixel_angle;
     double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
-    f->star_flux_scale = (float)(peak * a->star_visibility);
+    f->star_flux_scale = (float)(peak * a->star_visibility * f->star_local_gain);
     /* the atmosphere's zenith optical depths above the observer */
     double depth[3];
     sky_atmosphere_zenith_depth(s, depth);

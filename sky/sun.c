@@ -8,21 +8,25 @@
 #include <math.h>
 #include <string.h>
 
-/* Drawn disc: the true mean angular radius, 959.63 arcsec. */
-#define SKY_SUN_RADIUS_RAD 4.6524e-3
 /* Disc-centre luminance of the sun above the atmosphere, about 2.0e9 cd/m^2
  * (mean disc luminance 1.6e9 cd/m^2 divided by the mean of the u = 0.6
  * limb-darkening profile, 0.8). In kcd/m^2. */
 #define SKY_SUN_LUMINANCE 2.0e6
 /* The quad reaches 16 radii: the glare is windowed to zero there. */
 #define SKY_SUN_QUAD_RADII 16.0
+/* The corona's mean brightness at the limb relative to the sun's mean
+ * disc (Baumbach 1937: 1e-6 (0.0532 r^-2.5 + 1.425 r^-7 + 2.565 r^-17), r
+ * in solar radii; sun.frag evaluates the bracket), times that mean disc,
+ * 0.8 of the centre's luminance. In kcd/m^2. */
+#define SKY_CORONA_SCALE (1e-6 * 0.8 * SKY_SUN_LUMINANCE)
 
 static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
     SKY_UF("u_sun_luminance", SKY_U_F1, sun_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
-    SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
+    SKY_UF("u_eclipse_sun", SKY_U_F4, eclipse_sun),
+    SKY_UF("u_eclipse_moon_dir", SKY_U_F3, eclipse_moon_dir),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
 const sky_snippet sky_sun_snippet = {NULL, NULL, sun_uniforms, (int)(sizeof sun_uniforms / sizeof sun_uniforms[0])};
@@ -66,22 +70,32 @@ int sky_sun_create(sky *s, char *err, size_t err_len)
 void sky_sun_frame(sky *s)
 {
     sky_frame *f = &s->frame;
-    f->sun_radius = (float)SKY_SUN_RADIUS_RAD;
+    const sky_astro *a = &s->astro;
+    f->sun_radius = (float)a->sun_topo_semidiameter;
     f->sun_luminance = (float)SKY_SUN_LUMINANCE;
     /* the disc is drawn where refraction puts each of its points
-     * (sun.frag): it needs the centre's true direction and the refraction
-     * scale of the observer's pressure */
+     * (sun.frag): it needs the centre's true direction */
     double d[3];
-    sky_horizon_vector(s->astro.sun.alt_geometric, s->astro.sun.az, d);
+    sky_horizon_vector(a->sun.alt_geometric, a->sun.az, d);
     for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)d[i];
-    f->refraction_pressure = (float)s->astro.pressure_factor;
+    /* A solar eclipse: sun.frag hides what lies behind the moon's true
+     * disc. Both discs take their true sizes, the one scale at which the
+     * contacts fall at the right times (moon.c draws the moon at it near
+     * the sun). The glare keeps the uncovered light's share, and the
+     * corona shows once the sun's last 10 % go. */
+    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, d);
+    for (int i = 0; i < 3; i++) f->eclipse_moon_dir[i] = (float)d[i];
+    f->eclipse_sun[0] = (float)a->moon_topo_semidiameter;
+    f->eclipse_sun[1] = (float)a->solar_flux_fraction;
+    f->eclipse_sun[2] = (float)(SKY_CORONA_SCALE * sky_smoothstep(0.9, 0.999, a->solar_obscuration));
+    f->eclipse_sun[3] = 0.0f;
 }
 
 int sky_sun_visible(const sky *s)
 {
     /* The whole quad, glare included, below the horizon: nothing to draw. */
     return (s->features & SKY_SUN) &&
-           s->frame.sun_altitude > -(float)(SKY_SUN_QUAD_RADII * SKY_SUN_RADIUS_RAD);
+           s->frame.sun_altitude > -(float)SKY_SUN_QUAD_RADII * s->frame.sun_radius;
 }
 
 void sky_sun_update_quad(sky *s)
@@ -94,7 +108,7 @@ void sky_sun_update_quad(sky *s)
     float tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
     for (int i = 0; i < 3; i++) t[i] /= tl;
     float b[3] = {d[1] * t[2] - d[2] * t[1], d[2] * t[0] - d[0] * t[2], d[0] * t[1] - d[1] * t[0]};
-    float k = (float)tan(SKY_SUN_QUAD_RADII * SKY_SUN_RADIUS_RAD);
+    float k = (float)tan(SKY_SUN_QUAD_RADII * s->frame.sun_radius);
     static const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     float v[4 * 5];
     for (int c = 0; c < 4; c++) {

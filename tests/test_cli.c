@@ -53,7 +53,7 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
     /* every preset, so each shader variant (clouds, stars, moon, eclipse) runs on both profiles */
     const char *scenes[] = {"--preset noon",    "--preset sunset --yaw 270 --pitch 10",
                             "--preset starry",  "--preset overcast",
-                            "--preset moonlit", "--preset eclipse",
+                            "--preset moonlit", "--preset eclipse", "--preset solar-eclipse",
                             "--preset minimal"};
     for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         snprintf(cmd, sizeof cmd, "%s --size 320x180 %s --gl core --out %s 2>&1", render, scenes[k], core_png);
@@ -237,6 +237,7 @@ void test_cli_every_option_checked(void)
         {"--yaw", "left", "400"},        {"--pitch", "up", "-91"},           {"--fov", "wide", "180"},
         {"--atmosphere", "fog", NULL},   {"--features", "rain", NULL},       {"--gl", "vulkan", NULL},
         {"--preset", "beach", NULL},     {"--frames", "many", "0"},          {"--moon-scale", "big", "51"},
+        {"--exposure", "bright", "21"},
         {"--hip", "sirius", "0"},        {"--out", NULL, NULL},              {"--out-pfm", NULL, NULL},
     };
     char render[512], cmd[1024], out[2048];

@@ -57,6 +57,7 @@ int test_failures;
     X(astro_refraction)                          \
     X(astro_solar_eclipse_totality)              \
     X(astro_solar_eclipse_partial_vs_erfa)       \
+    X(render_total_solar_eclipse)                \
     X(astro_bad_input)                           \
     X(astro_time_slider_is_solar_time)           \
     X(astro_query_json)                          \

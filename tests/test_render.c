@@ -22,6 +22,7 @@ void test_render_sun_where_direction_projects(void);
 void test_render_sun_in_fisheye(void);
 void test_render_hdr_finite_everywhere(void);
 void test_profiles_core_and_compat_agree(void);
+void test_render_total_solar_eclipse(void);
 
 #define PI 3.14159265358979323846
 
@@ -587,4 +588,82 @@ void test_profiles_core_and_compat_agree(void)
         image_free(&core);
         image_free(&compat);
     }
+}
+
+/* Local maxima of a - b above `contrast` (0..1 LDR): what a layer added as
+ * points. */
+static int count_added_points(const image *a, const image *b, float contrast)
+{
+    int n = 0;
+    for (int y = 1; y < a->h - 1; y++)
+        for (int x = 1; x < a->w - 1; x++) {
+            float d = image_luminance(a, x, y) - image_luminance(b, x, y), brightest = 0.0f;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++)
+                    if (dx || dy) {
+                        float v = image_luminance(a, x + dx, y + dy) - image_luminance(b, x + dx, y + dy);
+                        if (v > brightest) brightest = v;
+                    }
+            if (d > contrast && d >= brightest) n++;
+        }
+    return n;
+}
+
+void test_render_total_solar_eclipse(void)
+{
+    /* 2024-04-08 near Nazas, Durango, at greatest eclipse (18:17:20 UT,
+     * the sun at 70 degrees): the whole sky, and the stars in the east
+     * (Capella, Aldebaran, Elnath, Betelgeuse, Rigel stand 10-35 degrees
+     * up there), against the same scene an hour later */
+    scene sc = scene_default();
+    sc.cfg.features = SKY_SUN | SKY_MOON | SKY_STARS;
+    sc.cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    sc.has_observer = 1;
+    sc.observer.julian_day_utc = sky_julian_day(2024, 4, 8, 18, 17, 20.0);
+    sc.observer.latitude_deg = 25.29;
+    sc.observer.longitude_deg = -104.14;
+    sc.fisheye = 1;
+    sc.w = sc.h = 128;
+    scene later = sc;
+    later.observer.julian_day_utc += 1.0 / 24.0;
+    image tot, after;
+    if (render_scene(&sc, 1, SKY_GL_AUTO, &tot) || render_scene(&later, 1, SKY_GL_AUTO, &after)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    /* the sky's median, away from the sun and the corona */
+    double m_tot = luminance_quantile(&tot, 0.5), m_after = luminance_quantile(&after, 0.5);
+    NOTE("median sky %.3g kcd/m^2 at totality, %.3g an hour later (x%.2g)", m_tot, m_after, m_tot / m_after);
+    CHECK(m_tot < 0.003 * m_after, "totality is only %.3g times the sky an hour later", m_tot / m_after);
+    /* the horizon glows brighter than the zenith during totality */
+    double zen = image_luminance(&tot, 64, 64), hor = 0.0;
+    for (int k = 0; k < 4; k++) hor += image_luminance(&tot, k == 0 ? 3 : k == 1 ? 124 : 64, k == 2 ? 3 : k == 3 ? 124 : 64) / 4.0;
+    NOTE("totality: horizon %.3g, zenith %.3g kcd/m^2", hor, zen);
+    CHECK(hor > 2.0 * zen, "the horizon ring (%.3g) is not brighter than the zenith (%.3g)", hor, zen);
+    image_free(&tot);
+    image_free(&after);
+
+    scene east = sc;
+    east.fisheye = 0;
+    east.w = 640, east.h = 360;
+    east.yaw = 70.0, east.pitch = 22.0, east.fov = 50.0;
+    scene east_bare = east;
+    east_bare.cfg.features = SKY_SUN | SKY_MOON;
+    scene east_later = east, east_later_bare = east_bare;
+    east_later.observer.julian_day_utc += 1.0 / 24.0;
+    east_later_bare.observer.julian_day_utc += 1.0 / 24.0;
+    image s1, s0, l1, l0;
+    if (render_scene(&east, 0, SKY_GL_AUTO, &s1) || render_scene(&east_bare, 0, SKY_GL_AUTO, &s0) ||
+        render_scene(&east_later, 0, SKY_GL_AUTO, &l1) || render_scene(&east_later_bare, 0, SKY_GL_AUTO, &l0)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    int stars_tot = count_added_points(&s1, &s0, 0.02f), stars_later = count_added_points(&l1, &l0, 0.02f);
+    NOTE("stars standing out by 2 %% of white: %d at totality, %d an hour later", stars_tot, stars_later);
+    CHECK(stars_tot >= 3, "only %d stars show at totality", stars_tot);
+    CHECK(stars_later == 0, "%d stars show in daylight", stars_later);
+    image_free(&s1);
+    image_free(&s0);
+    image_free(&l1);
+    image_free(&l0);
 }

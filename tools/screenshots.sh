@@ -33,6 +33,26 @@ q=$($r --query --time 0.2505 | grep '"sun"')
 alt=$(echo "$q" | sed 's/.*"sun": {"alt":\([-0-9.]*\).*/\1/')
 az=$(echo "$q" | sed 's/.*"sun": {[^}]*"az":\([-0-9.]*\).*/\1/')
 $r --size 240x240 --features sun --cover 0 --atmosphere hillaire --time 0.2505 --yaw "$az" --pitch "$alt" --fov 1.5 --out $out/sun-flattened.png
+# the total solar eclipse of 2024-04-08 from near Nazas, Durango (25.29 N
+# 104.14 W), first contact to last: a 2.5-degree field on the sun, the
+# partial phases 8 stops down (as through a filter), totality at the
+# automatic exposure; and the sky around at totality
+eclipse() { # file UTC-time stops
+    q=$($r --query --date "2024-04-08T$2Z" --lat 25.29 --lon -104.14 | grep '"sun"')
+    alt=$(echo "$q" | sed 's/.*"sun": {"alt":\([-0-9.]*\).*/\1/')
+    az=$(echo "$q" | sed 's/.*"sun": {[^}]*"az":\([-0-9.]*\).*/\1/')
+    $r --size 160x160 --preset solar-eclipse --date "2024-04-08T$2Z" --yaw "$az" --pitch "$alt" --fov 2.5 \
+        --exposure "$3" --out "$out/$1.png"
+}
+eclipse eclipse-1 16:59:30 -8
+eclipse eclipse-2 17:40:00 -8
+eclipse eclipse-3 18:12:00 -8
+eclipse eclipse-4 18:17:20 0
+eclipse eclipse-5 18:23:00 -8
+eclipse eclipse-6 19:00:00 -8
+eclipse eclipse-7 19:38:30 -8
+$r --size 640x360 --preset solar-eclipse --out $out/eclipse-sky.png
+$r --size 640x360 --preset solar-eclipse --date 2024-04-08T19:17:20Z --out $out/eclipse-sky-later.png
 # moon close-ups: the camera on the moon, a 4-degree field, the disc at c_d = 2.5
 moon() { # name date lat lon extra-features
     q=$($r --query --date "$2" --lat "$3" --lon "$4" | grep '"moon"')

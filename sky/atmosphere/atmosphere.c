@@ -12,6 +12,7 @@
 
 static const sky_uniform_desc atmosphere_uniforms[] = {
     SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
+    SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
 };
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
                                             (int)(sizeof atmosphere_uniforms / sizeof atmosphere_uniforms[0])};
@@ -170,6 +171,34 @@ void sky_atmosphere_zenith_depth(const sky *s, double depth[3])
     for (int i = 0; i < 3; i++) depth[i] = -log(zenith[i]) * thin;
 }
 
+/* A solar eclipse takes from the day sky the light the moon hides
+ * (astro.c's limb-darkened fraction); around totality the air outside the
+ * moon's shadow leaves a twilight glow, brightest along the horizon
+ * (atmosphere.glsl's sky_eclipse_dim). The CPU summary that the exposure,
+ * clouds, moon and host lighting read is dimmed by the same amounts:
+ * the ring's (1 - sin h)^8 averages 1/9 over the hemisphere's solid angle,
+ * 1/45 weighted by the cosine (irradiance) and is 1 at the horizon (fog).
+ * The night sky's own light is not the sun's and stays. */
+static void eclipse_frame(sky *s)
+{
+    sky_frame *f = &s->frame;
+    double left = sky_clampd(s->astro.solar_flux_fraction, 0.0, 1.0);
+    /* the ring's colour, of unit luminance: sunlight reddened by a long
+     * low path */
+    static const double ring_tint[3] = {1.34, 0.94, 0.60};
+    double base = left + (1.0 - left) * SKY_ECLIPSE_ZENITH_RESIDUAL;
+    double ring = (1.0 - left) * (SKY_ECLIPSE_HORIZON_RESIDUAL - SKY_ECLIPSE_ZENITH_RESIDUAL);
+    f->eclipse_sky[0] = (float)base;
+    for (int i = 0; i < 3; i++) f->eclipse_sky[1 + i] = (float)(ring * ring_tint[i]);
+    if (left >= 1.0) return;
+    f->sky_luminance *= (float)(base + ring / 9.0);
+    for (int i = 0; i < 3; i++) {
+        double irr = base + ring * ring_tint[i] / 45.0, fog = base + ring * ring_tint[i];
+        f->ambient_rgb[i] = (float)(f->ambient_rgb[i] * irr + SKY_PI * f->night_luminance * (1.0 - irr));
+        f->fog_rgb[i] = (float)(f->fog_rgb[i] * fog + f->night_luminance * (1.0 - fog));
+    }
+}
+
 void sky_atmosphere_frame(sky *s)
 {
     night_frame(s);
@@ -193,4 +222,5 @@ void sky_atmosphere_frame(sky *s)
         break;
     default: sky_gradient_frame(s); break;
     }
+    eclipse_frame(s);
 }

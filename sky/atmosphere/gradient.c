@@ -8,7 +8,7 @@
 #include <math.h>
 
 static const sky_uniform_desc gradient_uniforms[] = {
-    SKY_UF("u_sky_luminance", SKY_U_F1, sky_luminance),
+    SKY_UF("u_day_luminance", SKY_U_F1, day_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
 };
@@ -45,7 +45,7 @@ static double day_sky_luminance(double altitude)
 void sky_gradient_frame(sky *s)
 {
     sky_frame *f = &s->frame;
-    f->sky_luminance = (float)day_sky_luminance(f->sun_altitude);
+    f->day_luminance = f->sky_luminance = (float)day_sky_luminance(f->sun_altitude);
     /* The low-sun horizon colour: the square root of the direct beam's
      * transmittance (light that travelled about half the sun's path),
      * normalised to its red channel, and only 70 % saturated: the horizon

@@ -2,6 +2,20 @@
  * light, the darkening below the horizon, and the air-mass extinction the
  * non-physical paths use for light from behind the atmosphere. */
 uniform float u_night_luminance;  /* kcd/m^2 of the night sky (moonlit or not) */
+uniform vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light left,
+                                     yzw the extra left at the horizon (rgb) */
+
+/* A solar eclipse dims the day sky by the light the moon hides (x). Around
+ * totality what is left comes from the air outside the moon's shadow, lit
+ * by the partly eclipsed sun and seen along long, low paths: a yellow-
+ * orange ring along the horizon (yzw), fading within about 15 degrees of
+ * it ((1 - sin h)^8). Without an eclipse x = 1 and yzw = 0. */
+vec3 sky_eclipse_dim(vec3 d)
+{
+    float e = 1.0 - clamp(d.y, 0.0, 1.0);
+    float e2 = e * e, e4 = e2 * e2;
+    return vec3(u_eclipse_sky.x) + u_eclipse_sky.yzw * (e4 * e4);
+}
 
 /* The night sky's airglow and scattered moonlight: bluish, brighter toward
  * the horizon where the path through the glowing layer is longer. */

@@ -7,5 +7,5 @@ vec3 sky_atmosphere(vec3 d, vec3 day)
 {
     vec3 analytic = sky_rayleigh_radiance(d) * sky_below_horizon(d);
     vec3 tables = sky_hillaire_radiance(d);
-    return mix(analytic, tables, u_blend_weight) + sky_night_floor(d) * sky_below_horizon(d);
+    return mix(analytic, tables, u_blend_weight) * sky_eclipse_dim(d) + sky_night_floor(d) * sky_below_horizon(d);
 }

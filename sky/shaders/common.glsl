@@ -8,6 +8,7 @@ uniform vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round  
 uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
 uniform float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
 uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
+uniform float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
 
 const float SKY_PI = 3.14159265;
 
@@ -28,6 +29,33 @@ vec2 sky_fisheye_ndc(vec3 d)
     float hl = length(d.xz);
     vec2 h = hl > 1e-6 ? d.xz / hl : vec2(0.0, -1.0);
     return -h * theta / (0.5 * SKY_PI);
+}
+
+/* The true direction behind an apparent one: Saemundsson's refraction
+ * (Meeus 16.4, what astro.c applies to the centre) inverted by three
+ * fixed-point steps (it changes by a fifth of the altitude's change at the
+ * horizon, so each step gains a factor of five). The sun and the moon
+ * apply it at every point of their discs: it lifts the lower limb more
+ * than the upper, so a setting disc is flattened, about 0.8 high to wide
+ * at the horizon. */
+vec3 sky_unrefract(vec3 d)
+{
+    float ha = degrees(asin(clamp(d.y, -1.0, 1.0)));
+    float ht = ha;
+    for (int i = 0; i < 3; i++) {
+        float hc = max(ht, -1.0);
+        float r_arcmin = 1.02 / tan(radians(hc + 10.3 / (hc + 5.11))) + 0.0019279;
+        ht = ha - r_arcmin / 60.0 * u_refraction_pressure;
+    }
+    /* Turn d down by the refraction alone, toward the horizon in its
+     * vertical plane: d is kept exactly where the refraction vanishes
+     * (a GPU's asin and sin can be off by arcminutes high in the sky,
+     * which only the small refraction itself may see). */
+    float lift = radians(ha - ht);
+    vec3 toward_zenith = vec3(0.0, 1.0, 0.0) - d * d.y;
+    float l = length(toward_zenith);
+    toward_zenith = l > 1e-6 ? toward_zenith / l : vec3(0.0);
+    return d * cos(lift) - toward_zenith * sin(lift);
 }
 
 #ifdef SKY_FRAGMENT

@@ -2,7 +2,7 @@
  * gradient by elevation (interpolated from the dome's vertices), scaled by
  * the daylight luminance for the sun's altitude, with a forward-scattering
  * aureole tinted by the sunlight that reaches it and a faint night floor. */
-uniform float u_sky_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
+uniform float u_day_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
 uniform vec3 u_sun_transmittance;
 uniform vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient.c */
 
@@ -18,8 +18,8 @@ vec3 sky_atmosphere(vec3 d, vec3 day)
     /* Low sun: the horizon takes the colour of the light that reaches it,
      * most strongly on the sun's side. */
     float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu) / (1.0 - 6.0 * min(d.y, 0.0));
-    vec3 L = u_sky_luminance * (day * mix(vec3(1.0), u_horizon_tint, low) + aureole * u_sun_transmittance);
-    return (L + sky_night_floor(d)) * sky_below_horizon(d);
+    vec3 L = u_day_luminance * (day * mix(vec3(1.0), u_horizon_tint, low) + aureole * u_sun_transmittance);
+    return (L * sky_eclipse_dim(d) + sky_night_floor(d)) * sky_below_horizon(d);
 }
 
 float sky_atmosphere_transmittance(vec3 d) { return sky_air_mass_transmittance(d); }

@@ -53,6 +53,6 @@ vec3 sky_hillaire_radiance(vec3 d)
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {
     /* the table has the ground below the horizon: no darkening of its own */
-    return sky_hillaire_radiance(d) + sky_night_floor(d) * sky_below_horizon(d);
+    return sky_hillaire_radiance(d) * sky_eclipse_dim(d) + sky_night_floor(d) * sky_below_horizon(d);
 }
 #endif

@@ -5,7 +5,9 @@
  * shading (eq. 3, its phase terms per frame on the CPU), earthshine
  * (eq. 4), the reddish k_lambda, extinction, the lunar eclipse's colour
  * h(t_f) per fragment and brightness i(t_m) (sec. 3), a glare halo at
- * night, and the clouds in front. */
+ * night, and the clouds in front. Each fragment is first taken back
+ * through refraction (common.glsl), so a low moon is flattened like the
+ * sun; the billboard frame is centred on the true moon. */
 uniform sampler2D u_moon_tex;       /* 256x128 albedo, selenographic        */
 uniform mat4 u_moon_body;           /* billboard frame -> moon body frame    */
 uniform mat4 u_moon_view;           /* billboard frame -> horizon frame      */
@@ -16,24 +18,31 @@ uniform vec4 u_moon_terms;          /* x: HLS phase factor, y: LDR scale of
                                        the sunlit part, z: halo, w: occlusion
                                        of what is behind                     */
 uniform vec3 u_moon_earthshine;     /* earthshine relative to full sunlight */
+uniform float u_moon_radius_tan;    /* the drawn disc's tangent-plane radius */
 #ifdef SKY_HAS_ECLIPSE
 uniform sampler2D u_eclipse_tex;    /* h(t), log10-encoded: h = 10^(-5 texel) */
 uniform vec3 u_moon_center_km;      /* geocentric moon, horizon frame        */
 uniform vec3 u_shadow_axis;         /* geocentric direction to the sun       */
 uniform vec4 u_shadow;              /* umbra r, penumbra r (km), moon radius (km), i(t_m) */
 #endif
-SKY_IN vec2 v_uv;
 SKY_IN vec3 v_dir;
 
 void main()
 {
     vec3 d = normalize(v_dir);
-    float r2 = dot(v_uv, v_uv);
-    if (r2 >= 16.0 || d.y < -0.02) discard;
+    /* nothing below the refracted horizon: there the ground is */
+    if (d.y < 0.0) discard;
+    /* the fragment's place on the true disc's tangent plane, in disc radii */
+    vec3 t = sky_unrefract(d);
+    float along = dot(t, -u_moon_view[2].xyz);
+    if (along <= 0.0) discard;
+    vec2 uv = vec2(dot(t, u_moon_view[0].xyz), dot(t, u_moon_view[1].xyz)) / (along * u_moon_radius_tan);
+    float r2 = dot(uv, uv);
+    if (r2 >= 16.0) discard;
     vec3 L = vec3(0.0);
     float cover = 0.0;
     if (r2 < 1.0) {
-        vec3 n = vec3(v_uv, sqrt(1.0 - r2));
+        vec3 n = vec3(uv, sqrt(1.0 - r2));
         vec3 b = (u_moon_body * vec4(n, 0.0)).xyz;
         vec2 st = vec2(0.5 + atan(b.x, b.z) / (2.0 * SKY_PI), 0.5 - asin(clamp(b.y, -1.0, 1.0)) / SKY_PI);
         float albedo = SKY_TEX2D(u_moon_tex, st).r;

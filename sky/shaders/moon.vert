@@ -1,14 +1,11 @@
 /* moon.vert: the moon billboard (Mueller sec. 2.1): a quad on the tangent
  * plane of the unit sphere at the moon's direction, four disc radii wide
- * each way (the outer part carries the halo). a_pos is the position on
- * the quad in disc radii; a_dir the corner's direction. */
-SKY_ATTR vec2 a_pos;
+ * each way (the outer part carries the halo). a_dir is the corner's
+ * direction; moon.frag finds the disc from the fragment's direction. */
 SKY_ATTR vec3 a_dir;
-SKY_OUT vec2 v_uv;
 SKY_OUT vec3 v_dir;
 void main()
 {
-    v_uv = a_pos;
     v_dir = a_dir;
     if (u_fisheye > 0.5)
         gl_Position = vec4(sky_fisheye_ndc(normalize(a_dir)) / u_aspect, 0.0, 1.0);

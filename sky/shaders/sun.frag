@@ -1,31 +1,15 @@
 /* sun.frag: limb-darkened solar disc (Schneegans et al. eq. 1, u = 0.6)
- * with a small glare halo, dimmed by the atmosphere and hidden by clouds.
- * Drawn additively over the dome. */
+ * with a small glare halo, dimmed by the atmosphere, eclipsed by the
+ * moon's true disc with the corona around it, and hidden by clouds. Drawn
+ * additively over the dome. */
 uniform float u_sun_radius;     /* angular radius, radians                */
 uniform float u_sun_luminance;  /* kcd/m^2 at the disc centre             */
 uniform vec3 u_sun_transmittance;
 uniform vec3 u_sun_true_dir;    /* the centre without refraction         */
-uniform float u_refraction_pressure;
+uniform vec4 u_eclipse_sun;     /* x: moon's angular radius, y: the sun's
+                                   light left, z: corona scale (kcd/m^2) */
+uniform vec3 u_eclipse_moon_dir; /* the moon's centre without refraction */
 SKY_IN vec3 v_dir;
-
-/* The true direction behind an apparent one: Saemundsson's refraction
- * (Meeus 16.4, what astro.c applies to the centre) inverted by three
- * fixed-point steps (it changes by a fifth of the altitude's change at the
- * horizon, so each step gains a factor of five). Applied at every point
- * of the disc, it lifts the lower limb more than the upper: a setting sun
- * is flattened, about 0.8 high to wide at the horizon. */
-vec3 sky_unrefract(vec3 d)
-{
-    float ha = degrees(asin(clamp(d.y, -1.0, 1.0)));
-    float ht = ha;
-    for (int i = 0; i < 3; i++) {
-        float hc = max(ht, -1.0);
-        float r_arcmin = 1.02 / tan(radians(hc + 10.3 / (hc + 5.11))) + 0.0019279;
-        ht = ha - r_arcmin / 60.0 * u_refraction_pressure;
-    }
-    vec2 h = length(d.xz) > 1e-6 ? normalize(d.xz) : vec2(0.0, -1.0);
-    return vec3(h.x * cos(radians(ht)), sin(radians(ht)), h.y * cos(radians(ht)));
-}
 
 void main()
 {
@@ -39,12 +23,28 @@ void main()
     float r = phi / u_sun_radius;
     float disc = 0.0;
     if (r < 1.0) disc = 1.0 - 0.6 * (1.0 - sqrt(max(1.0 - r * r, 0.0)));
+    /* the moon in front: its edge smoothed over about a pixel outside the
+     * true disc, so a total eclipse leaves no partly lit pixel at the
+     * sun's limb */
+    float to_moon = dot(d, u_eclipse_moon_dir) > 0.0 ? length(cross(d, u_eclipse_moon_dir)) : 1.0;
+    float edge = max(fwidth(to_moon), 1e-7);
+    float behind_moon = 1.0 - smoothstep(u_eclipse_sun.x, u_eclipse_sun.x + 1.5 * edge, to_moon);
+    disc *= 1.0 - behind_moon;
     /* Glare: falls off with the square of the distance from the limb and is
-     * windowed to zero at the quad's edge (16 radii) so no square shows. */
+     * windowed to zero at the quad's edge (16 radii) so no square shows.
+     * It is the air's, in front of the moon, and carries the share of the
+     * sun's light the moon leaves. */
     float out_r = max(r - 1.0, 0.0);
     float window = max(1.0 - r / 16.0, 0.0);
-    float glare = 5e-6 * window * window / (1.0 + out_r * out_r);
-    vec3 L = u_sun_luminance * (disc + glare) * u_sun_transmittance;
+    float glare = 5e-6 * window * window / (1.0 + out_r * out_r) * u_eclipse_sun.y;
+    /* the corona (Baumbach's bracket, sun.c), behind the moon */
+    float corona = 0.0;
+    if (u_eclipse_sun.z > 0.0) {
+        float ir = 1.0 / max(r, 1.0), ir2 = ir * ir, ir7 = ir2 * ir2 * ir2 * ir;
+        corona = u_eclipse_sun.z * (0.0532 * ir2 * sqrt(ir) + 1.425 * ir7 + 2.565 * ir7 * ir7 * ir2 * ir) * window *
+                 (1.0 - behind_moon) / u_sun_luminance;
+    }
+    vec3 L = u_sun_luminance * (disc + glare + corona) * u_sun_transmittance;
 #ifdef SKY_HAS_CLOUDS
     L *= 1.0 - sky_clouds(view).a;
 #endif
