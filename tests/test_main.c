@@ -72,6 +72,7 @@ int test_failures;
     X(moon_total_eclipse_is_dark_and_red)        \
     X(moon_penumbral_eclipse_is_slightly_darker) \
     X(moon_left_out_when_not_needed)             \
+    X(moon_rising_is_flattened)                  \
     X(demo_window_shows_sky_and_sliders)         \
     X(demo_drag_on_cover_slider)                 \
     X(game_lit_by_the_sky)                       \

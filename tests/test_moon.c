@@ -1,7 +1,8 @@
 /*
  * Moon tests (Mueller sec. 2-3): phase and bright limb measured on the
- * rendered disc against the astronomy, earthshine, lunar eclipses, and the
- * moon left out below the horizon or out of the scene.
+ * rendered disc against the astronomy, earthshine, lunar eclipses, the
+ * rising moon flattened by refraction, and the moon left out below the
+ * horizon or out of the scene.
  */
 #include "test.h"
 #include "sky_internal.h"
@@ -15,6 +16,7 @@ void test_moon_earthshine_on_a_crescent(void);
 void test_moon_total_eclipse_is_dark_and_red(void);
 void test_moon_penumbral_eclipse_is_slightly_darker(void);
 void test_moon_left_out_when_not_needed(void);
+void test_moon_rising_is_flattened(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -240,4 +242,65 @@ void test_moon_left_out_when_not_needed(void)
         CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "SKY_MOON"), "SKY_ECLIPSE alone: %s", err);
         sky_osmesa_destroy(&ctx);
     }
+}
+
+void test_moon_rising_is_flattened(void)
+{
+    /* The full moon rising on 2024-06-21 at 45 N 10 E: the instant its
+     * centre stands 0.55 degree up (apparent), found by bisection */
+    sky_observer o = {0.0, 45.0, 10.0, 0.0, 0};
+    double lo = sky_julian_day(2024, 6, 21, 19, 0, 0.0), hi = sky_julian_day(2024, 6, 21, 20, 0, 0.0);
+    sky_astronomy a;
+    for (int i = 0; i < 40; i++) {
+        o.julian_day_utc = 0.5 * (lo + hi);
+        if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+            CHECK(0, "astronomy failed");
+            return;
+        }
+        if (a.moon.alt_deg < 0.55) lo = o.julian_day_utc;
+        else hi = o.julian_day_utc;
+    }
+    /* the moon alone: a render with it less one without it (the twilight
+     * sky cancels), at its true size, a 1.5-degree field */
+    scene sc = scene_default();
+    sc.cfg.features = SKY_MOON;
+    sc.cfg.moon_scale = 1.0f;
+    sc.params.cover = 0.0f;
+    sc.w = sc.h = 256;
+    sc.yaw = a.moon.az_deg;
+    sc.pitch = a.moon.alt_deg;
+    sc.fov = 1.5;
+    sc.has_observer = 1;
+    sc.observer = o;
+    scene bare = sc;
+    bare.cfg.features = 0;
+    image with, without;
+    if (render_scene(&sc, 1, SKY_GL_AUTO, &with) || render_scene(&bare, 1, SKY_GL_AUTO, &without)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    const int c = 128; /* the centre falls on the corner of four pixels */
+#define MOON_PX(x, y) (image_luminance(&with, (x), (y)) - image_luminance(&without, (x), (y)))
+    double centre = 0.25 * (MOON_PX(c - 1, c - 1) + MOON_PX(c, c - 1) + MOON_PX(c - 1, c) + MOON_PX(c, c));
+    double edge = 0.2 * centre;
+    int up = 0, down = 0, left = 0, right = 0;
+    while (up < c && MOON_PX(c, c - 1 - up) > edge) up++;
+    while (down < c && MOON_PX(c, c + down) > edge) down++;
+    while (left < c && MOON_PX(c - 1 - left, c) > edge) left++;
+    while (right < c && MOON_PX(c + right, c) > edge) right++;
+#undef MOON_PX
+    /* the prediction: each limb lifted by the refraction at its own true
+     * altitude (astro.c's formula at sea level) */
+    sky_astro as;
+    sky_astro_observer ao = {45.0 * DEG, 10.0 * DEG, 0.0};
+    sky_astro_compute(o.julian_day_utc, &ao, &as, NULL, 0);
+    double r = as.moon_topo_semidiameter, ht = as.moon.alt_geometric, pf = as.pressure_factor;
+    double top = ht + r + sky_refraction(ht + r, pf), bottom = ht - r + sky_refraction(ht - r, pf);
+    double measured = (up + down) / (double)(left + right), expected = (top - bottom) / (2.0 * r);
+    NOTE("moon centre %.2f deg apparent (%.2f true), %d/%d px up/down, %d/%d left/right: height/width %.3f, "
+         "predicted %.3f", a.moon.alt_deg, ht / DEG, up, down, left, right, measured, expected);
+    CHECK(fabs(measured - expected) <= 0.05 && expected < 0.95, "moon flattening %.3f, predicted %.3f", measured,
+          expected);
+    image_free(&with);
+    image_free(&without);
 }
