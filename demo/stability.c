@@ -68,8 +68,10 @@ static double out_of_range(const sky_astronomy *a)
             if (v[k] > excess) excess = v[k];
         }
     }
-    double unit[3] = {a->moon_illuminated_fraction, a->star_visibility, a->moon_phase_angle_deg / 180.0};
-    for (int k = 0; k < 3; k++) {
+    double unit[5] = {a->moon_illuminated_fraction, a->star_visibility, a->moon_phase_angle_deg / 180.0,
+                      a->solar_obscuration, a->solar_flux_fraction};
+    if (!isfinite(a->solar_magnitude)) return INFINITY;
+    for (int k = 0; k < 5; k++) {
         if (!isfinite(unit[k])) return INFINITY;
         double e = unit[k] < 0.0 ? -unit[k] : unit[k] - 1.0;
         if (e > excess) excess = e;
@@ -221,6 +223,34 @@ static void case_eclipse_edges(suite *st)
         }
         prev_u = a.umbral_magnitude;
         prev_p = a.penumbral_magnitude;
+    }
+    finish(r);
+}
+
+/* Through the total solar eclipse of 2024-04-08 seen near Nazas, Durango
+ * (greatest 18:17:20 UT), from before first contact to after last, one
+ * second at a time: obscuration and light left continuous across the four
+ * contacts. The moon moves against the sun at about 0.5 arcsec/s, which
+ * changes the covered fraction by at most 2 v / (pi r_sun) = 3.3e-4 a
+ * second (the lens grows by its chord); 5e-4 allows half again. */
+static void case_solar_eclipse_contacts(suite *st)
+{
+    sky_stability_row *r = add_row(st, "solar eclipse contacts (2024-04-08)",
+                                   "obscuration and light left: largest step per second", "", 5e-4);
+    double start = sky_julian_day(2024, 4, 8, 16, 50, 0.0), prev_o = NAN, prev_f = NAN;
+    for (int k = 0; k <= 10200; k++) {
+        sky_observer o = {start + k / 86400.0, 25.29, -104.14, 0.0, 0};
+        sky_astronomy a;
+        if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK || out_of_range(&a) > 0.0) {
+            keep_worst(r, INFINITY);
+            continue;
+        }
+        if (k > 0) {
+            keep_worst(r, fabs(a.solar_obscuration - prev_o));
+            keep_worst(r, fabs(a.solar_flux_fraction - prev_f));
+        }
+        prev_o = a.solar_obscuration;
+        prev_f = a.solar_flux_fraction;
     }
     finish(r);
 }
@@ -681,6 +711,7 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
     case_sun_continuity(&st);
     case_new_and_full_moon(&st);
     case_eclipse_edges(&st);
+    case_solar_eclipse_contacts(&st);
     case_star_colour(&st);
     case_sun_transmittance(&st);
     case_chapman(&st);

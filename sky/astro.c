@@ -435,6 +435,12 @@ void sky_solar_eclipse(double sun_radius, double moon_radius, double separation,
     if (flux_fraction) *flux_fraction = flux;
 }
 
+/* Mueller sec. 5's day-night fades of the stars and the moon for a sun
+ * whose up component is s_z; the powers act on clamped bases so they stay
+ * finite. */
+static double star_fade(double s_z) { return 1.0 / sqrt(1.0 + pow(clamp(s_z + 1.14, 0.0, 2.14), 32.0)); }
+static double moon_fade(double s_z) { return 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(clamp(s_z + 1.05, 0.0, 2.05), 32.0)); }
+
 static void set_error(char *err, size_t len, const char *fmt, ...)
 {
     if (!err || !len) return;
@@ -562,11 +568,9 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
     sky_solar_eclipse(a->sun_topo_semidiameter, a->moon_topo_semidiameter, a->sun_moon_separation,
                       &a->solar_obscuration, &a->solar_magnitude, &a->solar_flux_fraction);
 
-    /* day-night fades (Mueller sec. 5), s_z the sun's up component; the
-     * powers act on clamped bases so they stay finite */
-    double s_z = a->sun.dir[1];
-    a->star_visibility = 1.0 / sqrt(1.0 + pow(clamp(s_z + 1.14, 0.0, 2.14), 32.0));
-    a->moon_visibility = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(clamp(s_z + 1.05, 0.0, 2.05), 32.0));
+    /* day-night fades (Mueller sec. 5) from the sun's up component */
+    a->star_visibility = star_fade(a->sun.dir[1]);
+    a->moon_visibility = moon_fade(a->sun.dir[1]);
     /* A deep solar eclipse darkens the sky like a sun 8 degrees below the
      * horizon (the zenith keeps some 3e-4 of its light, about 1 cd/m^2,
      * which the twilight sky has there): once the zenith keeps less than
@@ -579,9 +583,8 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
     dark = dark * dark * (3.0 - 2.0 * dark);
     if (dark > 0.0) {
         double s8 = sin(-8.0 * DEG);
-        double star8 = 1.0 / sqrt(1.0 + pow(s8 + 1.14, 32.0)), moon8 = 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(s8 + 1.05, 32.0));
-        a->star_visibility += dark * fmax(star8 - a->star_visibility, 0.0);
-        a->moon_visibility += dark * fmax(moon8 - a->moon_visibility, 0.0);
+        a->star_visibility += dark * fmax(star_fade(s8) - a->star_visibility, 0.0);
+        a->moon_visibility += dark * fmax(moon_fade(s8) - a->moon_visibility, 0.0);
     }
 
     /* stars: one precession-nutation matrix for the frame (Mueller eq. 7-8)

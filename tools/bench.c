@@ -462,7 +462,7 @@ int main(int argc, char **argv)
     }
     atmo_row atmo[2 * ATMO_SETTINGS];
     int natmo = 0;
-    static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse"};
+    static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse", "solar-eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];
     double base[2] = {0, 0}, night[2][NIGHT_COUNT];
