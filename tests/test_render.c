@@ -666,4 +666,30 @@ void test_render_total_solar_eclipse(void)
     image_free(&s0);
     image_free(&l1);
     image_free(&l0);
+
+    /* the host's lighting goes with the sky: direct sun gone, ambient and
+     * fog at deep-twilight levels, against an hour later */
+    fixture fx;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_SUN | SKY_MOON;
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    if (fixture_open(&fx, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_lighting at, after_l;
+    sky_set_observer(fx.s, &sc.observer);
+    sky_get_lighting(fx.s, &at);
+    sky_set_observer(fx.s, &later.observer);
+    sky_get_lighting(fx.s, &after_l);
+    NOTE("lighting at totality: sun %.3g klx (green), ambient %.3g, fog %.3g; an hour later %.3g, %.3g, %.3g",
+         (double)at.sun_color[1], (double)at.ambient_color[1], (double)at.fog_color[1], (double)after_l.sun_color[1],
+         (double)after_l.ambient_color[1], (double)after_l.fog_color[1]);
+    CHECK(at.sun_color[1] <= 1e-6f * after_l.sun_color[1], "the sun still lights the scene at totality (%g klx)",
+          (double)at.sun_color[1]);
+    CHECK(at.ambient_color[1] < 0.003f * after_l.ambient_color[1] && at.fog_color[1] < 0.01f * after_l.fog_color[1],
+          "ambient %g / fog %g at totality against %g / %g", (double)at.ambient_color[1], (double)at.fog_color[1],
+          (double)after_l.ambient_color[1], (double)after_l.fog_color[1]);
+    fixture_close(&fx);
 }
