@@ -356,6 +356,9 @@ int main(int argc, char **argv)
                             d.cli.observer.longitude_deg, 0);
         used += snprintf(lines + used, sizeof lines - (size_t)used, "sun %.1f deg  moon %.1f deg, %.0f %% lit%c",
                          a.sun.alt_deg, a.moon.alt_deg, 100 * a.moon_illuminated_fraction, 0);
+        if (a.solar_obscuration > 0.0)
+            used += snprintf(lines + used, sizeof lines - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
+                             100 * a.solar_obscuration, a.solar_magnitude, 0);
         used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  fov %.0f  time %s x%.0f%c",
                          st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", d.cli.fov,
                          d.running ? "running" : "paused", d.time_rate * 86400.0, 0);
