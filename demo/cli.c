@@ -134,7 +134,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
             "  --moon-scale C           draw the moon C times its true size (0.5..50; default 2.5)\n"
-            "  --exposure STOPS         on top of the automatic exposure (-20..20; a filter for the sun: -12)\n"
+            "  --exposure STOPS         on top of the automatic exposure (-10..10; the sun as through a filter: -8)\n"
             "  --date YYYY-MM-DDTHH:MM:SSZ   UTC instant (years -1999..3000); with --time,\n"
             "                           --time sets the local solar time on that date\n"
             "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
@@ -283,8 +283,8 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
             cli->moon_scale = (float)v;
         } else if (!strcmp(opt, "--exposure")) {
-            if (!parse_number(val, -20.0, 20.0, &v))
-                return fail(err, len, "--exposure: expected stops in -20..20, got '%s'", val ? val : "(nothing)");
+            if (!parse_number(val, -10.0, 10.0, &v))
+                return fail(err, len, "--exposure: expected stops in -10..10, got '%s'", val ? val : "(nothing)");
             cli->exposure = (float)v;
         } else if (!strcmp(opt, "--luts")) {
             /* Hillaire's tables: his sizes and samples scaled */

@@ -37,6 +37,7 @@ static int headless(const sky_cli *cli)
     sky_set_params(s, &cli->params);
     sky_set_observer(s, &cli->observer);
     sky_set_elapsed(s, cli->seconds);
+    sky_set_exposure_bias(s, cli->exposure);
     int rc = 0;
     for (int f = 0; f < cli->frames && !rc; f++) {
         if (f) sky_update(s, 1.0 / 30.0);
@@ -201,6 +202,7 @@ static sky *make_sky(demo *d, char *err, size_t len)
     if (s) {
         sky_set_params(s, &d->cli.params);
         sky_set_observer(s, &d->cli.observer);
+        sky_set_exposure_bias(s, d->cli.exposure);
     }
     return s;
 }

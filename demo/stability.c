@@ -232,7 +232,9 @@ static void case_eclipse_edges(suite *st)
  * second at a time: obscuration and light left continuous across the four
  * contacts. The moon moves against the sun at about 0.5 arcsec/s, which
  * changes the covered fraction by at most 2 v / (pi r_sun) = 3.3e-4 a
- * second (the lens grows by its chord); 5e-4 allows half again. */
+ * second (the lens grows by its chord), and the light left at most
+ * 1 / (1 - u/3) = 1.25 times that where the bright centre is covered,
+ * 4.2e-4; 5e-4 allows a fifth more. */
 static void case_solar_eclipse_contacts(suite *st)
 {
     sky_stability_row *r = add_row(st, "solar eclipse contacts (2024-04-08)",

@@ -396,9 +396,13 @@ static double overlap_area(double r1, double r2, double d)
 void sky_solar_eclipse(double sun_radius, double moon_radius, double separation, double *obscuration,
                        double *magnitude, double *flux_fraction)
 {
-    double rs = fmax(sun_radius, 1e-12), rm = fmax(moon_radius, 0.0), d = fmax(separation, 0.0);
+    /* anything not finite is no eclipse (fmax would let a NaN through as
+     * the other operand) */
+    int sane = isfinite(sun_radius) && isfinite(moon_radius) && isfinite(separation);
+    double rs = sane ? fmax(sun_radius, 1e-12) : 1.0, rm = sane ? fmax(moon_radius, 0.0) : 0.0;
+    double d = sane ? fmax(separation, 0.0) : 1.0;
     double covered = 0.0, mag = 0.0, flux = 1.0;
-    if (isfinite(rs) && isfinite(rm) && isfinite(d) && d < rs + rm) {
+    if (rm > 0.0 && d < rs + rm) {
         covered = clamp(overlap_area(rs, rm, d) / (PI * rs * rs), 0.0, 1.0);
         mag = (rs + rm - d) / (2.0 * rs);
         /* The limb-darkened light behind the moon (Schneegans et al.

@@ -57,5 +57,5 @@ void sky_flicker_frame(sky *s)
 {
     sky_frame *f = &s->frame;
     f->flicker_phase = (float)(255.0 * s->flicker_phase);
-    f->star_luminance = (float)SKY_FLICKER_STAR_LUMINANCE * f->night;
+    f->star_luminance = (float)SKY_FLICKER_STAR_LUMINANCE * f->night * f->star_local_gain;
 }

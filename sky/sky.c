@@ -124,6 +124,21 @@ static void compute_frame(sky *s)
     f->star_rot[15] = f->starmap_rot[15] = 1.0f;
     sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
     sky_atmosphere_frame(s);
+    /* A solar eclipse takes the sun's share of R-P's sunlight away (the
+     * clouds' sunlit side, the host's daylight) */
+    f->daylight *= (float)s->astro.solar_flux_fraction;
+    /* The few minutes of a total solar eclipse are too short for the eye
+     * to adapt to its dimmed sky (the rods take tens of minutes): the
+     * exposure follows the square root of the eclipse's dimming (the mean
+     * that atmosphere.c applied to sky_luminance), so totality looks like
+     * deep twilight around a bright corona, not like day. The stars (the
+     * catalogue, the star map and the flicker stars) are judged against
+     * the sky around them, as the moon is (moon.c): in LDR they keep the
+     * contrast a full adaptation would give them. */
+    double eclipse_dim = f->eclipse_sky[0] + (0.2126 * f->eclipse_sky[1] + 0.7152 * f->eclipse_sky[2] +
+                                              0.0722 * f->eclipse_sky[3]) / 9.0;
+    double withheld = 1.0 / sqrt(sky_clampd(eclipse_dim, 1e-6, 1.0));
+    f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
     if (s->features & SKY_SUN) sky_sun_frame(s);
     if (s->features & SKY_CLOUDS) sky_clouds_frame(s);
     if (s->features & SKY_FLICKER_STARS) sky_flicker_frame(s);
@@ -131,17 +146,6 @@ static void compute_frame(sky *s)
      * scale maps to the filmic curve's shoulder (common.glsl); at night a
      * floor 75 times the night sky (moonlit or not) keeps the sky dark blue
      * and the stars bright. */
-    /* The few minutes of a total solar eclipse are too short for the eye
-     * to adapt to its dimmed sky (the rods take tens of minutes): the
-     * exposure follows the square root of the eclipse's dimming (the mean
-     * that atmosphere.c applied to sky_luminance), so totality looks like
-     * deep twilight around a bright corona, not like day. The stars are
-     * judged against the sky around them, as the moon is (moon.c): in LDR
-     * they keep the contrast a full adaptation would give them. */
-    double eclipse_dim = f->eclipse_sky[0] + (0.2126 * f->eclipse_sky[1] + 0.7152 * f->eclipse_sky[2] +
-                                              0.0722 * f->eclipse_sky[3]) / 9.0;
-    double withheld = 1.0 / sqrt(sky_clampd(eclipse_dim, 1e-6, 1.0));
-    f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
     f->exposure =
         (float)(pow(2.0, s->exposure_bias) / (f->sky_luminance * withheld + 75.0 * f->night_luminance));
     /* Night vision: the adaptation luminance (what the exposure maps to

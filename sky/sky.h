@@ -287,8 +287,11 @@ typedef struct sky_astronomy {
     double moon_parallactic_deg;       /* parallactic angle at the moon       */
     double umbral_magnitude, penumbral_magnitude; /* lunar eclipse, Danjon   */
     /* solar eclipse as the observer sees it: fraction of the sun's disc
-     * area covered, fraction of its diameter covered (> 1 when total, 0
-     * without contact), fraction of its limb-darkened light left */
+     * area covered; magnitude, the fraction of its diameter covered in
+     * Meeus's local form (r_sun + r_moon - d) / (2 r_sun), above 1 when
+     * total (at mid-totality (1 + k) / 2, k the moon/sun diameter ratio
+     * that catalogues quote), 0 without contact; fraction of its
+     * limb-darkened light left */
     double solar_obscuration, solar_magnitude, solar_flux_fraction;
     double star_visibility;  /* Mueller sec. 5 star fade: 0 day .. 1 night      */
     double moon_visibility;  /* Mueller sec. 5 moon factor: 0.5 day .. 1.207

@@ -33,7 +33,7 @@ void sky_starmap_frame(sky *s)
     sky_frame *f = &s->frame;
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
     double fov = f->pixel_angle > 0.0f ? sqrt(STARMAP_REF_PIXEL_ANGLE / f->pixel_angle) : 1.0;
-    double scale = STARMAP_PEAK * pow(2.512, m_a - 4.0) * fov * s->astro.star_visibility;
+    double scale = STARMAP_PEAK * pow(2.512, m_a - 4.0) * fov * s->astro.star_visibility * f->star_local_gain;
     /* nothing a quarter of an 8-bit step could show at the automatic
      * exposure: off (for HDR output too, as for the stars) */
     f->starmap_scale = scale * f->exposure < 1.0 / 1024.0 ? 0.0f : (float)scale;

@@ -14,10 +14,11 @@
 #define SKY_SUN_LUMINANCE 2.0e6
 /* The quad reaches 16 radii: the glare is windowed to zero there. */
 #define SKY_SUN_QUAD_RADII 16.0
-/* The corona's mean brightness at the limb relative to the sun's mean
- * disc (Baumbach 1937: 1e-6 (0.0532 r^-2.5 + 1.425 r^-7 + 2.565 r^-17), r
- * in solar radii; sun.frag evaluates the bracket), times that mean disc,
- * 0.8 of the centre's luminance. In kcd/m^2. */
+/* The corona's brightness relative to the sun's mean disc is Baumbach's
+ * (1937) 1e-6 (0.0532 r^-2.5 + 1.425 r^-7 + 2.565 r^-17), r in solar radii
+ * (4e-6 at the limb). sun.frag evaluates the bracket; this is the factor
+ * before it: 1e-6 times the mean disc, 0.8 of the centre's luminance. In
+ * kcd/m^2. */
 #define SKY_CORONA_SCALE (1e-6 * 0.8 * SKY_SUN_LUMINANCE)
 
 static const sky_uniform_desc sun_uniforms[] = {

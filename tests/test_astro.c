@@ -447,13 +447,18 @@ void test_astro_solar_eclipse_totality(void)
           1.0 - f1, o1, 1.0 - f2, o2);
     /* degenerate and bad input: finite, in range */
     double bad[][3] = {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {NAN, 1.0, 0.5}, {1.0, INFINITY, 0.1},
-                       {1.0, 1.0, -1.0}, {1e-9, 1.0, 1e-9}};
+                       {1.0, 1.0, NAN}, {1.0, 1.0, -1.0}, {1e-9, 1.0, 1e-9}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         double obsc, mag, flux;
         sky_solar_eclipse(bad[i][0], bad[i][1], bad[i][2], &obsc, &mag, &flux);
         CHECK(isfinite(obsc) && isfinite(mag) && isfinite(flux) && obsc >= 0.0 && obsc <= 1.0 && flux >= 0.0 &&
                   flux <= 1.0,
               "sky_solar_eclipse(%g, %g, %g) -> %g %g %g", bad[i][0], bad[i][1], bad[i][2], obsc, mag, flux);
+        /* no moon, or a value that is not a number: no eclipse */
+        int none = !(bad[i][1] > 0.0) || !isfinite(bad[i][0]) || !isfinite(bad[i][1]) || !isfinite(bad[i][2]);
+        if (none)
+            CHECK(obsc == 0.0 && mag == 0.0 && flux == 1.0, "sky_solar_eclipse(%g, %g, %g) -> %g %g %g, not none",
+                  bad[i][0], bad[i][1], bad[i][2], obsc, mag, flux);
     }
 }
 

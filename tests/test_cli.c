@@ -237,7 +237,7 @@ void test_cli_every_option_checked(void)
         {"--yaw", "left", "400"},        {"--pitch", "up", "-91"},           {"--fov", "wide", "180"},
         {"--atmosphere", "fog", NULL},   {"--features", "rain", NULL},       {"--gl", "vulkan", NULL},
         {"--preset", "beach", NULL},     {"--frames", "many", "0"},          {"--moon-scale", "big", "51"},
-        {"--exposure", "bright", "21"},
+        {"--exposure", "bright", "11"},
         {"--hip", "sirius", "0"},        {"--out", NULL, NULL},              {"--out-pfm", NULL, NULL},
     };
     char render[512], cmd[1024], out[2048];

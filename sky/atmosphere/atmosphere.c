@@ -100,9 +100,9 @@ static void eval_blend(const sky *s, const double d[3], double rgb[3])
  * in the elevation sine (4 nodes on 0..1) times 8 azimuths. The irradiance
  * on an upward surface is 2 pi int L mu dmu; the mean luminance is the
  * solid-angle mean over the upper hemisphere; fog takes the lowest ring. */
+static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
 static void summarise(const sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]), sky_summary *out)
 {
-    static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
     static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
     memset(out, 0, sizeof *out);
     for (int k = 0; k < 4; k++) {
@@ -177,8 +177,10 @@ void sky_atmosphere_zenith_depth(const sky *s, double depth[3])
  * (atmosphere.glsl's sky_eclipse_dim). The CPU summary that the exposure,
  * clouds, moon and host lighting read is dimmed by the same amounts:
  * the ring's (1 - sin h)^8 averages 1/9 over the hemisphere's solid angle,
- * 1/45 weighted by the cosine (irradiance) and is 1 at the horizon (fog).
- * The night sky's own light is not the sun's and stays. */
+ * 1/45 weighted by the cosine (irradiance), and for fog takes its value
+ * where the fog was taken: the summary's lowest ring, or the horizon
+ * itself for the gradient. The night sky's own light is not the sun's and
+ * stays. */
 static void eclipse_frame(sky *s)
 {
     sky_frame *f = &s->frame;
@@ -192,8 +194,9 @@ static void eclipse_frame(sky *s)
     for (int i = 0; i < 3; i++) f->eclipse_sky[1 + i] = (float)(ring * ring_tint[i]);
     if (left >= 1.0) return;
     f->sky_luminance *= (float)(base + ring / 9.0);
+    double e = s->atmosphere == SKY_ATMOSPHERE_GRADIENT ? 1.0 : 1.0 - mu_node[0], e2 = e * e, e4 = e2 * e2;
     for (int i = 0; i < 3; i++) {
-        double irr = base + ring * ring_tint[i] / 45.0, fog = base + ring * ring_tint[i];
+        double irr = base + ring * ring_tint[i] / 45.0, fog = base + ring * ring_tint[i] * e4 * e4;
         f->ambient_rgb[i] = (float)(f->ambient_rgb[i] * irr + SKY_PI * f->night_luminance * (1.0 - irr));
         f->fog_rgb[i] = (float)(f->fog_rgb[i] * fog + f->night_luminance * (1.0 - fog));
     }

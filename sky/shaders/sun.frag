@@ -14,8 +14,8 @@ SKY_IN vec3 v_dir;
 void main()
 {
     vec3 view = normalize(v_dir);
-    /* nothing below the refracted horizon: there the ground is */
-    if (view.y < 0.0) discard;
+    /* (nothing is drawn below the refracted horizon, but the discard waits
+     * until the derivatives below have been taken in uniform control flow) */
     vec3 d = sky_unrefract(view);
     /* |d x s| is the sine of the angle: precise for the small angles here,
      * where acos(dot) would lose most of its digits in float. */
@@ -48,6 +48,8 @@ void main()
 #ifdef SKY_HAS_CLOUDS
     L *= 1.0 - sky_clouds(view).a;
 #endif
+    /* nothing below the refracted horizon: there the ground is */
+    if (view.y < 0.0) discard;
     /* Additive: where the sun adds nothing visible, add nothing at all (the
      * dome already carries the dither). */
     if (u_output_hdr < 0.5 && max(L.r, max(L.g, L.b)) * u_exposure < 1.0 / 1024.0) discard;
