@@ -78,12 +78,7 @@ int sky_moon_create(sky *s, char *err, size_t err_len)
     }
     sky_png_free(albedo);
     s->moon_albedo_mean = (float)(sum / wsum);
-    float zero[4 * 5] = {0};
-    s->moon_buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, zero, sizeof zero, GL_DYNAMIC_DRAW);
-    if (!s->moon_buffer) {
-        sky_format(err, err_len, "glGenBuffers failed for the moon");
-        return -1;
-    }
+    if (sky_disc_grid_create(s, &s->moon_grid, "moon", err, err_len)) return -1;
     if (s->features & SKY_ECLIPSE) {
         unsigned char lut[128 * 4];
         for (int i = 0; i < 128; i++) {
@@ -280,24 +275,13 @@ void sky_moon_frame(sky *s)
 
 int sky_moon_visible(const sky *s)
 {
-    if (!(s->features & SKY_MOON) || !s->moon_buffer) return 0;
+    if (!(s->features & SKY_MOON) || !s->moon_grid.vertices) return 0;
     /* the whole quad, halo included, below the horizon */
     return s->astro.moon.alt > -atan(MOON_QUAD_RADII * s->moon_radius_tan) - 0.01;
 }
 
 void sky_moon_update_quad(sky *s)
 {
-    float v[4 * 5];
-    static const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
-    double k = MOON_QUAD_RADII * s->moon_radius_tan;
-    for (int c = 0; c < 4; c++) {
-        v[c * 5 + 0] = (float)(corners[c][0] * MOON_QUAD_RADII);
-        v[c * 5 + 1] = (float)(corners[c][1] * MOON_QUAD_RADII);
-        for (int i = 0; i < 3; i++)
-            v[c * 5 + 2 + i] = (float)(s->moon_axes[2][i] + k * (corners[c][0] * s->moon_axes[0][i] +
-                                                                 corners[c][1] * s->moon_axes[1][i]));
-    }
-    const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, s->moon_buffer);
-    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+    sky_disc_grid_update(s, &s->moon_grid, s->moon_axes[2], s->moon_axes[0], s->moon_axes[1],
+                         MOON_QUAD_RADII * s->moon_radius_tan, MOON_QUAD_RADII);
 }

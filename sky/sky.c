@@ -364,8 +364,9 @@ void sky_destroy(sky *s)
         sky_program_destroy(s, &s->transmittance_build);
         sky_program_destroy(s, &s->multiscatter_build);
         sky_program_destroy(s, &s->skyview_build);
-        GLuint buffers[5] = {s->dome_vertices, s->dome_indices, s->sun_buffer, s->star_buffer, s->moon_buffer};
-        gl->glDeleteBuffers(5, buffers);
+        GLuint buffers[7] = {s->dome_vertices,     s->dome_indices, s->sun_grid.vertices, s->sun_grid.indices,
+                             s->moon_grid.vertices, s->moon_grid.indices, s->star_buffer};
+        gl->glDeleteBuffers(7, buffers);
         if (s->vao) gl->glDeleteVertexArrays(1, &s->vao);
     }
     sky_hillaire_destroy(s);
@@ -604,16 +605,18 @@ double sky_now_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-/* The sun quad's corners: disc coordinates (a_pos) and directions (a_dir). */
-static void bind_quad(sky *s, GLuint buffer)
+/* A disc's grid (sun, moon): grid position (a_pos) and direction (a_dir). */
+static void draw_grid(sky *s, const sky_disc_grid *g)
 {
     const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, g->vertices);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->indices);
     gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)0);
     gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)(2 * sizeof(float)));
     gl->glEnableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
     gl->glDisableVertexAttribArray(2);
+    gl->glDrawElements(GL_TRIANGLES, SKY_DISC_GRID_INDICES, GL_UNSIGNED_SHORT, (const void *)0);
 }
 
 static void reset_layer_stats(sky *s)
@@ -629,8 +632,8 @@ static void reset_layer_stats(sky *s)
     s->lut_ms = 0.0;
 }
 
-/* Draws one layer: a quad buffer, or the dome's hemispheres (quad 0). */
-static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint quad)
+/* Draws one layer: a disc's grid, or the dome's hemispheres (grid NULL). */
+static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, const sky_disc_grid *grid)
 {
     const sky_gl *gl = &s->gl;
     int timed = s->cfg.profile_layers;
@@ -640,9 +643,8 @@ static void draw_layer(sky *s, sky_layer layer, const sky_program *prog, GLuint 
         t0 = sky_now_ms();
     }
     sky_program_apply(s, prog);
-    if (quad) {
-        bind_quad(s, quad);
-        gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    if (grid) {
+        draw_grid(s, grid);
     } else {
         sky_dome_draw(s, 1);
         /* the lower hemisphere: its own cheap program when the upper one
@@ -685,7 +687,7 @@ static sky_result draw_frame(sky *s)
     int clear = (s->features & SKY_CLOUDS) && !sky_clouds_visible(s);
     const sky_program *dome = night ? (clear ? &s->dome_night_clear : &s->dome_night) : (clear ? &s->ground : &s->dome);
     sky_hillaire_upload(s); /* a sky-view table rebuilt since the last draw */
-    draw_layer(s, SKY_LAYER_ATMOSPHERE, dome, 0);
+    draw_layer(s, SKY_LAYER_ATMOSPHERE, dome, NULL);
     if (s->features & SKY_FLICKER_STARS) s->stats.layers[SKY_LAYER_FLICKER].drawn = night && s->frame.star_luminance > 0;
     if (s->features & SKY_STARMAP) s->stats.layers[SKY_LAYER_STARMAP].drawn = night && s->frame.starmap_scale > 0;
     if (s->features & SKY_CLOUDS) s->stats.layers[SKY_LAYER_CLOUDS].drawn = sky_clouds_visible(s);
@@ -723,7 +725,7 @@ static sky_result draw_frame(sky *s)
             gl->glEnable(GL_BLEND);
             gl->glBlendEquation(GL_FUNC_ADD);
             gl->glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-            draw_layer(s, SKY_LAYER_MOON, &s->moon, s->moon_buffer);
+            draw_layer(s, SKY_LAYER_MOON, &s->moon, &s->moon_grid);
         }
     }
 
@@ -734,7 +736,7 @@ static sky_result draw_frame(sky *s)
         gl->glEnable(GL_BLEND);
         gl->glBlendEquation(GL_FUNC_ADD);
         gl->glBlendFunc(GL_ONE, GL_ONE);
-        draw_layer(s, SKY_LAYER_SUN, &s->sun, s->sun_buffer);
+        draw_layer(s, SKY_LAYER_SUN, &s->sun, &s->sun_grid);
     }
     GLenum e = gl->glGetError();
     if (e != GL_NO_ERROR) return sky_fail(s, SKY_ERR_GL, "sky_draw: GL error 0x%04x", e);
@@ -789,11 +791,14 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
             out->gpu_bytes += s->textures[i].bytes;
             out->layers[s->textures[i].owner].bytes += s->textures[i].bytes;
         }
-    out->layers[SKY_LAYER_ATMOSPHERE].bytes += s->buffer_bytes - (s->sun_buffer ? 4 * 5 * sizeof(float) : 0);
-    if (s->sun_buffer) out->layers[SKY_LAYER_SUN].bytes += 4 * 5 * sizeof(float);
-    if (s->moon_buffer) {
-        out->layers[SKY_LAYER_MOON].bytes += 4 * 5 * sizeof(float);
-        out->layers[SKY_LAYER_ATMOSPHERE].bytes -= 4 * 5 * sizeof(float);
+    out->layers[SKY_LAYER_ATMOSPHERE].bytes += s->buffer_bytes;
+    if (s->sun_grid.vertices) {
+        out->layers[SKY_LAYER_SUN].bytes += SKY_DISC_GRID_BYTES;
+        out->layers[SKY_LAYER_ATMOSPHERE].bytes -= SKY_DISC_GRID_BYTES;
+    }
+    if (s->moon_grid.vertices) {
+        out->layers[SKY_LAYER_MOON].bytes += SKY_DISC_GRID_BYTES;
+        out->layers[SKY_LAYER_ATMOSPHERE].bytes -= SKY_DISC_GRID_BYTES;
     }
     if (s->star_buffer) {
         size_t star_bytes = sizeof(float) * 9 * (size_t)s->catalog.count;

@@ -144,6 +144,8 @@ typedef struct sky_frame {
     /* catalogue stars (stars.c) */
     float star_rot[16], star_aberration[3], star_size[4], star_viewport[4], star_pressure[3];
     float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
+    float star_occulter[4];  /* the moon's true direction and the cosine of its
+                                drawn radius (2: no moon): stars behind it go */
     float star_local_gain;   /* LDR: the stars' gain against a sky the eye has
                                 not adapted to (a solar eclipse; sky.c)        */
     /* star map (starmap.c) */
@@ -184,6 +186,24 @@ typedef struct sky_program {
     const sky_uniform_desc *uniforms[SKY_MAX_UNIFORMS];
     GLint locations[SKY_MAX_UNIFORMS];
 } sky_program;
+
+/* The sun's and the moon's quads are drawn as a grid of
+ * SKY_DISC_GRID^2 cells: their vertex shaders undo the refraction at each
+ * vertex (common.glsl's sky_unrefract), which is smooth enough over a
+ * cell (0.53 degree for the sun, 0.33 for the moon at its default scale)
+ * for linear interpolation to keep the disc's shape: w^2/8 times the
+ * refraction's curvature is at most 13 arcseconds at the horizon (1.3 %
+ * of the sun's radius), 5 for the moon. The fragment shaders only
+ * normalise. The vertices (grid position, direction) are rewritten each
+ * frame; the indices are fixed. */
+#define SKY_DISC_GRID 16
+#define SKY_DISC_GRID_VERTICES ((SKY_DISC_GRID + 1) * (SKY_DISC_GRID + 1))
+#define SKY_DISC_GRID_INDICES (SKY_DISC_GRID * SKY_DISC_GRID * 6)
+#define SKY_DISC_GRID_BYTES \
+    (SKY_DISC_GRID_VERTICES * 5 * sizeof(float) + SKY_DISC_GRID_INDICES * sizeof(unsigned short))
+typedef struct sky_disc_grid {
+    GLuint vertices, indices;
+} sky_disc_grid;
 
 /* A physical path's sky in a few numbers (atmosphere.c): the mean
  * luminance over the upper hemisphere, the irradiance on an upward surface
@@ -232,7 +252,7 @@ struct sky {
     GLuint skyview_fbo;           /* renders into each of the tables in turn    */
     sky_program stars;            /* catalogue stars (points)                  */
     sky_program moon;             /* moon billboard                            */
-    GLuint moon_buffer;           /* 4 corners: disc uv, direction              */
+    sky_disc_grid moon_grid;      /* the moon's quad, tessellated               */
     float moon_albedo_mean;       /* the albedo map's near-side mean            */
     double moon_axes[3][3];       /* billboard x (right), y (up), moon direction */
     double moon_radius_tan;       /* drawn disc radius on the tangent plane     */
@@ -243,7 +263,7 @@ struct sky {
     GLuint dome_vertices;         /* dome.c: direction, gradient colour, galaxy */
     GLuint dome_indices;
     int dome_index_count, dome_upper_first; /* indices: all, and where the upper hemisphere starts */
-    GLuint sun_buffer;            /* 4 corners: direction.xyz, disc uv         */
+    sky_disc_grid sun_grid;       /* the sun's quad, tessellated                */
     GLuint vao;                   /* CORE33 only                               */
     int program_count, buffer_count;
     size_t buffer_bytes;
@@ -422,5 +442,11 @@ void sky_sun_transmittance(double altitude, float out[3]);
 /* The fraction of a disc of the given angular radius (radians) whose
  * centre is at altitude that stands above the horizon: 0..1, continuous. */
 double sky_disc_above_horizon(double altitude, double radius);
+/* The grid's buffers (sun.c); 0, or -1 with a message naming `what`. */
+int sky_disc_grid_create(sky *s, sky_disc_grid *g, const char *what, char *err, size_t err_len);
+/* Rewrites the grid over the square centre +- half (tangent-plane units)
+ * along the unit axes x and y; a_pos runs over +-pos_half. */
+void sky_disc_grid_update(sky *s, const sky_disc_grid *g, const double centre[3], const double x[3],
+                          const double y[3], double half, double pos_half);
 
 #endif /* SKY_INTERNAL_H */

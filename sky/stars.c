@@ -34,6 +34,7 @@ static const sky_uniform_desc star_uniforms[] = {
     SKY_UF("u_star_extinction", SKY_U_F3, star_extinction),
     SKY_UF("u_star_shell", SKY_U_F3, star_shell),
     SKY_UF("u_star_seed", SKY_U_F1, star_seed),
+    SKY_UF("u_star_occulter", SKY_U_F4, star_occulter),
 };
 const sky_snippet sky_stars_snippet = {NULL, NULL, star_uniforms, (int)(sizeof star_uniforms / sizeof star_uniforms[0])};
 
@@ -150,6 +151,17 @@ void sky_stars_frame(sky *s)
     f->star_shell[0] = (float)(re + h);
     f->star_shell[1] = (float)(re + te);
     f->star_shell[2] = (float)(te - h);
+    /* The moon hides the stars behind its disc, whatever the sky's
+     * brightness (the disc itself only adds light by day, moon.c, so it
+     * cannot hide them): the test is in true directions, at the disc's
+     * drawn size. */
+    f->star_occulter[3] = 2.0f;
+    if (s->features & SKY_MOON) {
+        double m[3];
+        sky_horizon_vector(a->moon.alt_geometric, a->moon.az, m);
+        for (int i = 0; i < 3; i++) f->star_occulter[i] = (float)m[i];
+        f->star_occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
+    }
     /* the scintillation clock, in random values (see sky_internal.h) */
     f->star_seed = (float)(SKY_SCINTILLATION_PERIOD * s->scintillation_phase);
 }

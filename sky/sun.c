@@ -58,15 +58,45 @@ double sky_disc_above_horizon(double altitude, double radius)
     return 1.0 - (acos(d) - d * sqrt(fmax(1.0 - d * d, 0.0))) / SKY_PI;
 }
 
-int sky_sun_create(sky *s, char *err, size_t err_len)
+int sky_disc_grid_create(sky *s, sky_disc_grid *g, const char *what, char *err, size_t err_len)
 {
-    /* corners: disc uv (2) + direction (3), rewritten each frame */
-    float zero[4 * 5] = {0};
-    (void)err;
-    (void)err_len;
-    s->sun_buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, zero, sizeof zero, GL_DYNAMIC_DRAW);
-    return s->sun_buffer ? 0 : -1;
+    /* two triangles per cell, rows of SKY_DISC_GRID + 1 vertices */
+    unsigned short idx[SKY_DISC_GRID_INDICES];
+    int k = 0;
+    for (int j = 0; j < SKY_DISC_GRID; j++)
+        for (int i = 0; i < SKY_DISC_GRID; i++) {
+            unsigned short a = (unsigned short)(j * (SKY_DISC_GRID + 1) + i), b = (unsigned short)(a + 1);
+            unsigned short c = (unsigned short)(a + SKY_DISC_GRID + 1), d = (unsigned short)(c + 1);
+            idx[k++] = a, idx[k++] = b, idx[k++] = c;
+            idx[k++] = b, idx[k++] = d, idx[k++] = c;
+        }
+    static const float zero[SKY_DISC_GRID_VERTICES * 5];
+    g->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, zero, sizeof zero, GL_DYNAMIC_DRAW);
+    g->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, sizeof idx, GL_STATIC_DRAW);
+    if (!g->vertices || !g->indices) {
+        sky_format(err, err_len, "glGenBuffers failed for the %s", what);
+        return -1;
+    }
+    return 0;
 }
+
+void sky_disc_grid_update(sky *s, const sky_disc_grid *g, const double centre[3], const double x[3],
+                          const double y[3], double half, double pos_half)
+{
+    float v[SKY_DISC_GRID_VERTICES * 5];
+    for (int j = 0, n = 0; j <= SKY_DISC_GRID; j++)
+        for (int i = 0; i <= SKY_DISC_GRID; i++, n++) {
+            double u = 2.0 * i / SKY_DISC_GRID - 1.0, w = 2.0 * j / SKY_DISC_GRID - 1.0;
+            v[n * 5 + 0] = (float)(u * pos_half);
+            v[n * 5 + 1] = (float)(w * pos_half);
+            for (int c = 0; c < 3; c++) v[n * 5 + 2 + c] = (float)(centre[c] + half * (u * x[c] + w * y[c]));
+        }
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(GL_ARRAY_BUFFER, g->vertices);
+    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+}
+
+int sky_sun_create(sky *s, char *err, size_t err_len) { return sky_disc_grid_create(s, &s->sun_grid, "sun", err, err_len); }
 
 void sky_sun_frame(sky *s)
 {
@@ -95,29 +125,20 @@ void sky_sun_frame(sky *s)
 int sky_sun_visible(const sky *s)
 {
     /* The whole quad, glare included, below the horizon: nothing to draw. */
-    return (s->features & SKY_SUN) &&
+    return (s->features & SKY_SUN) && s->sun_grid.vertices &&
            s->frame.sun_altitude > -(float)SKY_SUN_QUAD_RADII * s->frame.sun_radius;
 }
 
 void sky_sun_update_quad(sky *s)
 {
-    const float *d = s->frame.sun_dir;
+    const sky_astro *a = &s->astro;
+    double d[3] = {a->sun.dir[0], a->sun.dir[1], a->sun.dir[2]};
     /* Tangent basis around the sun: any vector not parallel to d. */
-    float a[3] = {0.0f, 1.0f, 0.0f};
-    if (fabsf(d[1]) > 0.9f) a[0] = 1.0f, a[1] = 0.0f;
-    float t[3] = {a[1] * d[2] - a[2] * d[1], a[2] * d[0] - a[0] * d[2], a[0] * d[1] - a[1] * d[0]};
-    float tl = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    double up[3] = {0.0, 1.0, 0.0};
+    if (fabs(d[1]) > 0.9) up[0] = 1.0, up[1] = 0.0;
+    double t[3] = {up[1] * d[2] - up[2] * d[1], up[2] * d[0] - up[0] * d[2], up[0] * d[1] - up[1] * d[0]};
+    double tl = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
     for (int i = 0; i < 3; i++) t[i] /= tl;
-    float b[3] = {d[1] * t[2] - d[2] * t[1], d[2] * t[0] - d[0] * t[2], d[0] * t[1] - d[1] * t[0]};
-    float k = (float)tan(SKY_SUN_QUAD_RADII * s->frame.sun_radius);
-    static const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
-    float v[4 * 5];
-    for (int c = 0; c < 4; c++) {
-        v[c * 5 + 0] = corners[c][0];
-        v[c * 5 + 1] = corners[c][1];
-        for (int i = 0; i < 3; i++) v[c * 5 + 2 + i] = d[i] + k * (corners[c][0] * t[i] + corners[c][1] * b[i]);
-    }
-    const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, s->sun_buffer);
-    gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)sizeof v, v, GL_DYNAMIC_DRAW);
+    double b[3] = {d[1] * t[2] - d[2] * t[1], d[2] * t[0] - d[0] * t[2], d[0] * t[1] - d[1] * t[0]};
+    sky_disc_grid_update(s, &s->sun_grid, d, t, b, tan(SKY_SUN_QUAD_RADII * s->frame.sun_radius), 1.0);
 }

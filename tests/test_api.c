@@ -271,7 +271,8 @@ void test_api_gl_objects_deleted(void)
     default_camera(view, proj);
     sky_draw(s, view, proj);
     GLuint tex[SKY_TEX_COUNT], prog[5] = {s->dome.id, s->dome_night.id, s->dome_night_clear.id, s->ground.id, s->sun.id},
-                               buf[3] = {s->dome_vertices, s->dome_indices, s->sun_buffer}, vao = s->vao;
+                               buf[4] = {s->dome_vertices, s->dome_indices, s->sun_grid.vertices, s->sun_grid.indices},
+                               vao = s->vao;
     int live = 0, made = 0;
     for (int i = 0; i < SKY_TEX_COUNT; i++) {
         tex[i] = s->textures[i].id;
@@ -279,14 +280,14 @@ void test_api_gl_objects_deleted(void)
         live += glIsTexture(tex[i]) == GL_TRUE;
     }
     for (int i = 0; i < 5; i++) live += glIsProgram(prog[i]) == GL_TRUE;
-    for (int i = 0; i < 3; i++) live += glIsBuffer(buf[i]) == GL_TRUE;
+    for (int i = 0; i < 4; i++) live += glIsBuffer(buf[i]) == GL_TRUE;
     live += glIsVertexArray(vao) == GL_TRUE;
-    CHECK(made == 2 && live == made + 9, "all objects live before destroy (%d of %d)", live, made + 9);
+    CHECK(made == 2 && live == made + 10, "all objects live before destroy (%d of %d)", live, made + 10);
     sky_destroy(s);
     int left = 0;
     for (int i = 0; i < SKY_TEX_COUNT; i++) left += glIsTexture(tex[i]) == GL_TRUE;
     for (int i = 0; i < 5; i++) left += glIsProgram(prog[i]) == GL_TRUE;
-    for (int i = 0; i < 3; i++) left += glIsBuffer(buf[i]) == GL_TRUE;
+    for (int i = 0; i < 4; i++) left += glIsBuffer(buf[i]) == GL_TRUE;
     left += glIsVertexArray(vao) == GL_TRUE;
     CHECK(left == 0, "%d GL objects survive sky_destroy", left);
     sky_osmesa_destroy(&ctx);

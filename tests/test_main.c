@@ -73,6 +73,7 @@ int test_failures;
     X(moon_penumbral_eclipse_is_slightly_darker) \
     X(moon_left_out_when_not_needed)             \
     X(moon_rising_is_flattened)                  \
+    X(moon_hides_the_stars_behind_it)            \
     X(demo_window_shows_sky_and_sliders)         \
     X(demo_drag_on_cover_slider)                 \
     X(game_lit_by_the_sky)                       \

@@ -17,6 +17,7 @@ void test_moon_total_eclipse_is_dark_and_red(void);
 void test_moon_penumbral_eclipse_is_slightly_darker(void);
 void test_moon_left_out_when_not_needed(void);
 void test_moon_rising_is_flattened(void);
+void test_moon_hides_the_stars_behind_it(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -303,4 +304,31 @@ void test_moon_rising_is_flattened(void)
           expected);
     image_free(&with);
     image_free(&without);
+}
+
+void test_moon_hides_the_stars_behind_it(void)
+{
+    /* A crescent in a bright twilight (2024-06-08 20:30 UT, 45 N 10 E),
+     * where the disc only adds light: a star stands behind its dark side.
+     * With the catalogue on, nothing may change inside the disc, while
+     * stars still show around it. */
+    sky_observer o = {sky_julian_day(2024, 6, 8, 20, 30, 0.0), 45.0, 10.0, 0.0, 0};
+    closeup with, without;
+    if (moon_closeup(&o, SKY_MOON | SKY_STARS, 2.5f, 1, &with) || moon_closeup(&o, SKY_MOON, 2.5f, 1, &without)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double inside = 0.0, outside = 0.0;
+    for (int y = 0; y < 256; y++)
+        for (int x = 0; x < 256; x++) {
+            double r = hypot(x + 0.5 - with.cx, y + 0.5 - with.cy) / with.radius_px;
+            double added = image_luminance(&with.im, x, y) - image_luminance(&without.im, x, y);
+            if (r < 0.97) inside = fmax(inside, added);
+            else if (r > 1.1) outside = fmax(outside, added);
+        }
+    NOTE("largest luminance the stars add: %.3g kcd/m^2 on the disc, %.3g around it", inside, outside);
+    CHECK(inside <= 1e-9, "a star shows through the moon (%.3g kcd/m^2)", inside);
+    CHECK(outside > 1e-6, "no star around the moon either (%.3g): the test sees nothing", outside);
+    image_free(&with.im);
+    image_free(&without.im);
 }

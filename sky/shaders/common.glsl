@@ -35,9 +35,9 @@ vec2 sky_fisheye_ndc(vec3 d)
  * (Meeus 16.4, what astro.c applies to the centre) inverted by three
  * fixed-point steps (it changes by a fifth of the altitude's change at the
  * horizon, so each step gains a factor of five). The sun and the moon
- * apply it at every point of their discs: it lifts the lower limb more
- * than the upper, so a setting disc is flattened, about 0.8 high to wide
- * at the horizon. */
+ * apply it across their discs (at the vertices of a fine grid): it lifts
+ * the lower limb more than the upper, so a setting disc is flattened,
+ * about 0.8 high to wide at the horizon. */
 vec3 sky_unrefract(vec3 d)
 {
     float ha = degrees(asin(clamp(d.y, -1.0, 1.0)));

@@ -5,9 +5,10 @@
  * shading (eq. 3, its phase terms per frame on the CPU), earthshine
  * (eq. 4), the reddish k_lambda, extinction, the lunar eclipse's colour
  * h(t_f) per fragment and brightness i(t_m) (sec. 3), a glare halo at
- * night, and the clouds in front. Each fragment is first taken back
- * through refraction (common.glsl), so a low moon is flattened like the
- * sun; the billboard frame is centred on the true moon. */
+ * night, and the clouds in front. Each fragment's direction is first taken
+ * back through refraction (at the grid's vertices, moon.vert), so a low
+ * moon is flattened like the sun; the billboard frame is centred on the
+ * true moon. */
 uniform sampler2D u_moon_tex;       /* 256x128 albedo, selenographic        */
 uniform mat4 u_moon_body;           /* billboard frame -> moon body frame    */
 uniform mat4 u_moon_view;           /* billboard frame -> horizon frame      */
@@ -26,6 +27,7 @@ uniform vec3 u_shadow_axis;         /* geocentric direction to the sun       */
 uniform vec4 u_shadow;              /* umbra r, penumbra r (km), moon radius (km), i(t_m) */
 #endif
 SKY_IN vec3 v_dir;
+SKY_IN vec3 v_true_dir; /* refraction undone at the grid's vertices */
 
 void main()
 {
@@ -33,7 +35,7 @@ void main()
     /* nothing below the refracted horizon: there the ground is */
     if (d.y < 0.0) discard;
     /* the fragment's place on the true disc's tangent plane, in disc radii */
-    vec3 t = sky_unrefract(d);
+    vec3 t = normalize(v_true_dir);
     float along = dot(t, -u_moon_view[2].xyz);
     if (along <= 0.0) discard;
     vec2 uv = vec2(dot(t, u_moon_view[0].xyz), dot(t, u_moon_view[1].xyz)) / (along * u_moon_radius_tan);

@@ -10,6 +10,7 @@ uniform vec3 u_star_aberration;   /* annual aberration, horizon frame          *
 uniform vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
 uniform vec4 u_star_viewport;     /* x, y, width, height                       */
 uniform vec3 u_star_pressure;     /* refraction pressure factor, -, -          */
+uniform vec4 u_star_occulter;     /* moon's true direction, cos of its drawn radius */
 SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed)         */
 SKY_ATTR vec3 a_dir;
 SKY_ATTR vec4 a_color;            /* rgb: colour of unit luminance, a: V mag    */
@@ -30,6 +31,7 @@ float sky_star_refraction(float h)
 void main()
 {
     vec3 d = normalize((u_star_rot * vec4(a_dir, 0.0)).xyz + u_star_aberration);
+    bool occulted = dot(d, u_star_occulter.xyz) > u_star_occulter.w; /* behind the moon */
     float h = asin(clamp(d.y, -1.0, 1.0));
     float ha = h + sky_star_refraction(h);
     vec2 horiz = d.xz / max(length(d.xz), 1e-6);
@@ -48,8 +50,9 @@ void main()
         clip = vec4(sky_fisheye_ndc(d) / u_aspect, 0.0, 1.0);
     else
         clip = (u_view_proj * vec4(d, 0.0)).xyww;
-    /* below the horizon or behind the camera: outside the clip volume */
-    if (d.y < 0.0 || clip.w <= 0.0) clip = vec4(2.0, 2.0, 2.0, 1.0);
+    /* below the horizon, behind the camera or the moon: outside the clip
+     * volume */
+    if (d.y < 0.0 || clip.w <= 0.0 || occulted) clip = vec4(2.0, 2.0, 2.0, 1.0);
     gl_Position = clip;
     gl_PointSize = 2.0 * k + 1.0;
     v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_star_viewport.zw + u_star_viewport.xy;

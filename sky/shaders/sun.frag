@@ -10,13 +10,14 @@ uniform vec4 u_eclipse_sun;     /* x: moon's angular radius, y: the sun's
                                    light left, z: corona scale (kcd/m^2) */
 uniform vec3 u_eclipse_moon_dir; /* the moon's centre without refraction */
 SKY_IN vec3 v_dir;
+SKY_IN vec3 v_true_dir; /* refraction undone at the grid's vertices */
 
 void main()
 {
     vec3 view = normalize(v_dir);
     /* (nothing is drawn below the refracted horizon, but the discard waits
      * until the derivatives below have been taken in uniform control flow) */
-    vec3 d = sky_unrefract(view);
+    vec3 d = normalize(v_true_dir);
     /* |d x s| is the sine of the angle: precise for the small angles here,
      * where acos(dot) would lose most of its digits in float. */
     float phi = length(cross(d, u_sun_true_dir));
