@@ -54,6 +54,24 @@ void test_reliability_hostile_override_textures(void)
     memset(header_claim + 33, 0, 12);
     unsigned char garbage[4096];
     for (size_t i = 0; i < sizeof garbage; i++) garbage[i] = (unsigned char)(i * 2654435761u >> 13);
+    /* the real clouds.png whose first IDAT claims just under 1 GiB: stb
+     * would size a 2 GiB buffer for it before finding the data missing */
+    unsigned char *huge_idat = malloc(clouds->size);
+    if (!huge_idat) {
+        CHECK(0, "malloc");
+        return;
+    }
+    memcpy(huge_idat, clouds->data, clouds->size);
+    for (size_t at = 8; at + 12 <= clouds->size;) {
+        size_t len = (size_t)huge_idat[at] << 24 | (size_t)huge_idat[at + 1] << 16 | (size_t)huge_idat[at + 2] << 8 |
+                     huge_idat[at + 3];
+        if (!memcmp(huge_idat + at + 4, "IDAT", 4)) {
+            static const unsigned char claim[4] = {0x3f, 0xff, 0x00, 0x00};
+            memcpy(huge_idat + at, claim, 4);
+            break;
+        }
+        at += 12 + len;
+    }
     struct {
         const char *name;
         const void *data;
@@ -64,6 +82,7 @@ void test_reliability_hostile_override_textures(void)
         {"truncated PNG", clouds->data, clouds->size / 2},
         {"wrong size", real->data, real->size},
         {"absurd header", header_claim, sizeof header_claim},
+        {"1 GiB IDAT", huge_idat, clouds->size},
     };
     fixture f;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -84,6 +103,7 @@ void test_reliability_hostile_override_textures(void)
         sky_destroy(s);
         sky_osmesa_destroy(&ctx);
     }
+    free(huge_idat);
     /* a good override is used */
     const sky_blob *good = sky_find_blob("clouds.png");
     write_file(path, good->data, good->size);

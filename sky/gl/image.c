@@ -5,6 +5,8 @@
  */
 #include "../sky_internal.h"
 
+#include <string.h>
+
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
@@ -27,11 +29,32 @@ int sky_png_info(const unsigned char *data, size_t size, int *w, int *h)
     return stbi_info_from_memory(data, (int)size, w, h, &comp);
 }
 
+/* Every chunk's declared length fits in the bytes that follow it (up to
+ * IEND). stb_image sizes its buffer for the compressed data from the
+ * lengths before it reads them, so a 26-byte file declaring a 1 GiB IDAT
+ * made it allocate 2 GiB (found by the PNG fuzzer): allocations now stay
+ * bounded by the input's size. */
+static int png_chunks_fit(const unsigned char *data, size_t size)
+{
+    size_t at = 8; /* the signature */
+    while (at + 12 <= size) {
+        size_t len = (size_t)data[at] << 24 | (size_t)data[at + 1] << 16 | (size_t)data[at + 2] << 8 | data[at + 3];
+        if (len > size - at - 12) return 0;
+        if (!memcmp(data + at + 4, "IEND", 4)) return 1;
+        at += 12 + len;
+    }
+    return 0;
+}
+
 unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why)
 {
     int comp = 0;
     if (size == 0 || size > (size_t)0x7fffffff) {
         *why = "bad size";
+        return NULL;
+    }
+    if (!png_chunks_fit(data, size)) {
+        *why = "a chunk runs past the end of the data";
         return NULL;
     }
     unsigned char *rgba = stbi_load_from_memory(data, (int)size, w, h, &comp, 4);
