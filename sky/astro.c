@@ -361,6 +361,7 @@ static void body_place(const sky_astro *a, const double obs_eq[3], sky_astro_bod
     b->topo_distance_km = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     mat_vec(a->horizon, v, h);
     horizon_from_vector(h, a->pressure_factor, &b->alt, &b->alt_geometric, &b->az, b->dir);
+    sky_horizon_vector(b->alt_geometric, b->az, b->dir_geometric);
 }
 
 static void ecl_to_eq(double lambda, double beta, double eps, double *ra, double *dec)
@@ -559,9 +560,8 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
 
     /* solar eclipse: the discs as the observer sees them (topocentric,
      * before refraction, which moves both alike) */
-    double sun_h[3], moon_h[3], cr[3];
-    sky_horizon_vector(a->sun.alt_geometric, a->sun.az, sun_h);
-    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, moon_h);
+    const double *sun_h = a->sun.dir_geometric, *moon_h = a->moon.dir_geometric;
+    double cr[3];
     cr[0] = sun_h[1] * moon_h[2] - sun_h[2] * moon_h[1];
     cr[1] = sun_h[2] * moon_h[0] - sun_h[0] * moon_h[2];
     cr[2] = sun_h[0] * moon_h[1] - sun_h[1] * moon_h[0];

@@ -48,6 +48,7 @@ typedef struct sky_astro_body {
     double az;
     double dir[3];             /* horizon frame (+x east, +y up, +z south),
                                   refracted                                 */
+    double dir_geometric[3];   /* the same without refraction               */
 } sky_astro_body;
 
 typedef struct sky_astro {

@@ -150,8 +150,7 @@ void sky_moon_frame(sky *s)
      * like the sun); the quad that holds it is centred where refraction
      * shows the centre. Billboard frame: z toward the viewer, y toward
      * the zenith, x right; x is horizontal, so it is the same for both. */
-    double mt[3];
-    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, mt);
+    const double *mt = a->moon.dir_geometric;
     double z[3] = {-mt[0], -mt[1], -mt[2]}, up[3] = {0.0, 1.0, 0.0}, x[3], y[3];
     if (fabs(mt[1]) > 0.999) up[1] = 0.0, up[2] = -1.0; /* at the zenith: north up */
     double dz = up[0] * mt[0] + up[1] * mt[1] + up[2] * mt[2];
@@ -169,10 +168,9 @@ void sky_moon_frame(sky *s)
     f->moon_view[15] = 1.0f;
     /* sun seen from the moon (both topocentric, geometric): the exact
      * phase geometry */
-    double sun_h[3], moon_h[3], l[3];
-    sky_horizon_vector(a->sun.alt_geometric, a->sun.az, sun_h);
-    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, moon_h);
-    for (int i = 0; i < 3; i++) l[i] = sun_h[i] * a->sun.distance_km - moon_h[i] * a->moon.distance_km;
+    double l[3];
+    for (int i = 0; i < 3; i++)
+        l[i] = a->sun.dir_geometric[i] * a->sun.distance_km - a->moon.dir_geometric[i] * a->moon.distance_km;
     normalize3(l);
     f->moon_light[0] = (float)(l[0] * x[0] + l[1] * x[1] + l[2] * x[2]);
     f->moon_light[1] = (float)(l[0] * y[0] + l[1] * y[1] + l[2] * y[2]);

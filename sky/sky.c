@@ -135,9 +135,7 @@ static void compute_frame(sky *s)
      * catalogue, the star map and the flicker stars) are judged against
      * the sky around them, as the moon is (moon.c): in LDR they keep the
      * contrast a full adaptation would give them. */
-    double eclipse_dim = f->eclipse_sky[0] + (0.2126 * f->eclipse_sky[1] + 0.7152 * f->eclipse_sky[2] +
-                                              0.0722 * f->eclipse_sky[3]) / 9.0;
-    double withheld = 1.0 / sqrt(sky_clampd(eclipse_dim, 1e-6, 1.0));
+    double withheld = 1.0 / sqrt(sky_clampd(f->eclipse_sky_mean, 1e-6, 1.0));
     f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
     if (s->features & SKY_SUN) sky_sun_frame(s);
     if (s->features & SKY_CLOUDS) sky_clouds_frame(s);

@@ -106,6 +106,8 @@ typedef struct sky_frame {
                                 the eclipse (its shader applies that per pixel) */
     float eclipse_sky[4];    /* x: the day sky's light left everywhere by a solar
                                 eclipse; yzw: the extra at the horizon, rgb     */
+    float eclipse_sky_mean;  /* what that leaves of the sky's mean luminance (1
+                                without an eclipse; sky_luminance has it)       */
     float eclipse_sun[4];    /* x: the moon's true angular radius, y: the sun's
                                 light left (glare), z: corona's scale (kcd/m^2) */
     float eclipse_moon_dir[3]; /* the moon's centre, topocentric, unrefracted   */

@@ -157,9 +157,7 @@ void sky_stars_frame(sky *s)
      * drawn size. */
     f->star_occulter[3] = 2.0f;
     if (s->features & SKY_MOON) {
-        double m[3];
-        sky_horizon_vector(a->moon.alt_geometric, a->moon.az, m);
-        for (int i = 0; i < 3; i++) f->star_occulter[i] = (float)m[i];
+        for (int i = 0; i < 3; i++) f->star_occulter[i] = (float)a->moon.dir_geometric[i];
         f->star_occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
     }
     /* the scintillation clock, in random values (see sky_internal.h) */

@@ -106,16 +106,13 @@ void sky_sun_frame(sky *s)
     f->sun_luminance = (float)SKY_SUN_LUMINANCE;
     /* the disc is drawn where refraction puts each of its points
      * (sun.frag): it needs the centre's true direction */
-    double d[3];
-    sky_horizon_vector(a->sun.alt_geometric, a->sun.az, d);
-    for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)d[i];
+    for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)a->sun.dir_geometric[i];
     /* A solar eclipse: sun.frag hides what lies behind the moon's true
      * disc. Both discs take their true sizes, the one scale at which the
      * contacts fall at the right times (moon.c draws the moon at it near
      * the sun). The glare keeps the uncovered light's share, and the
      * corona shows once the sun's last 10 % go. */
-    sky_horizon_vector(a->moon.alt_geometric, a->moon.az, d);
-    for (int i = 0; i < 3; i++) f->eclipse_moon_dir[i] = (float)d[i];
+    for (int i = 0; i < 3; i++) f->eclipse_moon_dir[i] = (float)a->moon.dir_geometric[i];
     f->eclipse_sun[0] = (float)a->moon_topo_semidiameter;
     f->eclipse_sun[1] = (float)a->solar_flux_fraction;
     f->eclipse_sun[2] = (float)(SKY_CORONA_SCALE * sky_smoothstep(0.9, 0.999, a->solar_obscuration));

@@ -114,6 +114,23 @@ static const float *hdr_pixel(const hdr_sky *h, int x, int y)
     return (const float *)h->ctx.pixels + ((size_t)(h->size - 1 - y) * (size_t)h->size + (size_t)x) * 4u;
 }
 
+/* NaN, infinite or negative channels of the last frame; its range of
+ * values widens [lowest, brightest] (both NULL: not wanted). */
+static long hdr_bad_values(const hdr_sky *h, double *lowest, double *brightest)
+{
+    long bad = 0;
+    for (int y = 0; y < h->size; y++)
+        for (int x = 0; x < h->size; x++) {
+            const float *v = hdr_pixel(h, x, y);
+            for (int c = 0; c < 3; c++) {
+                if (!isfinite(v[c]) || v[c] < 0.0f) bad++;
+                if (lowest && v[c] < *lowest) *lowest = v[c];
+                if (brightest && v[c] > *brightest) *brightest = v[c];
+            }
+        }
+    return bad;
+}
+
 /* The pixel showing a direction of the upper hemisphere (sky_fisheye_ndc). */
 static const float *hdr_pixel_dir(const hdr_sky *h, const double d[3])
 {
@@ -169,15 +186,7 @@ void test_atmosphere_paths_finite_for_every_sun_position(void)
                     continue;
                 }
                 frames++;
-                for (int y = 0; y < h.size; y++)
-                    for (int x = 0; x < h.size; x++) {
-                        const float *v = hdr_pixel(&h, x, y);
-                        for (int c = 0; c < 3; c++) {
-                            if (!isfinite(v[c]) || v[c] < 0.0f) bad++;
-                            if (v[c] < lowest) lowest = v[c];
-                            if (v[c] > brightest) brightest = v[c];
-                        }
-                    }
+                bad += hdr_bad_values(&h, &lowest, &brightest);
             }
         }
         NOTE("%s %s: %ld frames, pixel values %.3g .. %.3g kcd/m^2", path_names[p], profile_name, frames, lowest,
@@ -660,12 +669,7 @@ void test_atmosphere_observer_altitudes(void)
                     continue;
                 }
                 frames++;
-                for (int y = 0; y < h.size; y++)
-                    for (int x = 0; x < h.size; x++) {
-                        const float *v = hdr_pixel(&h, x, y);
-                        for (int c = 0; c < 3; c++)
-                            if (!isfinite(v[c]) || v[c] < 0.0f) bad++;
-                    }
+                bad += hdr_bad_values(&h, NULL, NULL);
             }
         }
         NOTE("%s %s: %ld frames from 0 m to 100 km, %ld bad values", path_names[p],

@@ -192,8 +192,9 @@ static void eclipse_frame(sky *s)
     double ring = (1.0 - left) * (SKY_ECLIPSE_HORIZON_RESIDUAL - SKY_ECLIPSE_ZENITH_RESIDUAL);
     f->eclipse_sky[0] = (float)base;
     for (int i = 0; i < 3; i++) f->eclipse_sky[1 + i] = (float)(ring * ring_tint[i]);
+    f->eclipse_sky_mean = (float)(base + ring / 9.0);
     if (left >= 1.0) return;
-    f->sky_luminance *= (float)(base + ring / 9.0);
+    f->sky_luminance *= f->eclipse_sky_mean;
     double e = s->atmosphere == SKY_ATMOSPHERE_GRADIENT ? 1.0 : 1.0 - mu_node[0], e2 = e * e, e4 = e2 * e2;
     for (int i = 0; i < 3; i++) {
         double irr = base + ring * ring_tint[i] / 45.0, fog = base + ring * ring_tint[i] * e4 * e4;
