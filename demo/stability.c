@@ -374,13 +374,15 @@ static void case_star_extremes(suite *st, sky *s, sky_osmesa *ctx)
     sky_stability_row *r = add_row(st, "stars V -30..+15, B-V -0.5..+3, at zenith and nadir",
                                    "HDR pixels finite, >= 0 (3 views); the V -30 star drawn", "", 0.0);
     enum { N = 46 };
-    if (s->catalog.count < N) {
+    void *stars = s->layer_state[SKY_LAYER_STARS];
+    sky_catalog *catalog = stars ? sky_stars_catalog(stars) : NULL;
+    if (!catalog || catalog->count < N) {
         keep_worst(r, INFINITY);
         finish(r);
         return;
     }
     sky_star saved[N];
-    memcpy(saved, s->catalog.stars, sizeof saved);
+    memcpy(saved, catalog->stars, sizeof saved);
     sky_params night = sky_default_params();
     night.time = 0.0f;
     night.cover = 0.0f;
@@ -391,7 +393,7 @@ static void case_star_extremes(suite *st, sky *s, sky_osmesa *ctx)
     sky_get_observer(s, &o);
     double lst = a.lmst_deg * SKY_PI / 180.0, lat = o.latitude_deg * SKY_PI / 180.0;
     for (int i = 0; i < N; i++) {
-        sky_star *star = &s->catalog.stars[i];
+        sky_star *star = &catalog->stars[i];
         int up = i % 2 == 0;
         star->ra = fmod(lst + (up ? 0.0 : SKY_PI) + 2.0 * SKY_PI, 2.0 * SKY_PI);
         star->dec = up ? lat : -lat;
@@ -399,7 +401,7 @@ static void case_star_extremes(suite *st, sky *s, sky_osmesa *ctx)
         star->vmag = (float)(-30 + i);
         star->bv = (float)(-0.5 + 3.5 * i / (N - 1));
     }
-    s->star_epoch = -1e9; /* the next frame uploads them */
+    sky_stars_reload(stars); /* the next frame uploads them */
     const double views[3][3] = {{0, 0, 90}, {0, 0, -90}, {1, 0, 0}}; /* fisheye, yaw, pitch */
     for (int v = 0; v < 3; v++) {
         keep_worst(r, worst_pixel(ctx, s, &night, 5.0, (int)views[v][0], views[v][1], views[v][2]));
@@ -410,8 +412,8 @@ static void case_star_extremes(suite *st, sky *s, sky_osmesa *ctx)
         for (int i = 0; i < ctx->width * ctx->height * 4; i++) brightest = fmax(brightest, px[i]);
         if (v == 0 && !(brightest > 1.0)) keep_worst(r, INFINITY);
     }
-    memcpy(s->catalog.stars, saved, sizeof saved);
-    s->star_epoch = -1e9;
+    memcpy(catalog->stars, saved, sizeof saved);
+    sky_stars_reload(stars);
     finish(r);
 }
 
@@ -678,7 +680,7 @@ static void case_preetham_fit(suite *st)
     sky_stability_row *r = add_row(st, "Preetham: turbidity 1..64, sun +-0.01 deg at the horizon",
                                    "finite, >= 0; largest relative change of luminance per 0.01 deg", "", 0.03);
     static const float turbidities[] = {1.0f, 2.0f, 10.0f, 64.0f};
-    static sky fake; /* the frame fields preetham.c reads, without GL */
+    static sky_core fake; /* the frame fields preetham.c reads, without GL */
     for (size_t i = 0; i < sizeof turbidities / sizeof turbidities[0]; i++) {
         double before[16];
         for (int side = 0; side < 2; side++) {

@@ -4,7 +4,7 @@
  * library). The reader treats the bytes as hostile: the header, the count
  * and every value are checked before anything is allocated or used.
  */
-#include "sky_internal.h"
+#include "catalog.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -8,7 +8,8 @@
  * also what an OpenGL 2.0 GPU wants (no texture lookups in vertex shaders:
  * the values are computed here, on the CPU, once).
  */
-#include "sky_internal.h"
+#include "layer.h"
+#include "atmosphere/atmosphere.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -25,6 +26,20 @@ static const double dome_rings_down_deg[] = {-1.0, -3.0, -7.0, -15.0, -35.0, -65
 #define DOME_VERTICES ((DOME_RINGS_UP + DOME_RINGS_DOWN) * DOME_SEGMENTS + 2)
 #define DOME_FLOATS 7 /* direction xyz, gradient rgb, galaxy */
 
+typedef struct dome_state {
+    GLuint vertices, indices;    /* direction, gradient colour, galaxy      */
+    size_t vertex_bytes, index_bytes;
+    int index_count, upper_first; /* indices: all, and where the upper hemisphere starts */
+    /* The dome program holds only the snippets of enabled layers. With
+     * night layers there are two variants, with and without them: a
+     * uniform branch is not free on every GPU (llvmpipe pays for both
+     * sides), and a day frame should do no star work at all. */
+    sky_program day;             /* atmosphere + front (clouds)             */
+    sky_program night;           /* the same with the night backdrop        */
+    sky_program night_clear;     /* the night backdrop without the front    */
+    sky_program ground;          /* below the horizon: atmosphere only      */
+} dome_state;
+
 static void ring_vertex(float *v, double elevation_sine, int seg)
 {
     double az = 2.0 * SKY_PI * seg / DOME_SEGMENTS;
@@ -34,7 +49,7 @@ static void ring_vertex(float *v, double elevation_sine, int seg)
     v[2] = (float)(-c * cos(az)); /* south: az 0 is north (-z) */
 }
 
-int sky_dome_create(sky *s, char *err, size_t err_len)
+static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
 {
     unsigned char *gradient = NULL, *galaxy = NULL;
     if (sky_asset_load_rgba(s, "gradient.png", 256, 1, &gradient, err, err_len)) return -1;
@@ -81,7 +96,7 @@ int sky_dome_create(sky *s, char *err, size_t err_len)
         idx[k++] = (unsigned short)sgm;
     }
     for (int r = 0; r + 1 < RINGS; r++) {
-        if (r == DOME_RINGS_DOWN) s->dome_upper_first = (int)k;
+        if (r == DOME_RINGS_DOWN) st->upper_first = (int)k;
         for (int sgm = 0; sgm < DOME_SEGMENTS; sgm++) {
             unsigned short a = (unsigned short)(r * DOME_SEGMENTS + sgm);
             unsigned short b = (unsigned short)(r * DOME_SEGMENTS + (sgm + 1) % DOME_SEGMENTS);
@@ -96,33 +111,151 @@ int sky_dome_create(sky *s, char *err, size_t err_len)
         idx[k++] = (unsigned short)(top + (sgm + 1) % DOME_SEGMENTS);
         idx[k++] = (unsigned short)zenith;
     }
-    s->dome_vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, v, sizeof(float) * DOME_FLOATS * (size_t)n,
-                                         GL_STATIC_DRAW);
-    s->dome_indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, sizeof(unsigned short) * k, GL_STATIC_DRAW);
-    s->dome_index_count = (int)k;
+    st->vertex_bytes = sizeof(float) * DOME_FLOATS * (size_t)n;
+    st->index_bytes = sizeof(unsigned short) * k;
+    st->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, v, st->vertex_bytes, GL_STATIC_DRAW);
+    st->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, st->index_bytes, GL_STATIC_DRAW);
+    st->index_count = (int)k;
     free(v);
     free(idx);
     sky_png_free(gradient);
     sky_png_free(galaxy);
-    if (!s->dome_vertices || !s->dome_indices) {
+    if (!st->vertices || !st->indices) {
         sky_format(err, err_len, "glGenBuffers failed for the dome mesh");
         return -1;
     }
     return 0;
 }
 
-void sky_dome_draw(sky *s, int upper)
+/* Binds the dome's buffers and draws its upper (1) or lower (0) hemisphere. */
+static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 {
     const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, s->dome_vertices);
-    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s->dome_indices);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, st->vertices);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, st->indices);
     gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, DOME_FLOATS * sizeof(float), (const void *)0);
     gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, DOME_FLOATS * sizeof(float),
                               (const void *)(3 * sizeof(float)));
     gl->glDisableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
     gl->glEnableVertexAttribArray(2);
-    int first = upper ? s->dome_upper_first : 0;
-    int count = upper ? s->dome_index_count - s->dome_upper_first : s->dome_upper_first;
+    int first = upper ? st->upper_first : 0;
+    int count = upper ? st->index_count - st->upper_first : st->upper_first;
     gl->glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_SHORT, (const void *)(first * sizeof(unsigned short)));
 }
+
+static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, char *err, size_t err_len)
+{
+    return sky_program_build(s, p, "dome.vert", "dome.frag", snippets, n, err, err_len);
+}
+
+static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
+{
+    dome_state *st = state;
+    const sky_dome_snippets *d = s->dome_snippets;
+    if (create_mesh(s, st, err, err_len)) return -1;
+    const sky_snippet *list[SKY_MAX_SNIPPETS];
+    int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->profile != SKY_GL_CORE33, list), n = atmosphere;
+    if (n + d->front_count + d->night_count > SKY_MAX_SNIPPETS) {
+        sky_format(err, err_len, "too many shader snippets for the dome");
+        return -1;
+    }
+    for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
+    if (build(s, &st->day, list, n, err, err_len)) return -1;
+    /* Below the horizon there are no clouds and no stars: the lower
+     * hemisphere gets the atmosphere alone (the host's terrain usually
+     * covers it; what shows in a gap is the horizon haze). */
+    if (d->front_count && build(s, &st->ground, list, atmosphere, err, err_len)) return -1;
+    if (d->night_count) {
+        for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+        if (build(s, &st->night, list, n, err, err_len)) return -1;
+        /* and the night without the front layers, when none shows (by day
+         * the atmosphere-only program serves) */
+        if (d->front_count) {
+            const sky_snippet *clear[SKY_MAX_SNIPPETS];
+            int c = 0;
+            for (int i = 0; i < atmosphere; i++) clear[c++] = list[i];
+            for (int i = 0; i < d->night_count; i++) clear[c++] = d->night[i];
+            if (build(s, &st->night_clear, clear, c, err, err_len)) return -1;
+        }
+    }
+    return 0;
+}
+
+static void dome_destroy(sky_core *s, void *state)
+{
+    dome_state *st = state;
+    sky_program_destroy(s, &st->day);
+    sky_program_destroy(s, &st->night);
+    sky_program_destroy(s, &st->night_clear);
+    sky_program_destroy(s, &st->ground);
+    const GLuint buffers[2] = {st->vertices, st->indices};
+    const size_t bytes[2] = {st->vertex_bytes, st->index_bytes};
+    sky_buffers_destroy(s, buffers, bytes, 2);
+}
+
+static int dome_visible(const sky_core *s, const void *state)
+{
+    (void)s;
+    return ((const dome_state *)state)->vertices != 0;
+}
+
+/* The dome: the atmosphere, with the night backdrop behind it and the
+ * front layers (clouds) over it, in one pass over the screen. Which
+ * variant: the night one while a backdrop layer shows, the one without
+ * front code while none of those shows (Roden-Parberry's clouds vanish
+ * at cover 0). */
+static int dome_draw(sky_core *s, void *state)
+{
+    dome_state *st = state;
+    const sky_frame *f = &s->frame;
+    int night = st->night.id && s->dome_night_shows;
+    int clear = s->dome_snippets->front_count && !s->dome_front_shows;
+    const sky_program *upper = night ? (clear ? &st->night_clear : &st->night) : (clear ? &st->ground : &st->day);
+    sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
+    sky_program_apply(s, upper);
+    draw_hemisphere(s, st, 1);
+    /* the lower hemisphere: its own cheap program when the upper one
+     * carries more than the atmosphere; none in the all-sky image */
+    if (f->fisheye >= 0.5f) return 1;
+    if (!st->ground.id) {
+        draw_hemisphere(s, st, 0);
+        return 1;
+    }
+    sky_program_apply(s, &st->ground);
+    draw_hemisphere(s, st, 0);
+    return 2;
+}
+
+static size_t dome_buffer_bytes(const sky_core *s, const void *state)
+{
+    (void)s;
+    const dome_state *st = state;
+    return (st->vertices ? st->vertex_bytes : 0) + (st->indices ? st->index_bytes : 0);
+}
+
+int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
+                                const char *frag_main, const sky_snippet *const *own, int own_count, char *err,
+                                size_t err_len)
+{
+    const sky_snippet *list[SKY_MAX_SNIPPETS];
+    int n = 0;
+    if (dome->front_count + own_count > SKY_MAX_SNIPPETS) {
+        sky_format(err, err_len, "too many shader snippets for %s", frag_main);
+        return -1;
+    }
+    for (int i = 0; i < dome->front_count; i++) list[n++] = dome->front[i];
+    for (int i = 0; i < own_count; i++) list[n++] = own[i];
+    return sky_program_build(s, p, vert_main, frag_main, list, n, err, err_len);
+}
+
+const sky_layer_class sky_dome_layer = {
+    .slot = SKY_LAYER_ATMOSPHERE,
+    .state_size = sizeof(dome_state),
+    .blend = SKY_BLEND_NONE,
+    .create = dome_create,
+    .destroy = dome_destroy,
+    .visible = dome_visible,
+    .draw = dome_draw,
+    .buffer_bytes = dome_buffer_bytes,
+};

@@ -6,7 +6,9 @@
  * by extinction, and, with SKY_ECLIPSE, darkened and reddened per fragment
  * by the Earth's shadow (sec. 3). Shaders: moon.vert/.frag.
  */
-#include "sky_internal.h"
+#include "layer.h"
+#include "disc.h"
+#include "atmosphere/atmosphere.h"
 
 #include <math.h>
 #include <string.h>
@@ -34,7 +36,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
     SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
 };
-const sky_snippet sky_moon_snippet = {NULL, NULL, moon_uniforms, (int)(sizeof moon_uniforms / sizeof moon_uniforms[0])};
+static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms)};
 
 static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
@@ -42,8 +44,16 @@ static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UF("u_shadow_axis", SKY_U_F3, shadow_axis),
     SKY_UF("u_shadow", SKY_U_F4, shadow),
 };
-const sky_snippet sky_eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
-                                         (int)(sizeof eclipse_uniforms / sizeof eclipse_uniforms[0])};
+static const sky_snippet eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
+                                         SKY_UNIFORM_COUNT(eclipse_uniforms)};
+
+typedef struct moon_state {
+    sky_program program;
+    sky_disc_grid grid;       /* the moon's quad, tessellated               */
+    float albedo_mean;        /* the albedo map's near-side mean            */
+    double axes[3][3];        /* billboard x (right), y (up), moon direction */
+    double radius_tan;        /* drawn disc radius on the tangent plane     */
+} moon_state;
 
 /* Mueller's h(t) (sec. 3.2, fig. 5), our own fit of its four phenomena:
  * t in [0, 1/2] is the umbra (centre to edge), [1/2, 1] the penumbra.
@@ -65,8 +75,9 @@ static void eclipse_h(double t, double out[3])
     for (int c = 0; c < 3; c++) out[c] = (1.0 - w) * umb[c] + w * penumbra_side;
 }
 
-int sky_moon_create(sky *s, char *err, size_t err_len)
+static int moon_create(sky_core *s, void *state, char *err, size_t err_len)
 {
+    moon_state *st = state;
     if (sky_texture_load(s, SKY_TEX_MOON, SKY_LAYER_MOON, "moon.png", 256, 128, 1, err, err_len)) return -1;
     /* the albedo map's mean, so MOON_FULL_LUMINANCE is the disc's mean */
     unsigned char *albedo = NULL;
@@ -77,8 +88,8 @@ int sky_moon_create(sky *s, char *err, size_t err_len)
         for (int x = 64; x < 192; x++) sum += w * albedo[4 * (y * 256 + x)] / 255.0, wsum += w; /* near side */
     }
     sky_png_free(albedo);
-    s->moon_albedo_mean = (float)(sum / wsum);
-    if (sky_disc_grid_create(s, &s->moon_grid, "moon", err, err_len)) return -1;
+    st->albedo_mean = (float)(sum / wsum);
+    if (sky_disc_grid_create(s, &st->grid, "moon", err, err_len)) return -1;
     if (s->features & SKY_ECLIPSE) {
         unsigned char lut[128 * 4];
         for (int i = 0; i < 128; i++) {
@@ -89,7 +100,19 @@ int sky_moon_create(sky *s, char *err, size_t err_len)
         }
         if (sky_texture_create(s, SKY_TEX_ECLIPSE, SKY_LAYER_MOON, lut, 128, 1, 0, err, err_len)) return -1;
     }
-    return 0;
+    const sky_snippet *own[2];
+    int n = 0;
+    if (s->features & SKY_ECLIPSE) own[n++] = &eclipse_snippet;
+    own[n++] = &moon_snippet;
+    return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "moon.vert", "moon.frag", own, n, err,
+                                       err_len);
+}
+
+static void moon_destroy(sky_core *s, void *state)
+{
+    moon_state *st = state;
+    sky_program_destroy(s, &st->program);
+    sky_disc_grid_destroy(s, &st->grid);
 }
 
 /* Hapke's (1966) retrodirective function B(phi) with compaction g = 0.6,
@@ -121,7 +144,7 @@ static void normalize3(double v[3])
     if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
 }
 
-double sky_moon_drawn_scale(const sky *s)
+double sky_moon_drawn_scale(const sky_core *s)
 {
     const sky_astro *a = &s->astro;
     double cd = s->cfg.moon_scale > 0.0f ? sky_clampd(s->cfg.moon_scale, 0.5, 50.0) : 2.5;
@@ -140,8 +163,9 @@ double sky_moon_drawn_scale(const sky *s)
     return cd + (1.0 - cd) * w;
 }
 
-void sky_moon_frame(sky *s)
+static void moon_frame(sky_core *s, void *state)
 {
+    moon_state *st = state;
     sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
     double m[3] = {a->moon.dir[0], a->moon.dir[1], a->moon.dir[2]}; /* refracted, topocentric */
@@ -158,9 +182,9 @@ void sky_moon_frame(sky *s)
     normalize3(y);
     cross3(y, z, x);
     for (int i = 0; i < 3; i++) {
-        s->moon_axes[0][i] = x[i];
-        s->moon_axes[1][i] = y[i];
-        s->moon_axes[2][i] = m[i];
+        st->axes[0][i] = x[i];
+        st->axes[1][i] = y[i];
+        st->axes[2][i] = m[i];
     }
     memset(f->moon_view, 0, sizeof f->moon_view);
     for (int i = 0; i < 3; i++) f->moon_view[0 * 4 + i] = (float)x[i], f->moon_view[1 * 4 + i] = (float)y[i],
@@ -183,16 +207,8 @@ void sky_moon_frame(sky *s)
     double rx[9] = {1, 0, 0, 0, cb, -sb, 0, sb, cb};
     double ry[9] = {cl, 0, sl, 0, 1, 0, -sl, 0, cl};
     double t1[9], body[9];
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            t1[i * 3 + j] = 0;
-            for (int k = 0; k < 3; k++) t1[i * 3 + j] += rx[i * 3 + k] * rz[k * 3 + j];
-        }
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            body[i * 3 + j] = 0;
-            for (int k = 0; k < 3; k++) body[i * 3 + j] += ry[i * 3 + k] * t1[k * 3 + j];
-        }
+    sky_mat3_mul(rx, rz, t1);
+    sky_mat3_mul(ry, t1, body);
     memset(f->moon_body, 0, sizeof f->moon_body);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) f->moon_body[j * 4 + i] = (float)body[i * 3 + j];
@@ -214,7 +230,7 @@ void sky_moon_frame(sky *s)
     static const double k_lambda[3] = {0.92 / 0.807, 0.79 / 0.807, 0.64 / 0.807}; /* Mueller sec. 2.2.2, unit luminance */
     static const double beta_e[3] = {0.88, 0.96, 1.00};                            /* earthshine colour */
     double fade = a->moon_visibility;
-    double scale = MOON_FULL_LUMINANCE / (s->moon_albedo_mean > 0.01f ? s->moon_albedo_mean : 0.01f);
+    double scale = MOON_FULL_LUMINANCE / (st->albedo_mean > 0.01f ? st->albedo_mean : 0.01f);
     for (int i = 0; i < 3; i++) {
         double ext = exp(-depth[i] * airmass);
         f->moon_color[i] = (float)(scale * k_lambda[i] * ext * fade);
@@ -248,8 +264,8 @@ void sky_moon_frame(sky *s)
     /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2),
      * delta the topocentric diameter (up to 2 % larger than the
      * geocentric one with the moon high: an eclipse's totality needs it) */
-    s->moon_radius_tan = tan(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
-    f->moon_radius_tan = (float)s->moon_radius_tan;
+    st->radius_tan = tan(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
+    f->moon_radius_tan = (float)st->radius_tan;
     /* eclipse: geocentric geometry in the horizon frame */
     if (s->features & SKY_ECLIPSE) {
         double mg[3], sg[3], v[3];
@@ -271,15 +287,56 @@ void sky_moon_frame(sky *s)
     }
 }
 
-int sky_moon_visible(const sky *s)
+static int moon_visible(const sky_core *s, const void *state)
 {
-    if (!(s->features & SKY_MOON) || !s->moon_grid.vertices) return 0;
+    const moon_state *st = state;
+    if (!st->grid.vertices) return 0;
     /* the whole quad, halo included, below the horizon */
-    return s->astro.moon.alt > -atan(MOON_QUAD_RADII * s->moon_radius_tan) - 0.01;
+    return s->astro.moon.alt > -atan(MOON_QUAD_RADII * st->radius_tan) - 0.01;
 }
 
-void sky_moon_update_quad(sky *s)
+static int moon_draw(sky_core *s, void *state)
 {
-    sky_disc_grid_update(s, &s->moon_grid, s->moon_axes[2], s->moon_axes[0], s->moon_axes[1],
-                         MOON_QUAD_RADII * s->moon_radius_tan, MOON_QUAD_RADII);
+    moon_state *st = state;
+    sky_disc_grid_update(s, &st->grid, st->axes[2], st->axes[0], st->axes[1], MOON_QUAD_RADII * st->radius_tan,
+                         MOON_QUAD_RADII);
+    sky_program_apply(s, &st->program);
+    sky_disc_grid_draw(s, &st->grid);
+    return 1;
 }
+
+static size_t moon_buffer_bytes(const sky_core *s, const void *state)
+{
+    (void)s;
+    return sky_disc_grid_bytes(&((const moon_state *)state)->grid);
+}
+
+void sky_moon_lighting(const sky_core *s, float moon_color[3])
+{
+    const sky_astro *a = &s->astro;
+    /* the full moon gives about 0.27 lux at the zenith; the phase law
+     * of Allen's Astrophysical Quantities (magnitude grows as
+     * 0.026 |phi| + 4e-9 phi^4, phi in degrees) for other phases;
+     * extinction as for the sun's beam */
+    double phi = a->moon_phase_angle * 180.0 / SKY_PI;
+    double phase = pow(10.0, -0.4 * (0.026 * fabs(phi) + 4e-9 * phi * phi * phi * phi));
+    float t[3];
+    sky_sun_transmittance(a->moon.alt, t);
+    float up = (float)sky_disc_above_horizon(a->moon.alt, a->moon_semidiameter);
+    for (int i = 0; i < 3; i++) moon_color[i] = (float)(2.7e-4 * phase) * t[i] * up;
+}
+
+/* The moon: added by day; at night it also hides the stars behind it
+ * (premultiplied: its coverage times the night factor is its alpha). */
+const sky_layer_class sky_moon_layer = {
+    .slot = SKY_LAYER_MOON,
+    .feature = SKY_MOON,
+    .state_size = sizeof(moon_state),
+    .blend = SKY_BLEND_PREMULTIPLIED,
+    .create = moon_create,
+    .destroy = moon_destroy,
+    .frame = moon_frame,
+    .visible = moon_visible,
+    .draw = moon_draw,
+    .buffer_bytes = moon_buffer_bytes,
+};

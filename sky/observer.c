@@ -3,7 +3,8 @@
  * time, and the public astronomy queries. The astronomy itself is astro.c;
  * the star catalogue is catalog.c.
  */
-#include "sky_internal.h"
+#include "catalog.h"
+#include "observer.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -4,9 +4,10 @@
  * (textures/starmap.png, built by tools/catgen.c), evaluated in the dome's
  * night variant behind the atmosphere. Shader: starmap.glsl.
  */
-#include "sky_internal.h"
+#include "layer.h"
 
 #include <math.h>
+#include <string.h>
 
 /* Luminance of the map's brightest texel (the Sagittarius star clouds) at
  * m_a = 4 and a 60-degree, 720-pixel view: about six times the dark sky's
@@ -19,17 +20,34 @@ static const sky_uniform_desc starmap_uniforms[] = {
     SKY_UF("u_starmap_rot", SKY_U_M4, starmap_rot),
     SKY_UF("u_starmap_scale", SKY_U_F1, starmap_scale),
 };
-const sky_snippet sky_starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
-                                         (int)(sizeof starmap_uniforms / sizeof starmap_uniforms[0])};
+static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
+                                         SKY_UNIFORM_COUNT(starmap_uniforms)};
 
-int sky_starmap_create(sky *s, char *err, size_t err_len)
+static int starmap_create(sky_core *s, void *state, char *err, size_t err_len)
 {
+    (void)state;
     return sky_texture_load(s, SKY_TEX_STARMAP, SKY_LAYER_STARMAP, "starmap.png", 512, 256, 1, err, err_len);
 }
 
-/* After the camera: the brightness depends on the pixel size. */
-void sky_starmap_frame(sky *s)
+/* The sky's rotation: the map is in J2000, so the shader takes horizon
+ * directions back through the inverse of horizon * precession-nutation
+ * (Mueller eq. 7), its transpose, as a column-major mat4. */
+static void starmap_frame(sky_core *s, void *state)
 {
+    (void)state;
+    sky_frame *f = &s->frame;
+    double m[9];
+    sky_mat3_mul(s->astro.horizon, s->astro.precession_nutation, m);
+    memset(f->starmap_rot, 0, sizeof f->starmap_rot);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) f->starmap_rot[i * 4 + j] = (float)m[i * 3 + j];
+    f->starmap_rot[15] = 1.0f;
+}
+
+/* After the camera: the brightness depends on the pixel size. */
+static void starmap_view(sky_core *s, void *state)
+{
+    (void)state;
     sky_frame *f = &s->frame;
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
     double fov = f->pixel_angle > 0.0f ? sqrt(STARMAP_REF_PIXEL_ANGLE / f->pixel_angle) : 1.0;
@@ -38,3 +56,20 @@ void sky_starmap_frame(sky *s)
      * exposure: off (for HDR output too, as for the stars) */
     f->starmap_scale = scale * f->exposure < 1.0 / 1024.0 ? 0.0f : (float)scale;
 }
+
+static int starmap_visible(const sky_core *s, const void *state)
+{
+    (void)state;
+    return s->frame.starmap_scale > 0.0f;
+}
+
+const sky_layer_class sky_starmap_layer = {
+    .slot = SKY_LAYER_STARMAP,
+    .feature = SKY_STARMAP,
+    .dome_role = SKY_DOME_NIGHT,
+    .dome_snippet = &starmap_snippet,
+    .create = starmap_create,
+    .frame = starmap_frame,
+    .view = starmap_view,
+    .visible = starmap_visible,
+};

@@ -5,7 +5,9 @@
  * (eq. 10), glare for stars brighter than the control magnitude,
  * extinction (eq. 11-12) and scintillation. Shaders: stars.vert/.frag.
  */
-#include "sky_internal.h"
+#include "catalog.h"
+#include "layer.h"
+#include "atmosphere/atmosphere.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -23,6 +25,20 @@
  * 1/2) = 0.3 pi. Dividing by it makes a star's light add up to its
  * illuminance, whatever its pixel size. */
 #define STAR_PSF_INTEGRAL (0.3 * SKY_PI)
+/* The scintillation clock (stars.frag): RATE new random values a second,
+ * counted modulo PERIOD so the float uniform keeps its fraction after
+ * years of running. */
+#define SCINTILLATION_RATE 10.0
+#define SCINTILLATION_PERIOD 997.0
+
+typedef struct stars_state {
+    sky_program program;
+    sky_catalog catalog;
+    GLuint buffer;
+    double epoch;             /* years since J2000 of the uploaded positions */
+    float point_max;          /* largest point size the context draws      */
+    double scintillation;     /* the clock's phase, wrapped                */
+} stars_state;
 
 static const sky_uniform_desc star_uniforms[] = {
     SKY_UF("u_star_rot", SKY_U_M4, star_rot),
@@ -36,7 +52,7 @@ static const sky_uniform_desc star_uniforms[] = {
     SKY_UF("u_star_seed", SKY_U_F1, star_seed),
     SKY_UF("u_star_occulter", SKY_U_F4, star_occulter),
 };
-const sky_snippet sky_stars_snippet = {NULL, NULL, star_uniforms, (int)(sizeof star_uniforms / sizeof star_uniforms[0])};
+static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms)};
 
 /* B-V to linear sRGB of unit luminance: temperature after Ballesteros
  * (2012), the Planckian locus fit of Kim et al. (2002) for its
@@ -70,9 +86,9 @@ void sky_star_color(double bv, float rgb[3])
 
 /* Fills the vertex buffer: J2000 directions moved by proper motion to the
  * given epoch (years since J2000), colours and magnitudes. */
-static int upload_stars(sky *s, double years, char *err, size_t err_len)
+static int upload_stars(sky_core *s, stars_state *st, double years, char *err, size_t err_len)
 {
-    const sky_catalog *cat = &s->catalog;
+    const sky_catalog *cat = &st->catalog;
     float *v = malloc(sizeof(float) * STAR_FLOATS * (size_t)cat->count);
     if (!v) {
         sky_format(err, err_len, "out of memory for %d stars", cat->count);
@@ -80,61 +96,96 @@ static int upload_stars(sky *s, double years, char *err, size_t err_len)
     }
     const double mas = SKY_PI / 648000.0 * 1e-3;
     for (int i = 0; i < cat->count; i++) {
-        const sky_star *st = &cat->stars[i];
-        double cd = cos(st->dec);
-        double ra = st->ra + (cd > 1e-9 ? st->pm_ra / cd : 0.0) * mas * years;
-        double dec = st->dec + st->pm_dec * mas * years;
+        const sky_star *star = &cat->stars[i];
+        double cd = cos(star->dec);
+        double ra = star->ra + (cd > 1e-9 ? star->pm_ra / cd : 0.0) * mas * years;
+        double dec = star->dec + star->pm_dec * mas * years;
         float *p = v + i * STAR_FLOATS;
         p[0] = (float)i;
         p[1] = 0.0f;
         p[2] = (float)(cos(dec) * cos(ra));
         p[3] = (float)(cos(dec) * sin(ra));
         p[4] = (float)sin(dec);
-        sky_star_color(st->bv, p + 5);
-        p[8] = st->vmag;
+        sky_star_color(star->bv, p + 5);
+        p[8] = star->vmag;
     }
     size_t bytes = sizeof(float) * STAR_FLOATS * (size_t)cat->count;
-    const sky_gl *gl = &s->gl;
-    if (!s->star_buffer) {
-        s->star_buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, v, bytes, GL_STATIC_DRAW);
-    } else {
-        gl->glBindBuffer(GL_ARRAY_BUFFER, s->star_buffer);
-        gl->glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)bytes, v, GL_STATIC_DRAW);
-    }
+    if (!st->buffer)
+        st->buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, v, bytes, GL_STATIC_DRAW);
+    else
+        sky_buffer_update(s, GL_ARRAY_BUFFER, st->buffer, v, bytes, GL_STATIC_DRAW);
     free(v);
-    s->star_epoch = years;
-    if (!s->star_buffer) {
+    st->epoch = years;
+    if (!st->buffer) {
         sky_format(err, err_len, "glGenBuffers failed for the stars");
         return -1;
     }
     return 0;
 }
 
-int sky_stars_create(sky *s, char *err, size_t err_len)
+static size_t star_bytes(const sky_catalog *cat) { return sizeof(float) * STAR_FLOATS * (size_t)cat->count; }
+
+static int stars_create(sky_core *s, void *state, char *err, size_t err_len)
 {
-    if (sky_catalog_load(&s->catalog, err, err_len)) return -1;
+    stars_state *st = state;
+    if (sky_catalog_load(&st->catalog, err, err_len)) return -1;
     GLfloat range[2] = {1.0f, 1.0f};
     s->gl.glGetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
-    s->star_point_max = range[1] > 1.0f ? range[1] : 1.0f;
-    return upload_stars(s, s->astro.years_since_j2000, err, err_len);
+    st->point_max = range[1] > 1.0f ? range[1] : 1.0f;
+    if (upload_stars(s, st, s->astro.years_since_j2000, err, err_len)) return -1;
+    const sky_snippet *own[1] = {&stars_snippet};
+    return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
+                                       err_len);
 }
 
-void sky_stars_destroy(sky *s) { sky_catalog_free(&s->catalog); }
-
-/* Per frame, from the observer's astronomy. */
-void sky_stars_frame(sky *s)
+static void stars_destroy(sky_core *s, void *state)
 {
+    stars_state *st = state;
+    sky_program_destroy(s, &st->program);
+    const size_t bytes = star_bytes(&st->catalog);
+    sky_buffers_destroy(s, &st->buffer, &bytes, 1);
+    sky_catalog_free(&st->catalog);
+}
+
+static void stars_advance(sky_core *s, void *state, double dt)
+{
+    stars_state *st = state;
+    (void)s;
+    st->scintillation = sky_phase_advance(st->scintillation, SCINTILLATION_RATE / SCINTILLATION_PERIOD, dt);
+}
+
+static void stars_reset(void *state) { ((stars_state *)state)->scintillation = 0.0; }
+
+/* The sky's rotation J2000 -> horizon = horizon * precession-nutation
+ * (Mueller eq. 7), as a column-major mat4. */
+static void stars_frame(sky_core *s, void *state)
+{
+    (void)state;
+    sky_frame *f = &s->frame;
+    double m[9];
+    sky_mat3_mul(s->astro.horizon, s->astro.precession_nutation, m);
+    memset(f->star_rot, 0, sizeof f->star_rot);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) f->star_rot[j * 4 + i] = (float)m[i * 3 + j];
+    f->star_rot[15] = 1.0f;
+}
+
+/* Per draw, from the observer's astronomy and the camera. */
+static void stars_view(sky_core *s, void *state)
+{
+    stars_state *st = state;
     sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
+    for (int i = 0; i < 4; i++) f->star_viewport[i] = (float)s->viewport[i];
     /* proper motion moves Arcturus 0.1" a month: refresh past half a year */
-    if (fabs(a->years_since_j2000 - s->star_epoch) > 0.5) upload_stars(s, a->years_since_j2000, NULL, 0);
+    if (fabs(a->years_since_j2000 - st->epoch) > 0.5) upload_stars(s, st, a->years_since_j2000, NULL, 0);
     for (int i = 0; i < 3; i++)
         f->star_aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
                                         a->horizon[i * 3 + 2] * a->aberration[2]);
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
     f->star_size[0] = (float)STAR_Q_PX;
     f->star_size[1] = (float)STAR_GLARE_CK_PX;
-    f->star_size[2] = 0.5f * s->star_point_max - 1.0f;
+    f->star_size[2] = 0.5f * st->point_max - 1.0f;
     f->star_size[3] = m_a;
     f->star_pressure[0] = (float)a->pressure_factor;
     /* eq. 10 in physical units: peak luminance of a V = 0 star on a PSF of
@@ -160,25 +211,28 @@ void sky_stars_frame(sky *s)
         for (int i = 0; i < 3; i++) f->star_occulter[i] = (float)a->moon.dir_geometric[i];
         f->star_occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
     }
-    /* the scintillation clock, in random values (see sky_internal.h) */
-    f->star_seed = (float)(SKY_SCINTILLATION_PERIOD * s->scintillation_phase);
+    /* the scintillation clock, in random values */
+    f->star_seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
 }
 
 /* The brightest star (Sirius, V -1.46) would add less than a quarter of
  * an 8-bit step at the automatic exposure: skip the draw (by day, that is
  * always). The same rule holds for HDR output, so a host doing its own
  * tone mapping does no star work at noon either. */
-int sky_stars_visible(const sky *s)
+static int stars_visible(const sky_core *s, const void *state)
 {
-    if (!(s->features & SKY_STARS) || !s->star_buffer) return 0;
+    const stars_state *st = state;
+    if (!st->buffer) return 0;
     const sky_frame *f = &s->frame;
     return f->star_flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0;
 }
 
-void sky_stars_draw(sky *s)
+static int stars_draw(sky_core *s, void *state)
 {
+    stars_state *st = state;
     const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, s->star_buffer);
+    sky_program_apply(s, &st->program);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, st->buffer);
     gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)0);
     gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(2 * sizeof(float)));
     gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(5 * sizeof(float)));
@@ -186,6 +240,36 @@ void sky_stars_draw(sky *s)
     gl->glEnableVertexAttribArray(1);
     gl->glEnableVertexAttribArray(2);
     gl->glEnable(GL_PROGRAM_POINT_SIZE);
-    gl->glDrawArrays(GL_POINTS, 0, s->catalog.count);
+    gl->glDrawArrays(GL_POINTS, 0, st->catalog.count);
     gl->glDisable(GL_PROGRAM_POINT_SIZE);
+    return 1;
 }
+
+static size_t stars_buffer_bytes(const sky_core *s, const void *state)
+{
+    (void)s;
+    const stars_state *st = state;
+    return st->buffer ? star_bytes(&st->catalog) : 0;
+}
+
+double sky_stars_clock(const void *state) { return ((const stars_state *)state)->scintillation; }
+sky_catalog *sky_stars_catalog(void *state) { return &((stars_state *)state)->catalog; }
+void sky_stars_reload(void *state) { ((stars_state *)state)->epoch = -1e9; /* the next frame uploads */ }
+
+/* Catalogue stars, added over the dome: their light dimmed by the
+ * atmosphere (extinction in the shader) and hidden by the clouds. */
+const sky_layer_class sky_stars_layer = {
+    .slot = SKY_LAYER_STARS,
+    .feature = SKY_STARS,
+    .state_size = sizeof(stars_state),
+    .blend = SKY_BLEND_ADD,
+    .create = stars_create,
+    .destroy = stars_destroy,
+    .advance = stars_advance,
+    .reset_clock = stars_reset,
+    .frame = stars_frame,
+    .view = stars_view,
+    .visible = stars_visible,
+    .draw = stars_draw,
+    .buffer_bytes = stars_buffer_bytes,
+};

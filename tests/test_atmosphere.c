@@ -256,26 +256,28 @@ void test_atmosphere_clear_sky_colours(void)
  * altitude: what the shader samples (built on the GPU in CORE33). */
 static void table_eval(const sky *s, const double d[3], double rgb[3])
 {
-    sky_hillaire_tables *t = s->hillaire;
-    if (t->skyview_sun_mu != s->skyview_sun_mu || t->skyview_altitude_km != s->skyview_altitude_km)
-        sky_hillaire_build_skyview(t, s->skyview_altitude_km, s->skyview_sun_mu);
-    double sun[3] = {s->frame.sun_dir[0], s->frame.sun_dir[1], s->frame.sun_dir[2]};
+    sky_hillaire_tables *t = sky_atmosphere_tables(&s->core);
+    double sun_mu, altitude_km;
+    sky_atmosphere_skyview_at(&s->core, &sun_mu, &altitude_km);
+    if (t->skyview_sun_mu != sun_mu || t->skyview_altitude_km != altitude_km)
+        sky_hillaire_build_skyview(t, altitude_km, sun_mu);
+    double sun[3] = {s->core.frame.sun_dir[0], s->core.frame.sun_dir[1], s->core.frame.sun_dir[2]};
     sky_hillaire_sky(t, d, sun, rgb);
-    for (int i = 0; i < 3; i++) rgb[i] *= s->frame.sun_irradiance[i];
+    for (int i = 0; i < 3; i++) rgb[i] *= s->core.frame.sun_irradiance[i];
 }
 
 /* The CPU twin of the sky's path. */
 static void twin_eval(const sky *s, const double d[3], double rgb[3])
 {
     double a[3], b[3];
-    switch (s->atmosphere) {
-    case SKY_ATMOSPHERE_PREETHAM: sky_preetham_eval(&s->frame, d, rgb); return;
-    case SKY_ATMOSPHERE_RAYLEIGH: sky_rayleigh_eval(&s->frame, d, rgb); return;
+    switch (s->core.atmosphere) {
+    case SKY_ATMOSPHERE_PREETHAM: sky_preetham_eval(&s->core.frame, d, rgb); return;
+    case SKY_ATMOSPHERE_RAYLEIGH: sky_rayleigh_eval(&s->core.frame, d, rgb); return;
     case SKY_ATMOSPHERE_HILLAIRE: table_eval(s, d, rgb); return;
     default:
-        sky_rayleigh_eval(&s->frame, d, a);
+        sky_rayleigh_eval(&s->core.frame, d, a);
         table_eval(s, d, b);
-        for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * s->frame.blend_weight;
+        for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * s->core.frame.blend_weight;
         return;
     }
 }
@@ -326,7 +328,7 @@ void test_atmosphere_shaders_match_cpu_twins(void)
                 sky_cli_camera_at(yaw, pitch, fov, h.size, h.size, view, proj);
                 if (sky_draw(h.s, view, proj) != SKY_OK) continue;
                 sky_osmesa_finish(&h.ctx);
-                const float *sd = h.s->frame.sun_dir;
+                const float *sd = h.s->core.frame.sun_dir;
                 double t = tan(fov * SKY_PI / 360.0);
                 for (int y = 0; y < h.size; y++)
                     for (int x = 0; x < h.size; x++) {
@@ -354,7 +356,7 @@ void test_atmosphere_shaders_match_cpu_twins(void)
                              * u_night_luminance, darkened below the horizon */
                             static const double tint[3] = {0.55, 0.7, 1.0}; /* atmosphere.glsl */
                             double floor_scale = d[1] < 0.0 ? 2.0 / (1.0 - 4.0 * d[1]) : 2.0 - d[1];
-                            expect[c] = rgb[c] + floor_scale * tint[c] * h.s->frame.night_luminance;
+                            expect[c] = rgb[c] + floor_scale * tint[c] * h.s->core.frame.night_luminance;
                             y_expect += expect[c] * (c == 0 ? 0.2126 : c == 1 ? 0.7152 : 0.0722);
                         }
                         for (int c = 0; c < 3; c++) {
@@ -404,7 +406,7 @@ void test_atmosphere_continuous_across_horizon(void)
                 break;
             }
             const float *cur = (const float *)h.ctx.pixels;
-            const float *sd = h.s->frame.sun_dir;
+            const float *sd = h.s->core.frame.sun_dir;
             for (int y = 0; k > 0 && y < h.size; y++)
                 for (int x = 0; x < h.size; x++) {
                     /* the setting disc and its glare (4.3 degrees) change,
@@ -580,7 +582,7 @@ void test_atmosphere_gpu_tables_match_cpu(void)
     }
     sky_hillaire_tables cpu;
     char err[256];
-    if (sky_hillaire_init(&cpu, &h.s->hillaire->atm, &h.s->hillaire->settings, err, sizeof err)) {
+    if (sky_hillaire_init(&cpu, &sky_atmosphere_tables(&h.s->core)->atm, &sky_atmosphere_tables(&h.s->core)->settings, err, sizeof err)) {
         CHECK(0, "%s", err);
         hdr_close(&h);
         return;
@@ -593,11 +595,11 @@ void test_atmosphere_gpu_tables_match_cpu(void)
     for (int i = 0; i < nt; i++) {
         /* optical depth, which is what the table integrates (T itself
          * underflows toward 0 on grazing rays) */
-        double a = -log(fmax(cpu.transmittance[i], 1e-30)), b = -log(fmax(h.s->hillaire->transmittance[i], 1e-30));
+        double a = -log(fmax(cpu.transmittance[i], 1e-30)), b = -log(fmax(sky_atmosphere_tables(&h.s->core)->transmittance[i], 1e-30));
         if (cpu.transmittance[i] > 1e-6) worst_t = fmax(worst_t, fabs(a - b) / fmax(a, 1e-3));
     }
     for (int i = 0; i < nm; i++)
-        worst_ms = fmax(worst_ms, fabs(cpu.multiscatter[i] - h.s->hillaire->multiscatter[i]) /
+        worst_ms = fmax(worst_ms, fabs(cpu.multiscatter[i] - sky_atmosphere_tables(&h.s->core)->multiscatter[i]) /
                                       fmax(fabs(cpu.multiscatter[i]), 1e-9));
     NOTE("GPU vs CPU: optical depth of the transmittance table %.2g, multiple scattering %.2g (worst relative)",
          worst_t, worst_ms);
@@ -628,8 +630,8 @@ void test_atmosphere_extinction_follows_the_description(void)
         o.altitude_m = 0.0;
         sky_set_observer(f.s, &o);
         double depth[3];
-        sky_atmosphere_zenith_depth(f.s, depth);
-        const sky_atmosphere_params *a = &f.s->atm_rgb; /* at the channels' effective wavelengths */
+        sky_atmosphere_zenith_depth(&f.s->core, depth);
+        const sky_atmosphere_params *a = &f.s->core.atm_rgb; /* at the channels' effective wavelengths */
         for (int c = 0; c < 3; c++) {
             double expect = a->rayleigh_scattering[c] * a->rayleigh_scale_height_km +
                             a->mie_extinction[c] * a->mie_scale_height_km + a->ozone_absorption[c] * a->ozone_half_width_km;
@@ -707,7 +709,7 @@ void test_atmosphere_setting_sun_flattened(void)
         p.cover = 0.0f;
         p.time = (float)t;
         sky_set_params(h.s, &p);
-        const sky_astro *a = &h.s->astro;
+        const sky_astro *a = &h.s->core.astro;
         float view[16], proj[16];
         sky_cli_camera_at(a->sun.az * 180.0 / SKY_PI, a->sun.alt * 180.0 / SKY_PI, fov, size, size, view, proj);
         if (sky_draw(h.s, view, proj) != SKY_OK) {
@@ -730,7 +732,7 @@ void test_atmosphere_setting_sun_flattened(void)
         while (left < c && hdr_pixel(&h, c - 1 - left, row)[1] > edge) left++;
         while (right < c && hdr_pixel(&h, c + right, row)[1] > edge) right++;
         double half_width = 0.5 * (left + right);
-        double r = h.s->frame.sun_radius, ht = a->sun.alt_geometric, pf = a->pressure_factor;
+        double r = h.s->core.frame.sun_radius, ht = a->sun.alt_geometric, pf = a->pressure_factor;
         double top = ht + r + sky_refraction(ht + r, pf), bottom = ht - r + sky_refraction(ht - r, pf);
         double centre_app = ht + sky_refraction(ht, pf);
         double measured, expected;

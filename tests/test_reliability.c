@@ -228,8 +228,8 @@ void test_reliability_soak_10000_frames(void)
           "no growth in GPU memory or objects");
     /* after 15 days the wrapped double offset is where an independent
      * long-double sum puts it: the clock loses no precision */
-    double drift_error = fabs(remainder(s->cloud_offsets[0][0] - (double)expected, 1.0));
-    NOTE("cloud offset after 15 days: %.12f, independent sum %.12f (error %.1e)", s->cloud_offsets[0][0],
+    double drift_error = fabs(remainder(sky_clouds_offsets(s->layer_state[SKY_LAYER_CLOUDS])[0] - (double)expected, 1.0));
+    NOTE("cloud offset after 15 days: %.12f, independent sum %.12f (error %.1e)", sky_clouds_offsets(s->layer_state[SKY_LAYER_CLOUDS])[0],
          (double)expected, drift_error);
     CHECK(drift_error < 1e-9, "no drift in cloud motion (%.1e)", drift_error);
     sky_destroy(s);

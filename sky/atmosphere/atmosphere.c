@@ -4,10 +4,11 @@
  * path's sky (its mean luminance for the automatic exposure, the
  * irradiance it casts on the ground, the horizon's colour for fog).
  */
-#include "../sky_internal.h"
+#include "atmosphere.h"
 #include "reference.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const sky_uniform_desc atmosphere_uniforms[] = {
@@ -15,7 +16,37 @@ static const sky_uniform_desc atmosphere_uniforms[] = {
     SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
 };
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
-                                            (int)(sizeof atmosphere_uniforms / sizeof atmosphere_uniforms[0])};
+                                            SKY_UNIFORM_COUNT(atmosphere_uniforms)};
+
+/* A physical path's sky in a few numbers: the mean luminance over the
+ * upper hemisphere, the irradiance on an upward surface and the horizon's
+ * luminance, without the night sky's own light. */
+typedef struct sky_summary {
+    double mean, irradiance[3], fog[3];
+} sky_summary;
+
+struct sky_atmosphere_state {
+    sky_hillaire_state *hillaire; /* HILLAIRE, BLEND                         */
+    sky_summary summary;          /* of the last table rebuild               */
+    int summary_valid;            /* 0: the tables changed since             */
+};
+
+void sky_sun_transmittance(double altitude, float out[3])
+{
+    /* Zenith optical depths at 680, 550, 440 nm: Rayleigh (Bruneton's
+     * coefficients times an 8 km scale height) plus aerosol of optical
+     * depth 0.1 at 550 nm with Angstrom exponent 1.3. */
+    static const double tau[3] = {0.046 + 0.076, 0.108 + 0.100, 0.265 + 0.134};
+    /* Kasten & Young (1989) air mass, fitted down to the horizon. Below it
+     * the fit is meaningless (its air mass peaks near -2 degrees and falls
+     * again towards its pole at -6.08, so the beam would brighten as the
+     * sun sinks); a ray there meets the ground, and what still reaches the eye is the
+     * rim of a setting disc, seen along the horizon: hold the horizon's
+     * value. How much of the disc is left is sky_disc_above_horizon's. */
+    double h_deg = sky_clampd(altitude * 180.0 / SKY_PI, 0.0, 90.0);
+    double airmass = 1.0 / (sin(h_deg * SKY_PI / 180.0) + 0.50572 * pow(h_deg + 6.07995, -1.6364));
+    for (int i = 0; i < 3; i++) out[i] = (float)exp(-tau[i] * airmass);
+}
 
 void sky_sun_irradiance_rgb(double rgb[3])
 {
@@ -37,7 +68,7 @@ static const sky_uniform_desc blend_uniforms[] = {
     SKY_UF("u_blend_weight", SKY_U_F1, blend_weight),
 };
 const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
-                                       (int)(sizeof blend_uniforms / sizeof blend_uniforms[0])};
+                                       SKY_UNIFORM_COUNT(blend_uniforms)};
 
 int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out)
 {
@@ -70,7 +101,7 @@ int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const 
  * scattered by the air brightens the night: some 25 times at full moon
  * high in the sky (a moonlit sky of about 5 mcd/m^2), falling faster than
  * the phase (the opposition surge) and fading as the moon sets. */
-static void night_frame(sky *s)
+static void night_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
     double moonlight = 0.0;
@@ -86,13 +117,17 @@ static void night_frame(sky *s)
  * floor. The blend weighs the analytic sky by day (where it is cheapest)
  * and hands the horizon band and twilight, where single scattering from
  * one column falls short, to Hillaire's tables. */
-static void eval_preetham(const sky *s, const double d[3], double rgb[3]) { sky_preetham_eval(&s->frame, d, rgb); }
-static void eval_rayleigh(const sky *s, const double d[3], double rgb[3]) { sky_rayleigh_eval(&s->frame, d, rgb); }
-static void eval_blend(const sky *s, const double d[3], double rgb[3])
+static void eval_preetham(const sky_core *s, const double d[3], double rgb[3]) { sky_preetham_eval(&s->frame, d, rgb); }
+static void eval_rayleigh(const sky_core *s, const double d[3], double rgb[3]) { sky_rayleigh_eval(&s->frame, d, rgb); }
+static void eval_hillaire(const sky_core *s, const double d[3], double rgb[3])
+{
+    sky_hillaire_eval(s, s->atmosphere_state->hillaire, d, rgb);
+}
+static void eval_blend(const sky_core *s, const double d[3], double rgb[3])
 {
     double a[3], b[3], w = s->frame.blend_weight;
     sky_rayleigh_eval(&s->frame, d, a);
-    sky_hillaire_eval(s, d, b);
+    eval_hillaire(s, d, b);
     for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * w;
 }
 
@@ -101,7 +136,8 @@ static void eval_blend(const sky *s, const double d[3], double rgb[3])
  * on an upward surface is 2 pi int L mu dmu; the mean luminance is the
  * solid-angle mean over the upper hemisphere; fog takes the lowest ring. */
 static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
-static void summarise(const sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]), sky_summary *out)
+static void summarise(const sky_core *s, void (*eval)(const sky_core *, const double d[3], double rgb[3]),
+                      sky_summary *out)
 {
     static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
     memset(out, 0, sizeof *out);
@@ -121,7 +157,7 @@ static void summarise(const sky *s, void (*eval)(const sky *, const double d[3],
 }
 
 /* The summary into the frame, with the night sky's own light added. */
-static void apply_summary(sky *s, const sky_summary *sum)
+static void apply_summary(sky_core *s, const sky_summary *sum)
 {
     sky_frame *f = &s->frame;
     /* The rest of the frame (clouds, moon, exposure) reads sky_luminance
@@ -138,27 +174,32 @@ static void apply_summary(sky *s, const sky_summary *sum)
  * the tables' paths march rays, 85 us a frame, so their summary is kept
  * until the sky-view table is rebuilt: it depends on the sun's elevation
  * and the observer's altitude alone (azimuthal means), like the table. */
-static void summarise_path(sky *s, void (*eval)(const sky *, const double d[3], double rgb[3]), int cached)
+static void summarise_path(sky_core *s, void (*eval)(const sky_core *, const double d[3], double rgb[3]), int cached)
 {
-    if (!cached || !s->summary_valid) summarise(s, eval, &s->summary);
-    s->summary_valid = cached;
-    apply_summary(s, &s->summary);
+    struct sky_atmosphere_state *st = s->atmosphere_state;
+    if (!cached || !st->summary_valid) summarise(s, eval, &st->summary);
+    st->summary_valid = cached;
+    apply_summary(s, &st->summary);
 }
 
 /* The blend's automatic weight: Hillaire's tables (1) with the sun below
  * 15 degrees, an even mix above 60. */
-static float blend_weight(const sky *s)
+static float blend_weight(const sky_core *s)
 {
     if (s->cfg.blend_manual) return s->cfg.blend_weight;
     double h_deg = s->frame.sun_altitude * 180.0 / SKY_PI;
     return (float)(1.0 - 0.5 * sky_smoothstep(15.0, 60.0, h_deg));
 }
 
-void sky_atmosphere_zenith_depth(const sky *s, double depth[3])
+static int is_physical(sky_atmosphere_path path)
+{
+    return path == SKY_ATMOSPHERE_RAYLEIGH || path == SKY_ATMOSPHERE_HILLAIRE || path == SKY_ATMOSPHERE_BLEND;
+}
+
+void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3])
 {
     const sky_frame *f = &s->frame;
-    if (s->atmosphere == SKY_ATMOSPHERE_RAYLEIGH || s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ||
-        s->atmosphere == SKY_ATMOSPHERE_BLEND) {
+    if (is_physical(s->atmosphere)) {
         /* the description's columns above the observer (rayleigh.c) */
         for (int i = 0; i < 3; i++) depth[i] = f->tau_rayleigh[i] + f->tau_mie_ext[i] + f->tau_ozone[i];
         return;
@@ -181,7 +222,7 @@ void sky_atmosphere_zenith_depth(const sky *s, double depth[3])
  * where the fog was taken: the summary's lowest ring, or the horizon
  * itself for the gradient. The night sky's own light is not the sun's and
  * stays. */
-static void eclipse_frame(sky *s)
+static void eclipse_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
     double left = sky_clampd(s->astro.solar_flux_fraction, 0.0, 1.0);
@@ -203,28 +244,69 @@ static void eclipse_frame(sky *s)
     }
 }
 
-void sky_atmosphere_frame(sky *s)
+void sky_atmosphere_frame(sky_core *s)
 {
+    sky_frame *f = &s->frame;
     night_frame(s);
+    /* The direct beam (the sun disc, sunlight on clouds and the host's
+     * scene): the physical paths send it through their own description
+     * (rayleigh.c's closed-form extinction, which Hillaire's and the
+     * blend's night layers use too); the others use the sun model. */
+    if (is_physical(s->atmosphere)) {
+        sky_rayleigh_frame(s);
+        for (int i = 0; i < 3; i++) f->sun_transmittance[i] = (float)exp(-f->sun_depth[i]);
+    } else {
+        sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
+    }
+    struct sky_atmosphere_state *st = s->atmosphere_state;
     switch (s->atmosphere) {
     case SKY_ATMOSPHERE_PREETHAM:
         sky_preetham_frame(s);
         summarise_path(s, eval_preetham, 0);
         break;
-    case SKY_ATMOSPHERE_RAYLEIGH:
-        sky_rayleigh_frame(s);
-        summarise_path(s, eval_rayleigh, 0);
-        break;
+    case SKY_ATMOSPHERE_RAYLEIGH: summarise_path(s, eval_rayleigh, 0); break;
     case SKY_ATMOSPHERE_HILLAIRE:
-        sky_hillaire_frame(s);
-        summarise_path(s, sky_hillaire_eval, 1);
+        if (sky_hillaire_frame(s, st->hillaire)) st->summary_valid = 0; /* the host's lighting follows the table */
+        summarise_path(s, eval_hillaire, 1);
         break;
     case SKY_ATMOSPHERE_BLEND:
-        sky_hillaire_frame(s); /* computes the analytic path's state too */
-        s->frame.blend_weight = blend_weight(s);
+        if (sky_hillaire_frame(s, st->hillaire)) st->summary_valid = 0;
+        f->blend_weight = blend_weight(s);
         summarise_path(s, eval_blend, 1);
         break;
     default: sky_gradient_frame(s); break;
     }
     eclipse_frame(s);
+}
+
+int sky_atmosphere_create(sky_core *s, char *err, size_t err_len)
+{
+    s->atmosphere_state = calloc(1, sizeof *s->atmosphere_state);
+    if (!s->atmosphere_state) {
+        sky_format(err, err_len, "out of memory for the atmosphere");
+        return -1;
+    }
+    if (s->atmosphere == SKY_ATMOSPHERE_HILLAIRE || s->atmosphere == SKY_ATMOSPHERE_BLEND)
+        return sky_hillaire_create(s, &s->atmosphere_state->hillaire, err, err_len);
+    return 0;
+}
+
+void sky_atmosphere_destroy(sky_core *s)
+{
+    if (!s->atmosphere_state) return;
+    sky_hillaire_destroy(s, s->atmosphere_state->hillaire);
+    free(s->atmosphere_state);
+    s->atmosphere_state = NULL;
+}
+
+void sky_atmosphere_upload(sky_core *s) { sky_hillaire_upload(s, s->atmosphere_state->hillaire); }
+
+sky_hillaire_tables *sky_atmosphere_tables(const sky_core *s)
+{
+    return s->atmosphere_state ? sky_hillaire_state_tables(s->atmosphere_state->hillaire) : NULL;
+}
+
+void sky_atmosphere_skyview_at(const sky_core *s, double *sun_mu, double *altitude_km)
+{
+    sky_hillaire_skyview_at(s->atmosphere_state ? s->atmosphere_state->hillaire : NULL, sun_mu, altitude_km);
 }

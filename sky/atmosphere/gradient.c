@@ -3,7 +3,7 @@
  * elevation, baked into the dome's vertices) scaled to physical luminance
  * by the sun's altitude. The cheapest path: no texture, no lookup table.
  */
-#include "../sky_internal.h"
+#include "atmosphere.h"
 
 #include <math.h>
 
@@ -13,7 +13,7 @@ static const sky_uniform_desc gradient_uniforms[] = {
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
 };
 const sky_snippet sky_gradient_snippet = {"SKY_HAS_GRADIENT", "gradient.glsl", gradient_uniforms,
-                                          (int)(sizeof gradient_uniforms / sizeof gradient_uniforms[0])};
+                                          SKY_UNIFORM_COUNT(gradient_uniforms)};
 
 void sky_gradient_vertex(const unsigned char *gradient, const float d[3], float rgb[3])
 {
@@ -42,7 +42,7 @@ static double day_sky_luminance(double altitude)
     return 0.3 * pow(10.0, sky_clampd(h_deg, -90.0, 0.0) / 3.0);
 }
 
-void sky_gradient_frame(sky *s)
+void sky_gradient_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
     f->day_luminance = f->sky_luminance = (float)day_sky_luminance(f->sun_altitude);

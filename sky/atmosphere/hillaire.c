@@ -11,8 +11,7 @@
  * decodes it). The host's lighting comes from a few rays marched on the
  * CPU through the first two tables.
  */
-#include "hillaire.h"
-#include "../sky_internal.h"
+#include "atmosphere.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -35,12 +34,21 @@ static const sky_uniform_desc hillaire_uniforms[] = {
     SKY_UF("u_skyview_decode", SKY_U_F3, skyview_decode),
 };
 const sky_snippet sky_hillaire_snippet = {"SKY_HAS_HILLAIRE", "hillaire.glsl", hillaire_uniforms,
-                                          (int)(sizeof hillaire_uniforms / sizeof hillaire_uniforms[0])};
+                                          SKY_UNIFORM_COUNT(hillaire_uniforms)};
 /* The same for COMPAT20's 8-bit table: the decoding is compiled in only
  * there (a uniform branch would cost both sides on llvmpipe, twice the
  * float path's frame). */
 const sky_snippet sky_hillaire_encoded_snippet = {"SKY_HILLAIRE_ENCODED", "hillaire.glsl", hillaire_uniforms,
-                                                  (int)(sizeof hillaire_uniforms / sizeof hillaire_uniforms[0])};
+                                                  SKY_UNIFORM_COUNT(hillaire_uniforms)};
+
+struct sky_hillaire_state {
+    sky_hillaire_tables tables;
+    unsigned char *skyview_encoded;  /* COMPAT20's 8-bit sky-view table      */
+    int skyview_valid, skyview_uploaded; /* CPU table (COMPAT20) or GPU build done */
+    double skyview_sun_mu, skyview_altitude_km, skyview_log2_floor;
+    sky_program transmittance_build, multiscatter_build, skyview_build; /* CORE33 */
+    GLuint fbo;                      /* CORE33: renders into each table in turn */
+};
 
 static int next_pow2(int n)
 {
@@ -64,88 +72,17 @@ static const sky_uniform_desc build_uniforms[] = {
     SKY_UF("u_hl_steps", SKY_U_F4, hl_steps),
 };
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
-                                          (int)(sizeof build_uniforms / sizeof build_uniforms[0])};
-
-/* Rendering into a table: the framebuffer bindings (draw and read),
- * viewport, scissor and rasterizer-discard state the host had, put back by
- * leave_table. Blending, depth, stencil, culling and the colour mask are
- * set here too; sky_draw and sky_create restore those with the rest of the
- * host's state. */
-typedef struct table_target {
-    GLint draw, read, viewport[4];
-    GLboolean scissor, discard;
-} table_target;
-
-static void enter_table(sky *s, sky_texture_id target, int w, int h, table_target *t)
-{
-    const sky_gl *gl = &s->gl;
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &t->draw);
-    gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
-    gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
-    t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
-    t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->skyview_fbo);
-    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
-    gl->glViewport(0, 0, w, h);
-    gl->glDisable(GL_SCISSOR_TEST);
-    gl->glDisable(GL_RASTERIZER_DISCARD);
-    gl->glDisable(GL_BLEND);
-    gl->glDisable(GL_DEPTH_TEST);
-    gl->glDisable(GL_STENCIL_TEST);
-    gl->glDisable(GL_CULL_FACE);
-    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-}
-
-static void leave_table(sky *s, const table_target *t)
-{
-    const sky_gl *gl = &s->gl;
-    gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)t->draw);
-    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)t->read);
-    gl->glViewport(t->viewport[0], t->viewport[1], t->viewport[2], t->viewport[3]);
-    if (t->scissor) gl->glEnable(GL_SCISSOR_TEST);
-    if (t->discard) gl->glEnable(GL_RASTERIZER_DISCARD);
-}
+                                          SKY_UNIFORM_COUNT(build_uniforms)};
 
 /* One full-screen pass of a build program into the w x h corner of a
  * texture. */
-static void gpu_pass(sky *s, sky_program *prog, sky_texture_id target, int w, int h)
+static void gpu_pass(sky_core *s, GLuint fbo, sky_program *prog, sky_texture_id target, int w, int h)
 {
-    table_target t;
-    enter_table(s, target, w, h, &t);
+    sky_gl_target t;
+    sky_gl_target_begin(s, fbo, target, w, h, &t);
     sky_program_apply(s, prog);
     s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
-    leave_table(s, &t);
-}
-
-/* Reads a table back from its texture into the CPU copy (RGB floats):
- * RGBA/FLOAT, the read-back every float framebuffer supports, with the
- * host's pixel-pack state set aside (a row length or a bound pack buffer
- * would send the pixels elsewhere). Returns 0, or -1 on a GL error. */
-static int gpu_read(sky *s, sky_texture_id source, int w, int h, float *rgb)
-{
-    const sky_gl *gl = &s->gl;
-    float *rgba = malloc(sizeof(float) * 4u * (size_t)w * (size_t)h);
-    if (!rgba) return -1;
-    GLint pack[4], pack_buffer = 0;
-    static const GLenum pack_names[4] = {GL_PACK_ROW_LENGTH, GL_PACK_SKIP_ROWS, GL_PACK_SKIP_PIXELS, GL_PACK_ALIGNMENT};
-    for (int i = 0; i < 4; i++) gl->glGetIntegerv(pack_names[i], &pack[i]);
-    gl->glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
-    for (int i = 0; i < 3; i++) gl->glPixelStorei(pack_names[i], 0);
-    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    while (gl->glGetError() != GL_NO_ERROR) {}
-    table_target t;
-    enter_table(s, source, w, h, &t);
-    gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
-    GLenum e = gl->glGetError();
-    leave_table(s, &t);
-    for (int i = 0; i < 4; i++) gl->glPixelStorei(pack_names[i], pack[i]);
-    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
-    if (e == GL_NO_ERROR)
-        for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-            for (int c = 0; c < 3; c++) rgb[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
-    free(rgba);
-    return e == GL_NO_ERROR ? 0 : -1;
+    sky_gl_target_end(s, &t);
 }
 
 /* CORE33: the three tables as float textures, the framebuffer that
@@ -153,10 +90,10 @@ static int gpu_read(sky *s, sky_texture_id source, int w, int h, float *rgb)
  * multiple-scattering tables are built here (once: they depend on the
  * atmosphere alone). Their sizes must be powers of two here (the builds
  * read them edge to edge). */
-static int create_gpu_build(sky *s, char *err, size_t err_len)
+static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
-    const sky_hillaire_settings *set = &s->hillaire->settings;
+    const sky_hillaire_settings *set = &hs->tables.settings;
     int tw = set->transmittance_width, th = set->transmittance_height, mn = set->multiscatter_size;
     if (next_pow2(tw) != tw || next_pow2(th) != th || next_pow2(mn) != mn) {
         sky_format(err, err_len, "sky_create: luts: the transmittance (%dx%d) and multiple-scattering (%d) tables "
@@ -167,23 +104,23 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
         sky_texture_create_lut(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, 1, err, err_len))
         return -1;
     const sky_snippet *snippets[1] = {&build_snippet};
-    if (sky_program_build(s, &s->transmittance_build, "fullscreen.vert", "transmittance_build.frag", snippets, 1, err,
+    if (sky_program_build(s, &hs->transmittance_build, "fullscreen.vert", "transmittance_build.frag", snippets, 1, err,
                           err_len) ||
-        sky_program_build(s, &s->multiscatter_build, "fullscreen.vert", "multiscatter_build.frag", snippets, 1, err,
+        sky_program_build(s, &hs->multiscatter_build, "fullscreen.vert", "multiscatter_build.frag", snippets, 1, err,
                           err_len) ||
-        sky_program_build(s, &s->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
+        sky_program_build(s, &hs->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
         return -1;
-    gl->glGenFramebuffers(1, &s->skyview_fbo);
-    table_target target;
-    enter_table(s, SKY_TEX_SKYVIEW, 1, 1, &target);
+    gl->glGenFramebuffers(1, &hs->fbo);
+    sky_gl_target target;
+    sky_gl_target_begin(s, hs->fbo, SKY_TEX_SKYVIEW, 1, 1, &target);
     GLenum status = gl->glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    leave_table(s, &target);
+    sky_gl_target_end(s, &target);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         sky_format(err, err_len, "sky_create: the context cannot render into a float texture (status 0x%04x)", status);
         return -1;
     }
     /* the constants of the build */
-    const sky_atmosphere_params *a = &s->hillaire->atm;
+    const sky_atmosphere_params *a = &hs->tables.atm;
     sky_frame *f = &s->frame;
     double R = a->planet_radius_km, Rt = a->top_radius_km;
     f->hl_geometry[0] = (float)R;
@@ -213,30 +150,30 @@ static int create_gpu_build(sky *s, char *err, size_t err_len)
     f->hl_steps[2] = (float)set->multiscatter_steps;
     /* the two fixed tables, built here and read back for the CPU's rays
      * (the host's lighting) */
-    gpu_pass(s, &s->transmittance_build, SKY_TEX_TRANSMITTANCE, tw, th);
-    gpu_pass(s, &s->multiscatter_build, SKY_TEX_MULTISCATTER, mn, mn);
-    if (gpu_read(s, SKY_TEX_TRANSMITTANCE, tw, th, s->hillaire->transmittance) ||
-        gpu_read(s, SKY_TEX_MULTISCATTER, mn, mn, s->hillaire->multiscatter)) {
+    gpu_pass(s, hs->fbo, &hs->transmittance_build, SKY_TEX_TRANSMITTANCE, tw, th);
+    gpu_pass(s, hs->fbo, &hs->multiscatter_build, SKY_TEX_MULTISCATTER, mn, mn);
+    if (sky_gl_read_rgb(s, hs->fbo, SKY_TEX_TRANSMITTANCE, tw, th, hs->tables.transmittance) ||
+        sky_gl_read_rgb(s, hs->fbo, SKY_TEX_MULTISCATTER, mn, mn, hs->tables.multiscatter)) {
         sky_format(err, err_len, "sky_create: reading the lookup tables back failed (out of memory or a GL error)");
         return -1;
     }
     return 0;
 }
 
-int sky_hillaire_create(sky *s, char *err, size_t err_len)
+int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t err_len)
 {
-    s->hillaire = calloc(1, sizeof *s->hillaire);
-    if (!s->hillaire) {
+    sky_hillaire_state *hs = *out = calloc(1, sizeof *hs);
+    if (!hs) {
         sky_format(err, err_len, "out of memory for the Hillaire tables");
         return -1;
     }
     char why[200];
-    if (sky_hillaire_init(s->hillaire, &s->atm_rgb, &s->cfg.luts, why, sizeof why)) {
+    if (sky_hillaire_init(&hs->tables, &s->atm_rgb, &s->cfg.luts, why, sizeof why)) {
         sky_format(err, err_len, "sky_create: luts: %s", why);
         return -1;
     }
     double t0 = sky_now_ms();
-    const sky_hillaire_settings *set = &s->hillaire->settings;
+    const sky_hillaire_settings *set = &hs->tables.settings;
     int w = next_pow2(set->skyview_width), h = next_pow2(set->skyview_height);
     /* COMPAT20 wants power-of-two RGBA8 textures: the table sits in the
      * corner of one, and the shader maps its texel centres there */
@@ -247,42 +184,43 @@ int sky_hillaire_create(sky *s, char *err, size_t err_len)
         /* the builds bind programs and textures: the host's state comes back */
         sky_gl_state host;
         sky_gl_state_save(s, &host);
-        int rc = create_gpu_build(s, err, err_len);
+        int rc = create_gpu_build(s, hs, err, err_len);
         sky_gl_state_restore(s, &host);
         if (rc) return -1;
     } else {
-        sky_hillaire_build_transmittance(s->hillaire);
-        sky_hillaire_build_multiscatter(s->hillaire);
-        s->skyview_encoded = malloc((size_t)set->skyview_width * set->skyview_height * 4);
-        if (!s->skyview_encoded) {
+        sky_hillaire_build_transmittance(&hs->tables);
+        sky_hillaire_build_multiscatter(&hs->tables);
+        hs->skyview_encoded = malloc((size_t)set->skyview_width * set->skyview_height * 4);
+        if (!hs->skyview_encoded) {
             sky_format(err, err_len, "out of memory for the sky-view texture");
             return -1;
         }
     }
     s->lut_ms += sky_now_ms() - t0; /* both tables: the GPU's finished by the read-back */
-    s->skyview_valid = 0;
+    hs->skyview_valid = 0;
     return 0;
 }
 
-void sky_hillaire_destroy(sky *s)
+void sky_hillaire_destroy(sky_core *s, sky_hillaire_state *hs)
 {
-    if (s->skyview_fbo && s->gl.glDeleteFramebuffers) s->gl.glDeleteFramebuffers(1, &s->skyview_fbo);
-    s->skyview_fbo = 0;
-    if (s->hillaire) sky_hillaire_free(s->hillaire);
-    free(s->hillaire);
-    free(s->skyview_encoded);
-    s->hillaire = NULL;
-    s->skyview_encoded = NULL;
+    if (!hs) return;
+    if (hs->fbo) s->gl.glDeleteFramebuffers(1, &hs->fbo);
+    sky_program_destroy(s, &hs->transmittance_build);
+    sky_program_destroy(s, &hs->multiscatter_build);
+    sky_program_destroy(s, &hs->skyview_build);
+    sky_hillaire_free(&hs->tables);
+    free(hs->skyview_encoded);
+    free(hs);
 }
 
 /* COMPAT20's encoding: a 16-bit level of log2 luminance over the table's
  * top SKYVIEW_STOPS stops (0: black, below them), high byte in R and low
  * byte in G, and the rg chromaticity in B and A. */
-static void encode_skyview(sky *s, double log2_floor)
+static void encode_skyview(sky_hillaire_state *hs, double log2_floor)
 {
-    const sky_hillaire_settings *set = &s->hillaire->settings;
+    const sky_hillaire_settings *set = &hs->tables.settings;
     int n = set->skyview_width * set->skyview_height;
-    const float *t = s->hillaire->skyview;
+    const float *t = hs->tables.skyview;
     for (int i = 0; i < n; i++) {
         double r = fmax(t[3 * i], 0.0), g = fmax(t[3 * i + 1], 0.0), b = fmax(t[3 * i + 2], 0.0);
         double sum = r + g + b, Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
@@ -290,7 +228,7 @@ static void encode_skyview(sky *s, double log2_floor)
          * the log scale from the floor up */
         double level = Y > 0.0 ? (log2(Y) - log2_floor) / SKYVIEW_STOPS : -1.0;
         unsigned q = level > 0.0 ? (unsigned)lround(sky_clampd(level, 1.0 / 65535.0, 1.0) * 65535.0) : 0u;
-        unsigned char *o = s->skyview_encoded + 4 * i;
+        unsigned char *o = hs->skyview_encoded + 4 * i;
         o[0] = (unsigned char)(q >> 8);
         o[1] = (unsigned char)(q & 255u);
         o[2] = (unsigned char)lround(255.0 * (sum > 0.0 ? r / sum : 1.0 / 3.0));
@@ -298,19 +236,19 @@ static void encode_skyview(sky *s, double log2_floor)
     }
 }
 
-void sky_hillaire_frame(sky *s)
+int sky_hillaire_frame(sky_core *s, sky_hillaire_state *hs)
 {
     sky_frame *f = &s->frame;
-    sky_rayleigh_frame(s); /* the closed-form extinction: sun disc and night layers */
-    sky_hillaire_tables *t = s->hillaire;
-    if (!t) return;
+    if (!hs) return 0;
+    sky_hillaire_tables *t = &hs->tables;
+    int rebuilt = 0;
     const sky_hillaire_settings *set = &t->settings;
     double R = s->atm.planet_radius_km, top = s->atm.top_radius_km;
     double alt_km = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, top - R);
     double mu = sky_clampd(f->sun_dir[1], -1.0, 1.0);
-    if (!s->skyview_valid || fabs(asin(mu) - asin(s->skyview_sun_mu)) > SKYVIEW_SUN_THRESHOLD ||
-        fabs(alt_km - s->skyview_altitude_km) > SKYVIEW_ALTITUDE_THRESHOLD_KM) {
-        if (s->skyview_encoded) { /* COMPAT20: on the CPU now; CORE33: on the GPU in sky_draw */
+    if (!hs->skyview_valid || fabs(asin(mu) - asin(hs->skyview_sun_mu)) > SKYVIEW_SUN_THRESHOLD ||
+        fabs(alt_km - hs->skyview_altitude_km) > SKYVIEW_ALTITUDE_THRESHOLD_KM) {
+        if (hs->skyview_encoded) { /* COMPAT20: on the CPU now; CORE33: on the GPU in sky_draw */
             double t0 = sky_now_ms();
             sky_hillaire_build_skyview(t, alt_km, mu);
             double brightest = 0.0;
@@ -318,17 +256,17 @@ void sky_hillaire_frame(sky *s)
             for (int i = 0; i < n; i++)
                 brightest = fmax(brightest, 0.2126 * t->skyview[3 * i] + 0.7152 * t->skyview[3 * i + 1] +
                                                 0.0722 * t->skyview[3 * i + 2]);
-            s->skyview_log2_floor = log2(fmax(brightest, 1e-30)) - SKYVIEW_STOPS;
-            encode_skyview(s, s->skyview_log2_floor);
+            hs->skyview_log2_floor = log2(fmax(brightest, 1e-30)) - SKYVIEW_STOPS;
+            encode_skyview(hs, hs->skyview_log2_floor);
             s->lut_ms += sky_now_ms() - t0;
         }
         f->hl_geometry[3] = (float)(R + alt_km);
         f->hl_misc[1] = (float)mu;
-        s->skyview_sun_mu = mu;
-        s->skyview_altitude_km = alt_km;
-        s->skyview_valid = 1;
-        s->summary_valid = 0; /* the host's lighting follows the new table */
-        s->skyview_uploaded = 0;
+        hs->skyview_sun_mu = mu;
+        hs->skyview_altitude_km = alt_km;
+        hs->skyview_valid = 1;
+        hs->skyview_uploaded = 0;
+        rebuilt = 1;
     }
     const sky_texture *tex = &s->textures[SKY_TEX_SKYVIEW];
     f->skyview_map[0] = (float)set->skyview_width;
@@ -339,40 +277,52 @@ void sky_hillaire_frame(sky *s)
     double theta_h = SKY_PI - asin(sky_clampd(R / (R + alt_km), 0.0, 1.0));
     f->skyview_horizon[0] = (float)theta_h;
     f->skyview_horizon[1] = (float)(SKY_PI - theta_h);
-    f->skyview_decode[0] = s->skyview_encoded ? 1.0f : 0.0f;
-    f->skyview_decode[1] = (float)s->skyview_log2_floor;
+    f->skyview_decode[0] = hs->skyview_encoded ? 1.0f : 0.0f;
+    f->skyview_decode[1] = (float)hs->skyview_log2_floor;
     f->skyview_decode[2] = (float)SKYVIEW_STOPS;
+    return rebuilt;
 }
 
 /* CORE33: one pass over the table's corner of the sky-view texture. */
-static void build_on_gpu(sky *s)
+static void build_on_gpu(sky_core *s, sky_hillaire_state *hs)
 {
-    const sky_hillaire_settings *set = &s->hillaire->settings;
+    const sky_hillaire_settings *set = &hs->tables.settings;
     double t0 = sky_now_ms();
-    gpu_pass(s, &s->skyview_build, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height);
+    gpu_pass(s, hs->fbo, &hs->skyview_build, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height);
     /* the time it takes: only where the host asked for GPU timings (a
      * glFinish stalls the pipeline); else what the submission cost */
     if (s->cfg.profile_layers) s->gl.glFinish();
     s->lut_ms += sky_now_ms() - t0;
 }
 
-void sky_hillaire_upload(sky *s)
+void sky_hillaire_upload(sky_core *s, sky_hillaire_state *hs)
 {
-    if (!s->hillaire || s->skyview_uploaded || !s->skyview_valid) return;
-    const sky_hillaire_settings *set = &s->hillaire->settings;
-    if (s->skyview_encoded)
-        sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, s->skyview_encoded, NULL);
+    if (!hs || hs->skyview_uploaded || !hs->skyview_valid) return;
+    const sky_hillaire_settings *set = &hs->tables.settings;
+    if (hs->skyview_encoded)
+        sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, hs->skyview_encoded, NULL);
     else
-        build_on_gpu(s);
-    s->skyview_uploaded = 1;
+        build_on_gpu(s, hs);
+    hs->skyview_uploaded = 1;
 }
 
-void sky_hillaire_eval(const sky *s, const double d[3], double rgb[3])
+sky_hillaire_tables *sky_hillaire_state_tables(const sky_hillaire_state *hs)
+{
+    return hs ? (sky_hillaire_tables *)&hs->tables : NULL;
+}
+
+void sky_hillaire_skyview_at(const sky_hillaire_state *hs, double *sun_mu, double *altitude_km)
+{
+    *sun_mu = hs ? hs->skyview_sun_mu : 0.0;
+    *altitude_km = hs ? hs->skyview_altitude_km : 0.0;
+}
+
+void sky_hillaire_eval(const sky_core *s, const sky_hillaire_state *hs, const double d[3], double rgb[3])
 {
     const sky_frame *f = &s->frame;
     double sun[3] = {f->sun_dir[0], f->sun_dir[1], f->sun_dir[2]};
     rgb[0] = rgb[1] = rgb[2] = 0.0;
-    if (!s->hillaire) return;
-    sky_hillaire_ray(s->hillaire, s->skyview_altitude_km, d, sun, rgb);
+    if (!hs) return;
+    sky_hillaire_ray(&hs->tables, hs->skyview_altitude_km, d, sun, rgb);
     for (int i = 0; i < 3; i++) rgb[i] *= f->sun_irradiance[i];
 }

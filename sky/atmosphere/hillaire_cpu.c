@@ -25,7 +25,7 @@
  * (its start, its end or the tangent point), where the air is densest.
  */
 #include "hillaire.h"
-#include "../sky_internal.h"
+#include "atmosphere.h"
 
 #include <math.h>
 #include <stdlib.h>

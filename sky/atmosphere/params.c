@@ -2,7 +2,7 @@
  * Atmosphere descriptions (Elek 2009: a parametrisable atmosphere): the
  * presets and the check every consumer relies on.
  */
-#include "../sky_internal.h"
+#include "atmosphere.h"
 #include "reference.h"
 
 #include <math.h>

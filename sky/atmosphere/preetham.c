@@ -15,7 +15,7 @@
  * every 3 degrees of depression, the measured twilight decline the
  * gradient path uses too: continuous at 0 degrees, positive everywhere.
  */
-#include "../sky_internal.h"
+#include "atmosphere.h"
 
 #include <math.h>
 
@@ -25,7 +25,7 @@ static const sky_uniform_desc preetham_uniforms[] = {
     SKY_UF("u_perez_e", SKY_U_F3, perez[4]), SKY_UF("u_perez_zenith", SKY_U_F3, perez_zenith),
 };
 const sky_snippet sky_preetham_snippet = {"SKY_HAS_PREETHAM", "preetham.glsl", preetham_uniforms,
-                                          (int)(sizeof preetham_uniforms / sizeof preetham_uniforms[0])};
+                                          SKY_UNIFORM_COUNT(preetham_uniforms)};
 
 #define PREETHAM_TURBIDITY_MIN 2.0
 #define PREETHAM_TURBIDITY_MAX 10.0
@@ -56,7 +56,7 @@ double sky_preetham_turbidity(float requested)
     return sky_clampd(t, PREETHAM_TURBIDITY_MIN, PREETHAM_TURBIDITY_MAX);
 }
 
-void sky_preetham_frame(sky *s)
+void sky_preetham_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
     double T = sky_preetham_turbidity(s->cfg.turbidity);

@@ -22,7 +22,7 @@
  * Hillaire's LUTs). Everything stays finite and non-negative: slant depths
  * are capped at 1e4 (a transmittance of exactly 0 in float).
  */
-#include "../sky_internal.h"
+#include "atmosphere.h"
 
 #include <math.h>
 
@@ -35,13 +35,13 @@ static const sky_uniform_desc extinction_uniforms[] = {
     SKY_UF("u_sun_irradiance", SKY_U_F3, sun_irradiance),
 };
 const sky_snippet sky_extinction_snippet = {"SKY_HAS_EXTINCTION", "extinction.glsl", extinction_uniforms,
-                                            (int)(sizeof extinction_uniforms / sizeof extinction_uniforms[0])};
+                                            SKY_UNIFORM_COUNT(extinction_uniforms)};
 static const sky_uniform_desc rayleigh_uniforms[] = {
     SKY_UF("u_sun_depth", SKY_U_F3, sun_depth),
     SKY_UF("u_mie_phase", SKY_U_F3, mie_phase),
 };
 const sky_snippet sky_rayleigh_snippet = {"SKY_HAS_RAYLEIGH", "rayleigh.glsl", rayleigh_uniforms,
-                                          (int)(sizeof rayleigh_uniforms / sizeof rayleigh_uniforms[0])};
+                                          SKY_UNIFORM_COUNT(rayleigh_uniforms)};
 
 #define SLANT_DEPTH_MAX 1e4
 
@@ -76,7 +76,7 @@ static double ozone_column_above(double h, double peak, double half)
     return 0.0;
 }
 
-void sky_rayleigh_frame(sky *s)
+void sky_rayleigh_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
     const sky_atmosphere_params *a = &s->atm_rgb;
@@ -106,9 +106,6 @@ void sky_rayleigh_frame(sky *s)
         double depth = f->tau_rayleigh[i] * m_rayleigh + f->tau_mie_ext[i] * m_mie + f->tau_ozone[i] * m_ozone;
         f->sun_depth[i] = (float)fmin(depth, SLANT_DEPTH_MAX);
         f->sun_irradiance[i] = (float)s->sun_irradiance_klx[i];
-        /* the direct beam (sun disc, sunlight on clouds and the host's
-         * scene) through the same atmosphere */
-        f->sun_transmittance[i] = (float)exp(-f->sun_depth[i]);
     }
     double g = a->mie_g;
     f->mie_phase[0] = (float)(3.0 / (8.0 * SKY_PI) * (1.0 - g * g) / (2.0 + g * g));

@@ -3,7 +3,7 @@
  * detection, program building with a version prologue, texture and buffer
  * helpers, and saving/restoring the host's GL state around sky_draw.
  */
-#include "../sky_internal.h"
+#include "gl.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,7 +21,7 @@ static int parse_version(const char *v)
     return major * 10 + minor;
 }
 
-int sky_gl_init(sky *s, char *err, size_t err_len)
+int sky_gl_init(sky_core *s, char *err, size_t err_len)
 {
     sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
     /* Every pointer is stored through its own member type; a missing entry
@@ -93,8 +93,22 @@ int sky_gl_init(sky *s, char *err, size_t err_len)
 
 /* ---- programs ------------------------------------------------------------ */
 
+static const sky_uniform_desc common_uniforms[] = {
+    SKY_UF("u_exposure", SKY_U_F1, exposure),
+    SKY_UF("u_output_hdr", SKY_U_F1, output_hdr),
+    SKY_UF("u_fisheye", SKY_U_F1, fisheye),
+    SKY_UF("u_aspect", SKY_U_F2, aspect),
+    SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
+    SKY_UF("u_view_proj", SKY_U_M4, view_proj),
+    SKY_UF("u_night_shift", SKY_U_F1, night_shift),
+    SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
+};
+const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
+                                        SKY_UNIFORM_COUNT(common_uniforms)};
+
+
 /* The version prologue: one GLSL source per stage serves both profiles. */
-static const char *prologue(const sky *s, int fragment)
+static const char *prologue(const sky_core *s, int fragment)
 {
     if (s->profile == SKY_GL_CORE33)
         return fragment ? "#version 330 core\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
@@ -105,7 +119,7 @@ static const char *prologue(const sky *s, int fragment)
                     : "#version 110\n#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
 }
 
-static GLuint compile(sky *s, GLenum type, const char *const *parts, int count, char *err, size_t err_len)
+static GLuint compile(sky_core *s, GLenum type, const char *const *parts, int count, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
     GLuint sh = gl->glCreateShader(type);
@@ -135,7 +149,7 @@ static const char *blob_text(const char *name, char *err, size_t err_len)
     return b ? (const char *)b->data : NULL;
 }
 
-int sky_program_build(sky *s, sky_program *p, const char *vert_main, const char *frag_main,
+int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const char *frag_main,
                       const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
@@ -209,7 +223,7 @@ fail:
     return -1;
 }
 
-void sky_program_destroy(sky *s, sky_program *p)
+void sky_program_destroy(sky_core *s, sky_program *p)
 {
     if (p->id) {
         s->gl.glDeleteProgram(p->id);
@@ -218,7 +232,7 @@ void sky_program_destroy(sky *s, sky_program *p)
     memset(p, 0, sizeof *p);
 }
 
-void sky_program_apply(sky *s, const sky_program *p)
+void sky_program_apply(sky_core *s, const sky_program *p)
 {
     const sky_gl *gl = &s->gl;
     const unsigned char *base = (const unsigned char *)&s->frame;
@@ -249,7 +263,7 @@ void sky_program_apply(sky *s, const sky_program *p)
 
 static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
-int sky_texture_create(sky *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
+int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
                        int repeat, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
@@ -321,7 +335,7 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
     return buf;
 }
 
-int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, unsigned char **rgba_out, char *err,
+int sky_asset_load_rgba(sky_core *s, const char *name, int expect_w, int expect_h, unsigned char **rgba_out, char *err,
                         size_t err_len)
 {
     size_t size = 0;
@@ -346,7 +360,7 @@ int sky_asset_load_rgba(sky *s, const char *name, int expect_w, int expect_h, un
     return rc;
 }
 
-int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
+int sky_texture_load(sky_core *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
                      int repeat, char *err, size_t err_len)
 {
     unsigned char *rgba = NULL;
@@ -356,7 +370,7 @@ int sky_texture_load(sky *s, sky_texture_id id, sky_layer owner, const char *nam
     return rc;
 }
 
-int sky_texture_create_lut(sky *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
+int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
                            size_t err_len)
 {
     const sky_gl *gl = &s->gl;
@@ -398,7 +412,7 @@ int sky_texture_create_lut(sky *s, sky_texture_id id, sky_layer owner, int w, in
     return 0;
 }
 
-void sky_texture_update_lut(sky *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
+void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
 {
     const sky_gl *gl = &s->gl;
     gl->glActiveTexture(GL_TEXTURE0);
@@ -412,14 +426,14 @@ void sky_texture_update_lut(sky *s, sky_texture_id id, int w, int h, const unsig
     gl->glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-void sky_texture_destroy(sky *s, sky_texture_id id)
+void sky_texture_destroy(sky_core *s, sky_texture_id id)
 {
     sky_texture *t = &s->textures[id];
     if (t->id) s->gl.glDeleteTextures(1, &t->id);
     memset(t, 0, sizeof *t);
 }
 
-GLuint sky_buffer_create(sky *s, GLenum target, const void *data, size_t bytes, GLenum usage)
+GLuint sky_buffer_create(sky_core *s, GLenum target, const void *data, size_t bytes, GLenum usage)
 {
     const sky_gl *gl = &s->gl;
     GLuint b = 0;
@@ -433,9 +447,26 @@ GLuint sky_buffer_create(sky *s, GLenum target, const void *data, size_t bytes, 
     return b;
 }
 
+void sky_buffer_update(sky_core *s, GLenum target, GLuint buffer, const void *data, size_t bytes, GLenum usage)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glBindBuffer(target, buffer);
+    gl->glBufferData(target, (GLsizeiptr)bytes, data, usage);
+}
+
+void sky_buffers_destroy(sky_core *s, const GLuint *buffers, const size_t *bytes, int count)
+{
+    for (int i = 0; i < count; i++)
+        if (buffers[i]) {
+            s->gl.glDeleteBuffers(1, &buffers[i]);
+            s->buffer_count--;
+            s->buffer_bytes -= bytes[i];
+        }
+}
+
 /* ---- host state ------------------------------------------------------------ */
 
-void sky_gl_state_save(sky *s, sky_gl_state *st)
+void sky_gl_state_save(sky_core *s, sky_gl_state *st)
 {
     const sky_gl *gl = &s->gl;
     memset(st, 0, sizeof *st);
@@ -487,7 +518,7 @@ static void set_cap(const sky_gl *gl, GLenum cap, GLboolean on)
         gl->glDisable(cap);
 }
 
-void sky_gl_state_restore(sky *s, const sky_gl_state *st)
+void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
 {
     const sky_gl *gl = &s->gl;
     if (s->profile == SKY_GL_COMPAT20) {
@@ -532,4 +563,127 @@ void sky_gl_state_restore(sky *s, const sky_gl_state *st)
     gl->glBlendFuncSeparate((GLenum)st->blend_src_rgb, (GLenum)st->blend_dst_rgb, (GLenum)st->blend_src_alpha,
                             (GLenum)st->blend_dst_alpha);
     gl->glBlendEquationSeparate((GLenum)st->blend_eq_rgb, (GLenum)st->blend_eq_alpha);
+}
+
+/* ---- what a frame sets ------------------------------------------------------ */
+
+GLuint sky_gl_vertex_array_create(sky_core *s)
+{
+    GLuint vao = 0;
+    s->gl.glGenVertexArrays(1, &vao);
+    s->gl.glBindVertexArray(vao);
+    return vao;
+}
+
+void sky_gl_vertex_array_bind(sky_core *s, GLuint vao)
+{
+    if (s->profile == SKY_GL_CORE33) s->gl.glBindVertexArray(vao);
+}
+
+void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao) { s->gl.glDeleteVertexArrays(1, &vao); }
+
+void sky_gl_frame_begin(sky_core *s, GLuint vao)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glDisable(GL_STENCIL_TEST);
+    gl->glDepthMask(GL_FALSE);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glDisable(GL_BLEND);
+    if (vao) gl->glBindVertexArray(vao);
+}
+
+void sky_gl_blend(sky_core *s, sky_blend mode)
+{
+    const sky_gl *gl = &s->gl;
+    if (mode == SKY_BLEND_NONE) {
+        gl->glDisable(GL_BLEND);
+        return;
+    }
+    gl->glEnable(GL_BLEND);
+    gl->glBlendEquation(GL_FUNC_ADD);
+    gl->glBlendFunc(GL_ONE, mode == SKY_BLEND_ADD ? GL_ONE : GL_ONE_MINUS_SRC_ALPHA);
+}
+
+void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4])
+{
+    const sky_gl *gl = &s->gl;
+    gl->glEnable(GL_SCISSOR_TEST);
+    gl->glScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    gl->glClear(GL_COLOR_BUFFER_BIT);
+    gl->glDisable(GL_SCISSOR_TEST);
+}
+
+void sky_gl_finish(sky_core *s) { s->gl.glFinish(); }
+
+GLenum sky_gl_error(sky_core *s) { return s->gl.glGetError(); }
+
+void sky_gl_drain_errors(sky_core *s)
+{
+    while (s->gl.glGetError() != GL_NO_ERROR) {}
+}
+
+/* ---- render targets ------------------------------------------------------------ */
+
+void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, int h, sky_gl_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &t->draw);
+    gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
+    gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
+    t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
+    t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
+    gl->glViewport(0, 0, w, h);
+    gl->glDisable(GL_SCISSOR_TEST);
+    gl->glDisable(GL_RASTERIZER_DISCARD);
+    gl->glDisable(GL_BLEND);
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDisable(GL_STENCIL_TEST);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void sky_gl_target_end(sky_core *s, const sky_gl_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)t->draw);
+    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)t->read);
+    gl->glViewport(t->viewport[0], t->viewport[1], t->viewport[2], t->viewport[3]);
+    if (t->scissor) gl->glEnable(GL_SCISSOR_TEST);
+    if (t->discard) gl->glEnable(GL_RASTERIZER_DISCARD);
+}
+
+/* RGBA/FLOAT is the read-back every float framebuffer supports; the
+ * host's pixel-pack state is set aside (a row length or a bound pack
+ * buffer would send the pixels elsewhere). */
+int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h, float *rgb)
+{
+    const sky_gl *gl = &s->gl;
+    float *rgba = malloc(sizeof(float) * 4u * (size_t)w * (size_t)h);
+    if (!rgba) return -1;
+    GLint pack[4], pack_buffer = 0;
+    static const GLenum pack_names[4] = {GL_PACK_ROW_LENGTH, GL_PACK_SKIP_ROWS, GL_PACK_SKIP_PIXELS, GL_PACK_ALIGNMENT};
+    for (int i = 0; i < 4; i++) gl->glGetIntegerv(pack_names[i], &pack[i]);
+    gl->glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+    for (int i = 0; i < 3; i++) gl->glPixelStorei(pack_names[i], 0);
+    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    while (gl->glGetError() != GL_NO_ERROR) {}
+    sky_gl_target t;
+    sky_gl_target_begin(s, fbo, source, w, h, &t);
+    gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+    GLenum e = gl->glGetError();
+    sky_gl_target_end(s, &t);
+    for (int i = 0; i < 4; i++) gl->glPixelStorei(pack_names[i], pack[i]);
+    gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
+    if (e == GL_NO_ERROR)
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+            for (int c = 0; c < 3; c++) rgb[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
+    free(rgba);
+    return e == GL_NO_ERROR ? 0 : -1;
 }

@@ -3,7 +3,7 @@
  * private to this file: STB_IMAGE_STATIC so a host that links its own copy
  * of stb_image sees no clash, and only the PNG decoder compiled in.
  */
-#include "../sky_internal.h"
+#include "../core.h"
 
 #include <string.h>
 

@@ -13,7 +13,7 @@ void main()
         return;
     }
     vec3 L = sky_atmosphere(d, v_color.rgb);
-    /* night layers: only in the night variant of this program (sky.c),
+    /* night layers: only in the night variant of this program (dome.c),
      * behind the atmosphere and dimmed by it */
 #ifdef SKY_HAS_FLICKER
     L += sky_flicker(d, v_color.a) * sky_atmosphere_transmittance(d);

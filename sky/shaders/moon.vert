@@ -1,6 +1,6 @@
 /* moon.vert: the moon billboard (Mueller sec. 2.1): a quad on the tangent
  * plane of the unit sphere at the moon's direction, four disc radii wide
- * each way (the outer part carries the halo), tessellated (sky_internal.h's
+ * each way (the outer part carries the halo), tessellated (disc.h's
  * disc grid). a_dir is the vertex's direction; its true direction,
  * refraction undone, goes to moon.frag, which finds the disc from it. */
 SKY_ATTR vec3 a_dir;

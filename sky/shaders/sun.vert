@@ -1,5 +1,5 @@
 /* sun.vert: a camera-facing quad around the sun direction (R-P sec. 2),
- * tessellated (sky_internal.h's disc grid). Vertices are directions; w = 0
+ * tessellated (disc.h's grid). Vertices are directions; w = 0
  * puts them at infinity, z = w on the far plane so no near/far setting
  * clips them. Each vertex also carries its true direction, refraction
  * undone, for the disc's shape. */

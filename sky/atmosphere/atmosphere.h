@@ -1,0 +1,95 @@
+/*
+ * The atmosphere room: after the astronomy, before exposure and the
+ * layers. One selected path (gradient, Preetham, analytic Rayleigh,
+ * Hillaire's tables, or a blend) writes the sky's part of the frame: the
+ * direct sun's transmittance, the day and night sky's scales, the path's
+ * shader coefficients, and the host's ambient and fog. The dome layer
+ * compiles the path's snippets; nothing else reads the path's state.
+ */
+#ifndef SKY_ATMOSPHERE_H
+#define SKY_ATMOSPHERE_H
+
+#include "../gl/gl.h"
+#include "hillaire.h"
+
+/* ---- the stage (atmosphere.c) ---------------------------------------------- */
+/* The path's resources (Hillaire's tables on HILLAIRE and BLEND); 0, or
+ * -1 with a message. destroy takes whatever create left. */
+int sky_atmosphere_create(sky_core *s, char *err, size_t err_len);
+void sky_atmosphere_destroy(sky_core *s);
+/* The sky's part of the frame (needs the astronomy's). */
+void sky_atmosphere_frame(sky_core *s);
+/* Before the dome is drawn: a sky-view table rebuilt since the last draw
+ * goes to the GPU. */
+void sky_atmosphere_upload(sky_core *s);
+/* The snippets of the selected path (up to 5, in order; encoded_tables:
+ * COMPAT20's 8-bit sky-view table). */
+int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out);
+/* Vertical optical depth above the observer per channel: the atmosphere
+ * description's for the physical paths, the sun model's otherwise; what
+ * dims the stars and the moon (Mueller sec. 5). */
+void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3]);
+/* The sun model's direct-beam transmittance for a ray at the given
+ * altitude (radians): Kasten-Young air mass times a Rayleigh+aerosol
+ * optical depth; below the horizon, the horizon's value. Non-decreasing
+ * in altitude. */
+void sky_sun_transmittance(double altitude, float out[3]);
+/* The sun above the atmosphere in linear sRGB, klx per channel: the
+ * reference's, so the physical paths and their yardstick are lit alike. */
+void sky_sun_irradiance_rgb(double rgb[3]);
+/* CIE 1931 XYZ to linear sRGB (IEC 61966-2-1). */
+void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
+/* For the tests: Hillaire's tables (NULL on other paths) and the sun and
+ * observer the sky-view table was last built for. */
+sky_hillaire_tables *sky_atmosphere_tables(const sky_core *s);
+void sky_atmosphere_skyview_at(const sky_core *s, double *sun_mu, double *altitude_km);
+
+/* ---- the description (params.c) ---------------------------------------------- */
+/* 1 when every field is zero (= the Earth preset). */
+int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
+/* The description's coefficients re-sampled at the wavelengths the sRGB
+ * channels of scattered sunlight come from: what the real-time physical
+ * paths render with. */
+void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out);
+
+/* ---- the paths ----------------------------------------------------------------- */
+/* Each path's snippet(s) and per-frame coefficients; the CPU twins of
+ * their shaders give radiance in kcd/m^2 for an upper-hemisphere
+ * direction, without the night floor. */
+extern const sky_snippet sky_atmosphere_snippet; /* shared by every path */
+extern const sky_snippet sky_gradient_snippet;
+extern const sky_snippet sky_preetham_snippet;
+extern const sky_snippet sky_rayleigh_snippet;
+extern const sky_snippet sky_extinction_snippet; /* the physical paths' optical depth */
+extern const sky_snippet sky_hillaire_snippet;
+extern const sky_snippet sky_hillaire_encoded_snippet; /* COMPAT20's 8-bit table */
+extern const sky_snippet sky_blend_snippet;
+void sky_gradient_frame(sky_core *s);
+/* Day-gradient colour (linear RGB) for a direction, from the 256x1
+ * gradient image, as R-P's gradient texture maps it onto the dome (the
+ * dome bakes it into its vertices). */
+void sky_gradient_vertex(const unsigned char *gradient_rgba, const float dir[3], float rgb[3]);
+double sky_preetham_turbidity(float requested); /* the turbidity the model uses */
+void sky_preetham_frame(sky_core *s);
+void sky_preetham_eval(const sky_frame *f, const double d[3], double rgb[3]);
+void sky_rayleigh_frame(sky_core *s);
+void sky_rayleigh_eval(const sky_frame *f, const double d[3], double rgb[3]);
+/* Chapman's grazing-incidence function: slant over vertical column of an
+ * exponential atmosphere, X = radius / scale height, mu = cos(zenith angle),
+ * any mu in -1..1 (rayleigh.c). */
+double sky_chapman(double X, double mu);
+
+/* Hillaire's tables in the sky (hillaire.c): the tables at creation, the
+ * sky-view rebuild per frame (COMPAT20: on the CPU), its upload or GPU
+ * build before the dome is drawn, the CPU twin of the shader. */
+typedef struct sky_hillaire_state sky_hillaire_state;
+int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t err_len);
+void sky_hillaire_destroy(sky_core *s, sky_hillaire_state *h);
+/* Returns 1 when the sky-view table was rebuilt (the summary follows it). */
+int sky_hillaire_frame(sky_core *s, sky_hillaire_state *h);
+void sky_hillaire_upload(sky_core *s, sky_hillaire_state *h);
+void sky_hillaire_eval(const sky_core *s, const sky_hillaire_state *h, const double d[3], double rgb[3]);
+sky_hillaire_tables *sky_hillaire_state_tables(const sky_hillaire_state *h);
+void sky_hillaire_skyview_at(const sky_hillaire_state *h, double *sun_mu, double *altitude_km);
+
+#endif /* SKY_ATMOSPHERE_H */

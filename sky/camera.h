@@ -1,0 +1,24 @@
+/*
+ * The camera room: the host's view and projection (or the all-sky
+ * fisheye) turned into the frame's view_proj, pixel_angle and aspect, and
+ * the horizon frame turned into the host's world.
+ */
+#ifndef SKY_CAMERA_H
+#define SKY_CAMERA_H
+
+#include "core.h"
+
+/* Validates the camera and fills view_proj (horizon directions to clip)
+ * and pixel_angle for the viewport. Returns 0, or -1 with a message. */
+int sky_camera_set(sky_core *s, const float view[16], const float proj[16], const GLint viewport[4], char *err,
+                   size_t err_len);
+/* The all-sky image in the viewport: aspect and pixel_angle (the caller
+ * clears the viewport). */
+void sky_camera_fisheye(sky_core *s, const GLint viewport[4]);
+/* A horizon-frame direction in the host's world (horizon_to_world). */
+void sky_camera_to_world(const sky_core *s, const float h[3], float w[3]);
+/* Checks cfg.horizon_to_world: all zero (identity) or orthonormal
+ * columns. Fills out (identity for zero); 0, or -1 if not a rotation. */
+int sky_camera_horizon_to_world(const float m[9], float out[9]);
+
+#endif /* SKY_CAMERA_H */

@@ -1,0 +1,201 @@
+/*
+ * libsky's bottom module: what every file of the library shares and
+ * nothing more. Named numeric guards, the clocks' arithmetic, error text,
+ * the embedded assets, and the two structures every room reads: the
+ * frame (sky_frame, what the shaders read) and the shared context
+ * (sky_core). It knows no layer. See docs/ARCHITECTURE.md for the rooms
+ * above it and the one-way flow between them.
+ */
+#ifndef SKY_CORE_H
+#define SKY_CORE_H
+
+#include "astro.h"
+#include "gl/glapi.h"
+#include "sky.h"
+
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define SKY_PI 3.14159265358979323846
+
+/* ---- small numeric guards (named, so a reader sees the intent) ---------- */
+static inline double sky_clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+static inline float sky_clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
+double sky_smoothstep(double e0, double e1, double x);
+/* Row-major 3x3 product out = a b (out may not alias a or b). */
+void sky_mat3_mul(const double a[9], const double b[9], double out[9]);
+
+/* ---- clocks ------------------------------------------------------------- */
+/* Wraps x into [0, period): long-running offsets stay small enough for
+ * float uniforms. fmod keeps the full double precision of x. */
+double sky_wrap(double x, double period);
+/* A clock's phase in [0, 1) advanced by rate cycles per second over dt
+ * seconds (any finite dt >= 0, up to the largest double). */
+double sky_phase_advance(double phase, double rate, double dt);
+/* Wall-clock milliseconds (C11 timespec_get), for statistics. */
+double sky_now_ms(void);
+
+/* ---- error text --------------------------------------------------------- */
+/* snprintf into an error buffer that may be NULL or empty. */
+void sky_format(char *buf, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* ---- embedded assets (generated at build time by tools/embed) ----------- */
+typedef struct sky_blob {
+    const char *name;
+    const unsigned char *data;
+    size_t size;
+} sky_blob;
+const sky_blob *sky_find_blob(const char *name); /* NULL if not embedded */
+
+/* PNG decoding (gl/image.c) */
+int sky_png_info(const unsigned char *data, size_t size, int *w, int *h);
+unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why);
+void sky_png_free(unsigned char *rgba);
+/* Decodes a PNG of exactly expect_w x expect_h to RGBA8 (checked from the
+ * header before decoding). Returns 0, or -1 with a message naming label. */
+int sky_image_decode(const unsigned char *data, size_t size, int expect_w, int expect_h, unsigned char **rgba,
+                     const char *label, char *err, size_t err_len);
+
+/* ---- textures ----------------------------------------------------------- */
+typedef enum sky_texture_id {
+    SKY_TEX_CLOUDS = 0, /* RGBA: photo, noise, detail, sunset gradient (R-P sec. 3) */
+    SKY_TEX_FLICKER,    /* RGBA: intensity, rate, variance, phase (R-P sec. 4)      */
+    SKY_TEX_STARMAP,    /* equirectangular J2000 faint stars + Milky Way (Mueller 4.4) */
+    SKY_TEX_MOON,       /* 256x128 lunar albedo, selenographic (Mueller 2.2.2)       */
+    SKY_TEX_ECLIPSE,    /* 128x1 eclipse colour h(t), log10-encoded (Mueller 3.2)    */
+    SKY_TEX_SKYVIEW,    /* Hillaire's sky-view table (atmosphere/hillaire.c)       */
+    SKY_TEX_TRANSMITTANCE, /* Hillaire's transmittance table (CORE33: GPU builds)  */
+    SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
+    SKY_TEX_COUNT
+} sky_texture_id;
+
+typedef struct sky_texture {
+    GLuint id;
+    int width, height;
+    size_t bytes;
+    sky_layer owner; /* whose stats row counts its bytes */
+} sky_texture;
+
+/* ---- the frame: everything the shaders read ------------------------------
+ * One writer per field: the room named in its group. The uniform tables
+ * (each room's sky_uniform_desc rows) point into it by offset. */
+typedef struct sky_frame {
+    /* astronomy and the shared frame state (sky.c) */
+    float sun_dir[3];        /* horizon frame, unit                              */
+    float moon_dir[3];       /* horizon frame, unit, refracted                   */
+    float sun_altitude;      /* radians, apparent                                */
+    float daylight;          /* R-P "amount of sunlight", 0..1                   */
+    float night;             /* visibility of night layers, 0..1                 */
+    float refraction_pressure; /* Saemundsson's scale at the observer (astro.c)  */
+    float output_hdr;        /* 1 = linear out, 0 = tone mapped                 */
+    float frame_index;       /* dither seed                                     */
+    /* the atmosphere (atmosphere/) */
+    float sun_transmittance[3]; /* direct sunlight through the atmosphere       */
+    float sky_luminance;     /* kcd/m^2: the day sky's scale (exposure, clouds,
+                                moon), dimmed by a solar eclipse               */
+    float day_luminance;     /* kcd/m^2: the gradient path's own scale, before
+                                the eclipse (its shader applies that per pixel) */
+    float horizon_tint[3];   /* colour of the horizon under a low sun            */
+    float night_luminance;   /* kcd/m^2: scale of the night sky background       */
+    float moonlight;         /* 0..25: the moon's brightening of the night sky    */
+    float ambient_rgb[3];    /* sky irradiance on an upward surface, klx         */
+    float fog_rgb[3];        /* horizon luminance, kcd/m^2                       */
+    /* Preetham (preetham.c): Perez A..E and zenith values for (Y, x, y) */
+    float perez[5][3], perez_zenith[3];
+    /* analytic Rayleigh + Mie (rayleigh.c) */
+    float tau_rayleigh[3], tau_mie_sca[3], tau_mie_ext[3], tau_ozone[3];
+    float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
+    /* Hillaire's sky-view table (hillaire.c) and the blend */
+    float skyview_map[4], skyview_horizon[2], skyview_decode[3], blend_weight;
+    /* the GPU build of the sky-view table (skyview_build.frag) */
+    float hl_geometry[4], hl_profile[4], hl_rayleigh[3], hl_mie_sca[3], hl_mie_ext[3], hl_ozone[3], hl_albedo[3];
+    float hl_sizes[4], hl_misc[4], hl_steps[4];
+    /* a solar eclipse (solar_eclipse.c) */
+    float eclipse_sky[4];    /* x: the day sky's light left everywhere by a solar
+                                eclipse; yzw: the extra at the horizon, rgb     */
+    float eclipse_sky_mean;  /* what that leaves of the sky's mean luminance (1
+                                without an eclipse; sky_luminance has it)       */
+    float eclipse_sun[4];    /* x: the moon's true angular radius, y: the sun's
+                                light left (glare), z: corona's scale (kcd/m^2) */
+    float eclipse_moon_dir[3]; /* the moon's centre, topocentric, unrefracted   */
+    /* exposure (exposure.c) */
+    float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
+    float night_shift;       /* 0..0.6: scotopic blue shift in the tone map      */
+    float star_local_gain;   /* LDR: the stars' gain against a sky the eye has
+                                not adapted to (a solar eclipse)               */
+    /* the camera (camera.c) */
+    float fisheye;           /* 1 = equidistant all-sky mapping                 */
+    float aspect[2];         /* fisheye: ndc scale so the circle is round        */
+    float view_proj[16];     /* horizon direction (w = 0) -> clip                */
+    float pixel_angle;       /* radians per pixel at the view centre             */
+    /* the sun (sun.c) */
+    float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
+    float sun_radius;        /* angular radius of the drawn disc, radians        */
+    float sun_true_dir[3];   /* the sun's centre without refraction              */
+    /* clouds (clouds.c, R-P sec. 3.1) */
+    float cover, density, sunset;
+    float cloud_uv_scale;    /* from height                                      */
+    float cloud_offset0[2], cloud_offset1[2], cloud_offset_detail[2], cloud_offset_upper[2];
+    float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
+    float sunset_color[3];
+    /* flicker stars (flicker.c, R-P sec. 4) */
+    float flicker_phase;     /* flicker time in rate units, wrapped             */
+    float star_luminance;    /* kcd/m^2 of a full-intensity star texel; 0: off   */
+    /* catalogue stars (stars.c) */
+    float star_rot[16], star_aberration[3], star_size[4], star_viewport[4], star_pressure[3];
+    float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
+    float star_occulter[4];  /* the moon's true direction and the cosine of its
+                                drawn radius (2: no moon): stars behind it go */
+    /* star map (starmap.c) */
+    float starmap_rot[16], starmap_scale;
+    /* moon (moon.c) */
+    float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_terms[4], moon_earthshine[3];
+    float moon_radius_tan;   /* the drawn disc's radius on its tangent plane     */
+    float moon_center_km[3], shadow_axis[3], shadow[4];
+} sky_frame;
+
+/* ---- the shared context ---------------------------------------------------
+ * What every room may read: the configuration, the GL functions and
+ * profile, the sliders and observer, the astronomy, the atmosphere's
+ * description, the texture registry and the frame. Each room writes only
+ * its own part (see docs/ARCHITECTURE.md); its private state is its own
+ * struct, which sky.c allocates and hands back to it. */
+struct sky_atmosphere_state; /* atmosphere/atmosphere.c */
+struct sky_dome_snippets;    /* layer.h */
+typedef struct sky_core {
+    sky_config cfg;               /* texture_dir: during sky_create only        */
+    unsigned features;            /* resolved: never 0                          */
+    sky_gl gl;
+    sky_gl_profile profile;
+    char gl_version[128];         /* copy of GL_VERSION                        */
+
+    sky_params params;
+    sky_observer observer;
+    sky_astro astro;              /* for observer + time slider; see observer.c */
+    float exposure_bias;          /* stops, sky_set_exposure_bias               */
+    float horizon_to_world[9];    /* column-major; identity when cfg's is zero   */
+
+    sky_atmosphere_path atmosphere;  /* resolved: never DEFAULT                  */
+    sky_atmosphere_params atm;       /* checked; the Earth preset when zero      */
+    sky_atmosphere_params atm_rgb;   /* atm at the channels' effective wavelengths */
+    double sun_irradiance_klx[3];    /* sky_sun_irradiance_rgb, once            */
+    struct sky_atmosphere_state *atmosphere_state; /* atmosphere.c's own      */
+
+    sky_texture textures[SKY_TEX_COUNT];
+    int program_count, buffer_count; /* live GL objects, for the stats          */
+    size_t buffer_bytes;
+    double lut_ms;                /* table builds since the last draw          */
+    int viewport[4];              /* the host's viewport at this sky_draw       */
+    const struct sky_dome_snippets *dome_snippets; /* of the enabled layers (sky.c) */
+    int dome_front_shows, dome_night_shows; /* this draw: a layer of that dome role
+                                               is visible (sky.c)             */
+
+    sky_frame frame;
+} sky_core;
+
+#endif /* SKY_CORE_H */

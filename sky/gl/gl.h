@@ -1,0 +1,147 @@
+/*
+ * The GL room: every rule about GL state lives here (docs/ARCHITECTURE.md,
+ * "GL state"). Function loading and profile choice, programs built from
+ * snippets with their uniform tables, textures and buffers with their byte
+ * counts, the host's state saved and restored around sky_draw, render
+ * targets for the lookup tables, and the few per-draw state changes the
+ * layers ask for by name (blend modes). Layers never call raw GL for
+ * state; they bind their own buffers and draw.
+ */
+#ifndef SKY_GL_H
+#define SKY_GL_H
+
+#include "../core.h"
+
+/* ---- programs and the uniform table ------------------------------------- */
+typedef enum sky_uniform_type { SKY_U_F1, SKY_U_F2, SKY_U_F3, SKY_U_F4, SKY_U_M4, SKY_U_TEX } sky_uniform_type;
+
+/* One row per uniform: the GLSL name, its type, and where its value lives
+ * (an offset into sky_frame, or a texture id). Each room owns its rows; a
+ * program built from several snippets sets the rows of each. */
+typedef struct sky_uniform_desc {
+    const char *name;
+    sky_uniform_type type;
+    size_t offset;           /* into sky_frame; texture id for SKY_U_TEX      */
+} sky_uniform_desc;
+#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field) }
+#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex) }
+#define SKY_UNIFORM_COUNT(rows) ((int)(sizeof rows / sizeof rows[0]))
+
+/* A snippet: the GLSL functions of one phenomenon plus its uniform rows. */
+typedef struct sky_snippet {
+    const char *define;      /* e.g. "SKY_HAS_CLOUDS"                          */
+    const char *source;      /* embedded GLSL file name; NULL = uniform rows only */
+    const sky_uniform_desc *uniforms;
+    int uniform_count;
+} sky_snippet;
+
+#define SKY_MAX_SNIPPETS 8
+#define SKY_MAX_UNIFORMS 64
+typedef struct sky_program {
+    GLuint id;
+    int uniform_count;
+    const sky_uniform_desc *uniforms[SKY_MAX_UNIFORMS];
+    GLint locations[SKY_MAX_UNIFORMS];
+} sky_program;
+
+/* The common prologue's uniforms (exposure, camera, sun): every program. */
+extern const sky_snippet sky_common_snippet;
+
+/* Loads the function table and picks the profile. Returns 0 or writes err. */
+int sky_gl_init(sky_core *s, char *err, size_t err_len);
+/* Compiles and links a program from the common prologue, the given snippets
+ * and a vertex and fragment main file. Attributes: 0 a_pos, 1 a_dir,
+ * 2 a_color. */
+int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const char *frag_main,
+                      const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len);
+void sky_program_destroy(sky_core *s, sky_program *p);
+/* Sets every uniform of the program from s->frame and binds its textures. */
+void sky_program_apply(sky_core *s, const sky_program *p);
+
+/* ---- textures and buffers ------------------------------------------------ */
+/* Uploads an RGBA8 image. repeat: wrap mode. Power-of-two sizes only. */
+int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
+                       int repeat, char *err, size_t err_len);
+/* Loads a texture by file name: the override directory first, then the
+ * embedded copy. Checks size and channel count against what is expected. */
+int sky_texture_load(sky_core *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
+                     int repeat, char *err, size_t err_len);
+/* A power-of-two lookup texture without contents: RGBA32F with linear
+ * filtering (is_float) or RGBA8 for an encoding, unfiltered;
+ * sky_texture_update_lut fills its w x h corner (one of the two data
+ * pointers). */
+int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
+                           size_t err_len);
+void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8,
+                            const float *rgb32f);
+void sky_texture_destroy(sky_core *s, sky_texture_id id);
+/* Reads an asset (override directory first, then the embedded copy) and
+ * decodes it to RGBA8, checking its size. Free with sky_png_free. */
+int sky_asset_load_rgba(sky_core *s, const char *name, int expect_w, int expect_h, unsigned char **rgba, char *err,
+                        size_t err_len);
+GLuint sky_buffer_create(sky_core *s, GLenum target, const void *data, size_t bytes, GLenum usage);
+/* Replaces a buffer's contents (same target and usage as created). */
+void sky_buffer_update(sky_core *s, GLenum target, GLuint buffer, const void *data, size_t bytes, GLenum usage);
+/* Deletes buffers and takes them off the counts (0 names are skipped). */
+void sky_buffers_destroy(sky_core *s, const GLuint *buffers, const size_t *bytes, int count);
+
+/* ---- the host's state ----------------------------------------------------- */
+/* Host GL state that sky_draw changes, saved and restored around it. */
+#define SKY_ATTRIBS 3 /* a_pos, a_dir, a_color */
+typedef struct sky_gl_state {
+    GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4], scissor_box[4];
+    GLfloat clear_color[4];
+    GLint textures[4];
+    GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
+    GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
+    GLboolean program_point_size;
+    GLint attrib_enabled[SKY_ATTRIBS], attrib_size[SKY_ATTRIBS], attrib_type[SKY_ATTRIBS], attrib_norm[SKY_ATTRIBS],
+        attrib_stride[SKY_ATTRIBS], attrib_buffer[SKY_ATTRIBS];
+    void *attrib_pointer[SKY_ATTRIBS];
+} sky_gl_state;
+void sky_gl_state_save(sky_core *s, sky_gl_state *st);
+void sky_gl_state_restore(sky_core *s, const sky_gl_state *st);
+
+/* ---- what a frame sets ------------------------------------------------------ */
+/* CORE33's vertex array (created bound), its binding, its release. */
+GLuint sky_gl_vertex_array_create(sky_core *s);
+void sky_gl_vertex_array_bind(sky_core *s, GLuint vao);
+void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao);
+/* The sky's own state for drawing: no depth test or write, no culling or
+ * stencil, all colour channels, no blending, its vertex array (vao:
+ * CORE33's, 0 in COMPAT20). */
+void sky_gl_frame_begin(sky_core *s, GLuint vao);
+/* How a layer's fragments combine with what is under them. */
+typedef enum sky_blend {
+    SKY_BLEND_NONE,          /* replace: the dome                            */
+    SKY_BLEND_ADD,           /* light added: stars, sun                      */
+    SKY_BLEND_PREMULTIPLIED  /* added, hiding what is behind by its alpha: moon */
+} sky_blend;
+void sky_gl_blend(sky_core *s, sky_blend mode);
+/* Clears the viewport's rectangle to black (the all-sky image's margin). */
+void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4]);
+/* Waits for the GPU: per-layer timings, only when the host asked for them. */
+void sky_gl_finish(sky_core *s);
+/* The first GL error since the last call, GL_NO_ERROR if none. */
+GLenum sky_gl_error(sky_core *s);
+/* Drops errors the host left pending: they are not ours. */
+void sky_gl_drain_errors(sky_core *s);
+
+/* ---- render targets (the lookup tables) ------------------------------------ */
+/* Rendering into a texture: the framebuffer bindings (draw and read),
+ * viewport, scissor and rasterizer-discard state the host had, put back by
+ * sky_gl_target_end. Blending, depth, stencil, culling and the colour mask
+ * are set here too; sky_draw and sky_create restore those with the rest
+ * of the host's state. */
+typedef struct sky_gl_target {
+    GLint draw, read, viewport[4];
+    GLboolean scissor, discard;
+} sky_gl_target;
+void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, int h, sky_gl_target *t);
+void sky_gl_target_end(sky_core *s, const sky_gl_target *t);
+/* Reads the w x h corner of a float texture back as RGB floats, with the
+ * host's pixel-pack state set aside. Returns 0, or -1 on a GL error or
+ * no memory. */
+int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h, float *rgb);
+
+#endif /* SKY_GL_H */

@@ -1,0 +1,99 @@
+/*
+ * The layer interface: one table of functions per drawn phenomenon, as
+ * GLFW's platform table or osghimmel's geodes. Each layer file exports one
+ * sky_layer_class and owns its state (a struct private to the file, which
+ * sky.c allocates with state_size bytes and hands back on every call), its
+ * programs, buffers, uniforms, draw and byte accounting. sky.c walks a
+ * back-to-front table of them; adding a layer is its own file and one row
+ * there (docs/ARCHITECTURE.md, "Adding a layer").
+ */
+#ifndef SKY_LAYER_H
+#define SKY_LAYER_H
+
+#include "core.h"
+#include "gl/gl.h"
+
+/* Where a layer's snippet goes in the dome's program, if it has one. */
+typedef enum sky_dome_role {
+    SKY_DOME_NONE,  /* drawn by itself                                         */
+    SKY_DOME_FRONT, /* in front of everything behind it (clouds): compiled into
+                       the dome and into every layer drawn over the dome, so
+                       those hide behind it                                  */
+    SKY_DOME_NIGHT  /* the night backdrop (flicker stars, star map): only in
+                       the dome's night variants                              */
+} sky_dome_role;
+
+typedef struct sky_layer_class {
+    sky_layer slot;           /* its row in sky_stats                         */
+    unsigned feature;         /* the SKY_* bit that includes it; 0: always     */
+    size_t state_size;        /* bytes of private state (zeroed)              */
+    sky_dome_role dome_role;
+    const sky_snippet *dome_snippet; /* with a dome role                      */
+    sky_blend blend;          /* for draw                                     */
+    /* Resources. 0, or -1 with a message; destroy is called after a
+     * failed create too, on whatever create left. */
+    int (*create)(sky_core *s, void *state, char *err, size_t err_len);
+    void (*destroy)(sky_core *s, void *state);
+    /* Clocks: dt seconds of running time (finite, >= 0). */
+    void (*advance)(sky_core *s, void *state, double dt);
+    /* Its clocks back to zero (sky_set_elapsed). */
+    void (*reset_clock)(void *state);
+    /* Per-frame state from the sliders, observer and atmosphere (after
+     * exposure.c): its part of s->frame. */
+    void (*frame)(sky_core *s, void *state);
+    /* Per draw, once the camera is set: what depends on the view. */
+    void (*view)(sky_core *s, void *state);
+    /* Whether it shows anything this frame. */
+    int (*visible)(const sky_core *s, const void *state);
+    /* Draws; returns the number of draw calls made. */
+    int (*draw)(sky_core *s, void *state);
+    /* GPU bytes it holds besides its textures (which are counted by their
+     * owner); NULL: none. */
+    size_t (*buffer_bytes)(const sky_core *s, const void *state);
+} sky_layer_class;
+
+/* The layers, back to front (sky.c's table). */
+extern const sky_layer_class sky_dome_layer;    /* atmosphere, and the dome snippets */
+extern const sky_layer_class sky_clouds_layer;
+extern const sky_layer_class sky_flicker_layer;
+extern const sky_layer_class sky_starmap_layer;
+extern const sky_layer_class sky_stars_layer;
+extern const sky_layer_class sky_moon_layer;
+extern const sky_layer_class sky_sun_layer;
+
+/* The dome snippets of the enabled layers, by role (sky.c fills them from
+ * the table before any layer is created): the dome composes its programs
+ * from them, and each layer drawn over the dome includes the front ones. */
+typedef struct sky_dome_snippets {
+    const sky_snippet *front[SKY_MAX_SNIPPETS], *night[SKY_MAX_SNIPPETS];
+    int front_count, night_count;
+} sky_dome_snippets;
+/* Builds a program of a layer drawn over the dome: the front snippets,
+ * then its own. */
+int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
+                                const char *frag_main, const sky_snippet *const *own, int own_count, char *err,
+                                size_t err_len);
+
+/* ---- what layers offer each other and the tests ------------------------- */
+/* clouds.c: drift of each cloud layer (0, 1, detail, upper) in texture
+ * periods per second at speed 1; the wrapped offsets (4 x 2). */
+extern const double sky_cloud_velocity[4][2];
+const double *sky_clouds_offsets(const void *clouds_state);
+/* flicker.c: galaxy brightness 0..1 for a direction, from the 128x128
+ * galaxy image stretched over the dome (R-P sec. 4); the flicker clock. */
+float sky_flicker_galaxy_vertex(const unsigned char *galaxy_rgba, const float dir[3]);
+double sky_flicker_clock(const void *flicker_state);
+/* stars.c: B-V to linear sRGB of unit luminance; the scintillation clock;
+ * the catalogue it draws, and a request to upload it again (after a test
+ * changed it). */
+void sky_star_color(double bv, float rgb[3]);
+double sky_stars_clock(const void *stars_state);
+struct sky_catalog *sky_stars_catalog(void *stars_state);
+void sky_stars_reload(void *stars_state);
+/* moon.c: the factor the moon is drawn larger than its true size
+ * (cfg.moon_scale, back to 1 near the sun, where it eclipses); the
+ * moonlight a host's scene receives (sky_get_lighting). */
+double sky_moon_drawn_scale(const sky_core *s);
+void sky_moon_lighting(const sky_core *s, float moon_color[3]);
+
+#endif /* SKY_LAYER_H */
