@@ -82,7 +82,7 @@ static int parse_features(const char *s, unsigned *out, char *err, size_t len)
         unsigned bit;
     } names[] = {{"clouds", SKY_CLOUDS}, {"sun", SKY_SUN},         {"moon", SKY_MOON},
                  {"stars", SKY_STARS},   {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
-                 {"eclipse", SKY_ECLIPSE}};
+                 {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}};
     if (!strcmp(s, "none")) {
         *out = SKY_FEATURES_NONE;
         return SKY_CLI_OK;
@@ -100,7 +100,7 @@ static int parse_features(const char *s, unsigned *out, char *err, size_t len)
                 found = 1;
             }
         if (!found)
-            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,moon,flicker,stars,starmap,eclipse or none)", (int)n,
+            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse or none)", (int)n,
                         p);
         p += n;
         if (*p == ',') {
@@ -129,7 +129,8 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --blend W                blend: fixed weight 0 (analytic) .. 1 (Hillaire); default follows the sun\n"
             "  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
             "  --planet earth|hazy|mars the atmosphere's composition (rayleigh, hillaire, blend)\n"
-            "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse (or none)\n"
+            "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
+            "                           solar-eclipse (or none); eclipse = the lunar one\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
@@ -162,24 +163,28 @@ typedef struct preset {
     double lat, lon, yaw, pitch;
 } preset;
 
+/* Every preset takes the solar eclipse: it costs nothing while the sun
+ * and the moon are apart. */
 static const preset presets[] = {
-    {"noon", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f, NULL, 0, 0, 0, 0},
-    {"overcast", SKY_CLOUDS, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0},
-    {"sunset", SKY_CLOUDS | SKY_SUN, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f, NULL, 0, 0, 0, 0},
-    {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f, NULL, 0, 0, 0, 0},
+    {"noon", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f, NULL, 0, 0, 0, 0},
+    {"overcast", SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0},
+    {"sunset", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f, NULL, 0, 0,
+     0, 0},
+    {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f,
+     0.0f, NULL, 0, 0, 0, 0},
     /* the full moon of 2026-04-02 from 40 N, looking at it */
-    {"moonlit", SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f,
-     "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0},
+    {"moonlit", SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f,
+     0.0f, 0.1f, 0.0f, "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0},
     /* the total lunar eclipse of 2026-03-03, greatest at about 11:33 UTC,
      * from Hawaii where the moon stands at 69 degrees */
-    {"eclipse", SKY_MOON | SKY_ECLIPSE | SKY_STARS | SKY_STARMAP, SKY_GL_AUTO, 0.0f, 0.6f, 0.2f, 0.0f, 0.1f, 0.0f,
-     "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0},
+    {"eclipse", SKY_MOON | SKY_LUNAR_ECLIPSE | SKY_STARS | SKY_STARMAP | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.0f, 0.6f,
+     0.2f, 0.0f, 0.1f, 0.0f, "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0},
     /* the total solar eclipse of 2024-04-08 near Nazas, Durango, at its
      * greatest (18:17:20 UT), looking up toward the sun at 70 degrees */
-    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS, SKY_GL_AUTO, 0.1f, 0.6f, 0.2f, 0.0f,
-     0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0},
-    {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f, 0.2f, 0.45f, NULL, 0, 0,
-     0, 0},
+    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.1f,
+     0.6f, 0.2f, 0.0f, 0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0},
+    {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f,
+     0.2f, 0.45f, NULL, 0, 0, 0, 0},
 };
 
 static const preset *find_preset(const char *name)
@@ -532,7 +537,8 @@ void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
         const char *name;
         unsigned bit;
     } feats[] = {{"clouds", SKY_CLOUDS}, {"sun", SKY_SUN}, {"moon", SKY_MOON}, {"stars", SKY_STARS},
-                 {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP}, {"eclipse", SKY_ECLIPSE}};
+                 {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP}, {"eclipse", SKY_LUNAR_ECLIPSE},
+                 {"solar-eclipse", SKY_SOLAR_ECLIPSE}};
     fprintf(out, "{\"gl_version\":\"");
     for (const char *p = st->gl_version ? st->gl_version : ""; *p; p++)
         if (*p == '"' || *p == '\\')

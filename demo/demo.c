@@ -112,11 +112,11 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     /* feature toggles: the sky is rebuilt with only what is on */
     static const struct { int key; unsigned bit; } toggles[] = {
         {GLFW_KEY_C, SKY_CLOUDS}, {GLFW_KEY_U, SKY_SUN}, {GLFW_KEY_M, SKY_MOON}, {GLFW_KEY_K, SKY_FLICKER_STARS},
-        {GLFW_KEY_T, SKY_STARS}, {GLFW_KEY_P, SKY_STARMAP}, {GLFW_KEY_E, SKY_ECLIPSE}};
+        {GLFW_KEY_T, SKY_STARS}, {GLFW_KEY_P, SKY_STARMAP}, {GLFW_KEY_E, SKY_LUNAR_ECLIPSE}};
     for (size_t i = 0; i < sizeof toggles / sizeof toggles[0]; i++)
         if (key == toggles[i].key) {
             d->features ^= toggles[i].bit;
-            if ((d->features & SKY_ECLIPSE) && !(d->features & SKY_MOON)) d->features |= SKY_MOON;
+            if ((d->features & SKY_LUNAR_ECLIPSE) && !(d->features & SKY_MOON)) d->features |= SKY_MOON;
             d->recreate = 1;
         }
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, 1);

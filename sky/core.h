@@ -114,14 +114,21 @@ typedef struct sky_frame {
     float skyview_map[4], skyview_horizon[2], skyview_decode[3], blend_weight;
     /* the GPU build of the sky-view table (skyview_build.frag) */
     float hl_geometry[4], hl_profile[4], hl_rayleigh[3], hl_mie_sca[3], hl_mie_ext[3], hl_ozone[3], hl_albedo[3];
-    float hl_sizes[4], hl_misc[4], hl_steps[4];
+    float hl_sizes[4], hl_steps[4];
+    struct {                 /* u_hl_misc                                      */
+        float multiscatter_size, sun_mu, skyview_steps, mie_g;
+    } hl_misc;
     /* a solar eclipse (solar_eclipse.c) */
     float eclipse_sky[4];    /* x: the day sky's light left everywhere by a solar
                                 eclipse; yzw: the extra at the horizon, rgb     */
     float eclipse_sky_mean;  /* what that leaves of the sky's mean luminance (1
                                 without an eclipse; sky_luminance has it)       */
-    float eclipse_sun[4];    /* x: the moon's true angular radius, y: the sun's
-                                light left (glare), z: corona's scale (kcd/m^2) */
+    struct {                 /* u_eclipse_sun                                  */
+        float moon_radius;   /* the moon's true angular radius, radians        */
+        float light_left;    /* the sun's light the moon leaves (glare)        */
+        float corona_scale;  /* Baumbach's corona, kcd/m^2 (0: none)          */
+        float unused;
+    } eclipse_sun;
     float eclipse_moon_dir[3]; /* the moon's centre, topocentric, unrefracted   */
     /* exposure (exposure.c) */
     float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
@@ -147,17 +154,31 @@ typedef struct sky_frame {
     float flicker_phase;     /* flicker time in rate units, wrapped             */
     float star_luminance;    /* kcd/m^2 of a full-intensity star texel; 0: off   */
     /* catalogue stars (stars.c) */
-    float star_rot[16], star_aberration[3], star_size[4], star_viewport[4], star_pressure[3];
+    float star_rot[16], star_aberration[3], star_viewport[4], star_pressure[3];
+    struct {                 /* u_star_size (Mueller eq. 9), pixels            */
+        float q, glare_ck, max_radius, control_magnitude;
+    } star_size;
     float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
     float star_occulter[4];  /* the moon's true direction and the cosine of its
                                 drawn radius (2: no moon): stars behind it go */
     /* star map (starmap.c) */
     float starmap_rot[16], starmap_scale;
     /* moon (moon.c) */
-    float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_terms[4], moon_earthshine[3];
+    float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_earthshine[3];
+    struct {                 /* u_moon_terms                                   */
+        float phase_factor;  /* HLS phase factor relative to full (eq. 3)      */
+        float ldr_scale;     /* LDR: the lit side's own exposure (<= 1)        */
+        float halo;          /* the night halo's share of the disc's light     */
+        float hides;         /* 0..1: the disc hides what is behind it        */
+    } moon_terms;
     float moon_radius_tan;   /* the drawn disc's radius on its tangent plane     */
     float moon_center_km[3], shadow_axis[3], shadow[4];
 } sky_frame;
+/* The uniform table reads each packed vec4 above as four floats in a row. */
+_Static_assert(sizeof(((sky_frame *)0)->moon_terms) == 4 * sizeof(float), "moon_terms is a vec4");
+_Static_assert(sizeof(((sky_frame *)0)->star_size) == 4 * sizeof(float), "star_size is a vec4");
+_Static_assert(sizeof(((sky_frame *)0)->hl_misc) == 4 * sizeof(float), "hl_misc is a vec4");
+_Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "eclipse_sun is a vec4");
 
 /* ---- the shared context ---------------------------------------------------
  * What every room may read: the configuration, the GL functions and

@@ -3,7 +3,7 @@
  * topocentric moon, sized from its true distance times an artificial
  * scale c_d (eq. 1), oriented by libration, axis and parallactic angles
  * (eq. 2), shaded Hapke-Lommel-Seeliger with earthshine (eq. 3-4), dimmed
- * by extinction, and, with SKY_ECLIPSE, darkened and reddened per fragment
+ * by extinction, and, with SKY_LUNAR_ECLIPSE, darkened and reddened per fragment
  * by the Earth's shadow (sec. 3). Shaders: moon.vert/.frag.
  */
 #include "layer.h"
@@ -90,7 +90,7 @@ static int moon_create(sky_core *s, void *state, char *err, size_t err_len)
     sky_png_free(albedo);
     st->albedo_mean = (float)(sum / wsum);
     if (sky_disc_grid_create(s, &st->grid, "moon", err, err_len)) return -1;
-    if (s->features & SKY_ECLIPSE) {
+    if (s->features & SKY_LUNAR_ECLIPSE) {
         unsigned char lut[128 * 4];
         for (int i = 0; i < 128; i++) {
             double h[3];
@@ -102,7 +102,7 @@ static int moon_create(sky_core *s, void *state, char *err, size_t err_len)
     }
     const sky_snippet *own[2];
     int n = 0;
-    if (s->features & SKY_ECLIPSE) own[n++] = &eclipse_snippet;
+    if (s->features & SKY_LUNAR_ECLIPSE) own[n++] = &eclipse_snippet;
     own[n++] = &moon_snippet;
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "moon.vert", "moon.frag", own, n, err,
                                        err_len);
@@ -235,15 +235,15 @@ static void moon_frame(sky_core *s, void *state)
         double ext = exp(-depth[i] * airmass);
         f->moon_color[i] = (float)(scale * k_lambda[i] * ext * fade);
     }
-    f->moon_terms[0] = (float)phase_factor;
+    f->moon_terms.phase_factor = (float)phase_factor;
     for (int i = 0; i < 3; i++) f->moon_earthshine[i] = (float)(e * beta_e[i]); /* bluish */
     /* halo: a small part of the disc's light, only at night */
-    f->moon_terms[2] = (float)(2e-3 * a->moon_illuminated * a->star_visibility);
+    f->moon_terms.halo = (float)(2e-3 * a->moon_illuminated * a->star_visibility);
     /* In a dark sky the disc hides what is behind it (stars). While the
      * sky is brighter than about 1e-6 kcd/m^2 (the sun above -15 degrees)
      * the air in front of the moon shines too: the disc only adds, so its
      * dark side is never darker than the sky around it. */
-    f->moon_terms[3] = (float)sky_smoothstep(1e-5, 1e-6, f->sky_luminance);
+    f->moon_terms.hides = (float)sky_smoothstep(1e-5, 1e-6, f->sky_luminance);
     /* LDR: expose the sunlit moon on its own, as the eye adapts to it
      * locally: its lit mean lands at the tone curve's shoulder instead of
      * pure white. The earthshine keeps the scene's exposure, so the ashen
@@ -260,14 +260,14 @@ static void moon_frame(sky_core *s, void *state)
         if (es_mean > cap)
             for (int i = 0; i < 3; i++) f->moon_earthshine[i] *= (float)(cap / es_mean);
     }
-    f->moon_terms[1] = (float)k;
+    f->moon_terms.ldr_scale = (float)k;
     /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2),
      * delta the topocentric diameter (up to 2 % larger than the
      * geocentric one with the moon high: an eclipse's totality needs it) */
     st->radius_tan = tan(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
     f->moon_radius_tan = (float)st->radius_tan;
     /* eclipse: geocentric geometry in the horizon frame */
-    if (s->features & SKY_ECLIPSE) {
+    if (s->features & SKY_LUNAR_ECLIPSE) {
         double mg[3], sg[3], v[3];
         v[0] = cos(a->moon.dec) * cos(a->moon.ra), v[1] = cos(a->moon.dec) * sin(a->moon.ra), v[2] = sin(a->moon.dec);
         for (int i = 0; i < 3; i++) mg[i] = a->horizon[i * 3] * v[0] + a->horizon[i * 3 + 1] * v[1] + a->horizon[i * 3 + 2] * v[2];

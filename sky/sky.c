@@ -91,7 +91,7 @@ static void compute_frame(sky *s)
      * host's daylight). */
     double sin_alt = sin(f->sun_altitude);
     f->daylight = (float)sky_smoothstep(sin(-6.0 * SKY_PI / 180.0), sin(10.0 * SKY_PI / 180.0), sin_alt) *
-                  (float)c->astro.solar_flux_fraction;
+                  (float)sky_solar_eclipse_light_left(c);
     sky_exposure_frame(c);
     FOR_EACH_LAYER(s, L, state)
     if (L->frame) L->frame(c, state);
@@ -151,8 +151,8 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    features & ~(unsigned)SKY_FEATURES_AVAILABLE, (unsigned)SKY_FEATURES_AVAILABLE);
         return NULL;
     }
-    if ((features & SKY_ECLIPSE) && !(features & SKY_MOON)) {
-        sky_format(err, err_len, "sky_create: SKY_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
+    if ((features & SKY_LUNAR_ECLIPSE) && !(features & SKY_MOON)) {
+        sky_format(err, err_len, "sky_create: SKY_LUNAR_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
         return NULL;
     }
     sky_atmosphere_params atm = cfg->atmosphere_params;
@@ -466,7 +466,7 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
      * atmosphere, times the part of the disc not yet set */
     float above = (float)sky_disc_above_horizon(f->sun_altitude, c->astro.sun_semidiameter);
     /* and the share of its light a solar eclipse leaves */
-    above *= (float)c->astro.solar_flux_fraction;
+    above *= (float)sky_solar_eclipse_light_left(c);
     for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
     /* sky irradiance and horizon: the atmosphere path's (atmosphere.c) */
     for (int i = 0; i < 3; i++) {

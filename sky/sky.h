@@ -66,15 +66,20 @@ typedef enum sky_feature {
     SKY_STARS         = 1u << 3, /* catalogue stars (Mueller sec. 4)         */
     SKY_FLICKER_STARS = 1u << 4, /* Roden-Parberry flicker stars + galaxy   */
     SKY_STARMAP       = 1u << 5, /* Milky Way star map (Mueller sec. 4.4)    */
-    SKY_ECLIPSE       = 1u << 6, /* lunar eclipses on the moon (needs MOON)  */
+    SKY_LUNAR_ECLIPSE = 1u << 6, /* lunar eclipses on the moon (needs MOON)  */
+    SKY_ECLIPSE       = SKY_LUNAR_ECLIPSE, /* deprecated: SKY_LUNAR_ECLIPSE   */
+    SKY_SOLAR_ECLIPSE = 1u << 7, /* the moon hides the sun, dims the sky and
+                                    the host's sunlight; nothing while they
+                                    are apart                              */
     SKY_FEATURES_NONE = 1u << 31
 } sky_feature;
 
-#define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS)
+#define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE)
 /* The features this build can render; asking for others is
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
-    (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_ECLIPSE)
+    (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
+     SKY_SOLAR_ECLIPSE)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */

@@ -14,6 +14,7 @@
 #include "exposure.h"
 #include "layer.h"
 #include "observer.h"
+#include "solar_eclipse.h"
 
 struct sky {
     sky_core core;                        /* what every room reads          */

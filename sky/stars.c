@@ -183,10 +183,10 @@ static void stars_view(sky_core *s, void *state)
         f->star_aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
                                         a->horizon[i * 3 + 2] * a->aberration[2]);
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
-    f->star_size[0] = (float)STAR_Q_PX;
-    f->star_size[1] = (float)STAR_GLARE_CK_PX;
-    f->star_size[2] = 0.5f * st->point_max - 1.0f;
-    f->star_size[3] = m_a;
+    f->star_size.q = (float)STAR_Q_PX;
+    f->star_size.glare_ck = (float)STAR_GLARE_CK_PX;
+    f->star_size.max_radius = 0.5f * st->point_max - 1.0f;
+    f->star_size.control_magnitude = m_a;
     f->star_pressure[0] = (float)a->pressure_factor;
     /* eq. 10 in physical units: peak luminance of a V = 0 star on a PSF of
      * radius q pixels (pixel_angle radians each) */

@@ -1,10 +1,10 @@
 /*
- * The sun: how much of its light comes through the atmosphere, and the
- * camera-facing quad that draws its limb-darkened disc (Roden & Parberry
+ * The sun: the camera-facing quad that draws its limb-darkened disc (Roden & Parberry
  * sec. 2; Schneegans et al. eq. 1). Where it is comes from astro.c.
  */
 #include "layer.h"
 #include "disc.h"
+#include "solar_eclipse.h"
 
 #include <math.h>
 #include <string.h>
@@ -15,20 +15,12 @@
 #define SKY_SUN_LUMINANCE 2.0e6
 /* The quad reaches 16 radii: the glare is windowed to zero there. */
 #define SKY_SUN_QUAD_RADII 16.0
-/* The corona's brightness relative to the sun's mean disc is Baumbach's
- * (1937) 1e-6 (0.0532 r^-2.5 + 1.425 r^-7 + 2.565 r^-17), r in solar radii
- * (4e-6 at the limb). sun.frag evaluates the bracket; this is the factor
- * before it: 1e-6 times the mean disc, 0.8 of the centre's luminance. In
- * kcd/m^2. */
-#define SKY_CORONA_SCALE (1e-6 * 0.8 * SKY_SUN_LUMINANCE)
 
 static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
     SKY_UF("u_sun_luminance", SKY_U_F1, sun_luminance),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
-    SKY_UF("u_eclipse_sun", SKY_U_F4, eclipse_sun),
-    SKY_UF("u_eclipse_moon_dir", SKY_U_F3, eclipse_moon_dir),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
 static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms)};
@@ -42,8 +34,8 @@ static int sun_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     sun_state *st = state;
     if (sky_disc_grid_create(s, &st->grid, "sun", err, err_len)) return -1;
-    const sky_snippet *own[1] = {&sun_snippet};
-    return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "sun.vert", "sun.frag", own, 1, err,
+    const sky_snippet *own[2] = {&sun_snippet, &sky_solar_eclipse_sun_snippet};
+    return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "sun.vert", "sun.frag", own, 2, err,
                                        err_len);
 }
 
@@ -64,16 +56,7 @@ static void sun_frame(sky_core *s, void *state)
     /* the disc is drawn where refraction puts each of its points
      * (sun.frag): it needs the centre's true direction */
     for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)a->sun.dir_geometric[i];
-    /* A solar eclipse: sun.frag hides what lies behind the moon's true
-     * disc. Both discs take their true sizes, the one scale at which the
-     * contacts fall at the right times (moon.c draws the moon at it near
-     * the sun). The glare keeps the uncovered light's share, and the
-     * corona shows once the sun's last 10 % go. */
-    for (int i = 0; i < 3; i++) f->eclipse_moon_dir[i] = (float)a->moon.dir_geometric[i];
-    f->eclipse_sun[0] = (float)a->moon_topo_semidiameter;
-    f->eclipse_sun[1] = (float)a->solar_flux_fraction;
-    f->eclipse_sun[2] = (float)(SKY_CORONA_SCALE * sky_smoothstep(0.9, 0.999, a->solar_obscuration));
-    f->eclipse_sun[3] = 0.0f;
+    sky_solar_eclipse_sun(s, SKY_SUN_LUMINANCE); /* the moon in front */
 }
 
 static int sun_visible(const sky_core *s, const void *state)

@@ -616,7 +616,7 @@ void test_render_total_solar_eclipse(void)
      * (Capella, Aldebaran, Elnath, Betelgeuse, Rigel stand 10-35 degrees
      * up there), against the same scene an hour later */
     scene sc = scene_default();
-    sc.cfg.features = SKY_SUN | SKY_MOON | SKY_STARS;
+    sc.cfg.features = SKY_SUN | SKY_MOON | SKY_STARS | SKY_SOLAR_ECLIPSE;
     sc.cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
     sc.has_observer = 1;
     sc.observer.julian_day_utc = sky_julian_day(2024, 4, 8, 18, 17, 20.0);
@@ -648,7 +648,7 @@ void test_render_total_solar_eclipse(void)
     east.w = 640, east.h = 360;
     east.yaw = 70.0, east.pitch = 22.0, east.fov = 50.0;
     scene east_bare = east;
-    east_bare.cfg.features = SKY_SUN | SKY_MOON;
+    east_bare.cfg.features = SKY_SUN | SKY_MOON | SKY_SOLAR_ECLIPSE;
     scene east_later = east, east_later_bare = east_bare;
     east_later.observer.julian_day_utc += 1.0 / 24.0;
     east_later_bare.observer.julian_day_utc += 1.0 / 24.0;
@@ -672,7 +672,7 @@ void test_render_total_solar_eclipse(void)
     fixture fx;
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_SUN | SKY_MOON;
+    cfg.features = SKY_SUN | SKY_MOON | SKY_SOLAR_ECLIPSE;
     cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
     if (fixture_open(&fx, SKY_GL_AUTO, &cfg)) {
         CHECK(0, "no sky");
@@ -691,5 +691,25 @@ void test_render_total_solar_eclipse(void)
     CHECK(at.ambient_color[1] < 0.003f * after_l.ambient_color[1] && at.fog_color[1] < 0.01f * after_l.fog_color[1],
           "ambient %g / fog %g at totality against %g / %g", (double)at.ambient_color[1], (double)at.fog_color[1],
           (double)after_l.ambient_color[1], (double)after_l.fog_color[1]);
+    fixture_close(&fx);
+
+    /* without SKY_SOLAR_ECLIPSE the same instant is an ordinary day: the
+     * astronomy still reports the eclipse, nothing else follows it */
+    cfg.features = SKY_SUN | SKY_MOON;
+    if (fixture_open(&fx, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_lighting plain;
+    sky_astronomy astro;
+    sky_set_observer(fx.s, &sc.observer);
+    sky_get_lighting(fx.s, &plain);
+    sky_get_astronomy(fx.s, &astro);
+    NOTE("without the feature: sun %.3g klx, ambient %.3g (obscuration %.4f)", (double)plain.sun_color[1],
+         (double)plain.ambient_color[1], astro.solar_obscuration);
+    CHECK(astro.solar_obscuration > 0.999 && plain.sun_color[1] > 0.5f * after_l.sun_color[1] &&
+              plain.ambient_color[1] > 0.5f * after_l.ambient_color[1],
+          "left out, the eclipse still dims the scene (sun %g, ambient %g klx)", (double)plain.sun_color[1],
+          (double)plain.ambient_color[1]);
     fixture_close(&fx);
 }

@@ -5,6 +5,7 @@
  * irradiance it casts on the ground, the horizon's colour for fog).
  */
 #include "atmosphere.h"
+#include "../solar_eclipse.h"
 #include "reference.h"
 
 #include <math.h>
@@ -212,38 +213,6 @@ void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3])
     for (int i = 0; i < 3; i++) depth[i] = -log(zenith[i]) * thin;
 }
 
-/* A solar eclipse takes from the day sky the light the moon hides
- * (astro.c's limb-darkened fraction); around totality the air outside the
- * moon's shadow leaves a twilight glow, brightest along the horizon
- * (atmosphere.glsl's sky_eclipse_dim). The CPU summary that the exposure,
- * clouds, moon and host lighting read is dimmed by the same amounts:
- * the ring's (1 - sin h)^8 averages 1/9 over the hemisphere's solid angle,
- * 1/45 weighted by the cosine (irradiance), and for fog takes its value
- * where the fog was taken: the summary's lowest ring, or the horizon
- * itself for the gradient. The night sky's own light is not the sun's and
- * stays. */
-static void eclipse_frame(sky_core *s)
-{
-    sky_frame *f = &s->frame;
-    double left = sky_clampd(s->astro.solar_flux_fraction, 0.0, 1.0);
-    /* the ring's colour, of unit luminance: sunlight reddened by a long
-     * low path */
-    static const double ring_tint[3] = {1.34, 0.94, 0.60};
-    double base = left + (1.0 - left) * SKY_ECLIPSE_ZENITH_RESIDUAL;
-    double ring = (1.0 - left) * (SKY_ECLIPSE_HORIZON_RESIDUAL - SKY_ECLIPSE_ZENITH_RESIDUAL);
-    f->eclipse_sky[0] = (float)base;
-    for (int i = 0; i < 3; i++) f->eclipse_sky[1 + i] = (float)(ring * ring_tint[i]);
-    f->eclipse_sky_mean = (float)(base + ring / 9.0);
-    if (left >= 1.0) return;
-    f->sky_luminance *= f->eclipse_sky_mean;
-    double e = s->atmosphere == SKY_ATMOSPHERE_GRADIENT ? 1.0 : 1.0 - mu_node[0], e2 = e * e, e4 = e2 * e2;
-    for (int i = 0; i < 3; i++) {
-        double irr = base + ring * ring_tint[i] / 45.0, fog = base + ring * ring_tint[i] * e4 * e4;
-        f->ambient_rgb[i] = (float)(f->ambient_rgb[i] * irr + SKY_PI * f->night_luminance * (1.0 - irr));
-        f->fog_rgb[i] = (float)(f->fog_rgb[i] * fog + f->night_luminance * (1.0 - fog));
-    }
-}
-
 void sky_atmosphere_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
@@ -276,7 +245,9 @@ void sky_atmosphere_frame(sky_core *s)
         break;
     default: sky_gradient_frame(s); break;
     }
-    eclipse_frame(s);
+    /* the fog was taken at the summary's lowest ring, or at the horizon
+     * itself for the gradient */
+    sky_solar_eclipse_sky(s, s->atmosphere == SKY_ATMOSPHERE_GRADIENT ? 0.0 : mu_node[0]);
 }
 
 int sky_atmosphere_create(sky_core *s, char *err, size_t err_len)

@@ -142,9 +142,9 @@ static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size
     f->hl_sizes[1] = (float)set->skyview_height;
     f->hl_sizes[2] = (float)tw;
     f->hl_sizes[3] = (float)th;
-    f->hl_misc[0] = (float)mn;
-    f->hl_misc[2] = (float)set->skyview_steps;
-    f->hl_misc[3] = a->mie_g;
+    f->hl_misc.multiscatter_size = (float)mn;
+    f->hl_misc.skyview_steps = (float)set->skyview_steps;
+    f->hl_misc.mie_g = a->mie_g;
     f->hl_steps[0] = (float)set->transmittance_steps;
     f->hl_steps[1] = (float)((set->multiscatter_directions + 1) / 2); /* mirrored pairs, as on the CPU */
     f->hl_steps[2] = (float)set->multiscatter_steps;
@@ -261,7 +261,7 @@ int sky_hillaire_frame(sky_core *s, sky_hillaire_state *hs)
             s->lut_ms += sky_now_ms() - t0;
         }
         f->hl_geometry[3] = (float)(R + alt_km);
-        f->hl_misc[1] = (float)mu;
+        f->hl_misc.sun_mu = (float)mu;
         hs->skyview_sun_mu = mu;
         hs->skyview_altitude_km = alt_km;
         hs->skyview_valid = 1;
