@@ -60,9 +60,11 @@ $(BUILD)/include/sky.h: sky/sky.h
 DEMO_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE -Isky -Idemo
 CLI_SRC := demo/cli.c demo/osmesa_ctx.c
 CLI_HDR := demo/cli.h demo/osmesa_ctx.h sky/sky.h
-# the stability suite: sky-bench --stability prints it, the tests assert it
-STAB_SRC := demo/stability.c demo/atmo_error.c
-STAB_HDR := demo/stability.h demo/atmo_error.h
+# the stability suite and the atmosphere's error against the reference:
+# test and benchmark infrastructure (sky-bench prints them, the tests
+# assert them), so they live in tools/ and not among the demos
+STAB_SRC := tools/stability.c tools/atmo_error.c
+STAB_HDR := tools/stability.h tools/atmo_error.h
 
 $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
@@ -98,7 +100,7 @@ run: deps all
 TEST_SRC := $(wildcard tests/*.c)
 $(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
 # The leak check links the library with LeakSanitizer in its own build dir.
 $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
@@ -111,7 +113,7 @@ $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 $(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
 	@mkdir -p $(@D)
-	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itests -Wno-missing-prototypes \
+	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itools -Itests -Wno-missing-prototypes \
 	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
 # libFuzzer harnesses (clang with compiler-rt); built only where that links

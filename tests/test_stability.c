@@ -1,5 +1,5 @@
 /*
- * The numerical-stability suite (demo/stability.c, issue 8) as a test:
+ * The numerical-stability suite (tools/stability.c, issue 8) as a test:
  * every row must hold its tolerance. The same rows are the table of
  * sky-bench --stability.
  */

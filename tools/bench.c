@@ -11,7 +11,7 @@
  * draws, frame ms (median of N) and its ratio to the baseline of the same
  * profile; then, per atmosphere path, setting and profile: frame ms of the
  * sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and its
- * error against the cached CPU reference (demo/atmo_error.c).
+ * error against the cached CPU reference (tools/atmo_error.c).
  */
 #define GL_GLEXT_PROTOTYPES 1
 #include "atmo_error.h"
@@ -376,7 +376,7 @@ static int plot_atmosphere(const char *path, const atmo_row *rows, int n)
     return 0;
 }
 
-/* sky-bench --stability: the stability suite's table (demo/stability.c).
+/* sky-bench --stability: the stability suite's table (tools/stability.c).
  * Exit 0 when every case passes, 1 otherwise. */
 static int stability_table(int json)
 {

@@ -127,7 +127,7 @@ int sky_atmo_reference_make(const char *path, int paths, int threads, FILE *prog
     }
     fprintf(f, "# libsky atmosphere reference (sky/atmosphere/reference.c), written by sky-bench --make-reference.\n"
                "# Earth preset, observer at sea level, sun at azimuth 90. Rows: sun index, direction index\n"
-               "# (demo/atmo_error.c: equal-area rings x azimuths from the sun), linear sRGB in kcd/m^2,\n"
+               "# (tools/atmo_error.c: equal-area rings x azimuths from the sun), linear sRGB in kcd/m^2,\n"
                "# standard error of the luminance.\n");
     fprintf(f, "paths %d suns %d directions %d\n", paths, SKY_ATMO_SUNS, SKY_ATMO_DIRECTIONS);
     for (int s = 0; s < SKY_ATMO_SUNS; s++)
