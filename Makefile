@@ -11,11 +11,16 @@ CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
 
-SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/reference.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
 TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
-SKY_HDR := sky/sky.h sky/sky_internal.h sky/core.h sky/layer.h sky/camera.h sky/disc.h sky/exposure.h sky/solar_eclipse.h sky/observer.h sky/catalog.h sky/gl/gl.h sky/atmosphere/atmosphere.h sky/atmosphere/reference.h sky/atmosphere/hillaire.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
+# The double-precision spectral reference is a yardstick, not part of the
+# library: only the programs that measure against it (sky-bench, the test
+# runners) compile it in.
+REF_SRC := sky/atmosphere/reference.c
+REF_HDR := sky/atmosphere/reference.h sky/atmosphere/spectrum.h sky/sky.h
+SKY_HDR := sky/sky.h sky/sky_internal.h sky/core.h sky/layer.h sky/camera.h sky/disc.h sky/exposure.h sky/solar_eclipse.h sky/observer.h sky/catalog.h sky/gl/gl.h sky/atmosphere/atmosphere.h sky/atmosphere/spectrum.h sky/atmosphere/hillaire.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
 
 BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
@@ -78,9 +83,9 @@ $(BIN)/sky-game: demo/game.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ demo/game.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
 
-$(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(LIB)/libsky.a
+$(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lpthread $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a -lOSMesa -lpthread $(LDLIBS_M)
 
 bench: all
 	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png
@@ -98,9 +103,9 @@ run: deps all
 	@sh tools/run.sh
 
 TEST_SRC := $(wildcard tests/*.c)
-$(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_HDR) $(LIB)/libsky.a
+$(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(SKY_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
 # The leak check links the library with LeakSanitizer in its own build dir.
 $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
@@ -111,10 +116,10 @@ $(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_
 # The same runner built with AddressSanitizer and UndefinedBehaviorSanitizer
 # over the library's sources, in a directory of its own.
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-$(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+$(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
 	@mkdir -p $(@D)
 	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itools -Itests -Wno-missing-prototypes \
-	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
 # libFuzzer harnesses (clang with compiler-rt); built only where that links
 FUZZ_CC ?= clang

@@ -7,6 +7,7 @@
 #include "test.h"
 #include "atmosphere/hillaire.h"
 #include "atmosphere/reference.h"
+#include "atmosphere/spectrum.h"
 #include "sky_internal.h"
 
 #include <math.h>
@@ -226,7 +227,7 @@ void test_hillaire_sky_vs_reference(void)
 {
     sky_atmosphere_params a = earth();
     double sun_xyz[3], sun_rgb[3];
-    sky_ref_sun_xyz(sun_xyz);
+    sky_spectrum_sun_xyz(sun_xyz);
     sky_xyz_to_linear_srgb(sun_xyz, sun_rgb);
     const double sun_el[4] = {60.0, 30.0, 10.0, 2.0};
     const double els[] = {1.0, 3.0, 8.0, 15.0, 30.0, 50.0, 70.0, 90.0};

@@ -1,10 +1,12 @@
 /*
- * The atmosphere reference (sky/atmosphere/reference.c): its spectra and
+ * The atmosphere reference (sky/atmosphere/reference.c) and the spectra
+ * it shares with the library (spectrum.c): their spectra and
  * units, its single scattering against an independent quadrature, energy
  * conservation with every order, convergence, and a plausible sky.
  */
 #include "test.h"
 #include "atmosphere/reference.h"
+#include "atmosphere/spectrum.h"
 #include "sky_internal.h"
 
 #include <math.h>
@@ -61,7 +63,7 @@ void test_reference_spectrum_and_units(void)
     double worst = 0.0;
     for (double l = 400.0; l <= 700.0; l += 10.0) {
         double br;
-        sky_ref_coefficients(&a, l, &br, NULL, NULL, NULL);
+        sky_spectrum_coefficients(&a, l, &br, NULL, NULL, NULL);
         double want = a.rayleigh_scattering[1] * pow(l / 550.0, -4.0);
         worst = fmax(worst, fabs(br / want - 1.0));
     }
@@ -69,28 +71,28 @@ void test_reference_spectrum_and_units(void)
     CHECK(worst < 1e-6, "Rayleigh interpolation is not a power law: %g", worst);
     for (int i = 0; i < 3; i++) {
         double br;
-        sky_ref_coefficients(&a, node[i], &br, NULL, NULL, NULL);
+        sky_spectrum_coefficients(&a, node[i], &br, NULL, NULL, NULL);
         CHECK(fabs(br / a.rayleigh_scattering[i] - 1.0) < 1e-9, "node %g nm: %g vs %g", node[i], br,
               (double)a.rayleigh_scattering[i]);
     }
     /* the Earth preset's own values are lambda^-4 to their 4 digits */
     sky_atmosphere_params e = earth();
     double b400, b700;
-    sky_ref_coefficients(&e, 400.0, &b400, NULL, NULL, NULL);
-    sky_ref_coefficients(&e, 700.0, &b700, NULL, NULL, NULL);
+    sky_spectrum_coefficients(&e, 400.0, &b400, NULL, NULL, NULL);
+    sky_spectrum_coefficients(&e, 700.0, &b700, NULL, NULL, NULL);
     double expo = log(b700 / b400) / log(700.0 / 400.0);
     NOTE("Earth preset Rayleigh exponent 400..700 nm: %.5f", expo);
     CHECK(fabs(expo + 4.0) < 2e-3, "Earth Rayleigh exponent %g", expo);
     /* grey Mie stays grey; absorption = extinction - scattering >= 0 */
     double ms, me;
-    sky_ref_coefficients(&e, 420.0, NULL, &ms, &me, NULL);
+    sky_spectrum_coefficients(&e, 420.0, NULL, &ms, &me, NULL);
     CHECK(fabs(ms - 3.996e-3) < 1e-8 && fabs(me - 4.40e-3) < 1e-8, "grey Mie: %g %g", ms, me);
 
     /* The sun: a 5778 K blackbody carrying 1361 W/m^2. Its illuminance
      * above the atmosphere is 120..135 klx (the library uses 128 klx
      * elsewhere; measured solar constants in lux are 127..133 klx). */
     double xyz[3];
-    sky_ref_sun_xyz(xyz);
+    sky_spectrum_sun_xyz(xyz);
     double s = xyz[0] + xyz[1] + xyz[2], x = xyz[0] / s, y = xyz[1] / s;
     /* The chromaticity a 5778 K Planckian radiator must have, from Kim et
      * al. 2002's cubic fit to the Planckian locus (4000..25000 K), which
@@ -120,7 +122,7 @@ void test_reference_spectrum_and_units(void)
     double col_o = e.ozone_half_width_km;
     for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
         double br, bme, bo;
-        sky_ref_coefficients(&e, sky_ref_wavelength_nm(i), &br, NULL, &bme, &bo);
+        sky_spectrum_coefficients(&e, sky_spectrum_wavelength_nm(i), &br, NULL, &bme, &bo);
         double want = exp(-(br * col_r + bme * col_m + bo * col_o));
         worst_t = fmax(worst_t, fabs(tr[i] / want - 1.0));
     }
@@ -175,9 +177,9 @@ static quad_atm quad_setup(const sky_atmosphere_params *a)
     q.hw = a->ozone_half_width_km;
     q.g = a->mie_g;
     for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
-        double l = sky_ref_wavelength_nm(i);
-        sky_ref_coefficients(a, l, &q.br[i], &q.bms[i], &q.bme[i], &q.bo[i]);
-        q.esun[i] = sky_ref_solar_irradiance(l);
+        double l = sky_spectrum_wavelength_nm(i);
+        sky_spectrum_coefficients(a, l, &q.br[i], &q.bms[i], &q.bme[i], &q.bo[i]);
+        q.esun[i] = sky_spectrum_solar_irradiance(l);
     }
     return q;
 }
@@ -330,8 +332,8 @@ static double balance(const sky_atmosphere_params *a, int max_order, int paths, 
     opt.max_order = max_order;
     opt.paths = paths;
     double br, bms, bme, bo;
-    sky_ref_coefficients(a, 550.0, &br, &bms, &bme, &bo);
-    double E = sky_ref_solar_irradiance(550.0);
+    sky_spectrum_coefficients(a, 550.0, &br, &bms, &bme, &bo);
+    double E = sky_spectrum_solar_irradiance(550.0);
     double top = a->top_radius_km - a->planet_radius_km;
     double tau = br * a->rayleigh_scale_height_km * -expm1(-top / a->rayleigh_scale_height_km) +
                  bme * a->mie_scale_height_km * -expm1(-top / a->mie_scale_height_km);

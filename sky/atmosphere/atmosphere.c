@@ -6,7 +6,7 @@
  */
 #include "atmosphere.h"
 #include "../solar_eclipse.h"
-#include "reference.h"
+#include "spectrum.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -54,7 +54,7 @@ void sky_sun_irradiance_rgb(double rgb[3])
     /* the reference's sun: a 5778 K blackbody of 1361 W/m^2 through the
      * same colour matching functions (125 klx) */
     double xyz[3];
-    sky_ref_sun_xyz(xyz);
+    sky_spectrum_sun_xyz(xyz);
     sky_xyz_to_linear_srgb(xyz, rgb);
 }
 

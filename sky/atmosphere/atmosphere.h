@@ -35,7 +35,8 @@ void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3]);
  * in altitude. */
 void sky_sun_transmittance(double altitude, float out[3]);
 /* The sun above the atmosphere in linear sRGB, klx per channel: the
- * reference's, so the physical paths and their yardstick are lit alike. */
+ * reference's sun (atmosphere/spectrum.c), so the physical paths and their
+ * yardstick are lit alike. */
 void sky_sun_irradiance_rgb(double rgb[3]);
 /* CIE 1931 XYZ to linear sRGB (IEC 61966-2-1). */
 void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
@@ -48,8 +49,9 @@ void sky_atmosphere_skyview_at(const sky_core *s, double *sun_mu, double *altitu
 /* 1 when every field is zero (= the Earth preset). */
 int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
 /* The description's coefficients re-sampled at the wavelengths the sRGB
- * channels of scattered sunlight come from: what the real-time physical
- * paths render with. */
+ * channels of scattered sunlight come from
+ * (sky_spectrum_effective_wavelengths): what the real-time physical paths
+ * render with. */
 void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out);
 
 /* ---- the paths ----------------------------------------------------------------- */

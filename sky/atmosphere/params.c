@@ -3,7 +3,7 @@
  * presets and the check every consumer relies on.
  */
 #include "atmosphere.h"
-#include "reference.h"
+#include "spectrum.h"
 
 #include <math.h>
 #include <string.h>
@@ -110,11 +110,11 @@ void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_pa
      * actually comes from. Rendering at the primaries' own wavelengths
      * left the red of a high-sun sky 11 % short of the reference. */
     double lambda[3];
-    sky_ref_effective_wavelengths(lambda);
+    sky_spectrum_effective_wavelengths(lambda);
     *out = *in;
     for (int c = 0; c < 3; c++) {
         double r, ms, me, oz;
-        sky_ref_coefficients(in, lambda[c], &r, &ms, &me, &oz);
+        sky_spectrum_coefficients(in, lambda[c], &r, &ms, &me, &oz);
         /* between the nodes the smooth spectrum may overshoot a node's
          * value: held within the description's own limits (0..10/km,
          * extinction >= scattering) so every valid description stays

@@ -19,9 +19,13 @@
  * the ozone tent; segments are spaced quadratically toward the ray's
  * lowest point (its origin, its end, or the tangent point) so that the
  * scale heights are resolved at grazing angles.
+ * The spectra (the sun, colour matching, the description's coefficients
+ * at any wavelength) are spectrum.c's, which the library shares; this
+ * file itself is compiled into sky-bench and the tests, not libsky.
  */
 #include "reference.h"
-#include "../sky_internal.h"
+#include "spectrum.h"
+#include "../sky.h"
 
 #include <math.h>
 #include <string.h>
@@ -36,138 +40,6 @@
 #define REF_MAX_SEGMENTS 65536
 #define REF_MAX_PATHS (1 << 24)
 #define REF_MAX_ORDER 1000
-#define REF_DLAMBDA 20.0 /* nm: spacing of the spectral samples (rectangle rule) */
-#define REF_LM_PER_W 683.0 /* lm/W: the luminous efficacy at 555 nm (CIE) */
-
-/* ---- spectra ---------------------------------------------------------------- */
-
-double sky_ref_wavelength_nm(int i)
-{
-    if (i < 0) i = 0;
-    if (i >= SKY_REF_WAVELENGTHS) i = SKY_REF_WAVELENGTHS - 1;
-    return 400.0 + REF_DLAMBDA * i;
-}
-
-/* A quantity given at 680/550/440 nm at any wavelength. When all three
- * are positive, ln(value) is the quadratic in ln(lambda) through them:
- * a power law (Rayleigh's lambda^-4, an Angstrom exponent) comes out
- * exactly, and a curved log-log spectrum smoothly. With a zero among
- * them a logarithm does not exist: piecewise linear in lambda, constant
- * outside 440..680 nm. Never negative. */
-static double interp3(const float v[3], double lambda)
-{
-    static const double node[3] = {680.0, 550.0, 440.0};
-    if (v[0] > 0.0f && v[1] > 0.0f && v[2] > 0.0f) {
-        double x = log(lambda), acc = 0.0;
-        for (int i = 0; i < 3; i++) {
-            double li = 1.0, xi = log(node[i]);
-            for (int j = 0; j < 3; j++)
-                if (j != i) li *= (x - log(node[j])) / (xi - log(node[j]));
-            acc += li * log((double)v[i]);
-        }
-        return exp(acc);
-    }
-    double r;
-    if (lambda <= 440.0) r = v[2];
-    else if (lambda >= 680.0) r = v[0];
-    else if (lambda <= 550.0) r = v[2] + (v[1] - v[2]) * (lambda - 440.0) / 110.0;
-    else r = v[1] + (v[0] - v[1]) * (lambda - 550.0) / 130.0;
-    return r > 0.0 ? r : 0.0;
-}
-
-void sky_ref_coefficients(const sky_atmosphere_params *atm, double lambda_nm, double *rayleigh_scattering,
-                          double *mie_scattering, double *mie_extinction, double *ozone_absorption)
-{
-    sky_atmosphere_params earth;
-    if (!atm || sky_atmosphere_is_zero(atm)) {
-        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
-        atm = &earth;
-    }
-    double ms = interp3(atm->mie_scattering, lambda_nm);
-    double me = interp3(atm->mie_extinction, lambda_nm);
-    /* the two Mie curves are interpolated separately; extinction below
-     * scattering would mean negative absorption */
-    if (me < ms) me = ms;
-    if (rayleigh_scattering) *rayleigh_scattering = interp3(atm->rayleigh_scattering, lambda_nm);
-    if (mie_scattering) *mie_scattering = ms;
-    if (mie_extinction) *mie_extinction = me;
-    if (ozone_absorption) *ozone_absorption = interp3(atm->ozone_absorption, lambda_nm);
-}
-
-/* The sun as a 5778 K blackbody (its effective temperature) scaled so
- * that its total over all wavelengths is the total solar irradiance,
- * 1361 W/m^2 (Kopp & Lean 2011): E(lambda) = 1361 pi B(lambda, T) /
- * (sigma T^4), since pi * integral of Planck's B over lambda = sigma T^4
- * (Stefan-Boltzmann). It lies within a few per cent of the measured
- * spectrum across the visible range, without its Fraunhofer lines. */
-double sky_ref_solar_irradiance(double lambda_nm)
-{
-    const double h = 6.62607015e-34, c = 2.99792458e8, k = 1.380649e-23, sigma = 5.670374419e-8;
-    const double T = 5778.0, tsi = 1361.0;
-    if (!(lambda_nm > 0.0) || !isfinite(lambda_nm)) return 0.0;
-    double l = lambda_nm * 1e-9;
-    double x = h * c / (l * k * T);
-    double b = 2.0 * h * c * c / (l * l * l * l * l) / expm1(x); /* W m^-2 sr^-1 m^-1 */
-    return tsi * M_PI * b * 1e-9 / (sigma * T * T * T * T);      /* W m^-2 nm^-1      */
-}
-
-/* CIE 1931 2-degree colour matching functions: the multi-lobe piecewise
- * Gaussian fit of Wyman, Sloan & Shirley 2013, "Simple Analytic
- * Approximations to the CIE XYZ Color Matching Functions", JCGT 2(2),
- * eq. 2 (each lobe has one width left of its peak and another right). */
-static double lobe(double x, double mu, double s_left, double s_right)
-{
-    double t = (x - mu) / (x < mu ? s_left : s_right);
-    return exp(-0.5 * t * t);
-}
-
-static void cmf(double l, double out[3])
-{
-    out[0] = 1.056 * lobe(l, 599.8, 37.9, 31.0) + 0.362 * lobe(l, 442.0, 16.0, 26.7) -
-             0.065 * lobe(l, 501.1, 20.4, 26.2);
-    out[1] = 0.821 * lobe(l, 568.8, 46.9, 40.5) + 0.286 * lobe(l, 530.9, 16.3, 31.1);
-    out[2] = 1.217 * lobe(l, 437.0, 11.8, 36.0) + 0.681 * lobe(l, 459.0, 26.0, 13.8);
-}
-
-/* A spectrum at the 16 samples to XYZ: 20 nm rectangle rule, 683 lm/W,
- * /1000 so that radiance gives kcd/m^2 and irradiance klx. The sky and
- * the sun go through the same sum, so their white balance agrees. */
-static void spectrum_to_xyz(const double s[SKY_REF_WAVELENGTHS], double xyz[3])
-{
-    xyz[0] = xyz[1] = xyz[2] = 0.0;
-    for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
-        double c[3];
-        cmf(sky_ref_wavelength_nm(i), c);
-        for (int k = 0; k < 3; k++) xyz[k] += s[i] * c[k];
-    }
-    for (int k = 0; k < 3; k++) xyz[k] *= REF_LM_PER_W * REF_DLAMBDA / 1000.0;
-}
-
-void sky_ref_effective_wavelengths(double lambda_nm[3])
-{
-    /* sRGB channel c of sunlight scattered by a lambda^-4 medium, over
-     * the same channel of the sunlight itself: the wavelength whose
-     * Rayleigh coefficient scales sunlight's channel c alike. */
-    double sun[SKY_REF_WAVELENGTHS], scattered[SKY_REF_WAVELENGTHS], xyz_sun[3], xyz_sc[3], rgb_sun[3], rgb_sc[3];
-    for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
-        double l = sky_ref_wavelength_nm(i);
-        sun[i] = sky_ref_solar_irradiance(l);
-        scattered[i] = sun[i] * pow(550.0 / l, 4.0);
-    }
-    spectrum_to_xyz(sun, xyz_sun);
-    spectrum_to_xyz(scattered, xyz_sc);
-    sky_xyz_to_linear_srgb(xyz_sun, rgb_sun);
-    sky_xyz_to_linear_srgb(xyz_sc, rgb_sc);
-    for (int c = 0; c < 3; c++) lambda_nm[c] = 550.0 * pow(rgb_sc[c] / rgb_sun[c], -0.25);
-}
-
-void sky_ref_sun_xyz(double xyz[3])
-{
-    double e[SKY_REF_WAVELENGTHS];
-    if (!xyz) return;
-    for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) e[i] = sky_ref_solar_irradiance(sky_ref_wavelength_nm(i));
-    spectrum_to_xyz(e, xyz);
-}
 
 /* ---- the medium --------------------------------------------------------------- */
 /* Written apart from hillaire_cpu.c on purpose, density profiles included:
@@ -212,12 +84,12 @@ static void medium_init(ref_medium *md, const sky_atmosphere_params *atm, double
     md->g = atm->mie_g;
     md->n = only_nm > 0.0 ? 1 : SKY_REF_WAVELENGTHS;
     for (int i = 0; i < md->n; i++) {
-        double l = only_nm > 0.0 ? only_nm : sky_ref_wavelength_nm(i);
+        double l = only_nm > 0.0 ? only_nm : sky_spectrum_wavelength_nm(i);
         md->lambda[i] = l;
-        sky_ref_coefficients(atm, l, &md->br[i], &md->bms[i], &md->bme[i], &md->bo[i]);
-        double a = interp3(atm->ground_albedo, l);
+        sky_spectrum_coefficients(atm, l, &md->br[i], &md->bms[i], &md->bme[i], &md->bo[i]);
+        double a = sky_spectrum_interpolate(atm->ground_albedo, l);
         md->albedo[i] = a > 1.0 ? 1.0 : a;
-        md->esun[i] = sky_ref_solar_irradiance(l);
+        md->esun[i] = sky_spectrum_solar_irradiance(l);
     }
 }
 
@@ -407,11 +279,20 @@ static int unit_ok(const double v[3])
     return fabs(len - 1.0) <= 1e-6;
 }
 
+/* sky.h's convention: the all-zero description means the Earth preset.
+ * Tested here rather than through the library's internal helper, which
+ * the reference, outside the library, does not see. */
+static int atm_is_zero(const sky_atmosphere_params *atm)
+{
+    static const sky_atmosphere_params zero;
+    return memcmp(atm, &zero, sizeof zero) == 0;
+}
+
 /* Resolves the zero description to Earth and checks it. */
 static int resolve_atm(const sky_atmosphere_params *atm, sky_atmosphere_params *out)
 {
     if (!atm) return -1;
-    if (sky_atmosphere_is_zero(atm)) return sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, out) == SKY_OK ? 0 : -1;
+    if (atm_is_zero(atm)) return sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, out) == SKY_OK ? 0 : -1;
     if (sky_atmosphere_check(atm, NULL, 0) != SKY_OK) return -1;
     *out = *atm;
     return 0;
@@ -784,16 +665,16 @@ int sky_ref_radiance(const sky_atmosphere_params *atm, double altitude_km, const
         }
     }
     if (o.only_nm == 0.0) {
-        spectrum_to_xyz(out->spectral, out->xyz);
-        sky_xyz_to_linear_srgb(out->xyz, out->rgb);
+        sky_spectrum_to_xyz(out->spectral, out->xyz);
+        sky_spectrum_xyz_to_linear_srgb(out->xyz, out->rgb);
         double v = 0.0;
         for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
             double c[3];
-            cmf(sky_ref_wavelength_nm(i), c);
+            sky_spectrum_cmf(sky_spectrum_wavelength_nm(i), c);
             double e = c[1] * out->spectral_std_err[i];
             v += e * e;
         }
-        out->luminance_std_err = REF_LM_PER_W * REF_DLAMBDA / 1000.0 * sqrt(v);
+        out->luminance_std_err = SKY_SPECTRUM_LM_PER_W * SKY_SPECTRUM_STEP_NM / 1000.0 * sqrt(v);
     }
     return 0;
 }

@@ -10,7 +10,11 @@
  * deterministic quadrature along the view ray (optical depth integrated
  * per segment analytically); orders >= 2 by Monte Carlo path tracing that
  * reports its own standard error. Spectra go to CIE 1931 XYZ (an analytic
- * fit of the colour matching functions) and to linear sRGB.
+ * fit of the colour matching functions) and to linear sRGB. The sun's
+ * spectrum, the colour matching and the coefficients at any wavelength
+ * are spectrum.h's, shared with the library.
+ *
+ * Not part of libsky: sky-bench and the tests compile it in.
  *
  * Frame: the horizon frame of sky.h (+y up). Directions are unit vectors;
  * view points away from the observer, sun points toward the sun.
@@ -19,8 +23,10 @@
 #define SKY_ATMOSPHERE_REFERENCE_H
 
 #include "../sky.h"
+#include "spectrum.h"
 
-#define SKY_REF_WAVELENGTHS 16 /* 400, 420, ..., 700 nm */
+/* the shared spectral samples (spectrum.h): 400, 420, ..., 700 nm */
+#define SKY_REF_WAVELENGTHS SKY_SPECTRUM_SAMPLES
 
 typedef struct sky_ref_options {
     int view_segments;  /* single scattering: segments along the view ray; 0 = 256 */
@@ -41,21 +47,6 @@ typedef struct sky_ref_result {
     double luminance_std_err;  /* kcd/m^2                                   */
 } sky_ref_result;
 
-/* Wavelength of spectral sample i, nm. */
-double sky_ref_wavelength_nm(int i);
-/* The atmosphere's sea-level coefficients (1/km) at any wavelength,
- * interpolated through the 680/550/440 nm values of the description. */
-void sky_ref_coefficients(const sky_atmosphere_params *atm, double lambda_nm, double *rayleigh_scattering,
-                          double *mie_scattering, double *mie_extinction, double *ozone_absorption);
-/* The wavelengths at which the real-time paths' R, G, B coefficients are
- * best taken: where a lambda^-4 scatterer changes the sun's sRGB channel by
- * the same factor as it does the whole spectrum (about 610, 549, 464 nm
- * rather than the primaries' 680/550/440). */
-void sky_ref_effective_wavelengths(double lambda_nm[3]);
-/* Solar spectral irradiance at the top of the atmosphere, W m^-2 nm^-1. */
-double sky_ref_solar_irradiance(double lambda_nm);
-/* The sun's illuminance above the atmosphere as CIE XYZ, klx (Y ~ 128). */
-void sky_ref_sun_xyz(double xyz[3]);
 /* Transmittance from an observer at altitude_km along dir to space (0 if
  * the ray hits the ground), per spectral sample. */
 void sky_ref_transmittance(const sky_atmosphere_params *atm, double altitude_km, const double dir[3],
