@@ -39,6 +39,15 @@ void sky_mat3_mul(const double a[9], const double b[9], double out[9])
         }
 }
 
+void sky_j2000_to_horizon_mat4(const sky_astro *a, int inverse, float out[16])
+{
+    double m[9];
+    sky_mat3_mul(a->horizon, a->precession_nutation, m);
+    for (int i = 0; i < 16; i++) out[i] = i == 15 ? 1.0f : 0.0f;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) out[inverse ? i * 4 + j : j * 4 + i] = (float)m[i * 3 + j];
+}
+
 double sky_now_ms(void)
 {
     struct timespec ts;

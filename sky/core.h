@@ -25,6 +25,10 @@ static inline float sky_clampf(float x, float lo, float hi) { return x < lo ? lo
 double sky_smoothstep(double e0, double e1, double x);
 /* Row-major 3x3 product out = a b (out may not alias a or b). */
 void sky_mat3_mul(const double a[9], const double b[9], double out[9]);
+/* The sky's rotation from J2000 to the horizon frame, horizon *
+ * precession-nutation (Mueller eq. 7), as a column-major mat4 for a
+ * uniform; inverse: its transpose, horizon back to J2000. */
+void sky_j2000_to_horizon_mat4(const sky_astro *a, int inverse, float out[16]);
 
 /* ---- clocks ------------------------------------------------------------- */
 /* Wraps x into [0, period): long-running offsets stay small enough for

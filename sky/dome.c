@@ -13,7 +13,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 /* Upper hemisphere: ring k has elevation sine (k / RINGS_UP)^2, the same
  * square-root spacing the gradient texture uses, so the horizon band gets

@@ -22,7 +22,9 @@ static const sky_layer_class *const layer_table[] = {
 };
 #define LAYER_COUNT ((int)(sizeof layer_table / sizeof layer_table[0]))
 
-/* The layers of this sky, in the table's order: state NULL when left out. */
+/* Runs its body for each layer this sky has (those its features left out
+ * have no state), in the table's order, with L its class and state its
+ * state; `continue` goes on to the next layer. */
 #define FOR_EACH_LAYER(s, L, state)                                                                     \
     for (int layer_i_ = 0; layer_i_ < LAYER_COUNT; layer_i_++)                                         \
         for (const sky_layer_class *L = layer_table[layer_i_]; L; L = NULL)                             \
@@ -93,8 +95,9 @@ static void compute_frame(sky *s)
     f->daylight = (float)sky_smoothstep(sin(-6.0 * SKY_PI / 180.0), sin(10.0 * SKY_PI / 180.0), sin_alt) *
                   (float)sky_solar_eclipse_light_left(c);
     sky_exposure_frame(c);
-    FOR_EACH_LAYER(s, L, state)
-    if (L->frame) L->frame(c, state);
+    FOR_EACH_LAYER(s, L, state) {
+        if (L->frame) L->frame(c, state);
+    }
 }
 
 /* ---- lifecycle ------------------------------------------------------------- */
@@ -312,8 +315,9 @@ sky_result sky_update(sky *s, double dt)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(dt) || dt < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_update: dt = %g must be finite and >= 0", dt);
-    FOR_EACH_LAYER(s, L, state)
-    if (L->advance) L->advance(&s->core, state, dt);
+    FOR_EACH_LAYER(s, L, state) {
+        if (L->advance) L->advance(&s->core, state, dt);
+    }
     compute_frame(s);
     return SKY_OK;
 }
@@ -323,8 +327,9 @@ sky_result sky_set_elapsed(sky *s, double seconds)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(seconds) || seconds < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_elapsed: %g must be finite and >= 0", seconds);
-    FOR_EACH_LAYER(s, L, state)
-    if (L->reset_clock) L->reset_clock(state);
+    FOR_EACH_LAYER(s, L, state) {
+        if (L->reset_clock) L->reset_clock(state);
+    }
     return sky_update(s, seconds);
 }
 
@@ -368,8 +373,9 @@ static sky_result draw_frame(sky *s)
 {
     sky_core *c = &s->core;
     sky_gl_frame_begin(c, s->vao);
-    FOR_EACH_LAYER(s, L, state)
-    if (L->view) L->view(c, state);
+    FOR_EACH_LAYER(s, L, state) {
+        if (L->view) L->view(c, state);
+    }
     /* which of the dome's snippets show: the dome picks its variant */
     c->dome_front_shows = c->dome_night_shows = 0;
     FOR_EACH_LAYER(s, L, state) {
@@ -379,8 +385,9 @@ static sky_result draw_frame(sky *s)
         if (L->dome_role == SKY_DOME_FRONT) c->dome_front_shows |= shows;
         if (L->dome_role == SKY_DOME_NIGHT) c->dome_night_shows |= shows;
     }
-    FOR_EACH_LAYER(s, L, state)
-    if (L->draw && L->visible(c, state)) draw_layer(s, L, state);
+    FOR_EACH_LAYER(s, L, state) {
+        if (L->draw && L->visible(c, state)) draw_layer(s, L, state);
+    }
     GLenum e = sky_gl_error(c);
     if (e != GL_NO_ERROR) return sky_fail(s, SKY_ERR_GL, "sky_draw: GL error 0x%04x", e);
     return SKY_OK;

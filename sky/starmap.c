@@ -7,7 +7,6 @@
 #include "layer.h"
 
 #include <math.h>
-#include <string.h>
 
 /* Luminance of the map's brightest texel (the Sagittarius star clouds) at
  * m_a = 4 and a 60-degree, 720-pixel view: about six times the dark sky's
@@ -29,19 +28,12 @@ static int starmap_create(sky_core *s, void *state, char *err, size_t err_len)
     return sky_texture_load(s, SKY_TEX_STARMAP, SKY_LAYER_STARMAP, "starmap.png", 512, 256, 1, err, err_len);
 }
 
-/* The sky's rotation: the map is in J2000, so the shader takes horizon
- * directions back through the inverse of horizon * precession-nutation
- * (Mueller eq. 7), its transpose, as a column-major mat4. */
+/* The map is in J2000: the shader takes horizon directions back through
+ * the inverse of the sky's rotation. */
 static void starmap_frame(sky_core *s, void *state)
 {
     (void)state;
-    sky_frame *f = &s->frame;
-    double m[9];
-    sky_mat3_mul(s->astro.horizon, s->astro.precession_nutation, m);
-    memset(f->starmap_rot, 0, sizeof f->starmap_rot);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) f->starmap_rot[i * 4 + j] = (float)m[i * 3 + j];
-    f->starmap_rot[15] = 1.0f;
+    sky_j2000_to_horizon_mat4(&s->astro, 1, s->frame.starmap_rot);
 }
 
 /* After the camera: the brightness depends on the pixel size. */

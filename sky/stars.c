@@ -11,7 +11,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #define STAR_FLOATS 9 /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
 /* Illuminance of a V = 0 star: 2.54e-6 lux (e.g. Allen's Astrophysical
@@ -156,18 +155,11 @@ static void stars_advance(sky_core *s, void *state, double dt)
 
 static void stars_reset(void *state) { ((stars_state *)state)->scintillation = 0.0; }
 
-/* The sky's rotation J2000 -> horizon = horizon * precession-nutation
- * (Mueller eq. 7), as a column-major mat4. */
+/* The catalogue is in J2000: the sky's rotation takes it to the horizon. */
 static void stars_frame(sky_core *s, void *state)
 {
     (void)state;
-    sky_frame *f = &s->frame;
-    double m[9];
-    sky_mat3_mul(s->astro.horizon, s->astro.precession_nutation, m);
-    memset(f->star_rot, 0, sizeof f->star_rot);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) f->star_rot[j * 4 + i] = (float)m[i * 3 + j];
-    f->star_rot[15] = 1.0f;
+    sky_j2000_to_horizon_mat4(&s->astro, 0, s->frame.star_rot);
 }
 
 /* Per draw, from the observer's astronomy and the camera. */

@@ -7,7 +7,6 @@
 #include "solar_eclipse.h"
 
 #include <math.h>
-#include <string.h>
 
 /* Disc-centre luminance of the sun above the atmosphere, about 2.0e9 cd/m^2
  * (mean disc luminance 1.6e9 cd/m^2 divided by the mean of the u = 0.6
