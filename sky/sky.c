@@ -30,11 +30,10 @@ static const sky_layer_class *const layer_table[] = {
         for (const sky_layer_class *L = layer_table[layer_i_]; L; L = NULL)                             \
             for (void *state = (s)->layer_state[L->slot]; state; state = NULL)
 
-static sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
+/* The message for sky_last_error, and the code to return. */
 #if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
+__attribute__((format(printf, 3, 4)))
 #endif
-    ;
 static sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
 {
     va_list ap;

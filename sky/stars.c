@@ -128,9 +128,7 @@ static int stars_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     stars_state *st = state;
     if (sky_catalog_load(&st->catalog, err, err_len)) return -1;
-    GLfloat range[2] = {1.0f, 1.0f};
-    s->gl.glGetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
-    st->point_max = range[1] > 1.0f ? range[1] : 1.0f;
+    st->point_max = sky_gl_point_size_max(s);
     if (upload_stars(s, st, s->astro.years_since_j2000, err, err_len)) return -1;
     const sky_snippet *own[1] = {&stars_snippet};
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
@@ -231,9 +229,9 @@ static int stars_draw(sky_core *s, void *state)
     gl->glEnableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
     gl->glEnableVertexAttribArray(2);
-    gl->glEnable(GL_PROGRAM_POINT_SIZE);
+    sky_gl_program_point_size(s, 1);
     gl->glDrawArrays(GL_POINTS, 0, st->catalog.count);
-    gl->glDisable(GL_PROGRAM_POINT_SIZE);
+    sky_gl_program_point_size(s, 0);
     return 1;
 }
 

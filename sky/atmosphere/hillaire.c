@@ -92,7 +92,6 @@ static void gpu_pass(sky_core *s, GLuint fbo, sky_program *prog, sky_texture_id 
  * read them edge to edge). */
 static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size_t err_len)
 {
-    const sky_gl *gl = &s->gl;
     const sky_hillaire_settings *set = &hs->tables.settings;
     int tw = set->transmittance_width, th = set->transmittance_height, mn = set->multiscatter_size;
     if (next_pow2(tw) != tw || next_pow2(th) != th || next_pow2(mn) != mn) {
@@ -110,15 +109,7 @@ static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size
                           err_len) ||
         sky_program_build(s, &hs->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
         return -1;
-    gl->glGenFramebuffers(1, &hs->fbo);
-    sky_gl_target target;
-    sky_gl_target_begin(s, hs->fbo, SKY_TEX_SKYVIEW, 1, 1, &target);
-    GLenum status = gl->glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    sky_gl_target_end(s, &target);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-        sky_format(err, err_len, "sky_create: the context cannot render into a float texture (status 0x%04x)", status);
-        return -1;
-    }
+    if (!(hs->fbo = sky_gl_target_create(s, SKY_TEX_SKYVIEW, err, err_len))) return -1;
     /* the constants of the build */
     const sky_atmosphere_params *a = &hs->tables.atm;
     sky_frame *f = &s->frame;
@@ -204,7 +195,7 @@ int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t
 void sky_hillaire_destroy(sky_core *s, sky_hillaire_state *hs)
 {
     if (!hs) return;
-    if (hs->fbo) s->gl.glDeleteFramebuffers(1, &hs->fbo);
+    sky_gl_target_destroy(s, hs->fbo);
     sky_program_destroy(s, &hs->transmittance_build);
     sky_program_destroy(s, &hs->multiscatter_build);
     sky_program_destroy(s, &hs->skyview_build);
@@ -291,7 +282,7 @@ static void build_on_gpu(sky_core *s, sky_hillaire_state *hs)
     gpu_pass(s, hs->fbo, &hs->skyview_build, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height);
     /* the time it takes: only where the host asked for GPU timings (a
      * glFinish stalls the pipeline); else what the submission cost */
-    if (s->cfg.profile_layers) s->gl.glFinish();
+    if (s->cfg.profile_layers) sky_gl_finish(s);
     s->lut_ms += sky_now_ms() - t0;
 }
 

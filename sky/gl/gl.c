@@ -606,6 +606,21 @@ void sky_gl_blend(sky_core *s, sky_blend mode)
     gl->glBlendFunc(GL_ONE, mode == SKY_BLEND_ADD ? GL_ONE : GL_ONE_MINUS_SRC_ALPHA);
 }
 
+void sky_gl_program_point_size(sky_core *s, int on)
+{
+    if (on)
+        s->gl.glEnable(GL_PROGRAM_POINT_SIZE);
+    else
+        s->gl.glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
+float sky_gl_point_size_max(sky_core *s)
+{
+    GLfloat range[2] = {1.0f, 1.0f};
+    s->gl.glGetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
+    return range[1] > 1.0f ? range[1] : 1.0f;
+}
+
 void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4])
 {
     const sky_gl *gl = &s->gl;
@@ -627,6 +642,27 @@ void sky_gl_drain_errors(sky_core *s)
 }
 
 /* ---- render targets ------------------------------------------------------------ */
+
+GLuint sky_gl_target_create(sky_core *s, sky_texture_id probe, char *err, size_t err_len)
+{
+    GLuint fbo = 0;
+    s->gl.glGenFramebuffers(1, &fbo);
+    sky_gl_target target;
+    sky_gl_target_begin(s, fbo, probe, 1, 1, &target);
+    GLenum status = s->gl.glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    sky_gl_target_end(s, &target);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        s->gl.glDeleteFramebuffers(1, &fbo);
+        sky_format(err, err_len, "sky_create: the context cannot render into a float texture (status 0x%04x)", status);
+        return 0;
+    }
+    return fbo;
+}
+
+void sky_gl_target_destroy(sky_core *s, GLuint fbo)
+{
+    if (fbo) s->gl.glDeleteFramebuffers(1, &fbo);
+}
 
 void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, int h, sky_gl_target *t)
 {

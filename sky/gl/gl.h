@@ -118,6 +118,11 @@ typedef enum sky_blend {
     SKY_BLEND_PREMULTIPLIED  /* added, hiding what is behind by its alpha: moon */
 } sky_blend;
 void sky_gl_blend(sky_core *s, sky_blend mode);
+/* Points sized by the vertex shader (gl_PointSize): on around a point
+ * draw, off after it. */
+void sky_gl_program_point_size(sky_core *s, int on);
+/* The largest point size the context draws (at least 1). */
+float sky_gl_point_size_max(sky_core *s);
 /* Clears the viewport's rectangle to black (the all-sky image's margin). */
 void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4]);
 /* Waits for the GPU: per-layer timings, only when the host asked for them. */
@@ -137,6 +142,11 @@ typedef struct sky_gl_target {
     GLint draw, read, viewport[4];
     GLboolean scissor, discard;
 } sky_gl_target;
+/* The framebuffer the tables are rendered through, checked against one
+ * of them (probe); 0 with a message when the context cannot render into
+ * it. */
+GLuint sky_gl_target_create(sky_core *s, sky_texture_id probe, char *err, size_t err_len);
+void sky_gl_target_destroy(sky_core *s, GLuint fbo); /* 0: nothing */
 void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, int h, sky_gl_target *t);
 void sky_gl_target_end(sky_core *s, const sky_gl_target *t);
 /* Reads the w x h corner of a float texture back as RGB floats, with the
