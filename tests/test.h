@@ -1,7 +1,10 @@
 /*
  * The test runner's small harness. A test is a function; CHECK records a
  * failure with its reason and the test goes on, so one run shows every
- * broken property. The runner prints "N passed, N failed" last.
+ * broken property. A test whose prerequisite was not built (the fast
+ * tier, make check, builds no sanitizer programs) SKIPs instead of failing.
+ * The runner prints "N passed, N failed" last, then ", N skipped" when any
+ * were.
  */
 #ifndef SKY_TEST_H
 #define SKY_TEST_H
@@ -17,6 +20,7 @@ typedef struct test_case {
 } test_case;
 
 extern int test_failures; /* failures within the running test */
+extern int test_skipped;  /* the running test could not run here */
 
 #define CHECK(cond, ...)                                                   \
     do {                                                                   \
@@ -26,6 +30,16 @@ extern int test_failures; /* failures within the running test */
             printf(__VA_ARGS__);                                           \
             printf("\n");                                                  \
         }                                                                  \
+    } while (0)
+
+/* Marks the running test as skipped, with the reason; the test returns
+ * right after. A skip is counted neither as passed nor as failed. */
+#define SKIP(...)             \
+    do {                      \
+        test_skipped = 1;     \
+        printf("    skip: "); \
+        printf(__VA_ARGS__);  \
+        printf("\n");         \
     } while (0)
 
 /* Prints a measurement that belongs in the test log. */

@@ -1,6 +1,7 @@
 /*
  * libsky's test runner: runs every test (or those whose name contains
- * argv[1]) and ends with the line "N passed, N failed".
+ * argv[1]) and ends with the line "N passed, N failed" (followed by
+ * ", N skipped" when a test could not run here).
  */
 #include "test.h"
 #include "cli.h"
@@ -16,6 +17,7 @@
 #include <stb/stb_image.h>
 
 int test_failures;
+int test_skipped;
 
 #define TESTS(X)                                 \
     X(api_zero_config_renders)                   \
@@ -271,20 +273,27 @@ int main(int argc, char **argv)
 #undef ENTRY
     };
     setvbuf(stdout, NULL, _IOLBF, 0);
-    int passed = 0, failed = 0;
+    int passed = 0, failed = 0, skipped = 0;
     for (size_t i = 0; i < sizeof tests / sizeof tests[0]; i++) {
         if (argc > 1 && !strstr(tests[i].name, argv[1])) continue;
         test_failures = 0;
+        test_skipped = 0;
         printf("  %s\n", tests[i].name);
         tests[i].fn();
         if (test_failures) {
             printf("FAIL %s\n", tests[i].name);
             failed++;
+        } else if (test_skipped) {
+            printf("skip %s\n", tests[i].name);
+            skipped++;
         } else {
             printf("ok   %s\n", tests[i].name);
             passed++;
         }
     }
-    printf("%d passed, %d failed\n", passed, failed);
+    /* the skip count only when there is one, so a complete run ends with
+     * exactly "N passed, N failed" */
+    if (skipped) printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
+    else printf("%d passed, %d failed\n", passed, failed);
     return failed ? 1 : 0;
 }
