@@ -1,6 +1,6 @@
-# libsky: make | make run | make test | make install PREFIX=... | make textures
+# libsky: make | make run | make check | make test | make install PREFIX=... | make textures
 #
-# Outputs go to build/ only. `make run` and `make test` first install the
+# Outputs go to build/ only. `make run`, `make check` and `make test` first install the
 # Debian packages they need when missing (tools/deps.sh).
 
 CC      ?= cc
@@ -26,7 +26,7 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run test install textures screenshots bench fuzz clean
+.PHONY: all deps run check test install textures screenshots bench fuzz clean
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -107,42 +107,80 @@ $(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(S
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
 
-# The leak check links the library with LeakSanitizer in its own build dir.
-$(BIN)/sky-leaks: tests/leaks/leaks.c demo/osmesa_ctx.c demo/osmesa_ctx.h $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
-	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -Wno-missing-prototypes -D_DEFAULT_SOURCE -fsanitize=leak -Idemo -o $@ \
-	    tests/leaks/leaks.c demo/osmesa_ctx.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa $(LDLIBS_M)
+# The sanitized programs are linked from objects compiled once per
+# sanitizer, each in a tree of its own. -MMD -MP write each object's
+# header dependencies beside it, so a header change rebuilds exactly the
+# objects that include it (these trees mix library, test and tool sources,
+# whose headers differ).
+DEPFLAGS := -MMD -MP
 
-# The same runner built with AddressSanitizer and UndefinedBehaviorSanitizer
-# over the library's sources, in a directory of its own.
+# AddressSanitizer + UndefinedBehaviorSanitizer: one set of objects for the
+# test runner and the leak check (ASan includes LeakSanitizer; the leak
+# test runs sky-leaks with detect_leaks=1).
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-$(BUILD)/asan/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
-	@mkdir -p $(@D)
-	$(CC) -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itools -Itests -Wno-missing-prototypes \
-	    -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(SKY_SRC) $(BUILD)/gen/sky_blobs.c -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+SAN_CFLAGS := -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itools -Itests -Wno-missing-prototypes
+SAN_DIR := $(BUILD)/asan/obj
+SAN_SKY_OBJ := $(SKY_SRC:%.c=$(SAN_DIR)/%.o) $(SAN_DIR)/gen/sky_blobs.o
+SAN_TEST_OBJ := $(patsubst %.c,$(SAN_DIR)/%.o,$(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC))
+SAN_LEAKS_OBJ := $(SAN_DIR)/tests/leaks/leaks.o $(SAN_DIR)/demo/osmesa_ctx.o
 
-# libFuzzer harnesses (clang with compiler-rt); built only where that links
+$(SAN_DIR)/gen/sky_blobs.o: $(BUILD)/gen/sky_blobs.c
+	@mkdir -p $(@D)
+	$(CC) $(SAN_CFLAGS) $(DEPFLAGS) -c -o $@ $<
+
+$(SAN_DIR)/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(SAN_CFLAGS) $(DEPFLAGS) -c -o $@ $<
+
+$(BUILD)/asan/sky-tests: $(SAN_TEST_OBJ) $(SAN_SKY_OBJ)
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+
+$(BIN)/sky-leaks: $(SAN_LEAKS_OBJ) $(SAN_SKY_OBJ)
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lOSMesa $(LDLIBS_M)
+
+# libFuzzer harnesses (clang with compiler-rt); built only where that links.
+# The library is compiled once with fuzzer-no-link (coverage without
+# libFuzzer's main) and each harness linked with -fsanitize=fuzzer.
 FUZZ_CC ?= clang
 HAVE_FUZZ := $(shell printf 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { (void)d; (void)n; return 0; }' \
     | $(FUZZ_CC) -fsanitize=fuzzer -x c - -o /dev/null 2>/dev/null && echo yes)
-FUZZ_FLAGS := -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo
-FUZZERS := $(if $(HAVE_FUZZ),$(BUILD)/fuzz/fuzz_catalog $(BUILD)/fuzz/fuzz_png $(BUILD)/fuzz/fuzz_cli)
-$(BUILD)/fuzz/fuzz_catalog: tests/fuzz/fuzz_catalog.c $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+FUZZ_CFLAGS := -std=c11 -g -O1 -fsanitize=fuzzer-no-link,address,undefined -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo
+FUZZ_DIR := $(BUILD)/fuzz/obj
+FUZZ_SKY_OBJ := $(SKY_SRC:%.c=$(FUZZ_DIR)/%.o) $(FUZZ_DIR)/gen/sky_blobs.o
+FUZZ_BIN := $(BUILD)/fuzz/fuzz_catalog $(BUILD)/fuzz/fuzz_png $(BUILD)/fuzz/fuzz_cli
+FUZZERS := $(if $(HAVE_FUZZ),$(FUZZ_BIN))
+
+$(FUZZ_DIR)/gen/sky_blobs.o: $(BUILD)/gen/sky_blobs.c
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -o $@ tests/fuzz/fuzz_catalog.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(LDLIBS_M)
-$(BUILD)/fuzz/fuzz_png: tests/fuzz/fuzz_png.c $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(DEPFLAGS) -c -o $@ $<
+
+$(FUZZ_DIR)/%.o: %.c
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -o $@ tests/fuzz/fuzz_png.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(LDLIBS_M)
-$(BUILD)/fuzz/fuzz_cli: tests/fuzz/fuzz_cli.c demo/cli.c demo/cli.h $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
-	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -o $@ tests/fuzz/fuzz_cli.c demo/cli.c $(SKY_SRC) $(BUILD)/gen/sky_blobs.c $(LDLIBS_M)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(DEPFLAGS) -c -o $@ $<
+
+$(FUZZ_BIN): $(BUILD)/fuzz/fuzz_%: $(FUZZ_DIR)/tests/fuzz/fuzz_%.o $(FUZZ_SKY_OBJ)
+	$(FUZZ_CC) -fsanitize=fuzzer,address,undefined -o $@ $^ $(LDLIBS_M)
+$(BUILD)/fuzz/fuzz_cli: $(FUZZ_DIR)/demo/cli.o
+
+-include $(patsubst %.o,%.d,$(SAN_SKY_OBJ) $(SAN_TEST_OBJ) $(SAN_LEAKS_OBJ) $(FUZZ_SKY_OBJ) \
+    $(FUZZ_BIN:$(BUILD)/fuzz/%=$(FUZZ_DIR)/tests/fuzz/%.o) $(FUZZ_DIR)/demo/cli.o)
 
 # make fuzz: five minutes a harness (make test runs each for SKY_FUZZ_SECONDS, 20 by default)
 fuzz: $(FUZZERS)
 	@SKY_FUZZ_SECONDS=300 SKY_FUZZ=$(BUILD)/fuzz sh tests/fuzz/run.sh
 
+# make check: the fast tier. The plain runner alone, no sanitizer builds and
+# no fuzzers; SKY_LEAKS empty makes the leak test, whose program is one of
+# make test's sanitizer builds, skip rather than run a stale one.
+check: deps all $(BIN)/sky-tests
+	@SKY_BIN=$(BIN) SKY_LEAKS= $(BIN)/sky-tests
+
+# make test: everything: the plain runner, the ASan/UBSan runner, the leak
+# check and the fuzzers.
 test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks $(BUILD)/asan/sky-tests $(FUZZERS)
-	@SKY_BIN=$(BIN) SKY_ASAN=$(BUILD)/asan SKY_FUZZ=$(if $(HAVE_FUZZ),$(BUILD)/fuzz) sh tests/run.sh
+	@SKY_BIN=$(BIN) SKY_LEAKS=$(BIN)/sky-leaks SKY_ASAN=$(BUILD)/asan SKY_FUZZ=$(if $(HAVE_FUZZ),$(BUILD)/fuzz) sh tests/run.sh
 
 # ---- install ----------------------------------------------------------------------
 install: all

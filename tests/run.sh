@@ -25,8 +25,9 @@ skipped=${3:-0}
 
 if [ -x "$asan/sky-tests" ]; then
     echo "== the same tests under AddressSanitizer + UndefinedBehaviorSanitizer =="
-    # leaks are LeakSanitizer's job (api_leaks_1000_cycles, with Mesa's own
-    # allocations suppressed); here memory errors and undefined behaviour
+    # leaks are LeakSanitizer's job (api_leaks_1000_cycles, which runs
+    # sky-leaks with detect_leaks=1 and Mesa's own allocations suppressed);
+    # here memory errors and undefined behaviour
     ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 "$asan/sky-tests" $filter > "$out" 2>&1
     asan_status=$?
     grep -E "^(ok|FAIL|skip) |runtime error|ERROR: AddressSanitizer" "$out" | sed 's/^/  asan: /'

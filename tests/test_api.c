@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 void test_api_zero_config_renders(void);
 void test_api_rejects_null_and_bad_config(void);
@@ -298,8 +299,23 @@ void test_api_leaks_1000_cycles(void)
 {
     char path[512], out[4096];
     char cmd[1024];
-    snprintf(cmd, sizeof cmd, "LSAN_OPTIONS=suppressions=tests/leaks/lsan.supp:print_suppressions=0 %s 1000 2>&1",
-             bin_path("sky-leaks", path, sizeof path));
+    /* SKY_LEAKS names the leak checker; set empty, it was not built for
+     * this run (make check, the fast tier, builds no sanitizer programs,
+     * and sets it so that a stale one from an earlier make test is not
+     * run either). */
+    const char *leaks = getenv("SKY_LEAKS");
+    if (!leaks) leaks = bin_path("sky-leaks", path, sizeof path);
+    if (!*leaks || access(leaks, X_OK) != 0) {
+        SKIP("no leak checker (%s): make test builds it", *leaks ? leaks : "SKY_LEAKS is empty");
+        return;
+    }
+    /* sky-leaks is built with AddressSanitizer, whose LeakSanitizer runs
+     * only with detect_leaks=1: set here, because the ASan runner that
+     * also runs this test turns it off for itself in the environment the
+     * child inherits. */
+    snprintf(cmd, sizeof cmd,
+             "ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=tests/leaks/lsan.supp:print_suppressions=0 %s 1000 2>&1",
+             leaks);
     int rc = run_command(cmd, out, sizeof out);
     CHECK(rc == 0, "LeakSanitizer run exited %d:\n%s", rc, out);
     char *line = strstr(out, "cycles");

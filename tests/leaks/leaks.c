@@ -1,8 +1,10 @@
 /*
  * Leak check: N cycles of create, draw, destroy in one GL context, built
- * with LeakSanitizer (make builds it as build/bin/sky-leaks). LSan reports
- * any block the library leaked when the process exits; Mesa's own
- * allocations are suppressed in lsan.supp by library name only.
+ * with AddressSanitizer over the same objects as the ASan test runner
+ * (make builds it as build/bin/sky-leaks). Its LeakSanitizer, run with
+ * ASAN_OPTIONS=detect_leaks=1 (api_leaks_1000_cycles), reports any block
+ * the library leaked when the process exits; Mesa's own allocations are
+ * suppressed in lsan.supp by library name only.
  */
 #include "osmesa_ctx.h"
 #include "sky.h"
