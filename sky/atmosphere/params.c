@@ -8,9 +8,10 @@
 #include <math.h>
 #include <string.h>
 
-/* Clear Earth: Hillaire 2020's reference constants (../shared/ANCHORS.md),
- * with the ground albedo of mixed land and vegetation, 0.3. Rayleigh is
- * exactly lambda^-4 through 680/550/440 nm; Mie is grey. */
+/* Clear Earth: Hillaire 2020's reference constants (as his published
+ * implementation sets them), with the ground albedo of mixed land and
+ * vegetation, 0.3. Rayleigh is exactly lambda^-4 through 680/550/440 nm;
+ * Mie is grey. */
 static const sky_atmosphere_params earth = {
     6360.0f, 6460.0f,
     {5.802e-3f, 13.558e-3f, 33.1e-3f}, 8.0f,
@@ -105,7 +106,7 @@ sky_result sky_atmosphere_check(const sky_atmosphere_params *a, char *err, size_
 void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out)
 {
     /* The description gives coefficients at 680/550/440 nm; the spectrum
-     * through them (reference.c's interpolation, the one the reference
+     * through them (spectrum.c's interpolation, the one the reference
      * renders) is sampled where each sRGB channel of scattered sunlight
      * actually comes from. Rendering at the primaries' own wavelengths
      * left the red of a high-sun sky 11 % short of the reference. */

@@ -7,7 +7,7 @@
  * reference in spirit):
  *  - single scattering by deterministic quadrature along the view ray,
  *    each segment in the energy-conserving form (S - S T_seg) / sigma_t
- *    (Hillaire 2020, sec. 5.6.3; ../shared/ANCHORS.md), plus the ground's
+ *    (Hillaire 2020, sec. 5.6.3), plus the ground's
  *    first-order (sun -> ground -> eye) term;
  *  - orders >= 2 by Monte Carlo path tracing per wavelength with
  *    free-flight sampling, next-event estimation toward the sun at
