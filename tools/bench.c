@@ -3,7 +3,8 @@
  * measured in the same run — a full-screen quad with one texture fetch,
  * the cheapest thing a sky could possibly be.
  *
- *   sky-bench [--json] [--size WxH] [--frames N] [--reference FILE] [--only-atmosphere] [--plot FILE.png]
+ *   sky-bench [--json] [--size WxH] [--frames N] [--reference FILE] [--only-atmosphere | --only-presets]
+ *             [--plot FILE.png]
  *   sky-bench --stability [--json]
  *   sky-bench --make-reference FILE [--paths N]
  *
@@ -411,15 +412,27 @@ static int stability_table(int json)
     return failed ? 1 : 0;
 }
 
+static void print_preset_table(const row *rows, int nrows)
+{
+    printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline |\n");
+    printf("|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < nrows; i++)
+        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f |\n", rows[i].preset, rows[i].profile,
+               rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs, rows[i].st.draws_per_frame,
+               rows[i].frame_ms, rows[i].ratio);
+}
+
 int main(int argc, char **argv)
 {
-    int json = 0, w = 1280, h = 720, frames = 20, stability = 0, paths = 1024, only_atmosphere = 0;
+    int json = 0, w = 1280, h = 720, frames = 20, stability = 0, paths = 1024, only_atmosphere = 0, only_presets = 0;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--json"))
             json = 1;
         else if (!strcmp(argv[i], "--only-atmosphere"))
             only_atmosphere = 1;
+        else if (!strcmp(argv[i], "--only-presets"))
+            only_presets = 1;
         else if (!strcmp(argv[i], "--make-reference") && i + 1 < argc)
             make_reference = argv[++i];
         else if (!strcmp(argv[i], "--reference") && i + 1 < argc)
@@ -437,7 +450,8 @@ int main(int argc, char **argv)
             i++;
         else {
             fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3] "
-                    "[--reference FILE] [--only-atmosphere] [--plot FILE.png]\n       sky-bench --stability [--json]\n"
+                    "[--reference FILE] [--only-atmosphere | --only-presets] [--plot FILE.png]\n"
+                    "       sky-bench --stability [--json]\n"
                     "       sky-bench --make-reference FILE [--paths N]\n",
                     argv[i]);
             return 2;
@@ -485,6 +499,10 @@ int main(int argc, char **argv)
             rows[nrows].ratio = rows[nrows].frame_ms / base[prof];
             nrows++;
         }
+        if (only_presets) {
+            sky_osmesa_destroy(&ctx);
+            continue;
+        }
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
         for (int a = 0; a < ATMO_SETTINGS; a++)
             if (bench_atmosphere(&atmo_settings[a], gl, w, h, frames, base[prof], &atmo[natmo + a])) return 1;
@@ -492,6 +510,11 @@ int main(int argc, char **argv)
         for (int a = 0; a < ATMO_SETTINGS; a++)
             if (measure_atmosphere(&atmo[natmo + a], &ref, gl)) return 1;
         natmo += ATMO_SETTINGS;
+    }
+    if (only_presets) {
+        printf("baseline (one-texture full-screen quad, %dx%d): core %.2f ms, compat %.2f ms\n", w, h, base[0], base[1]);
+        print_preset_table(rows, nrows);
+        return 0;
     }
     if (only_atmosphere) {
         if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
@@ -537,12 +560,7 @@ int main(int argc, char **argv)
     printf("sky-bench: %dx%d, median of %d frames, llvmpipe or whatever GL OSMesa provides\n", w, h, frames);
     printf("baseline (one-texture full-screen quad): core %.2f ms, compat %.2f ms\n", base[0], base[1]);
     printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n\n", astro);
-    printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline |\n");
-    printf("|---|---|---|---|---|---|---|---|\n");
-    for (int i = 0; i < nrows; i++)
-        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f |\n", rows[i].preset, rows[i].profile,
-               rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs, rows[i].st.draws_per_frame,
-               rows[i].frame_ms, rows[i].ratio);
+    print_preset_table(rows, nrows);
     printf("\nMueller's night layers: the stars' and the moon's own draw (GPU time around it), the star map as\n"
            "what it adds to an atmosphere-only night frame:\n\n");
     printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
