@@ -3,10 +3,23 @@
  * layers drifting in slightly different directions and speeds, a detail
  * layer and a thin stretched upper layer. The shader is clouds.glsl; this
  * file owns the texture, the drift and the uniforms.
+ *
+ * A texture fetch is most of what a cloud pixel costs on a software
+ * rasteriser (each about a full-screen pass of its own), so the texture is
+ * packed further at load, as the paper packs its four images into one:
+ * the detail image, which R-P sample at three times the first layer's
+ * coordinate, is baked into the blue channel at that coordinate (three
+ * periods per period, box-filtered), so one fetch at the first layer's
+ * coordinate gives both the photo and its detail; the detail now drifts
+ * with the first layer. The sunset gradient (alpha) depends on the angle
+ * from the sun alone: the dome evaluates it per vertex from samples of
+ * the alpha channel (u_sunset_gradient), the small quads of the sun, moon
+ * and stars still fetch it.
  */
 #include "layer.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define SKY_CLOUD_TEXTURE_SIZE 512
@@ -19,33 +32,79 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
     SKY_UF("u_cloud_offset0", SKY_U_F2, cloud_offset0),
     SKY_UF("u_cloud_offset1", SKY_U_F2, cloud_offset1),
-    SKY_UF("u_cloud_offset_detail", SKY_U_F2, cloud_offset_detail),
     SKY_UF("u_cloud_offset_upper", SKY_U_F2, cloud_offset_upper),
     SKY_UF("u_cloud_light", SKY_U_F3, cloud_light),
     SKY_UF("u_sunset_color", SKY_U_F3, sunset_color),
+    SKY_UFV("u_sunset_gradient", sunset_gradient),
 };
+/* clouds.glsl in both stages: the dome finds its cloud coordinates and
+ * sunset per vertex */
 static const sky_snippet clouds_snippet = {"SKY_HAS_CLOUDS", "clouds.glsl", cloud_uniforms,
-                                        SKY_UNIFORM_COUNT(cloud_uniforms)};
+                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl"};
 
 /* Drift of each layer in texture periods per second at speed 1. The two
  * primary layers differ by about 13 degrees and 20 % in speed (R-P 3.2), so
  * their sum changes shape as they slide apart. */
-const double sky_cloud_velocity[4][2] = {
-    {0.0200, 0.0060},  /* layer 0: photo          */
+const double sky_cloud_velocity[SKY_CLOUD_LAYERS][2] = {
+    {0.0200, 0.0060},  /* layer 0: photo (and its detail) */
     {0.0165, 0.0088},  /* layer 1: noise          */
-    {0.0300, 0.0100},  /* detail                  */
     {0.0120, 0.0015},  /* thin upper layer        */
 };
 
 typedef struct clouds_state {
-    double offsets[4][2]; /* wrapped into [0,1): layers 0, 1, detail, upper */
+    double offsets[SKY_CLOUD_LAYERS][2]; /* wrapped into [0,1) */
 } clouds_state;
+
+/* The blue channel (detail) replaced by the detail at three times the
+ * coordinate: texel x covers the original's 3x .. 3x + 2 (its centre, at
+ * 3 (x + 0.5), is the middle one), averaged, so the minified detail does
+ * not alias. The image is periodic, so indices wrap. */
+static void bake_detail(unsigned char *rgba)
+{
+    enum { N = SKY_CLOUD_TEXTURE_SIZE };
+    unsigned char *detail = malloc(N * N);
+    if (!detail) return; /* then the detail stays at the first layer's scale */
+    for (int i = 0; i < N * N; i++) detail[i] = rgba[4 * i + 2];
+    for (int y = 0; y < N; y++)
+        for (int x = 0; x < N; x++) {
+            int sum = 0;
+            for (int j = 0; j < 3; j++)
+                for (int i = 0; i < 3; i++) sum += detail[((3 * y + j) % N) * N + (3 * x + i) % N];
+            rgba[4 * (y * N + x) + 2] = (unsigned char)((sum + 4) / 9);
+        }
+    free(detail);
+}
+
+/* The alpha channel down the texture's middle column, where clouds.glsl's
+ * per-pixel lookup reads it (u = 0.5, v clamped to 0.01 .. 0.99), sampled
+ * at SKY_SUNSET_SAMPLES points across 0..1 for the dome's vertices. */
+static void sample_sunset(const unsigned char *rgba, float out[SKY_SUNSET_SAMPLES])
+{
+    enum { N = SKY_CLOUD_TEXTURE_SIZE };
+    for (int k = 0; k < SKY_SUNSET_SAMPLES; k++) {
+        double v = sky_clampd((double)k / (SKY_SUNSET_SAMPLES - 1), 0.01, 0.99) * N - 0.5;
+        int y0 = (int)floor(v), y1 = y0 + 1;
+        double f = v - y0;
+        y0 = y0 < 0 ? 0 : y0, y1 = y1 > N - 1 ? N - 1 : y1;
+        /* u = 0.5 falls between the columns N/2 - 1 and N/2 */
+        double a0 = (rgba[4 * (y0 * N + N / 2 - 1) + 3] + rgba[4 * (y0 * N + N / 2) + 3]) / 510.0;
+        double a1 = (rgba[4 * (y1 * N + N / 2 - 1) + 3] + rgba[4 * (y1 * N + N / 2) + 3]) / 510.0;
+        out[k] = (float)(a0 + (a1 - a0) * f);
+    }
+}
 
 static int clouds_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     (void)state;
-    return sky_texture_load(s, SKY_TEX_CLOUDS, SKY_LAYER_CLOUDS, "clouds.png", SKY_CLOUD_TEXTURE_SIZE,
-                            SKY_CLOUD_TEXTURE_SIZE, 1, err, err_len);
+    unsigned char *rgba = NULL;
+    if (sky_asset_load_rgba(s, "clouds.png", SKY_CLOUD_TEXTURE_SIZE, SKY_CLOUD_TEXTURE_SIZE, &rgba, err, err_len))
+        return -1;
+    bake_detail(rgba);
+    sample_sunset(rgba, s->frame.sunset_gradient);
+    int rc = sky_texture_create(s, SKY_TEX_CLOUDS, SKY_LAYER_CLOUDS, rgba, SKY_CLOUD_TEXTURE_SIZE,
+                                SKY_CLOUD_TEXTURE_SIZE, 1, err, err_len);
+    sky_png_free(rgba);
+    return rc;
 }
 
 static void clouds_advance(sky_core *s, void *state, double dt)
@@ -54,7 +113,7 @@ static void clouds_advance(sky_core *s, void *state, double dt)
     /* The texture repeats with period 1, so wrapping each offset into [0, 1)
      * changes nothing on screen while keeping float uniforms exact after
      * any amount of running time. */
-    for (int l = 0; l < 4; l++)
+    for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
         for (int i = 0; i < 2; i++)
             st->offsets[l][i] = sky_phase_advance(st->offsets[l][i], s->params.speed * sky_cloud_velocity[l][i], dt);
 }
@@ -70,8 +129,8 @@ static void clouds_frame(sky_core *s, void *state)
     /* height: high clouds (1) look smaller, so more texture periods fit
      * across the dome (R-P 3.1: height scales the texture coordinates). */
     f->cloud_uv_scale = (float)(0.15 * pow(4.0, p->height));
-    float *offsets[4] = {f->cloud_offset0, f->cloud_offset1, f->cloud_offset_detail, f->cloud_offset_upper};
-    for (int l = 0; l < 4; l++)
+    float *offsets[SKY_CLOUD_LAYERS] = {f->cloud_offset0, f->cloud_offset1, f->cloud_offset_upper};
+    for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
         for (int i = 0; i < 2; i++) offsets[l][i] = (float)st->offsets[l][i];
     /* R-P line 28's amount of sunlight, in luminance: half of the day sky's
      * scale as skylight plus the direct sun through the atmosphere; at night

@@ -85,6 +85,10 @@ typedef struct sky_texture {
     sky_layer owner; /* whose stats row counts its bytes */
 } sky_texture;
 
+/* Samples of the clouds' sunset gradient across 0..1 of its coordinate
+ * (clouds.glsl's u_sunset_gradient has as many). */
+#define SKY_SUNSET_SAMPLES 33
+
 /* ---- the frame: everything the shaders read ------------------------------
  * One writer per field: the room named in its group. The uniform tables
  * (each room's sky_uniform_desc rows) point into it by offset. */
@@ -151,9 +155,11 @@ typedef struct sky_frame {
     /* clouds (clouds.c, R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
-    float cloud_offset0[2], cloud_offset1[2], cloud_offset_detail[2], cloud_offset_upper[2];
+    float cloud_offset0[2], cloud_offset1[2], cloud_offset_upper[2];
     float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
     float sunset_color[3];
+    float sunset_gradient[SKY_SUNSET_SAMPLES]; /* R-P's sunset gradient by the
+                                angle from the sun, from the texture's alpha */
     /* flicker stars (flicker.c, R-P sec. 4) */
     float flicker_phase;     /* flicker time in rate units, wrapped             */
     float star_luminance;    /* kcd/m^2 of a full-intensity star texel; 0: off   */

@@ -18,7 +18,7 @@ static const sky_uniform_desc flicker_uniforms[] = {
     SKY_UF("u_star_luminance", SKY_U_F1, star_luminance),
 };
 static const sky_snippet flicker_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", flicker_uniforms,
-                                         SKY_UNIFORM_COUNT(flicker_uniforms)};
+                                         SKY_UNIFORM_COUNT(flicker_uniforms), NULL};
 
 typedef struct flicker_state {
     double phase; /* the flicker clock, wrapped (see flicker_advance) */

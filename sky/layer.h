@@ -75,9 +75,11 @@ int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_
                                 size_t err_len);
 
 /* ---- what layers offer each other and the tests ------------------------- */
-/* clouds.c: drift of each cloud layer (0, 1, detail, upper) in texture
- * periods per second at speed 1; the wrapped offsets (4 x 2). */
-extern const double sky_cloud_velocity[4][2];
+/* clouds.c: drift of each cloud layer (0 with its detail, 1, the thin
+ * upper one) in texture periods per second at speed 1; the wrapped
+ * offsets (SKY_CLOUD_LAYERS x 2). */
+#define SKY_CLOUD_LAYERS 3
+extern const double sky_cloud_velocity[SKY_CLOUD_LAYERS][2];
 const double *sky_clouds_offsets(const void *clouds_state);
 /* flicker.c: galaxy brightness 0..1 for a direction, from the 128x128
  * galaxy image stretched over the dome (R-P sec. 4); the flicker clock. */

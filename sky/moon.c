@@ -36,7 +36,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
     SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
 };
-static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms)};
+static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL};
 
 static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
@@ -45,7 +45,7 @@ static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UF("u_shadow", SKY_U_F4, shadow),
 };
 static const sky_snippet eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
-                                         SKY_UNIFORM_COUNT(eclipse_uniforms)};
+                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL};
 
 typedef struct moon_state {
     sky_program program;

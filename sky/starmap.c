@@ -20,7 +20,7 @@ static const sky_uniform_desc starmap_uniforms[] = {
     SKY_UF("u_starmap_scale", SKY_U_F1, starmap_scale),
 };
 static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
-                                         SKY_UNIFORM_COUNT(starmap_uniforms)};
+                                         SKY_UNIFORM_COUNT(starmap_uniforms), NULL};
 
 static int starmap_create(sky_core *s, void *state, char *err, size_t err_len)
 {

@@ -51,7 +51,7 @@ static const sky_uniform_desc star_uniforms[] = {
     SKY_UF("u_star_seed", SKY_U_F1, star_seed),
     SKY_UF("u_star_occulter", SKY_U_F4, star_occulter),
 };
-static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms)};
+static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL};
 
 /* B-V to linear sRGB of unit luminance: temperature after Ballesteros
  * (2012), the Planckian locus fit of Kim et al. (2002) for its

@@ -172,7 +172,7 @@ void test_api_update_time_validation(void)
     /* wrapped offsets stay in [0, 1) */
     const double *offsets = sky_clouds_offsets(f.s->layer_state[SKY_LAYER_CLOUDS]);
     double flicker = sky_flicker_clock(f.s->layer_state[SKY_LAYER_FLICKER]);
-    for (int l = 0; l < 4; l++)
+    for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
         for (int i = 0; i < 2; i++)
             CHECK(offsets[l * 2 + i] >= 0.0 && offsets[l * 2 + i] < 1.0, "offset %d.%d = %g", l, i, offsets[l * 2 + i]);
     CHECK(flicker >= 0.0 && flicker < 1.0, "flicker clock %g", flicker);

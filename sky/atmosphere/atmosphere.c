@@ -16,8 +16,9 @@ static const sky_uniform_desc atmosphere_uniforms[] = {
     SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
     SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
 };
+/* in both stages: pure arithmetic, which a path evaluated per vertex needs */
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
-                                            SKY_UNIFORM_COUNT(atmosphere_uniforms)};
+                                            SKY_UNIFORM_COUNT(atmosphere_uniforms), "atmosphere.glsl"};
 
 /* A physical path's sky in a few numbers: the mean luminance over the
  * upper hemisphere, the irradiance on an upward surface and the horizon's
@@ -69,7 +70,7 @@ static const sky_uniform_desc blend_uniforms[] = {
     SKY_UF("u_blend_weight", SKY_U_F1, blend_weight),
 };
 const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
-                                       SKY_UNIFORM_COUNT(blend_uniforms)};
+                                       SKY_UNIFORM_COUNT(blend_uniforms), NULL};
 
 int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out)
 {

@@ -12,8 +12,9 @@ static const sky_uniform_desc gradient_uniforms[] = {
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
 };
+/* in both stages: the dome evaluates this path per vertex (dome.vert) */
 const sky_snippet sky_gradient_snippet = {"SKY_HAS_GRADIENT", "gradient.glsl", gradient_uniforms,
-                                          SKY_UNIFORM_COUNT(gradient_uniforms)};
+                                          SKY_UNIFORM_COUNT(gradient_uniforms), "gradient.glsl"};
 
 void sky_gradient_vertex(const unsigned char *gradient, const float d[3], float rgb[3])
 {

@@ -34,12 +34,12 @@ static const sky_uniform_desc hillaire_uniforms[] = {
     SKY_UF("u_skyview_decode", SKY_U_F3, skyview_decode),
 };
 const sky_snippet sky_hillaire_snippet = {"SKY_HAS_HILLAIRE", "hillaire.glsl", hillaire_uniforms,
-                                          SKY_UNIFORM_COUNT(hillaire_uniforms)};
+                                          SKY_UNIFORM_COUNT(hillaire_uniforms), NULL};
 /* The same for COMPAT20's 8-bit table: the decoding is compiled in only
  * there (a uniform branch would cost both sides on llvmpipe, twice the
  * float path's frame). */
 const sky_snippet sky_hillaire_encoded_snippet = {"SKY_HILLAIRE_ENCODED", "hillaire.glsl", hillaire_uniforms,
-                                                  SKY_UNIFORM_COUNT(hillaire_uniforms)};
+                                                  SKY_UNIFORM_COUNT(hillaire_uniforms), NULL};
 
 struct sky_hillaire_state {
     sky_hillaire_tables tables;
@@ -72,7 +72,7 @@ static const sky_uniform_desc build_uniforms[] = {
     SKY_UF("u_hl_steps", SKY_U_F4, hl_steps),
 };
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
-                                          SKY_UNIFORM_COUNT(build_uniforms)};
+                                          SKY_UNIFORM_COUNT(build_uniforms), NULL};
 
 /* One full-screen pass of a build program into the w x h corner of a
  * texture. */

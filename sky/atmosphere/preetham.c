@@ -25,7 +25,7 @@ static const sky_uniform_desc preetham_uniforms[] = {
     SKY_UF("u_perez_e", SKY_U_F3, perez[4]), SKY_UF("u_perez_zenith", SKY_U_F3, perez_zenith),
 };
 const sky_snippet sky_preetham_snippet = {"SKY_HAS_PREETHAM", "preetham.glsl", preetham_uniforms,
-                                          SKY_UNIFORM_COUNT(preetham_uniforms)};
+                                          SKY_UNIFORM_COUNT(preetham_uniforms), NULL};
 
 #define PREETHAM_TURBIDITY_MIN 2.0
 #define PREETHAM_TURBIDITY_MAX 10.0

@@ -35,13 +35,13 @@ static const sky_uniform_desc extinction_uniforms[] = {
     SKY_UF("u_sun_irradiance", SKY_U_F3, sun_irradiance),
 };
 const sky_snippet sky_extinction_snippet = {"SKY_HAS_EXTINCTION", "extinction.glsl", extinction_uniforms,
-                                            SKY_UNIFORM_COUNT(extinction_uniforms)};
+                                            SKY_UNIFORM_COUNT(extinction_uniforms), NULL};
 static const sky_uniform_desc rayleigh_uniforms[] = {
     SKY_UF("u_sun_depth", SKY_U_F3, sun_depth),
     SKY_UF("u_mie_phase", SKY_U_F3, mie_phase),
 };
 const sky_snippet sky_rayleigh_snippet = {"SKY_HAS_RAYLEIGH", "rayleigh.glsl", rayleigh_uniforms,
-                                          SKY_UNIFORM_COUNT(rayleigh_uniforms)};
+                                          SKY_UNIFORM_COUNT(rayleigh_uniforms), NULL};
 
 #define SLANT_DEPTH_MAX 1e4
 

@@ -104,7 +104,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
-                                        SKY_UNIFORM_COUNT(common_uniforms)};
+                                        SKY_UNIFORM_COUNT(common_uniforms), NULL};
 
 
 /* The version prologue: one GLSL source per stage serves both profiles. */
@@ -173,9 +173,10 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
         parts[n++] = prologue(s, stage);
         parts[n++] = defines;
         if (!(parts[n++] = blob_text(sky_common_snippet.source, err, err_len))) goto fail;
-        if (stage == 1)
-            for (int i = 0; i < snippet_count; i++)
-                if (snippets[i]->source && !(parts[n++] = blob_text(snippets[i]->source, err, err_len))) goto fail;
+        for (int i = 0; i < snippet_count; i++) {
+            const char *source = stage ? snippets[i]->source : snippets[i]->vertex_source;
+            if (source && !(parts[n++] = blob_text(source, err, err_len))) goto fail;
+        }
         if (!(parts[n++] = blob_text(stage ? frag_main : vert_main, err, err_len))) goto fail;
         shaders[stage] = compile(s, stage ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER, parts, n, err, err_len);
         if (!shaders[stage]) goto fail;
@@ -249,6 +250,7 @@ void sky_program_apply(sky_core *s, const sky_program *p)
         case SKY_U_F3: gl->glUniform3f(loc, v[0], v[1], v[2]); break;
         case SKY_U_F4: gl->glUniform4f(loc, v[0], v[1], v[2], v[3]); break;
         case SKY_U_M4: gl->glUniformMatrix4fv(loc, 1, GL_FALSE, v); break;
+        case SKY_U_F1V: gl->glUniform1fv(loc, u->count, v); break;
         case SKY_U_TEX:
             gl->glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
             gl->glBindTexture(GL_TEXTURE_2D, s->textures[u->offset].id);

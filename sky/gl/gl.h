@@ -13,7 +13,10 @@
 #include "../core.h"
 
 /* ---- programs and the uniform table ------------------------------------- */
-typedef enum sky_uniform_type { SKY_U_F1, SKY_U_F2, SKY_U_F3, SKY_U_F4, SKY_U_M4, SKY_U_TEX } sky_uniform_type;
+typedef enum sky_uniform_type {
+    SKY_U_F1, SKY_U_F2, SKY_U_F3, SKY_U_F4, SKY_U_M4, SKY_U_TEX,
+    SKY_U_F1V /* a float array: its element count in the row's count */
+} sky_uniform_type;
 
 /* One row per uniform: the GLSL name, its type, and where its value lives
  * (an offset into sky_frame, or a texture id). Each room owns its rows; a
@@ -22,17 +25,25 @@ typedef struct sky_uniform_desc {
     const char *name;
     sky_uniform_type type;
     size_t offset;           /* into sky_frame; texture id for SKY_U_TEX      */
+    int count;               /* SKY_U_F1V: elements                          */
 } sky_uniform_desc;
-#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field) }
-#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex) }
+#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field), 1 }
+#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex), 1 }
+#define SKY_UFV(name, field) \
+    { name, SKY_U_F1V, offsetof(sky_frame, field), (int)(sizeof(((sky_frame *)0)->field) / sizeof(float)) }
 #define SKY_UNIFORM_COUNT(rows) ((int)(sizeof rows / sizeof rows[0]))
 
-/* A snippet: the GLSL functions of one phenomenon plus its uniform rows. */
+/* A snippet: the GLSL functions of one phenomenon plus its uniform rows.
+ * Its source goes into the fragment stage; a vertex_source (often the same
+ * file: code it needs there is pure arithmetic, and what only a fragment
+ * stage can do sits under #ifdef SKY_FRAGMENT) into the vertex stage too,
+ * for what a program evaluates per vertex. */
 typedef struct sky_snippet {
     const char *define;      /* e.g. "SKY_HAS_CLOUDS"                          */
     const char *source;      /* embedded GLSL file name; NULL = uniform rows only */
     const sky_uniform_desc *uniforms;
     int uniform_count;
+    const char *vertex_source; /* NULL: fragment stage only                    */
 } sky_snippet;
 
 #define SKY_MAX_SNIPPETS 8

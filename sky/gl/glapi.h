@@ -194,6 +194,7 @@ typedef ptrdiff_t GLintptr;
     X(void, glUniform2f, (GLint loc, GLfloat a, GLfloat b))                                   \
     X(void, glUniform3f, (GLint loc, GLfloat a, GLfloat b, GLfloat c))                        \
     X(void, glUniform4f, (GLint loc, GLfloat a, GLfloat b, GLfloat c, GLfloat d))             \
+    X(void, glUniform1fv, (GLint loc, GLsizei n, const GLfloat *v))                           \
     X(void, glUniform3fv, (GLint loc, GLsizei n, const GLfloat *v))                           \
     X(void, glUniformMatrix4fv, (GLint loc, GLsizei n, GLboolean tr, const GLfloat *v))
 

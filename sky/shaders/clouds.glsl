@@ -1,76 +1,130 @@
 /* clouds.glsl: Roden & Parberry's cloud shader (sec. 3.1, lines 14-28) on
- * one packed RGBA texture (R photo, G noise, B detail, A sunset gradient),
- * with the two primary layers drifting apart (sec. 3.2) and a thin upper
- * layer sampled with a stretched coordinate. */
+ * one packed RGBA texture (R photo, G noise, B detail baked at three times
+ * the first layer's coordinate, A sunset gradient; clouds.c), with the two
+ * primary layers drifting apart (sec. 3.2) and a thin upper layer sampled
+ * with a stretched coordinate. In both stages: the dome finds each layer's
+ * coordinate and the sunset per vertex (sky_clouds_vertex) and the clouds
+ * per pixel from them (sky_clouds_at); the small quads of the sun, moon
+ * and stars evaluate them per pixel from the direction (sky_clouds). */
 uniform sampler2D u_clouds_tex;
 uniform float u_cover, u_density, u_sunset;
 uniform float u_cloud_uv_scale;      /* from the height slider               */
-uniform vec2 u_cloud_offset0, u_cloud_offset1, u_cloud_offset_detail, u_cloud_offset_upper;
+uniform vec2 u_cloud_offset0, u_cloud_offset1, u_cloud_offset_upper;
 uniform vec3 u_cloud_light;          /* kcd/m^2 of a white cloud: R-P's
                                         amount_sunlight, tinted             */
 uniform vec3 u_sunset_color;
+uniform float u_sunset_gradient[33]; /* SKY_SUNSET_SAMPLES of the alpha
+                                        channel across 0..1 (clouds.c)      */
 
 /* The cloud dome: a sphere of radius R (in units of the cloud height) whose
- * centre lies R - 1 below the viewer. t is the distance to it along d,
- * written as c / (sqrt(b^2 + c) + b), which has no cancellation for any
- * elevation; at the horizon t = sqrt(2R - 1), finite. */
-vec2 sky_cloud_plane(vec3 d)
+ * centre lies R - 1 below the viewer. The point under d is d.xz t, with t
+ * the distance along d, written as c / (sqrt(b^2 + c) + b), which has no
+ * cancellation for any elevation (at the horizon t = sqrt(2R - 1), finite).
+ * As homogeneous coordinates, plane point = xy / z: interpolated across a
+ * triangle of directions and divided per pixel, they are exact for a flat
+ * cloud layer (z = d.y) and within a second-order term for the dome. */
+vec3 sky_cloud_plane_h(vec3 d)
 {
     const float R = 16.0;
     float b = (R - 1.0) * max(d.y, 0.0);
     float c = 2.0 * R - 1.0;
-    float t = c / (sqrt(b * b + c) + b);
-    return d.xz * t * u_cloud_uv_scale;
+    return vec3(d.xz * u_cloud_uv_scale, (sqrt(b * b + c) + b) / c);
 }
 
+/* Each layer's texture coordinate, from the plane point p (homogeneous:
+ * the offsets scaled by w): layer 0 (photo and detail), layer 1 (noise,
+ * turned and scaled so the two never line up), the thin upper layer
+ * (stretched, R-P 3.2). */
+vec4 sky_cloud_layers(vec2 p, float w)
+{
+    return vec4(p + u_cloud_offset0 * w,
+                vec2(p.x * 0.96 - p.y * 0.28, p.x * 0.28 + p.y * 0.96) * 1.15 + u_cloud_offset1 * w);
+}
+vec2 sky_cloud_upper(vec2 p, float w) { return vec2(p.x * 0.35, p.y * 2.5) + u_cloud_offset_upper * w; }
+
+/* The sunset gradient runs away from the sun (R-P's tc2). */
+float sky_cloud_from_sun(vec3 d) { return clamp(0.5 - 0.5 * dot(d, u_sun_dir), 0.01, 0.99); }
+
+#ifndef SKY_FRAGMENT
+/* Per vertex, for the dome: the layers' coordinates (xy, zw) and the upper
+ * layer's (upper.xy) as homogeneous numerators over upper.z; shade.x the
+ * sunset amount (R-P line 26) from the gradient's samples, shade.y the
+ * fade of the clouds into the horizon. */
+void sky_clouds_vertex(vec3 d, out vec4 layers, out vec3 upper, out vec2 shade)
+{
+    vec3 h = sky_cloud_plane_h(d);
+    layers = sky_cloud_layers(h.xy, h.z);
+    upper = vec3(sky_cloud_upper(h.xy, h.z), h.z);
+    float x = sky_cloud_from_sun(d) * 32.0;
+    int i = int(min(floor(x), 31.0));
+    shade.x = mix(u_sunset_gradient[i], u_sunset_gradient[i + 1], x - float(i)) * u_sunset;
+    shade.y = smoothstep(0.0, 0.06, d.y);
+}
+#else
+/* R-P lines 14-28 and sec. 3.2's upper layer, from the texels: the first
+ * layer's (photo in R, its detail in B), the second's noise and the upper
+ * layer's noise. The colour stays grey until the sunset tint, so it is
+ * carried as one value. Returns premultiplied-free rgb and alpha. */
+vec4 sky_cloud_shade(vec4 first, float noise, float upper, float sunset_amount)
+{
+    float g = first.r + noise * (1.0 - first.r);              /* 14 */
+    float a = g - (1.0 - u_cover);                             /* 15 */
+    a *= 1.0 / clamp(u_cover, 0.05, 1.0);                      /* 16-17 */
+    g = g + first.b * (1.0 - g);                               /* 18 */
+    a *= mix(first.b, 1.0, u_density);                         /* 19 */
+    /* 20-23 without a branch: only a positive alpha adds density, and
+     * min() takes the fold 1 - (g - 1) / 2 exactly when g > 1 */
+    float k = u_density * max(a, 0.0) * 2.0;                   /* 21 */
+    g = min(g + k, 1.5 - 0.5 * (g + k));                       /* 22-23 */
+    a += k;
+    g = clamp(g, 0.0, 1.0);                                    /* 25 */
+    a = clamp(a, 0.0, 1.0);
+    /* sec. 3.2: a thin, streaky upper layer added on top */
+    float thin = clamp((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * u_cover * (1.0 - a);
+    g += thin * (1.0 - g);
+    a += thin;
+    vec3 rgb = g * (1.0 - sunset_amount) + u_sunset_color * sunset_amount; /* 26-27 */
+    return vec4(rgb * u_cloud_light, a);                       /* 28 */
+}
+
+/* Beyond the paper: the texture has no mipmaps (memory budget), so where
+ * one pixel spans many texels the pattern would alias; fade the clouds
+ * there, as haze would near the horizon anyway. fw: the first layer's
+ * coordinate change across a pixel. */
+float sky_cloud_footprint_fade(vec2 fw)
+{
+    float footprint = max(fw.x, fw.y) * 512.0;
+    return 1.0 - 0.8 * smoothstep(2.0, 10.0, footprint);
+}
+
+/* The dome's clouds from its interpolated coordinates (sky_clouds_vertex):
+ * three fetches. */
+vec4 sky_clouds_at(vec4 layers, vec3 upper, vec2 shade)
+{
+    float iw = 1.0 / upper.z;
+    vec2 tc0 = layers.xy * iw;
+    vec4 c = sky_cloud_shade(SKY_TEX2D(u_clouds_tex, tc0), SKY_TEX2D(u_clouds_tex, layers.zw * iw).g,
+                             SKY_TEX2D(u_clouds_tex, upper.xy * iw).g, shade.x);
+    c.a *= sky_cloud_footprint_fade(fwidth(tc0)) * shade.y;
+    return c;
+}
+
+/* The clouds in front of direction d, all per pixel (the sun's, moon's and
+ * stars' small quads). */
 vec4 sky_clouds(vec3 d)
 {
     /* Derivatives first, in uniform control flow. */
-    vec2 p = sky_cloud_plane(d);
-    vec2 fw = fwidth(p) * 512.0;
+    vec3 h = sky_cloud_plane_h(d);
+    vec2 p = h.xy / h.z;
+    vec4 tc = sky_cloud_layers(p, 1.0);
+    vec2 fw = fwidth(tc.xy);
     if (d.y <= 0.0 || u_cover <= 0.0) return vec4(0.0);
-    vec2 tc0 = p + u_cloud_offset0;                              /* first layer  */
-    vec2 tc1 = vec2(p.x * 0.96 - p.y * 0.28, p.x * 0.28 + p.y * 0.96) * 1.15
-               + u_cloud_offset1;                                /* second layer */
-    vec2 tc3 = p * 3.0 + u_cloud_offset_detail;                  /* detail       */
-    vec2 tcu = vec2(p.x * 0.35, p.y * 2.5) + u_cloud_offset_upper; /* thin upper */
-    /* tc2: the sunset gradient runs away from the sun */
-    float from_sun = 0.5 - 0.5 * dot(d, u_sun_dir);
-    vec2 tc2 = vec2(0.5, clamp(from_sun, 0.01, 0.99));
-
-    float cloud1 = SKY_TEX2D(u_clouds_tex, tc0).r;
-    float cloud2 = SKY_TEX2D(u_clouds_tex, tc1).g;
-    float detail = SKY_TEX2D(u_clouds_tex, tc3).b;
-    float upper = SKY_TEX2D(u_clouds_tex, tcu).g;
-
-    vec4 c = vec4(cloud1 + cloud2 * (1.0 - cloud1));      /* 14 */
-    c.a -= 1.0 - u_cover;                                  /* 15 */
-    float cover = clamp(u_cover, 0.05, 1.0);               /* 16 */
-    c.a *= 1.0 / cover;                                    /* 17 */
-    c.rgb = c.rgb + detail * (1.0 - c.rgb);                /* 18 */
-    c.a *= mix(detail, 1.0, u_density);                    /* 19 */
-    if (c.a > 0.0) {                                       /* 20 */
-        c += u_density * c.a * 2.0;                        /* 21 */
-        if (c.r > 1.0) c.rgb = vec3(1.0 - (c.r - 1.0) * 0.5); /* 22-23 */
-    }
-    c = clamp(c, 0.0, 1.0);                                /* 25 */
-
-    /* sec. 3.2: a thin, streaky upper layer added on top */
-    float thin = clamp((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * u_cover;
-    c.rgb = mix(c.rgb, vec3(1.0), thin * (1.0 - c.a));
-    c.a += thin * (1.0 - c.a);
-
-    if (u_sunset > 0.0) { /* uniform: no fetch when the slider is at 0 */
-        float sa = SKY_TEX2D(u_clouds_tex, tc2).a * u_sunset;  /* 26 */
-        c.rgb = c.rgb * (1.0 - sa) + u_sunset_color * sa;      /* 27 */
-    }
-    c.rgb *= u_cloud_light;                                /* 28 */
-
-    /* Beyond the paper: the texture has no mipmaps (memory budget), so where
-     * one pixel spans many texels the pattern would alias; fade the clouds
-     * there, as haze would near the horizon anyway. */
-    float footprint = max(fw.x, fw.y);
-    c.a *= 1.0 - 0.8 * smoothstep(2.0, 10.0, footprint);
-    c.a *= smoothstep(0.0, 0.06, d.y);
+    float sunset_amount = 0.0;
+    if (u_sunset > 0.0) /* uniform: no fetch when the slider is at 0 */
+        sunset_amount = SKY_TEX2D(u_clouds_tex, vec2(0.5, sky_cloud_from_sun(d))).a * u_sunset;
+    vec4 c = sky_cloud_shade(SKY_TEX2D(u_clouds_tex, tc.xy), SKY_TEX2D(u_clouds_tex, tc.zw).g,
+                             SKY_TEX2D(u_clouds_tex, sky_cloud_upper(p, 1.0)).g, sunset_amount);
+    c.a *= sky_cloud_footprint_fade(fw) * smoothstep(0.0, 0.06, d.y);
     return c;
 }
+#endif

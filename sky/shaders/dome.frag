@@ -3,6 +3,14 @@
  * dimmed by its extinction, then the clouds over both. */
 SKY_IN vec3 v_dir;
 SKY_IN vec4 v_color;  /* rgb: day gradient, a: galaxy */
+#ifdef SKY_HAS_GRADIENT
+SKY_IN vec3 v_sky;
+#endif
+#ifdef SKY_HAS_CLOUDS
+SKY_IN vec4 v_cloud_layers;
+SKY_IN vec3 v_cloud_upper;
+SKY_IN vec2 v_cloud_shade;
+#endif
 void main()
 {
     /* The perspective-correct interpolation of the directions of a flat
@@ -12,7 +20,11 @@ void main()
         SKY_FRAG_COLOR = vec4(0.0, 0.0, 0.0, 1.0); /* outside the all-sky circle */
         return;
     }
+#ifdef SKY_HAS_GRADIENT
+    vec3 L = v_sky;
+#else
     vec3 L = sky_atmosphere(d, v_color.rgb);
+#endif
     /* night layers: only in the night variant of this program (dome.c),
      * behind the atmosphere and dimmed by it */
 #ifdef SKY_HAS_FLICKER
@@ -22,7 +34,7 @@ void main()
     L += sky_starmap(d) * sky_atmosphere_transmittance(d);
 #endif
 #ifdef SKY_HAS_CLOUDS
-    vec4 c = sky_clouds(d);
+    vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade);
     L = mix(L, c.rgb, c.a);
 #endif
     SKY_FRAG_COLOR = sky_output(L, 1.0);

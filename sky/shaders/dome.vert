@@ -1,15 +1,32 @@
 /* dome.vert: the sky dome (dome.c), a sphere of directions drawn at
  * infinity. a_color carries the per-vertex day gradient (rgb) and galaxy
  * brightness (a). w = 0 puts the vertices at infinity; z = w puts them on
- * the far plane so no near/far setting clips them. */
+ * the far plane so no near/far setting clips them. What varies slowly
+ * across the sky is evaluated here, per vertex, rather than per pixel: the
+ * gradient path's whole sky (it has no texture and no sharp feature the
+ * dome's rings would miss), and the clouds' coordinates and sunset. */
 SKY_ATTR vec3 a_dir;
 SKY_ATTR vec4 a_color;
 SKY_OUT vec3 v_dir;
 SKY_OUT vec4 v_color;
+#ifdef SKY_HAS_GRADIENT
+SKY_OUT vec3 v_sky;        /* the gradient path's radiance, kcd/m^2 */
+#endif
+#ifdef SKY_HAS_CLOUDS
+SKY_OUT vec4 v_cloud_layers; /* sky_clouds_vertex's outputs */
+SKY_OUT vec3 v_cloud_upper;
+SKY_OUT vec2 v_cloud_shade;
+#endif
 void main()
 {
     v_dir = a_dir;
     v_color = a_color;
+#ifdef SKY_HAS_GRADIENT
+    v_sky = sky_atmosphere(a_dir, a_color.rgb);
+#endif
+#ifdef SKY_HAS_CLOUDS
+    sky_clouds_vertex(a_dir, v_cloud_layers, v_cloud_upper, v_cloud_shade);
+#endif
     if (u_fisheye > 0.5) {
         gl_Position = vec4(sky_fisheye_ndc(a_dir) / u_aspect, 0.0, 1.0);
     } else {
