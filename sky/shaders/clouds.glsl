@@ -45,6 +45,12 @@ vec2 sky_cloud_upper(vec2 p, float w) { return vec2(p.x * 0.35, p.y * 2.5) + u_c
 /* The sunset gradient runs away from the sun (R-P's tc2). */
 float sky_cloud_from_sun(vec3 d) { return clamp(0.5 - 0.5 * dot(d, u_sun_dir), 0.01, 0.99); }
 
+/* Lines 26-28: the sunset tint and the light, kcd/m^2. */
+vec3 sky_cloud_colour(float grey, float sunset_amount)
+{
+    return (grey * (1.0 - sunset_amount) + u_sunset_color * sunset_amount) * u_cloud_light;
+}
+
 #ifndef SKY_FRAGMENT
 /* Per vertex, for the dome: the layers' coordinates (xy, zw) and the upper
  * layer's (upper.xy) as homogeneous numerators over upper.z; shade.x the
@@ -61,11 +67,11 @@ void sky_clouds_vertex(vec3 d, out vec4 layers, out vec3 upper, out vec2 shade)
     shade.y = smoothstep(0.0, 0.06, d.y);
 }
 #else
-/* R-P lines 14-28 and sec. 3.2's upper layer, from the texels: the first
+/* R-P lines 14-25 and sec. 3.2's upper layer, from the texels: the first
  * layer's (photo in R, its detail in B), the second's noise and the upper
  * layer's noise. The colour stays grey until the sunset tint, so it is
- * carried as one value. Returns premultiplied-free rgb and alpha. */
-vec4 sky_cloud_shade(vec4 first, float noise, float upper, float sunset_amount)
+ * carried as one value: returns (grey, alpha). */
+vec2 sky_cloud_grey(vec4 first, float noise, float upper)
 {
     float g = first.r + noise * (1.0 - first.r);              /* 14 */
     float a = g - (1.0 - u_cover);                             /* 15 */
@@ -81,10 +87,7 @@ vec4 sky_cloud_shade(vec4 first, float noise, float upper, float sunset_amount)
     a = clamp(a, 0.0, 1.0);
     /* sec. 3.2: a thin, streaky upper layer added on top */
     float thin = clamp((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * u_cover * (1.0 - a);
-    g += thin * (1.0 - g);
-    a += thin;
-    vec3 rgb = g * (1.0 - sunset_amount) + u_sunset_color * sunset_amount; /* 26-27 */
-    return vec4(rgb * u_cloud_light, a);                       /* 28 */
+    return vec2(g + thin * (1.0 - g), a + thin);
 }
 
 /* Beyond the paper: the texture has no mipmaps (memory budget), so where
@@ -103,10 +106,9 @@ vec4 sky_clouds_at(vec4 layers, vec3 upper, vec2 shade)
 {
     float iw = 1.0 / upper.z;
     vec2 tc0 = layers.xy * iw;
-    vec4 c = sky_cloud_shade(SKY_TEX2D(u_clouds_tex, tc0), SKY_TEX2D(u_clouds_tex, layers.zw * iw).g,
-                             SKY_TEX2D(u_clouds_tex, upper.xy * iw).g, shade.x);
-    c.a *= sky_cloud_footprint_fade(fwidth(tc0)) * shade.y;
-    return c;
+    vec2 ga = sky_cloud_grey(SKY_TEX2D(u_clouds_tex, tc0), SKY_TEX2D(u_clouds_tex, layers.zw * iw).g,
+                             SKY_TEX2D(u_clouds_tex, upper.xy * iw).g);
+    return vec4(sky_cloud_colour(ga.x, shade.x), ga.y * sky_cloud_footprint_fade(fwidth(tc0)) * shade.y);
 }
 
 /* The clouds in front of direction d, all per pixel (the sun's, moon's and
@@ -122,9 +124,8 @@ vec4 sky_clouds(vec3 d)
     float sunset_amount = 0.0;
     if (u_sunset > 0.0) /* uniform: no fetch when the slider is at 0 */
         sunset_amount = SKY_TEX2D(u_clouds_tex, vec2(0.5, sky_cloud_from_sun(d))).a * u_sunset;
-    vec4 c = sky_cloud_shade(SKY_TEX2D(u_clouds_tex, tc.xy), SKY_TEX2D(u_clouds_tex, tc.zw).g,
-                             SKY_TEX2D(u_clouds_tex, sky_cloud_upper(p, 1.0)).g, sunset_amount);
-    c.a *= sky_cloud_footprint_fade(fw) * smoothstep(0.0, 0.06, d.y);
-    return c;
+    vec2 ga = sky_cloud_grey(SKY_TEX2D(u_clouds_tex, tc.xy), SKY_TEX2D(u_clouds_tex, tc.zw).g,
+                             SKY_TEX2D(u_clouds_tex, sky_cloud_upper(p, 1.0)).g);
+    return vec4(sky_cloud_colour(ga.x, sunset_amount), ga.y * sky_cloud_footprint_fade(fw) * smoothstep(0.0, 0.06, d.y));
 }
 #endif

@@ -58,6 +58,22 @@ vec3 sky_unrefract(vec3 d)
     return d * cos(lift) - toward_zenith * sin(lift);
 }
 
+/* Linear luminance (kcd/m^2) to display values (LDR): exposure, then Hejl
+ * and Burgess-Dawson's filmic curve, a rational fit that includes the
+ * sRGB-like display gamma (no exp, no pow: cheap on weak GPUs). In both
+ * stages: the gradient sky maps its vertices (dome.vert). */
+vec3 sky_tonemap(vec3 L)
+{
+    /* Mueller sec. 6: rods see no colour and peak in the blue-green, so a
+     * dark-adapted scene loses saturation toward a bluish grey; what is
+     * bright enough for the cones (a bright star) keeps its colour */
+    vec3 e = max(L * u_exposure, vec3(0.0));
+    float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
+    e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.05, y)));
+    vec3 x = max(e - 0.004, vec3(0.0));
+    return (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
+}
+
 #ifdef SKY_FRAGMENT
 /* Ordered-looking but unstructured noise in [0,1) from the pixel position:
  * the dither that keeps 8-bit gradients from banding. */
@@ -68,21 +84,14 @@ float sky_hash(vec2 p)
     return fract((q.x + q.y) * q.z);
 }
 
+/* One 8-bit step of dither, so smooth gradients do not band. */
+vec3 sky_dither(vec3 display) { return display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0; }
+
 /* Linear luminance (kcd/m^2) to the output: linear for HDR hosts; else
- * exposure, then Hejl and Burgess-Dawson's filmic curve, a rational fit
- * that includes the sRGB-like display gamma (no exp, no pow: cheap on weak
- * GPUs), then a dither of one 8-bit step so smooth gradients do not band. */
+ * tone mapped and dithered. */
 vec4 sky_output(vec3 L, float alpha)
 {
     if (u_output_hdr > 0.5) return vec4(max(L, vec3(0.0)), alpha);
-    /* Mueller sec. 6: rods see no colour and peak in the blue-green, so a
-     * dark-adapted scene loses saturation toward a bluish grey; what is
-     * bright enough for the cones (a bright star) keeps its colour */
-    vec3 e = max(L * u_exposure, vec3(0.0));
-    float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
-    e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.05, y)));
-    vec3 x = max(e - 0.004, vec3(0.0));
-    vec3 display = (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
-    return vec4(display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0, alpha);
+    return vec4(sky_dither(sky_tonemap(L)), alpha);
 }
 #endif /* SKY_FRAGMENT */
