@@ -4,7 +4,14 @@
  * frame (Mueller eq. 7-8 with an accurate precession); refraction lifts
  * each star by its own amount. Points are sized in the vertex shader
  * (eq. 9) and shaped in the fragment shader from gl_FragCoord, which GLSL
- * 1.10 has everywhere (gl_PointCoord it does not). */
+ * 1.10 has everywhere (gl_PointCoord it does not). Everything that is the
+ * same across a star's point (its flux, colour, extinction, twinkle) is
+ * found here, once a star rather than once a pixel, and a star too faint
+ * to add anything visible is not rasterised at all. */
+uniform float u_star_flux_scale;  /* kcd/m^2 peak of a V = 0 star, incl. fade  */
+uniform vec3 u_star_extinction;   /* zenith optical depth at R, G, B           */
+uniform vec3 u_star_shell;        /* observer radius a, shell radius b, b - a (km) */
+uniform float u_star_seed;        /* scintillation clock, 10 per second, wrapped */
 uniform mat4 u_star_rot;          /* J2000 -> horizon (precession, nutation, sidereal) */
 uniform vec3 u_star_aberration;   /* annual aberration, horizon frame          */
 uniform vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
@@ -15,10 +22,9 @@ SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed)         
 SKY_ATTR vec3 a_dir;
 SKY_ATTR vec4 a_color;            /* rgb: colour of unit luminance, a: V mag    */
 SKY_OUT vec3 v_dir;
-SKY_OUT vec4 v_color;
+SKY_OUT vec3 v_light;             /* kcd/m^2 at the PSF's peak, per channel      */
 SKY_OUT vec2 v_center;            /* window position of the star, px            */
 SKY_OUT vec2 v_size;              /* x: billboard radius k (px), y: k / q        */
-SKY_OUT float v_index;
 
 /* Saemundsson refraction (astro.c), radians, for true altitude h. */
 float sky_star_refraction(float h)
@@ -26,6 +32,41 @@ float sky_star_refraction(float h)
     float hd = max(degrees(h), -1.0);
     float r = 1.02 / tan(radians(hd + 10.3 / (hd + 5.11))) + 0.0019279;
     return radians(r / 60.0) * u_star_pressure.x;
+}
+
+/* Path length through the atmosphere shell at zenith angle theta, the
+ * geometry of Mueller eq. 11 in its stable form: finite at the zenith
+ * (where eq. 11 is 0/0) and past the horizon. In units of the zenith path. */
+float sky_star_airmass(float cos_theta)
+{
+    float a = u_star_shell.x, b = u_star_shell.y;
+    float sin2 = max(1.0 - cos_theta * cos_theta, 0.0);
+    float path = sqrt(max(b * b - a * a * sin2, 0.0)) - a * cos_theta;
+    return path / max(u_star_shell.z, 1e-3);
+}
+
+/* The star's light at the PSF's peak (eq. 10 in physical units): its flux
+ * relative to V = 0, its colour, the extinction over its optical path
+ * (eq. 11-12) and the scintillation. Mueller sec. 4.3.2: a random basis n
+ * per star, remapped by N = 0.02 / n so only a few stars twinkle at once;
+ * the amplitude grows with the optical path and is strongest in blue
+ * (Rayleigh beta_r). Unlike the paper's fresh number every frame, n is
+ * value noise in time (a new random value ten times a second, blended
+ * smoothly), so a star swells and fades instead of flashing on and off
+ * from one frame to the next. */
+vec3 sky_star_light(vec3 d, float index)
+{
+    float flux = pow(2.512, -a_color.a);       /* relative to V = 0 */
+    float airmass = sky_star_airmass(d.y);
+    vec3 extinction = exp(-u_star_extinction * airmass);
+    float k0 = floor(u_star_seed), kt = u_star_seed - k0;
+    float n0 = fract(sin(index * 12.9898 + k0 * 78.233) * 43758.5453);
+    float n1 = fract(sin(index * 12.9898 + (k0 + 1.0) * 78.233) * 43758.5453);
+    float n = mix(n0, n1, kt * kt * (3.0 - 2.0 * kt));
+    float twinkle = min(0.02 / max(n, 1e-4), 1.0);
+    vec3 beta = vec3(0.16, 0.37, 0.91) / 0.91;
+    vec3 scint = vec3(1.0) - min(0.25 * (airmass - 1.0), 0.8) * twinkle * beta;
+    return u_star_flux_scale * flux * a_color.rgb * extinction * scint;
 }
 
 void main()
@@ -37,8 +78,7 @@ void main()
     vec2 horiz = d.xz / max(length(d.xz), 1e-6);
     d = vec3(horiz.x * cos(ha), sin(ha), horiz.y * cos(ha));
     v_dir = d;
-    v_color = a_color;
-    v_index = a_pos.x;
+    v_light = sky_star_light(d, a_pos.x);
     /* eq. 9 and the glare radius k = max(q, c_k sqrt(I_G)) with
      * I_G = 2.512^(m_a - m - (V_T - 1)) - 1 for stars brighter than m_a */
     float q = u_star_size.x;
@@ -50,9 +90,13 @@ void main()
         clip = vec4(sky_fisheye_ndc(d) / u_aspect, 0.0, 1.0);
     else
         clip = (u_view_proj * vec4(d, 0.0)).xyww;
-    /* below the horizon, behind the camera or the moon: outside the clip
-     * volume */
-    if (d.y < 0.0 || clip.w <= 0.0 || occulted) clip = vec4(2.0, 2.0, 2.0, 1.0);
+    /* LDR: a star whose brightest pixel (the PSF's peak plus the glare's,
+     * 1.01) adds less than a quarter of an 8-bit step is left out, as
+     * stars.frag would discard each of its pixels */
+    bool faint = u_output_hdr < 0.5 && max(v_light.r, max(v_light.g, v_light.b)) * 1.01 * u_exposure < 1.0 / 1024.0;
+    /* below the horizon, behind the camera or the moon, or too faint:
+     * outside the clip volume */
+    if (d.y < 0.0 || clip.w <= 0.0 || occulted || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
     gl_Position = clip;
     gl_PointSize = 2.0 * k + 1.0;
     v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_star_viewport.zw + u_star_viewport.xy;
