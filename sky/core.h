@@ -80,6 +80,7 @@ typedef enum sky_texture_id {
 
 typedef struct sky_texture {
     GLuint id;
+    GLenum target;   /* GL_TEXTURE_2D or GL_TEXTURE_CUBE_MAP */
     int width, height;
     size_t bytes;
     sky_layer owner; /* whose stats row counts its bytes */

@@ -7,6 +7,7 @@
 #include "layer.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 /* Luminance of the map's brightest texel (the Sagittarius star clouds) at
  * m_a = 4 and a 60-degree, 720-pixel view: about six times the dark sky's
@@ -22,10 +23,59 @@ static const sky_uniform_desc starmap_uniforms[] = {
 static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
                                          SKY_UNIFORM_COUNT(starmap_uniforms), NULL};
 
+/* The map ships as an equirectangular image (u = right ascension / 2 pi,
+ * v = 0.5 - declination / pi); the GPU gets it as a cube map, so a pixel
+ * finds its texel with one lookup by direction instead of an atan, an
+ * asin and a wrap. 128 texels across a face is the image's own 0.7
+ * degree at the faces' centres. */
+#define STARMAP_W 512
+#define STARMAP_H 256
+#define STARMAP_FACE 128
+
+/* The image at J2000 direction e, bilinear, wrapping in right ascension. */
+static void sample_equirect(const unsigned char *img, const double e[3], unsigned char out[4])
+{
+    double ra = atan2(e[1], e[0]), dec = asin(sky_clampd(e[2], -1.0, 1.0));
+    double u = ra / (2.0 * SKY_PI), v = 0.5 - dec / SKY_PI;
+    u -= floor(u);
+    double x = u * STARMAP_W - 0.5, y = sky_clampd(v * STARMAP_H - 0.5, 0.0, STARMAP_H - 1.0);
+    int x0 = (int)floor(x), y0 = (int)y, y1 = y0 + 1 < STARMAP_H ? y0 + 1 : y0;
+    double fx = x - x0, fy = y - y0;
+    int xa = (x0 % STARMAP_W + STARMAP_W) % STARMAP_W, xb = (xa + 1) % STARMAP_W;
+    for (int c = 0; c < 4; c++) {
+        double top = img[4 * (y0 * STARMAP_W + xa) + c] * (1 - fx) + img[4 * (y0 * STARMAP_W + xb) + c] * fx;
+        double bottom = img[4 * (y1 * STARMAP_W + xa) + c] * (1 - fx) + img[4 * (y1 * STARMAP_W + xb) + c] * fx;
+        out[c] = (unsigned char)lround(top * (1 - fy) + bottom * fy);
+    }
+}
+
 static int starmap_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     (void)state;
-    return sky_texture_load(s, SKY_TEX_STARMAP, SKY_LAYER_STARMAP, "starmap.png", 512, 256, 1, err, err_len);
+    unsigned char *img = NULL;
+    if (sky_asset_load_rgba(s, "starmap.png", STARMAP_W, STARMAP_H, &img, err, err_len)) return -1;
+    unsigned char *faces = malloc(6u * STARMAP_FACE * STARMAP_FACE * 4u);
+    if (!faces) {
+        sky_png_free(img);
+        sky_format(err, err_len, "out of memory for the star map");
+        return -1;
+    }
+    /* each face's texel (i, j) at GL's (s, t) in -1..1 looks along these
+     * directions (the cube-map face selection of the GL specification) */
+    for (int f = 0; f < 6; f++)
+        for (int j = 0; j < STARMAP_FACE; j++)
+            for (int i = 0; i < STARMAP_FACE; i++) {
+                double sc = 2.0 * (i + 0.5) / STARMAP_FACE - 1.0, tc = 2.0 * (j + 0.5) / STARMAP_FACE - 1.0;
+                const double dirs[6][3] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc},
+                                           {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+                double n = sqrt(dirs[f][0] * dirs[f][0] + dirs[f][1] * dirs[f][1] + dirs[f][2] * dirs[f][2]);
+                double e[3] = {dirs[f][0] / n, dirs[f][1] / n, dirs[f][2] / n};
+                sample_equirect(img, e, faces + 4u * (((size_t)f * STARMAP_FACE + (size_t)j) * STARMAP_FACE + (size_t)i));
+            }
+    sky_png_free(img);
+    int rc = sky_texture_create_cube(s, SKY_TEX_STARMAP, SKY_LAYER_STARMAP, faces, STARMAP_FACE, err, err_len);
+    free(faces);
+    return rc;
 }
 
 /* The map is in J2000: the shader takes horizon directions back through

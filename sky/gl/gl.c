@@ -112,9 +112,11 @@ static const char *prologue(const sky_core *s, int fragment)
 {
     if (s->profile == SKY_GL_CORE33)
         return fragment ? "#version 330 core\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
-                          "#define SKY_TEX2D texture\nout vec4 sky_frag_color;\n#define SKY_FRAG_COLOR sky_frag_color\n"
+                          "#define SKY_TEX2D texture\n#define SKY_TEXCUBE texture\nout vec4 sky_frag_color;\n"
+                          "#define SKY_FRAG_COLOR sky_frag_color\n"
                         : "#version 330 core\n#define SKY_CORE 1\n#define SKY_ATTR in\n#define SKY_OUT out\n";
     return fragment ? "#version 110\n#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_TEX2D texture2D\n"
+                      "#define SKY_TEXCUBE textureCube\n"
                       "#define SKY_FRAG_COLOR gl_FragColor\n"
                     : "#version 110\n#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
 }
@@ -253,7 +255,7 @@ void sky_program_apply(sky_core *s, const sky_program *p)
         case SKY_U_F1V: gl->glUniform1fv(loc, u->count, v); break;
         case SKY_U_TEX:
             gl->glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-            gl->glBindTexture(GL_TEXTURE_2D, s->textures[u->offset].id);
+            gl->glBindTexture(s->textures[u->offset].target, s->textures[u->offset].id);
             gl->glUniform1i(loc, unit);
             unit++;
             break;
@@ -299,9 +301,44 @@ int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const un
         sky_format(err, err_len, "uploading a %dx%d texture failed (GL error 0x%04x)", w, h, e);
         return -1;
     }
+    t->target = GL_TEXTURE_2D;
     t->width = w;
     t->height = h;
     t->bytes = (size_t)w * (size_t)h * 4u;
+    t->owner = owner;
+    return 0;
+}
+
+int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
+                            char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    sky_texture *t = &s->textures[id];
+    gl->glGenTextures(1, &t->id);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, t->id);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    size_t face_bytes = (size_t)size * (size_t)size * 4u;
+    for (int f = 0; f < 6; f++)
+        gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA8, size, size, 0, GL_RGBA,
+                         GL_UNSIGNED_BYTE, faces + (size_t)f * face_bytes);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, 0);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    GLenum e = gl->glGetError();
+    if (e != GL_NO_ERROR) {
+        gl->glDeleteTextures(1, &t->id);
+        t->id = 0;
+        sky_format(err, err_len, "uploading a %dx%d cube map failed (GL error 0x%04x)", size, size, e);
+        return -1;
+    }
+    t->target = GL_TEXTURE_CUBE_MAP;
+    t->width = t->height = size;
+    t->bytes = 6u * face_bytes;
     t->owner = owner;
     return 0;
 }
@@ -407,6 +444,7 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
                    is_float ? "float" : "RGBA8", e);
         return -1;
     }
+    t->target = GL_TEXTURE_2D;
     t->width = w;
     t->height = h;
     t->bytes = (size_t)w * (size_t)h * (is_float ? 16u : 4u);
@@ -477,6 +515,7 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
     for (int i = 0; i < 4; i++) {
         gl->glActiveTexture(GL_TEXTURE0 + (GLenum)i);
         gl->glGetIntegerv(GL_TEXTURE_BINDING_2D, &st->textures[i]);
+        gl->glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &st->cube_textures[i]);
     }
     gl->glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &st->array_buffer);
     if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
@@ -544,6 +583,7 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
     for (int i = 3; i >= 0; i--) {
         gl->glActiveTexture(GL_TEXTURE0 + (GLenum)i);
         gl->glBindTexture(GL_TEXTURE_2D, (GLuint)st->textures[i]);
+        gl->glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)st->cube_textures[i]);
     }
     gl->glActiveTexture((GLenum)st->active_texture);
     /* A host may delete its program while it is current: GL keeps it

@@ -85,6 +85,11 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
                            size_t err_len);
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8,
                             const float *rgb32f);
+/* A cube map of six size x size RGBA8 faces, in GL's order (+x, -x, +y,
+ * -y, +z, -z), each face's rows following GL's convention; linear,
+ * clamped at the edges. */
+int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
+                            char *err, size_t err_len);
 void sky_texture_destroy(sky_core *s, sky_texture_id id);
 /* Reads an asset (override directory first, then the embedded copy) and
  * decodes it to RGBA8, checking its size. Free with sky_png_free. */
@@ -102,7 +107,7 @@ void sky_buffers_destroy(sky_core *s, const GLuint *buffers, const size_t *bytes
 typedef struct sky_gl_state {
     GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4], scissor_box[4];
     GLfloat clear_color[4];
-    GLint textures[4];
+    GLint textures[4], cube_textures[4]; /* units 0..3: 2D and cube map bindings */
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
     GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
     GLboolean program_point_size;
