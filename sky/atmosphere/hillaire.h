@@ -67,6 +67,20 @@ void sky_hillaire_build_transmittance(sky_hillaire_tables *t);
 void sky_hillaire_build_multiscatter(sky_hillaire_tables *t); /* needs transmittance */
 /* needs both; altitude_km of the observer, sun_mu = cos(sun zenith) */
 void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu);
+/* The same table a few rows at a time: rows row0 .. row1 - 1 (clamped to
+ * the table) of the sky-view table for altitude_km and sun_mu, into table
+ * (skyview_width * skyview_height * 3 floats, laid out as t->skyview).
+ * Each row is one zenith angle, marched on its own, so rows built in any
+ * order and over any number of calls make exactly the table
+ * sky_hillaire_build_skyview makes (which calls this for all rows). Reads
+ * t's transmittance and multiple-scattering tables, writes nothing of t. */
+void sky_hillaire_build_skyview_rows(const sky_hillaire_tables *t, double altitude_km, double sun_mu, int row0,
+                                     int row1, float *table);
+/* Puts a table finished by sky_hillaire_build_skyview_rows in place:
+ * exchanges t->skyview and *table (which then holds the old table, for the
+ * next build) and records altitude_km and sun_mu as
+ * sky_hillaire_build_skyview does. */
+void sky_hillaire_install_skyview(sky_hillaire_tables *t, float **table, double altitude_km, double sun_mu);
 
 /* Table coordinates in 0..1 (texel centres mapped as Bruneton does: a
  * value at the table's edge samples the edge texel's centre). */

@@ -819,21 +819,38 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
     }
 }
 
-void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu)
+/* A sky-view build's sun cosine: one that is not a number is the
+ * zenith's. */
+static double skyview_sun_mu(double sun_mu)
 {
-    if (!t || !t->skyview || !t->transmittance || !t->multiscatter) return;
+    return isfinite(sun_mu) ? clamp(sun_mu, -1.0, 1.0) : 1.0;
+}
+
+/* What a table records of its inputs (skyview_altitude_km,
+ * skyview_sun_mu): the altitude as observer_radius has it. */
+static void skyview_record(sky_hillaire_tables *t, double altitude_km, double sun_mu)
+{
     hl_medium m;
     medium_from(&t->atm, &m);
-    if (!isfinite(sun_mu)) sun_mu = 1.0;
-    sun_mu = clamp(sun_mu, -1.0, 1.0);
+    t->skyview_altitude_km = observer_radius(&m, altitude_km) - m.R;
+    t->skyview_sun_mu = skyview_sun_mu(sun_mu);
+}
+
+void sky_hillaire_build_skyview_rows(const sky_hillaire_tables *t, double altitude_km, double sun_mu, int row0,
+                                     int row1, float *table)
+{
+    if (!t || !table || !t->transmittance || !t->multiscatter) return;
+    hl_medium m;
+    medium_from(&t->atm, &m);
+    sun_mu = skyview_sun_mu(sun_mu);
     double r0 = observer_radius(&m, altitude_km);
-    t->skyview_altitude_km = r0 - m.R;
-    t->skyview_sun_mu = sun_mu;
     int w = t->settings.skyview_width, h = t->settings.skyview_height;
+    if (row0 < 0) row0 = 0;
+    if (row1 > h) row1 = h;
     /* the sun at azimuth 0 (+x): u = 0 is its vertical */
     double sun[3] = {sqrt(1.0 - sun_mu * sun_mu), sun_mu, 0.0};
     double th_h = horizon_zenith(&m, r0), beta = M_PI - th_h;
-    for (int j = 0; j < h; j++) {
+    for (int j = row0; j < row1; j++) {
         /* row j holds y = j / (h - 1); the inverse of skyview_unit */
         double y = (double)j / (h - 1), th;
         int below = y > 0.5;
@@ -844,8 +861,24 @@ void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, doub
             double q = 2.0 * y - 1.0;
             th = th_h + beta * q * q;
         }
-        skyview_row(t, &m, r0, th, below, sun, w, t->skyview + (size_t)j * w * 3);
+        skyview_row(t, &m, r0, th, below, sun, w, table + (size_t)j * w * 3);
     }
+}
+
+void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu)
+{
+    if (!t || !t->skyview || !t->transmittance || !t->multiscatter) return;
+    sky_hillaire_build_skyview_rows(t, altitude_km, sun_mu, 0, t->settings.skyview_height, t->skyview);
+    skyview_record(t, altitude_km, sun_mu);
+}
+
+void sky_hillaire_install_skyview(sky_hillaire_tables *t, float **table, double altitude_km, double sun_mu)
+{
+    if (!t || !table || !*table) return;
+    float *old = t->skyview;
+    t->skyview = *table;
+    *table = old;
+    skyview_record(t, altitude_km, sun_mu);
 }
 
 void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
