@@ -143,7 +143,23 @@ SKY_API sky_result sky_atmosphere_check(const sky_atmosphere_params *atm, char *
 /* HILLAIRE and BLEND: the lookup tables' sizes and sample counts (Hillaire
  * 2020 sec. 5). Zero fields take Hillaire's values; sizes 4..1024, sample
  * counts 1..256. Larger tables and more samples: closer to the reference,
- * slower to build (sky-bench shows both). */
+ * slower to build (sky-bench shows both).
+ * The transmittance and multiple-scattering tables are built by sky_create.
+ * The sky-view table follows the sun's elevation (past 0.05 degree) and the
+ * observer's altitude (past 10 m). CORE33 rebuilds it on the GPU in the
+ * next sky_draw. COMPAT20 builds it on the CPU, in the calls that recompute
+ * the frame (sky_set_params, sky_set_observer, sky_set_exposure_bias,
+ * sky_update, sky_set_elapsed):
+ *  - at once, in the call that made the change, when it is a jump: the
+ *    sun's elevation moved more than 1 degree since the last sky_draw (since
+ *    sky_create before the first), or the observer's altitude moved past
+ *    10 m. The next frame shows the exact sky for the new sun;
+ *  - otherwise (an animated time of day) a slice of at most about 0.4 ms
+ *    per call, while the previous table stays on screen; the finished table
+ *    replaces it in the call that completes it (about 20 slices with the
+ *    default sizes). The sky then lags a moving sun by one to two builds,
+ *    and sky_get_lighting's ambient and fog colours follow the table shown.
+ *    Once the sun stops, the builds catch up with it (to the 0.05 degree). */
 typedef struct sky_lut_settings {
     int transmittance_width, transmittance_height; /* 256 x 64                */
     int transmittance_steps;                       /* 40                      */

@@ -82,12 +82,15 @@ void sky_rayleigh_eval(const sky_frame *f, const double d[3], double rgb[3]);
 double sky_chapman(double X, double mu);
 
 /* Hillaire's tables in the sky (hillaire.c): the tables at creation, the
- * sky-view rebuild per frame (COMPAT20: on the CPU), its upload or GPU
- * build before the dome is drawn, the CPU twin of the shader. */
+ * sky-view rebuild per frame (COMPAT20: on the CPU, at once after a jump,
+ * else a slice per frame), its upload or GPU build before the dome is
+ * drawn, the CPU twin of the shader (for the sun at the elevation of the
+ * table in use). */
 typedef struct sky_hillaire_state sky_hillaire_state;
 int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t err_len);
 void sky_hillaire_destroy(sky_core *s, sky_hillaire_state *h);
-/* Returns 1 when the sky-view table was rebuilt (the summary follows it). */
+/* Returns 1 when a new sky-view table came into use (the summary follows
+ * it). */
 int sky_hillaire_frame(sky_core *s, sky_hillaire_state *h);
 void sky_hillaire_upload(sky_core *s, sky_hillaire_state *h);
 void sky_hillaire_eval(const sky_core *s, const sky_hillaire_state *h, const double d[3], double rgb[3]);

@@ -8,8 +8,10 @@
  * (*_build.frag, GLSL twins of hillaire_cpu.c) and reads the first two
  * back; COMPAT20 builds them with hillaire_cpu.c and uploads the sky-view
  * table in an 8-bit log-luminance + chromaticity encoding (hillaire.glsl
- * decodes it). The host's lighting comes from a few rays marched on the
- * CPU through the first two tables.
+ * decodes it). COMPAT20 builds a sky-view table for a moving sun a slice
+ * of rows per frame while the previous one stays on screen (see
+ * SKYVIEW_SLICE_MS). The host's lighting comes from a few rays marched on
+ * the CPU through the first two tables.
  */
 #include "atmosphere.h"
 
@@ -22,6 +24,37 @@
  * 12 s of a mid-latitude sunset) or the observer by more than 10 m. */
 #define SKYVIEW_SUN_THRESHOLD (0.05 * SKY_PI / 180.0)
 #define SKYVIEW_ALTITUDE_THRESHOLD_KM 0.01
+/* COMPAT20 builds the sky-view table on the CPU, on the host's render
+ * thread: 6-8 ms with the default sizes here, and a time-lapse moves the
+ * sun past the threshold above every frame. Two cases:
+ *  - a jump: no table yet, the observer's altitude moved past its
+ *    threshold, or the sun's elevation moved more than SKYVIEW_SUN_JUMP
+ *    since the last frame drawn (since creation before the first). The
+ *    host has set a new time or place, and the table shown cannot stand
+ *    in for it (the twilight sky changes by a decade in 3 degrees of sun),
+ *    so the table is built at once, in the call that made the jump, and
+ *    the next frame shows the exact sky for the new sun;
+ *  - an animated sun, moving less than that between frames: the new table
+ *    is built for the sun of the moment the build starts into a second
+ *    pair of buffers, at most SKYVIEW_SLICE_MS of rows per call of
+ *    sky_hillaire_frame (each sky_set_params, sky_set_observer,
+ *    sky_set_exposure_bias, sky_update makes one), then encoded likewise.
+ *    Until its last row is encoded, the table shown stays on the GPU with
+ *    its own decoding, horizon and lighting summary; then the two swap in
+ *    sky_hillaire_frame and the next draw uploads the new one. A build
+ *    still under way when the sun moves on is finished (a restart would
+ *    never finish under a moving sun), and the next starts from the sun of
+ *    that moment: the sky lags a moving sun by one to two builds (about 10
+ *    to 20 frames of sky-demo, which makes two calls a frame).
+ * One degree between two frames drawn is a day in 360 frames, eight times
+ * sky-demo's default time-lapse at 30 frames a second. */
+#define SKYVIEW_SUN_JUMP (1.0 * SKY_PI / 180.0)
+/* 0.4 ms: a host that recomputes the frame twice per frame drawn (sky-demo:
+ * sky_set_params and sky_update) spends under 1 ms a frame on the table. A
+ * slice ends before the unit (a row built, or a row encoded) that would
+ * take it past the budget, judged by the dearest unit of the slice so far;
+ * every slice does at least one (a default row: about 0.07 ms). */
+#define SKYVIEW_SLICE_MS 0.4
 /* the 8-bit encoding covers this many stops below the table's brightest
  * value (the sun's aureole): 2^-24 is darker than anything the tone map
  * shows next to it */
@@ -41,11 +74,26 @@ const sky_snippet sky_hillaire_snippet = {"SKY_HAS_HILLAIRE", "hillaire.glsl", h
 const sky_snippet sky_hillaire_encoded_snippet = {"SKY_HILLAIRE_ENCODED", "hillaire.glsl", hillaire_uniforms,
                                                   SKY_UNIFORM_COUNT(hillaire_uniforms), NULL};
 
+/* COMPAT20: the next sky-view table, built a slice at a time into buffers
+ * of its own (the ones the table shown last used). */
+typedef struct skyview_build {
+    int active;
+    int next;               /* next unit: rows 0..h-1 built, then rows h..2h-1 encoded */
+    double sun_mu, altitude_km;
+    double brightest;       /* luminance of the brightest texel built so far */
+    double log2_floor;      /* the encoding's floor, once every row is built */
+    float *table;           /* skyview_width * skyview_height * 3 */
+    unsigned char *encoded; /* skyview_width * skyview_height * 4 */
+} skyview_build;
+
 struct sky_hillaire_state {
-    sky_hillaire_tables tables;
-    unsigned char *skyview_encoded;  /* COMPAT20's 8-bit sky-view table      */
+    sky_hillaire_tables tables;      /* tables.skyview: the table in use        */
+    unsigned char *skyview_encoded;  /* COMPAT20's 8-bit sky-view table in use  */
+    skyview_build build;             /* COMPAT20: the next one                  */
     int skyview_valid, skyview_uploaded; /* CPU table (COMPAT20) or GPU build done */
+    /* the table in use: its sun, altitude and encoding floor */
     double skyview_sun_mu, skyview_altitude_km, skyview_log2_floor;
+    double drawn_sun_mu;             /* the sun at the last draw: jumps are measured from it */
     sky_program transmittance_build, multiscatter_build, skyview_build; /* CORE33 */
     GLuint fbo;                      /* CORE33: renders into each table in turn */
 };
@@ -181,8 +229,11 @@ int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t
     } else {
         sky_hillaire_build_transmittance(&hs->tables);
         sky_hillaire_build_multiscatter(&hs->tables);
-        hs->skyview_encoded = malloc((size_t)set->skyview_width * set->skyview_height * 4);
-        if (!hs->skyview_encoded) {
+        size_t texels = (size_t)set->skyview_width * set->skyview_height;
+        hs->skyview_encoded = malloc(texels * 4);
+        hs->build.encoded = malloc(texels * 4);
+        hs->build.table = malloc(texels * 3 * sizeof(float));
+        if (!hs->skyview_encoded || !hs->build.encoded || !hs->build.table) {
             sky_format(err, err_len, "out of memory for the sky-view texture");
             return -1;
         }
@@ -201,25 +252,35 @@ void sky_hillaire_destroy(sky_core *s, sky_hillaire_state *hs)
     sky_program_destroy(s, &hs->skyview_build);
     sky_hillaire_free(&hs->tables);
     free(hs->skyview_encoded);
+    free(hs->build.encoded);
+    free(hs->build.table);
     free(hs);
 }
 
-/* COMPAT20's encoding: a 16-bit level of log2 luminance over the table's
- * top SKYVIEW_STOPS stops (0: black, below them), high byte in R and low
- * byte in G, and the rg chromaticity in B and A. */
-static void encode_skyview(sky_hillaire_state *hs, double log2_floor)
+/* Luminance of the brightest texel of a row (the encoding's top). */
+static double row_brightest(const float *row, int w)
 {
-    const sky_hillaire_settings *set = &hs->tables.settings;
-    int n = set->skyview_width * set->skyview_height;
-    const float *t = hs->tables.skyview;
-    for (int i = 0; i < n; i++) {
-        double r = fmax(t[3 * i], 0.0), g = fmax(t[3 * i + 1], 0.0), b = fmax(t[3 * i + 2], 0.0);
+    double brightest = 0.0;
+    for (int i = 0; i < w; i++)
+        brightest = fmax(brightest, 0.2126 * row[3 * i] + 0.7152 * row[3 * i + 1] + 0.0722 * row[3 * i + 2]);
+    return brightest;
+}
+
+/* COMPAT20's encoding of rows row0 .. row1 - 1: a 16-bit level of log2
+ * luminance over the table's top SKYVIEW_STOPS stops (0: black, below
+ * them), high byte in R and low byte in G, and the rg chromaticity in B
+ * and A. */
+static void encode_rows(const float *table, unsigned char *encoded, int w, int row0, int row1, double log2_floor)
+{
+    for (int i = row0 * w; i < row1 * w; i++) {
+        const float *t = table + 3 * (size_t)i;
+        double r = fmax(t[0], 0.0), g = fmax(t[1], 0.0), b = fmax(t[2], 0.0);
         double sum = r + g + b, Y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
         /* level 0 is black (the ground in the planet's shadow), the rest
          * the log scale from the floor up */
         double level = Y > 0.0 ? (log2(Y) - log2_floor) / SKYVIEW_STOPS : -1.0;
         unsigned q = level > 0.0 ? (unsigned)lround(sky_clampd(level, 1.0 / 65535.0, 1.0) * 65535.0) : 0u;
-        unsigned char *o = hs->skyview_encoded + 4 * i;
+        unsigned char *o = encoded + 4 * (size_t)i;
         o[0] = (unsigned char)(q >> 8);
         o[1] = (unsigned char)(q & 255u);
         o[2] = (unsigned char)lround(255.0 * (sum > 0.0 ? r / sum : 1.0 / 3.0));
@@ -227,45 +288,119 @@ static void encode_skyview(sky_hillaire_state *hs, double log2_floor)
     }
 }
 
+static void build_start(skyview_build *b, double altitude_km, double sun_mu)
+{
+    b->active = 1;
+    b->next = 0;
+    b->sun_mu = sun_mu;
+    b->altitude_km = altitude_km;
+    b->brightest = 0.0;
+}
+
+/* Runs the build on, a unit at a time: a row built (hillaire_cpu.c marches
+ * each row on its own), or, once all are built and the brightest texel is
+ * known, a row encoded. With budget_ms < 0, to the end; else until the
+ * next unit would pass budget_ms since the call began, judged by the
+ * dearest unit of this call (at least one unit a call, so that every call
+ * moves it on; a clock that steps back ends the slice too). Returns 1 when
+ * the table is complete. */
+static int build_run(sky_hillaire_state *hs, double budget_ms)
+{
+    skyview_build *b = &hs->build;
+    int w = hs->tables.settings.skyview_width, h = hs->tables.settings.skyview_height;
+    double t0 = budget_ms >= 0.0 ? sky_now_ms() : 0.0, last = t0, dearest = 0.0;
+    for (int units = 0; b->next < 2 * h; units++) {
+        if (budget_ms >= 0.0 && units > 0) {
+            double now = sky_now_ms(), spent = now - t0;
+            dearest = fmax(dearest, now - last);
+            last = now;
+            if (!(spent >= 0.0 && spent + dearest <= budget_ms)) return 0;
+        }
+        if (b->next < h) {
+            int j = b->next;
+            sky_hillaire_build_skyview_rows(&hs->tables, b->altitude_km, b->sun_mu, j, j + 1, b->table);
+            b->brightest = fmax(b->brightest, row_brightest(b->table + (size_t)j * w * 3, w));
+        } else {
+            int j = b->next - h;
+            if (j == 0) b->log2_floor = log2(fmax(b->brightest, 1e-30)) - SKYVIEW_STOPS;
+            encode_rows(b->table, b->encoded, w, j, j + 1, b->log2_floor);
+        }
+        b->next++;
+    }
+    return 1;
+}
+
+/* The finished build becomes the table in use (its buffers take the old
+ * table's, for the next build); the next draw uploads it. */
+static void build_install(sky_hillaire_state *hs)
+{
+    skyview_build *b = &hs->build;
+    sky_hillaire_install_skyview(&hs->tables, &b->table, b->altitude_km, b->sun_mu);
+    unsigned char *shown = hs->skyview_encoded;
+    hs->skyview_encoded = b->encoded;
+    b->encoded = shown;
+    hs->skyview_log2_floor = b->log2_floor;
+    hs->skyview_sun_mu = b->sun_mu;
+    hs->skyview_altitude_km = b->altitude_km;
+    hs->skyview_valid = 1;
+    hs->skyview_uploaded = 0;
+    b->active = 0;
+}
+
 int sky_hillaire_frame(sky_core *s, sky_hillaire_state *hs)
 {
     sky_frame *f = &s->frame;
     if (!hs) return 0;
-    sky_hillaire_tables *t = &hs->tables;
     int rebuilt = 0;
-    const sky_hillaire_settings *set = &t->settings;
+    const sky_hillaire_settings *set = &hs->tables.settings;
     double R = s->atm.planet_radius_km, top = s->atm.top_radius_km;
     double alt_km = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, top - R);
     double mu = sky_clampd(f->sun_dir[1], -1.0, 1.0);
-    if (!hs->skyview_valid || fabs(asin(mu) - asin(hs->skyview_sun_mu)) > SKYVIEW_SUN_THRESHOLD ||
-        fabs(alt_km - hs->skyview_altitude_km) > SKYVIEW_ALTITUDE_THRESHOLD_KM) {
-        if (hs->skyview_encoded) { /* COMPAT20: on the CPU now; CORE33: on the GPU in sky_draw */
-            double t0 = sky_now_ms();
-            sky_hillaire_build_skyview(t, alt_km, mu);
-            double brightest = 0.0;
-            int n = set->skyview_width * set->skyview_height;
-            for (int i = 0; i < n; i++)
-                brightest = fmax(brightest, 0.2126 * t->skyview[3 * i] + 0.7152 * t->skyview[3 * i + 1] +
-                                                0.0722 * t->skyview[3 * i + 2]);
-            hs->skyview_log2_floor = log2(fmax(brightest, 1e-30)) - SKYVIEW_STOPS;
-            encode_skyview(hs, hs->skyview_log2_floor);
-            s->lut_ms += sky_now_ms() - t0;
+    int moved_alt = !hs->skyview_valid || fabs(alt_km - hs->skyview_altitude_km) > SKYVIEW_ALTITUDE_THRESHOLD_KM;
+    int stale = moved_alt || fabs(asin(mu) - asin(hs->skyview_sun_mu)) > SKYVIEW_SUN_THRESHOLD;
+    if (!hs->skyview_encoded) {
+        /* CORE33: on the GPU in sky_draw */
+        if (stale) {
+            hs->skyview_sun_mu = mu;
+            hs->skyview_altitude_km = alt_km;
+            hs->skyview_valid = 1;
+            hs->skyview_uploaded = 0;
+            rebuilt = 1;
         }
-        f->hl_geometry[3] = (float)(R + alt_km);
-        f->hl_misc.sun_mu = (float)mu;
-        hs->skyview_sun_mu = mu;
-        hs->skyview_altitude_km = alt_km;
-        hs->skyview_valid = 1;
-        hs->skyview_uploaded = 0;
-        rebuilt = 1;
+    } else if (!stale) {
+        /* the table in use still fits (the sun came back): a build for
+         * another sun is dropped */
+        hs->build.active = 0;
+    } else {
+        /* COMPAT20: on the CPU now, at once or a slice (SKYVIEW_SUN_JUMP) */
+        double t0 = sky_now_ms();
+        if (!hs->skyview_valid) hs->drawn_sun_mu = mu; /* creation: the first frame */
+        if (moved_alt || fabs(asin(mu) - asin(sky_clampd(hs->drawn_sun_mu, -1.0, 1.0))) > SKYVIEW_SUN_JUMP) {
+            build_start(&hs->build, alt_km, mu);
+            build_run(hs, -1.0);
+            build_install(hs);
+            rebuilt = 1;
+        } else {
+            if (!hs->build.active) build_start(&hs->build, alt_km, mu);
+            if (build_run(hs, SKYVIEW_SLICE_MS)) {
+                build_install(hs);
+                rebuilt = 1;
+            }
+        }
+        s->lut_ms += sky_now_ms() - t0;
     }
+    /* everything below describes the table in use (the one on the GPU,
+     * or going there at the next draw), not the sun of this frame */
+    f->hl_geometry[3] = (float)(R + hs->skyview_altitude_km);
+    f->hl_misc.sun_mu = (float)hs->skyview_sun_mu;
     const sky_texture *tex = &s->textures[SKY_TEX_SKYVIEW];
     f->skyview_map[0] = (float)set->skyview_width;
     f->skyview_map[1] = (float)set->skyview_height;
     f->skyview_map[2] = tex->width ? (float)set->skyview_width / (float)tex->width : 1.0f;
     f->skyview_map[3] = tex->height ? (float)set->skyview_height / (float)tex->height : 1.0f;
-    /* the geometric horizon of an observer at r: the tangent to the ground */
-    double theta_h = SKY_PI - asin(sky_clampd(R / (R + alt_km), 0.0, 1.0));
+    /* the geometric horizon of an observer at r: the tangent to the
+     * ground (the table's rows put it at v = 0.5) */
+    double theta_h = SKY_PI - asin(sky_clampd(R / (R + hs->skyview_altitude_km), 0.0, 1.0));
     f->skyview_horizon[0] = (float)theta_h;
     f->skyview_horizon[1] = (float)(SKY_PI - theta_h);
     f->skyview_decode[0] = hs->skyview_encoded ? 1.0f : 0.0f;
@@ -288,7 +423,9 @@ static void build_on_gpu(sky_core *s, sky_hillaire_state *hs)
 
 void sky_hillaire_upload(sky_core *s, sky_hillaire_state *hs)
 {
-    if (!hs || hs->skyview_uploaded || !hs->skyview_valid) return;
+    if (!hs) return;
+    hs->drawn_sun_mu = s->frame.sun_dir[1]; /* what the next jump is measured from */
+    if (hs->skyview_uploaded || !hs->skyview_valid) return;
     const sky_hillaire_settings *set = &hs->tables.settings;
     if (hs->skyview_encoded)
         sky_texture_update_lut(s, SKY_TEX_SKYVIEW, set->skyview_width, set->skyview_height, hs->skyview_encoded, NULL);
@@ -314,6 +451,23 @@ void sky_hillaire_eval(const sky_core *s, const sky_hillaire_state *hs, const do
     double sun[3] = {f->sun_dir[0], f->sun_dir[1], f->sun_dir[2]};
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     if (!hs) return;
+    /* the sun at the elevation of the table in use, at its own azimuth:
+     * the summary made from this (the host's ambient and fog, the
+     * exposure) belongs to the sky on screen, which lags a moving sun
+     * while COMPAT20 builds the next table. A table built for this very
+     * sun takes the sun as it is. */
+    double mu = hs->skyview_sun_mu;
+    if (mu != sun[1]) {
+        double across = hypot(sun[0], sun[2]), c = sqrt(fmax(0.0, 1.0 - mu * mu));
+        if (across > 1e-9) {
+            sun[0] *= c / across;
+            sun[2] *= c / across;
+        } else {
+            sun[0] = c;
+            sun[2] = 0.0;
+        }
+        sun[1] = mu;
+    }
     sky_hillaire_ray(&hs->tables, hs->skyview_altitude_km, d, sun, rgb);
     for (int i = 0; i < 3; i++) rgb[i] *= f->sun_irradiance[i];
 }
