@@ -106,6 +106,10 @@ int test_skipped;
     X(hillaire_finite_everywhere)                \
     X(hillaire_build_times)                      \
     X(hillaire_bad_input)                        \
+    X(hillaire_timelapse_under_1ms_a_frame)      \
+    X(hillaire_timelapse_shows_whole_tables)     \
+    X(hillaire_timelapse_settles_on_exact_table) \
+    X(hillaire_jump_builds_at_once)              \
     X(cli_outputs_png_pfm_stats)
 
 #define DECLARE(name) void test_##name(void);
