@@ -3,16 +3,26 @@
  * measured in the same run — a full-screen quad with one texture fetch,
  * the cheapest thing a sky could possibly be.
  *
- *   sky-bench [--json] [--size WxH] [--frames N] [--reference FILE] [--only-atmosphere | --only-presets]
- *             [--plot FILE.png]
+ *   sky-bench [--json] [--size WxH] [--frames N] [--rounds R] [--reference FILE]
+ *             [--only-atmosphere | --only-presets] [--plot FILE.png]
  *   sky-bench --stability [--json]
  *   sky-bench --make-reference FILE [--paths N]
  *
  * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
- * draws, frame ms (median of N) and its ratio to the baseline of the same
- * profile; then, per atmosphere path, setting and profile: frame ms of the
- * sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and its
- * error against the cached CPU reference (tools/atmo_error.c).
+ * draws, frame ms and its ratio to the baseline of the same profile. Then, per atmosphere path, setting and profile: frame ms of
+ * the sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and
+ * its error against the cached CPU reference (tools/atmo_error.c).
+ *
+ * Frame times are interleaved: R rounds; in each, every row is measured
+ * right after a measurement of the baseline (median of N frames each), so
+ * that a ratio compares two figures taken a fraction of a second apart. A
+ * row's frame ms and ratio are medians over the rounds. The reason: on a
+ * machine of two cores, llvmpipe's speed depends on what else runs. With
+ * the cores to itself the baseline takes 2.1 ms at 1280x720; while another
+ * process keeps one core busy it takes 4.0 ms (this process then gets one
+ * CPU's worth of time, as LP_NUM_THREADS=1 does), for as long as that
+ * process runs, seconds or minutes. Neither warm-up nor more frames
+ * change that; the rounds print the CPUs that other processes used.
  */
 #define GL_GLEXT_PROTOTYPES 1
 #include "atmo_error.h"
@@ -23,14 +33,112 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <GL/osmesa.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+enum { MAX_ROUNDS = 50, MAX_SUBJECTS = 16 };
+
+/* ---- full-screen draws of our own: the baseline and Roden & Parberry's shader ---------------- */
+
+/* One full-screen triangle strip with its program, textures and vertices,
+ * kept in a context of its own across the rounds (so nothing else changes
+ * its state between them). */
+typedef struct quad {
+    GLuint prog, buf, vao, tex[4];
+    int ntex, core;
+    size_t bytes; /* textures and vertices */
+} quad;
+
+static GLuint shader(GLenum type, const char *const *src, int n)
+{
+    GLuint sh = glCreateShader(type);
+    glShaderSource(sh, n, src, NULL);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        fprintf(stderr, "sky-bench: %s shader: %s\n", type == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+    }
+    return sh;
+}
+
+/* A program from sources given in parts (a version prologue first);
+ * attribute i is bound to attribs[i]. 0 if it does not link. */
+static GLuint program(const char *const *vs, int nvs, const char *const *fs, int nfs, const char *const *attribs,
+                      int nattribs)
+{
+    GLuint v = shader(GL_VERTEX_SHADER, vs, nvs), f = shader(GL_FRAGMENT_SHADER, fs, nfs), p = glCreateProgram();
+    glAttachShader(p, v);
+    glAttachShader(p, f);
+    for (int i = 0; i < nattribs; i++) glBindAttribLocation(p, (GLuint)i, attribs[i]);
+    glLinkProgram(p);
+    glDeleteShader(v); /* flagged: they go with the program */
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glDeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+/* A 512x512 RGBA8 texture, linear, repeating, no mipmaps (as the
+ * library's and the baseline's). */
+static GLuint texture_512(const unsigned char *texels)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 512, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    return tex;
+}
+
+/* The vertices (floats, stride floats each, the position first) into a
+ * buffer, attribute i taking sizes[i] floats; the program in use. */
+static void quad_vertices(quad *q, const float *v, int stride, const int *sizes, int nattribs)
+{
+    if (q->core) {
+        glGenVertexArrays(1, &q->vao);
+        glBindVertexArray(q->vao);
+    }
+    glGenBuffers(1, &q->buf);
+    glBindBuffer(GL_ARRAY_BUFFER, q->buf);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 4 * (size_t)stride), v, GL_STATIC_DRAW);
+    q->bytes += sizeof(float) * 4 * (size_t)stride;
+    for (int i = 0, at = 0; i < nattribs; at += sizes[i++]) {
+        glVertexAttribPointer((GLuint)i, sizes[i], GL_FLOAT, GL_FALSE, (GLsizei)(sizeof(float) * (size_t)stride),
+                              (const void *)(sizeof(float) * (size_t)at));
+        glEnableVertexAttribArray((GLuint)i);
+    }
+    glUseProgram(q->prog);
+}
+
+static void quad_destroy(quad *q)
+{
+    glDeleteBuffers(1, &q->buf);
+    if (q->core) glDeleteVertexArrays(1, &q->vao);
+    glDeleteTextures(q->ntex, q->tex);
+    glDeleteProgram(q->prog);
+    memset(q, 0, sizeof *q);
+}
 
 /* The baseline: one full-screen triangle strip, one RGBA8 512x512 texture
- * fetch per pixel, written straight out. */
-static double baseline_ms(int core, int frames)
+ * fetch per pixel, written straight out. What it draws is fixed: every
+ * ratio that sky-bench has ever printed divides by it. */
+static int baseline_create(quad *q, int core)
 {
     const char *vs = core ? "#version 330 core\nin vec2 p;\nout vec2 uv;\n"
                             "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,0.0,1.0);}\n"
@@ -40,42 +148,32 @@ static double baseline_ms(int core, int frames)
                             "void main(){c=texture(t,uv*3.0);}\n"
                           : "#version 110\nvarying vec2 uv;\nuniform sampler2D t;\n"
                             "void main(){gl_FragColor=texture2D(t,uv*3.0);}\n";
-    GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER), p = glCreateProgram();
-    glShaderSource(v, 1, &vs, NULL);
-    glShaderSource(f, 1, &fs, NULL);
-    glCompileShader(v);
-    glCompileShader(f);
-    glAttachShader(p, v);
-    glAttachShader(p, f);
-    glBindAttribLocation(p, 0, "p");
-    glLinkProgram(p);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) return -1.0;
+    static const char *const attribs[1] = {"p"};
+    memset(q, 0, sizeof *q);
+    q->core = core;
+    q->prog = program(&vs, 1, &fs, 1, attribs, 1);
+    if (!q->prog) return -1;
     unsigned char *texels = malloc(512 * 512 * 4);
+    if (!texels) return -1;
     for (int i = 0; i < 512 * 512 * 4; i++) texels[i] = (unsigned char)(i * 2654435761u >> 24);
-    GLuint tex, buf, vao = 0;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 512, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    q->tex[q->ntex++] = texture_512(texels);
+    q->bytes += 512 * 512 * 4;
     free(texels);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    if (core) {
-        glGenVertexArrays(1, &vao);
-        glBindVertexArray(vao);
-    }
-    static const float quad[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
-    glGenBuffers(1, &buf);
-    glBindBuffer(GL_ARRAY_BUFFER, buf);
-    glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    glEnableVertexAttribArray(0);
-    glUseProgram(p);
-    glUniform1i(glGetUniformLocation(p, "t"), 0);
+    static const float strip[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    static const int sizes[1] = {2};
+    quad_vertices(q, strip, 2, sizes, 1);
+    glUniform1i(glGetUniformLocation(q->prog, "t"), 0);
+    return 0;
+}
+
+/* Median ms of frames draws of the current context's quad (its context
+ * holds its program, buffers and textures), each waited for; the first
+ * draw of the call is not counted. */
+static double quad_time(int frames)
+{
     double *t = malloc(sizeof(double) * (size_t)frames);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4); /* warm-up: shader JIT */
+    if (!t) return -1.0;
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     glFinish();
     for (int i = 0; i < frames; i++) {
         double t0 = sky_cli_now_ms();
@@ -85,61 +183,76 @@ static double baseline_ms(int core, int frames)
     }
     double m = sky_cli_median(t, frames);
     free(t);
-    glDisableVertexAttribArray(0);
-    glDeleteBuffers(1, &buf);
-    if (core) glDeleteVertexArrays(1, &vao);
-    glDeleteTextures(1, &tex);
-    glDeleteProgram(p);
-    glDeleteShader(v);
-    glDeleteShader(f);
     return m;
 }
+
+/* ---- skies ------------------------------------------------------------------------------------ */
 
 typedef struct row {
     const char *preset;
     const char *profile;
     double frame_ms, ratio;
+    double ratio_min, ratio_max; /* over the rounds */
     double layer_ms[SKY_LAYER_COUNT]; /* medians with profile_layers, -1 if never drawn alone */
     double lut_start_ms, lut_rebuild_ms; /* tables built by creation; a rebuild after the sun moved */
     sky_stats st;
 } row;
 
-/* Median frame ms of the scene described by command-line style options. */
-static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h, int frames, row *out)
-{
+/* Something timed in the rounds: a quad of our own or a sky, each in a
+ * context of its own (the library allows one sky per context). */
+typedef struct subject {
+    sky_osmesa ctx;
+    quad q;
+    sky *s;
     sky_cli cli;
+    float view[16], proj[16];
+    row r;
+    double ms[MAX_ROUNDS], ratio[MAX_ROUNDS];
+} subject;
+
+static void make_current(const sky_osmesa *o)
+{
+    OSMesaMakeCurrent((OSMesaContext)o->ctx, o->pixels, o->is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, o->width,
+                      o->height);
+}
+
+/* A sky described by command-line style options, in a new context. With
+ * extras, also the per-layer GPU times and a table rebuild, measured on a
+ * profiling sky that is gone before the measured one is made. */
+static int subject_sky(subject *sub, int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h,
+                       int frames, int extras)
+{
     char err[512];
-    if (sky_cli_parse(&cli, argc, argv, 0, err, sizeof err)) {
+    memset(sub, 0, sizeof *sub);
+    row *out = &sub->r;
+    if (sky_cli_parse(&sub->cli, argc, argv, 0, err, sizeof err)) {
         fprintf(stderr, "sky-bench: %s\n", err);
         return -1;
     }
-    cli.gl = gl;
-    cli.width = w;
-    cli.height = h;
-    sky_config cfg = sky_cli_config(&cli, sky_osmesa_loader());
-    sky *s = sky_create(&cfg, err, sizeof err);
-    if (!s) {
-        fprintf(stderr, "sky-bench: %s: %s\n", name, err);
+    if (sky_osmesa_create(&sub->ctx, w, h, gl, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-bench: %s\n", err);
         return -1;
     }
-    sky_set_params(s, &cli.params);
-    sky_set_observer(s, &cli.observer);
-    float view[16], proj[16];
-    sky_cli_camera(&cli, view, proj);
-    /* per-layer GPU time: a second sky with profile_layers (it waits for
-     * the GPU around each draw, so it is kept out of the frame timing) */
+    sky_cli *cli = &sub->cli;
+    cli->gl = gl;
+    cli->width = w;
+    cli->height = h;
+    sky_cli_camera(cli, sub->view, sub->proj);
+    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
+    double *lt = extras ? malloc(sizeof(double) * (size_t)frames * SKY_LAYER_COUNT) : NULL;
+    /* per-layer GPU time: a sky with profile_layers (it waits for the GPU
+     * around each draw, so it is kept out of the frame timing) */
     sky_config pcfg = cfg;
     pcfg.profile_layers = 1;
-    sky *ps = sky_create(&pcfg, err, sizeof err);
-    double *lt = malloc(sizeof(double) * (size_t)frames * SKY_LAYER_COUNT);
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
-    if (ps && lt) {
-        sky_set_params(ps, &cli.params);
-        sky_set_observer(ps, &cli.observer);
-        sky_draw(ps, view, proj);
+    sky *ps = lt ? sky_create(&pcfg, err, sizeof err) : NULL;
+    if (ps) {
+        sky_set_params(ps, &cli->params);
+        sky_set_observer(ps, &cli->observer);
+        sky_draw(ps, sub->view, sub->proj);
         int n[SKY_LAYER_COUNT] = {0};
         for (int i = 0; i < frames; i++) {
-            sky_draw(ps, view, proj);
+            sky_draw(ps, sub->view, sub->proj);
             sky_stats st;
             sky_get_stats(ps, &st);
             for (int l = 0; l < SKY_LAYER_COUNT; l++)
@@ -147,47 +260,178 @@ static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl
         }
         for (int l = 0; l < SKY_LAYER_COUNT; l++)
             if (n[l]) out->layer_ms[l] = sky_cli_median(lt + l * frames, n[l]);
-    }
-    /* a table rebuild, on the profiling sky (its GPU builds are timed to
-     * completion): the sun moved 0.36 degree a frame, past every rebuild
-     * threshold; CPU builds happen in sky_set_params, GPU builds in sky_draw */
-    out->lut_rebuild_ms = 0.0;
-    if (ps && lt) {
-        sky_params moved = cli.params;
-        int n = frames < 10 ? frames : 10;
-        for (int i = 0; i < n; i++) {
-            moved.time = cli.params.time + 0.001f * (float)(i + 1);
+        /* a table rebuild, on the profiling sky (its GPU builds are timed
+         * to completion): the sun moved 0.36 degree a frame, past every
+         * rebuild threshold; CPU builds happen in sky_set_params, GPU
+         * builds in sky_draw */
+        sky_params moved = cli->params;
+        int nr = frames < 10 ? frames : 10;
+        for (int i = 0; i < nr; i++) {
+            moved.time = cli->params.time + 0.001f * (float)(i + 1);
             sky_set_params(ps, &moved);
-            sky_draw(ps, view, proj);
+            sky_draw(ps, sub->view, sub->proj);
             sky_stats st;
             sky_get_stats(ps, &st);
             lt[i] = st.lut_ms;
         }
-        out->lut_rebuild_ms = sky_cli_median(lt, n);
+        out->lut_rebuild_ms = sky_cli_median(lt, nr);
     }
     free(lt);
     sky_destroy(ps);
-    double *t = malloc(sizeof(double) * (size_t)frames);
-    sky_draw(s, view, proj); /* warm-up: shader JIT */
+    sub->s = sky_create(&cfg, err, sizeof err);
+    if (!sub->s) {
+        fprintf(stderr, "sky-bench: %s: %s\n", name, err);
+        return -1;
+    }
+    sky_set_params(sub->s, &cli->params);
+    sky_set_observer(sub->s, &cli->observer);
+    sky_draw(sub->s, sub->view, sub->proj); /* shader JIT */
     glFinish();
     /* lookup tables: what creation built (reported by the first draw) */
     sky_stats first;
-    sky_get_stats(s, &first);
+    sky_get_stats(sub->s, &first);
     out->lut_start_ms = first.lut_ms;
+    out->preset = name;
+    out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
+    return 0;
+}
+
+/* The baseline in a new context. */
+static int subject_quad(subject *sub, sky_gl_profile gl, int w, int h)
+{
+    char err[512];
+    memset(sub, 0, sizeof *sub);
+    if (sky_osmesa_create(&sub->ctx, w, h, gl, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-bench: %s\n", err);
+        return -1;
+    }
+    int core = gl == SKY_GL_CORE33;
+    if (baseline_create(&sub->q, core)) {
+        fprintf(stderr, "sky-bench: the baseline shader failed\n");
+        return -1;
+    }
+    sub->r.preset = "baseline";
+    sub->r.profile = core ? "core" : "compat";
+    return 0;
+}
+
+/* Median frame ms of a subject now, in its context. A sky's first frame
+ * in each call is not counted, as the quad's. */
+static double subject_time(subject *sub, int frames)
+{
+    make_current(&sub->ctx);
+    if (!sub->s) return quad_time(frames);
+    double *t = malloc(sizeof(double) * (size_t)frames);
+    if (!t) return -1.0;
+    sky_update(sub->s, 1.0 / 60.0);
+    sky_draw(sub->s, sub->view, sub->proj);
+    glFinish();
     for (int i = 0; i < frames; i++) {
-        sky_update(s, 1.0 / 60.0);
+        sky_update(sub->s, 1.0 / 60.0);
         double t0 = sky_cli_now_ms();
-        sky_draw(s, view, proj);
+        sky_draw(sub->s, sub->view, sub->proj);
         glFinish();
         t[i] = sky_cli_now_ms() - t0;
     }
-    out->frame_ms = sky_cli_median(t, frames);
+    double m = sky_cli_median(t, frames);
     free(t);
-    sky_get_stats(s, &out->st);
-    out->preset = name;
-    out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
-    sky_destroy(s);
+    sky_get_stats(sub->s, &sub->r.st);
+    return m;
+}
+
+static void subject_close(subject *sub)
+{
+    if (!sub->ctx.ctx) return;
+    make_current(&sub->ctx);
+    if (sub->s) sky_destroy(sub->s);
+    if (sub->q.prog) quad_destroy(&sub->q);
+    sky_osmesa_destroy(&sub->ctx);
+    sub->s = NULL;
+}
+
+/* CPU seconds spent by every process on the machine (/proc/stat), and by
+ * this one: what others took during a round tells whether llvmpipe had
+ * both cores. -1 where there is no /proc. */
+static double machine_busy_s(void)
+{
+    FILE *f = fopen("/proc/stat", "r");
+    if (!f) return -1.0;
+    unsigned long long v[8];
+    int n = fscanf(f, "cpu %llu %llu %llu %llu %llu %llu %llu %llu", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6],
+                   &v[7]);
+    fclose(f);
+    if (n != 8) return -1.0;
+    /* user, nice, system, irq, softirq, steal; not idle or iowait */
+    return (double)(v[0] + v[1] + v[2] + v[5] + v[6] + v[7]) / (double)sysconf(_SC_CLK_TCK);
+}
+
+static double own_busy_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+/* The rounds of one table: the baseline's figure and the CPUs that other
+ * processes used, per round. */
+typedef struct rounds_info {
+    int n;
+    double base_ms[MAX_ROUNDS], others_cpus[MAX_ROUNDS];
+} rounds_info;
+
+/* The interleaved rounds. In each, every row is measured right after a
+ * measurement of the baseline (subs[0]), and its ratio for the round is
+ * to that one: the two are a fraction of a second apart, while a whole
+ * round takes seconds, time enough for another process to take a core
+ * away or give it back. The round's baseline figure is the median of its
+ * measurements. A row's frame ms and ratio are the medians over the
+ * rounds of its figures. */
+static int run_rounds(subject *subs, int n, int rounds, int frames, rounds_info *info)
+{
+    if (n < 2 || n > MAX_SUBJECTS) return -1;
+    info->n = rounds;
+    for (int k = 0; k < rounds; k++) {
+        double wall0 = sky_cli_now_ms(), busy0 = machine_busy_s(), own0 = own_busy_s();
+        double base[MAX_SUBJECTS];
+        for (int i = 1; i < n; i++) {
+            base[i - 1] = subject_time(&subs[0], frames);
+            subs[i].ms[k] = subject_time(&subs[i], frames);
+            if (base[i - 1] <= 0.0 || subs[i].ms[k] <= 0.0) {
+                fprintf(stderr, "sky-bench: %s: timing failed\n", subs[i].r.preset);
+                return -1;
+            }
+            subs[i].ratio[k] = subs[i].ms[k] / base[i - 1];
+        }
+        subs[0].ms[k] = info->base_ms[k] = sky_cli_median(base, n - 1);
+        subs[0].ratio[k] = 1.0;
+        double busy1 = machine_busy_s(), wall = (sky_cli_now_ms() - wall0) * 1e-3;
+        info->others_cpus[k] = busy0 < 0.0 || busy1 < 0.0 ? -1.0 : fmax(0.0, (busy1 - busy0 - (own_busy_s() - own0)) / wall);
+    }
+    for (int i = 0; i < n; i++) {
+        double ms[MAX_ROUNDS], ratio[MAX_ROUNDS];
+        memcpy(ms, subs[i].ms, sizeof(double) * (size_t)rounds);
+        memcpy(ratio, subs[i].ratio, sizeof(double) * (size_t)rounds);
+        row *r = &subs[i].r;
+        r->frame_ms = sky_cli_median(ms, rounds);
+        r->ratio = sky_cli_median(ratio, rounds); /* which sorts them: */
+        r->ratio_min = ratio[0];
+        r->ratio_max = ratio[rounds - 1];
+    }
     return 0;
+}
+
+/* Median frame ms of the scene described by command-line style options,
+ * measured once (no rounds), with its per-layer and table figures. */
+static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h, int frames, row *out)
+{
+    subject sub;
+    int rc = subject_sky(&sub, argc, argv, name, gl, w, h, frames, 1);
+    if (!rc) {
+        sub.r.frame_ms = subject_time(&sub, frames);
+        *out = sub.r;
+    }
+    subject_close(&sub);
+    return rc;
 }
 
 /* Microseconds per full astronomy update (sun, moon, phase, libration,
@@ -211,10 +455,30 @@ static double astro_us(int n)
     return sink == sink ? m : -1.0; /* keeps the work from being optimised away */
 }
 
-static int bench_preset(const char *preset, sky_gl_profile gl, int w, int h, int frames, row *out)
+/* The preset table of one profile, interleaved: the baseline and every
+ * preset in each round. Writes np rows and the baseline's per-round
+ * figures. */
+static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, int w, int h, int frames, int rounds,
+                         row *rows, double *base_ms, rounds_info *info)
 {
-    char *argv[] = {"sky-bench", "--preset", (char *)preset, NULL};
-    return bench_args(3, argv, preset, gl, w, h, frames, out);
+    int n = 1 + np, rc = 0;
+    subject *subs = calloc((size_t)n, sizeof *subs);
+    if (!subs) return -1;
+    for (int i = 0; i < n && !rc; i++)
+        if (!i)
+            rc = subject_quad(&subs[i], gl, w, h);
+        else {
+            char *argv[] = {"sky-bench", "--preset", (char *)presets[i - 1], NULL};
+            rc = subject_sky(&subs[i], 3, argv, presets[i - 1], gl, w, h, frames, 0);
+        }
+    if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
+    if (!rc) {
+        for (int i = 1; i < n; i++) rows[i - 1] = subs[i].r;
+        *base_ms = subs[0].r.frame_ms;
+    }
+    for (int i = 0; i < n; i++) subject_close(&subs[i]);
+    free(subs);
+    return rc;
 }
 
 /* Mueller's night layers on their own: the frame with the layer minus the
@@ -244,6 +508,7 @@ static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_m
     return 0;
 }
 
+
 /* ---- atmosphere paths: run time against error ------------------------------------------------ */
 
 typedef struct atmo_setting {
@@ -266,7 +531,7 @@ enum { ATMO_SETTINGS = sizeof atmo_settings / sizeof atmo_settings[0] };
 typedef struct atmo_row {
     const atmo_setting *setting;
     const char *profile;
-    double frame_ms, ratio, lut_start_ms, lut_rebuild_ms;
+    double frame_ms, ratio, ratio_min, ratio_max, lut_start_ms, lut_rebuild_ms;
     sky_atmo_errors err;
 } atmo_row;
 
@@ -277,22 +542,37 @@ static int setting_argv(const atmo_setting *a, char **argv, int argc)
     return argc;
 }
 
-/* One setting in one profile: the frame of the full sky's atmosphere and
- * sun at the bench size (the default camera of sky-render, morning sun). */
-static int bench_atmosphere(const atmo_setting *a, sky_gl_profile gl, int w, int h, int frames, double baseline,
-                            atmo_row *out)
+/* Every setting in one profile, interleaved with the baseline as the
+ * presets are: the frame of the full sky's atmosphere and sun at the bench
+ * size (the default camera of sky-render, morning sun). */
+static int bench_atmosphere(sky_gl_profile gl, int w, int h, int frames, int rounds, atmo_row *out, double *base_ms,
+                            rounds_info *info)
 {
-    char *argv[12] = {"sky-bench", "--features", "sun", "--time", "0.35"};
-    int argc = setting_argv(a, argv, 5);
-    row r;
-    if (bench_args(argc, argv, a->path, gl, w, h, frames, &r)) return -1;
-    out->setting = a;
-    out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
-    out->frame_ms = r.frame_ms;
-    out->ratio = r.frame_ms / baseline;
-    out->lut_start_ms = r.lut_start_ms;
-    out->lut_rebuild_ms = r.lut_rebuild_ms;
-    return 0;
+    int n = 1 + ATMO_SETTINGS;
+    subject *subs = calloc((size_t)n, sizeof *subs);
+    if (!subs) return -1;
+    int rc = subject_quad(&subs[0], gl, w, h);
+    for (int a = 0; a < ATMO_SETTINGS && !rc; a++) {
+        char *argv[12] = {"sky-bench", "--features", "sun", "--time", "0.35"};
+        int argc = setting_argv(&atmo_settings[a], argv, 5);
+        rc = subject_sky(&subs[1 + a], argc, argv, atmo_settings[a].path, gl, w, h, frames, 1);
+    }
+    if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
+    for (int a = 0; a < ATMO_SETTINGS && !rc; a++) {
+        const row *r = &subs[1 + a].r;
+        out[a].setting = &atmo_settings[a];
+        out[a].profile = r->profile;
+        out[a].frame_ms = r->frame_ms;
+        out[a].ratio = r->ratio;
+        out[a].ratio_min = r->ratio_min;
+        out[a].ratio_max = r->ratio_max;
+        out[a].lut_start_ms = r->lut_start_ms;
+        out[a].lut_rebuild_ms = r->lut_rebuild_ms;
+    }
+    if (!rc) *base_ms = subs[0].r.frame_ms;
+    for (int i = 0; i < n; i++) subject_close(&subs[i]);
+    free(subs);
+    return rc;
 }
 
 /* The error of a row's all-sky image; with no context current (the
@@ -331,12 +611,13 @@ static void print_atmosphere_table(const atmo_row *rows, int n, const sky_atmo_r
            ">= 2; mean relative standard error %.2f %%), Earth preset. Frame: atmosphere + sun at the size above.\n"
            "Errors over an equal-area all-sky grid; day: sun >= 0 deg, twilight: -6 <= sun < 0 deg.\n\n",
            ref->paths, 100.0 * reference_rel_std_err(ref));
-    printf("| path | setting | profile | frame ms | x baseline | LUT ms at start | sky-view rebuild ms | "
+    printf("| path | setting | profile | frame ms | x baseline | x baseline, rounds min-max | LUT ms at start | sky-view rebuild ms | "
            "mean rel err day | max rel err day | mean rel err twilight | mean dE2000 day |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|\n");
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++)
-        printf("| %s | %s | %s | %.2f | %.2f | %.1f | %.1f | %.1f %% | %.0f %% | %.0f %% | %.1f |\n",
+        printf("| %s | %s | %s | %.2f | %.2f | %.2f-%.2f | %.1f | %.1f | %.1f %% | %.0f %% | %.0f %% | %.1f |\n",
                rows[i].setting->path, rows[i].setting->setting, rows[i].profile, rows[i].frame_ms, rows[i].ratio,
+               rows[i].ratio_min, rows[i].ratio_max,
                rows[i].lut_start_ms, rows[i].lut_rebuild_ms,
                100.0 * rows[i].err.mean_rel_day, 100.0 * rows[i].err.max_rel_day,
                100.0 * rows[i].err.mean_rel_twilight, rows[i].err.mean_de2000_day);
@@ -412,19 +693,80 @@ static int stability_table(int json)
     return failed ? 1 : 0;
 }
 
+
+/* Both profiles' rows. */
 static void print_preset_table(const row *rows, int nrows)
 {
-    printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline |\n");
-    printf("|---|---|---|---|---|---|---|---|\n");
-    for (int i = 0; i < nrows; i++)
-        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f |\n", rows[i].preset, rows[i].profile,
-               rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs, rows[i].st.draws_per_frame,
-               rows[i].frame_ms, rows[i].ratio);
+    printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline | "
+           "x baseline, rounds min-max |\n");
+    printf("|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < nrows; i++) {
+        const row *r = &rows[i];
+        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f | %.2f-%.2f |\n", r->preset, r->profile,
+               r->st.gpu_bytes, r->st.textures, r->st.programs, r->st.draws_per_frame, r->frame_ms, r->ratio,
+               r->ratio_min, r->ratio_max);
+    }
+}
+
+/* The baseline's medians over the rounds, then per round its figure and
+ * the CPUs that other processes were using meanwhile (a figure near 1 on
+ * two cores: llvmpipe had one of them). */
+static void print_baseline(const char *what, int w, int h, int frames, const double base[2], const rounds_info info[2])
+{
+    printf("baseline (one-texture full-screen quad, %dx%d)%s: core %.2f ms, compat %.2f ms, medians of %d interleaved "
+           "rounds of %d frames\n",
+           w, h, what, base[0], base[1], info[0].n, frames);
+    for (int prof = 0; prof < 2; prof++) {
+        printf("  %s, per round: ms", prof ? "compat" : "core");
+        for (int k = 0; k < info[prof].n; k++) printf(" %.2f", info[prof].base_ms[k]);
+        printf("; other processes' CPUs");
+        for (int k = 0; k < info[prof].n; k++) printf(" %.1f", info[prof].others_cpus[k]);
+        printf("\n");
+    }
+}
+
+/* The JSON of the preset table, its rows as always with the rounds'
+ * spread added. */
+static void print_presets_json(const row *rows, int nrows)
+{
+    printf(" \"presets\": [\n");
+    int first = 1;
+    for (int i = 0; i < nrows; i++) {
+        const row *r = &rows[i];
+        printf("%s  {\"preset\":\"%s\", \"profile\":\"%s\", \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "
+               "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f, \"ratio_min\":%.3f, \"ratio_max\":%.3f}",
+               first ? "" : ",\n", r->preset, r->profile, r->st.gpu_bytes, r->st.textures, r->st.programs,
+               r->st.draws_per_frame, r->frame_ms, r->ratio, r->ratio_min, r->ratio_max);
+        first = 0;
+    }
+    printf("\n ]");
+}
+
+static void print_json_list(const char *name, const double *v, int n)
+{
+    printf("\"%s\":[", name);
+    for (int k = 0; k < n; k++) printf("%.4f%s", v[k], k + 1 < n ? "," : "");
+    printf("]");
+}
+
+/* "frame_ms" and "compat_frame_ms" as before, then the rounds. */
+static void print_baseline_json(const char *key, const double base[2], const rounds_info info[2])
+{
+    printf(" \"%s\": {\"frame_ms\":%.4f, \"compat_frame_ms\":%.4f, ", key, base[0], base[1]);
+    print_json_list("rounds_ms", info[0].base_ms, info[0].n);
+    printf(", ");
+    print_json_list("compat_rounds_ms", info[1].base_ms, info[1].n);
+    printf(", ");
+    print_json_list("others_cpus", info[0].others_cpus, info[0].n);
+    printf(", ");
+    print_json_list("compat_others_cpus", info[1].others_cpus, info[1].n);
+    printf("}");
 }
 
 int main(int argc, char **argv)
 {
-    int json = 0, w = 1280, h = 720, frames = 20, stability = 0, paths = 1024, only_atmosphere = 0, only_presets = 0;
+    int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
+        only_presets = 0;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--json"))
@@ -448,12 +790,15 @@ int main(int argc, char **argv)
             i++;
         else if (!strcmp(argv[i], "--frames") && i + 1 < argc && (frames = atoi(argv[i + 1])) >= 3 && frames <= 10000)
             i++;
+        else if (!strcmp(argv[i], "--rounds") && i + 1 < argc && (rounds = atoi(argv[i + 1])) >= 1 &&
+                 rounds <= MAX_ROUNDS)
+            i++;
         else {
             fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3] "
-                    "[--reference FILE] [--only-atmosphere | --only-presets] [--plot FILE.png]\n"
+                    "[--rounds 1..%d] [--reference FILE] [--only-atmosphere | --only-presets] [--plot FILE.png]\n"
                     "       sky-bench --stability [--json]\n"
                     "       sky-bench --make-reference FILE [--paths N]\n",
-                    argv[i]);
+                    argv[i], MAX_ROUNDS);
             return 2;
         }
     }
@@ -469,72 +814,70 @@ int main(int argc, char **argv)
         return 0;
     }
     static sky_atmo_reference ref;
-    char ref_err[512];
-    if (sky_atmo_reference_load(reference, &ref, ref_err, sizeof ref_err)) {
-        fprintf(stderr, "sky-bench: %s\n", ref_err);
-        return 1;
+    if (!only_presets) {
+        char ref_err[512];
+        if (sky_atmo_reference_load(reference, &ref, ref_err, sizeof ref_err)) {
+            fprintf(stderr, "sky-bench: %s\n", ref_err);
+            return 1;
+        }
     }
     atmo_row atmo[2 * ATMO_SETTINGS];
     int natmo = 0;
-    static const char *presets[] = {"minimal", "noon", "overcast", "sunset", "starry", "moonlit", "eclipse", "solar-eclipse"};
+    static const char *const presets[] = {"minimal", "noon",    "overcast", "sunset",
+                                          "starry",  "moonlit", "eclipse",  "solar-eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * NP];
-    double base[2] = {0, 0}, night[2][NIGHT_COUNT];
+    /* the baseline's medians over the rounds of the preset table and of
+     * the atmosphere table, and its per-round figures in the first */
+    double base[2] = {0, 0}, base_atmo[2] = {0, 0}, night[2][NIGHT_COUNT];
+    static rounds_info pinfo[2], ainfo[2];
     int nrows = 0;
     for (int prof = 0; prof < 2; prof++) {
         sky_gl_profile gl = prof == 0 ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
-        char err[512];
-        sky_osmesa ctx;
-        if (sky_osmesa_create(&ctx, w, h, gl, 0, err, sizeof err)) {
-            fprintf(stderr, "sky-bench: %s\n", err);
-            return 1;
+        if (!only_atmosphere) {
+            if (bench_presets(presets, NP, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
+                return 1;
+            nrows += NP;
         }
-        base[prof] = baseline_ms(prof == 0, frames);
-        if (base[prof] <= 0) {
-            fprintf(stderr, "sky-bench: baseline shader failed\n");
-            return 1;
-        }
-        for (int p = 0; p < NP && !only_atmosphere; p++) {
-            if (bench_preset(presets[p], gl, w, h, frames, &rows[nrows])) return 1;
-            rows[nrows].ratio = rows[nrows].frame_ms / base[prof];
-            nrows++;
-        }
-        if (only_presets) {
-            sky_osmesa_destroy(&ctx);
-            continue;
-        }
+        if (only_presets) continue;
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
-        for (int a = 0; a < ATMO_SETTINGS; a++)
-            if (bench_atmosphere(&atmo_settings[a], gl, w, h, frames, base[prof], &atmo[natmo + a])) return 1;
-        sky_osmesa_destroy(&ctx);
+        if (bench_atmosphere(gl, w, h, frames, rounds, &atmo[natmo], &base_atmo[prof], &ainfo[prof])) return 1;
+        /* with no context current: each measurement makes its own */
         for (int a = 0; a < ATMO_SETTINGS; a++)
             if (measure_atmosphere(&atmo[natmo + a], &ref, gl)) return 1;
         natmo += ATMO_SETTINGS;
     }
+    if (only_presets && json) {
+        printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d,\n", w, h, frames, rounds);
+        print_baseline_json("baseline", base, pinfo);
+        printf(",\n");
+        print_presets_json(rows, nrows);
+        printf("}\n");
+        return 0;
+    }
     if (only_presets) {
-        printf("baseline (one-texture full-screen quad, %dx%d): core %.2f ms, compat %.2f ms\n", w, h, base[0], base[1]);
+        print_baseline("", w, h, frames, base, pinfo);
+        printf("\n");
         print_preset_table(rows, nrows);
         return 0;
     }
     if (only_atmosphere) {
         if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
-        printf("baseline (one-texture full-screen quad, %dx%d): core %.2f ms, compat %.2f ms\n", w, h, base[0], base[1]);
+        print_baseline("", w, h, frames, base_atmo, ainfo);
         print_atmosphere_table(atmo, natmo, &ref);
         return 0;
     }
     if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
     double astro = astro_us(2000);
     if (json) {
-        printf("{\"size\":\"%dx%d\", \"frames\":%d, \"astro_update_us\":%.2f,\n"
-               " \"baseline\": {\"frame_ms\":%.4f, \"compat_frame_ms\":%.4f},\n"
-               " \"presets\": [\n",
-               w, h, frames, astro, base[0], base[1]);
-        for (int i = 0; i < nrows; i++)
-            printf("  {\"preset\":\"%s\", \"profile\":\"%s\", \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "
-                   "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f}%s\n",
-                   rows[i].preset, rows[i].profile, rows[i].st.gpu_bytes, rows[i].st.textures, rows[i].st.programs,
-                   rows[i].st.draws_per_frame, rows[i].frame_ms, rows[i].ratio, i + 1 < nrows ? "," : "");
-        printf(" ],\n \"night_layers\": [\n");
+        printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
+               rounds, astro);
+        print_baseline_json("baseline", base, pinfo);
+        printf(",\n");
+        print_baseline_json("atmosphere_baseline", base_atmo, ainfo);
+        printf(",\n");
+        print_presets_json(rows, nrows);
+        printf(",\n \"night_layers\": [\n");
         for (int prof = 0; prof < 2; prof++)
             printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"starmap_ms\":%.4f, \"moon_cd3_ms\":%.4f, "
                    "\"moon_cd30_ms\":%.4f}%s\n",
@@ -546,10 +889,11 @@ int main(int argc, char **argv)
         for (int i = 0; i < natmo; i++) {
             const atmo_row *r = &atmo[i];
             printf("  {\"path\":\"%s\", \"setting\":\"%s\", \"profile\":\"%s\", \"frame_ms\":%.4f, \"ratio\":%.3f, "
+                   "\"ratio_min\":%.3f, \"ratio_max\":%.3f, "
                    "\"lut_ms\":%.4f, \"lut_rebuild_ms\":%.4f, \"mean_rel_err_day\":%.5f, \"max_rel_err_day\":%.5f, "
                    "\"mean_rel_err_twilight\":%.5f, \"mean_de2000_day\":%.4f, \"mean_rel_err_by_elevation\":[",
-                   r->setting->path, r->setting->setting, r->profile, r->frame_ms, r->ratio, r->lut_start_ms,
-                   r->lut_rebuild_ms,
+                   r->setting->path, r->setting->setting, r->profile, r->frame_ms, r->ratio, r->ratio_min,
+                   r->ratio_max, r->lut_start_ms, r->lut_rebuild_ms,
                    r->err.mean_rel_day, r->err.max_rel_day, r->err.mean_rel_twilight, r->err.mean_de2000_day);
             for (int s = 0; s < SKY_ATMO_SUNS; s++) printf("%.5f%s", r->err.mean_rel[s], s + 1 < SKY_ATMO_SUNS ? "," : "");
             printf("]}%s\n", i + 1 < natmo ? "," : "");
@@ -557,12 +901,14 @@ int main(int argc, char **argv)
         printf(" ]}\n");
         return 0;
     }
-    printf("sky-bench: %dx%d, median of %d frames, llvmpipe or whatever GL OSMesa provides\n", w, h, frames);
-    printf("baseline (one-texture full-screen quad): core %.2f ms, compat %.2f ms\n", base[0], base[1]);
+    printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then each\n"
+           "row; a row's figures are medians over the rounds), llvmpipe or whatever GL OSMesa provides\n",
+           w, h, frames, rounds);
+    print_baseline(" in the preset rounds", w, h, frames, base, pinfo);
     printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n\n", astro);
     print_preset_table(rows, nrows);
     printf("\nMueller's night layers: the stars' and the moon's own draw (GPU time around it), the star map as\n"
-           "what it adds to an atmosphere-only night frame:\n\n");
+           "what it adds to an atmosphere-only night frame (measured once, not in rounds):\n\n");
     printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
     static const char *names[NIGHT_COUNT] = {"", "8874 catalogue stars", "star map", "", "moon, c_d 3", "moon, c_d 30"};
     /* -1: measured directly, else the frame it is the difference from */
@@ -573,6 +919,8 @@ int main(int argc, char **argv)
             double ms = from[k] < 0 ? night[prof][k] : night[prof][k] - night[prof][from[k]];
             printf("| %s | %s | %.2f | %.2f |\n", names[k], prof ? "compat" : "core", ms, ms / base[prof]);
         }
+    printf("\n");
+    print_baseline(" in the atmosphere rounds", w, h, frames, base_atmo, ainfo);
     print_atmosphere_table(atmo, natmo, &ref);
     return 0;
 }
