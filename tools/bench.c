@@ -9,7 +9,8 @@
  *   sky-bench --make-reference FILE [--paths N]
  *
  * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
- * draws, frame ms and its ratio to the baseline of the same profile. Then, per atmosphere path, setting and profile: frame ms of
+ * draws, frame ms and its ratio to the baseline of the same profile, and
+ * the CPU cost of sky_update while the time slider moves. Then, per atmosphere path, setting and profile: frame ms of
  * the sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and
  * its error against the cached CPU reference (tools/atmo_error.c).
  *
@@ -193,6 +194,7 @@ typedef struct row {
     const char *profile;
     double frame_ms, ratio;
     double ratio_min, ratio_max; /* over the rounds */
+    double update_us;            /* sky_set_params + sky_update, time slider moving; -1: not measured */
     double layer_ms[SKY_LAYER_COUNT]; /* medians with profile_layers, -1 if never drawn alone */
     double lut_start_ms, lut_rebuild_ms; /* tables built by creation; a rebuild after the sun moved */
     sky_stats st;
@@ -240,6 +242,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     sky_cli_camera(cli, sub->view, sub->proj);
     sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
     for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
+    out->update_us = -1.0;
     double *lt = extras ? malloc(sizeof(double) * (size_t)frames * SKY_LAYER_COUNT) : NULL;
     /* per-layer GPU time: a sky with profile_layers (it waits for the GPU
      * around each draw, so it is kept out of the frame timing) */
@@ -312,6 +315,7 @@ static int subject_quad(subject *sub, sky_gl_profile gl, int w, int h)
     }
     sub->r.preset = "baseline";
     sub->r.profile = core ? "core" : "compat";
+    sub->r.update_us = -1.0;
     return 0;
 }
 
@@ -455,6 +459,31 @@ static double astro_us(int n)
     return sink == sink ? m : -1.0; /* keeps the work from being optimised away */
 }
 
+/* What a host pays on the CPU each frame while the time slider moves, as
+ * sky-demo does: sky_set_params with the time 1/7200 of a day further on
+ * (a day in two minutes at 60 frames a second) and sky_update(1/60).
+ * Median microseconds of n calls; no draw. The preset's sliders are put
+ * back afterwards. */
+enum { UPDATE_CALLS = 2000 };
+static double update_us(sky *s, const sky_params *start, int n)
+{
+    double *t = malloc(sizeof(double) * (size_t)n);
+    if (!t) return -1.0;
+    sky_params p = *start;
+    for (int i = 0; i < n; i++) {
+        double day = (double)start->time + (double)(i + 1) / 7200.0;
+        p.time = (float)(day - floor(day));
+        double t0 = sky_cli_now_ms();
+        sky_set_params(s, &p);
+        sky_update(s, 1.0 / 60.0);
+        t[i] = (sky_cli_now_ms() - t0) * 1000.0;
+    }
+    sky_set_params(s, start);
+    double m = sky_cli_median(t, n);
+    free(t);
+    return m;
+}
+
 /* The preset table of one profile, interleaved: the baseline and every
  * preset in each round. Writes np rows and the baseline's per-round
  * figures. */
@@ -473,6 +502,10 @@ static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, 
         }
     if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
     if (!rc) {
+        for (int i = 1; i < n; i++) {
+            make_current(&subs[i].ctx);
+            subs[i].r.update_us = update_us(subs[i].s, &subs[i].cli.params, UPDATE_CALLS);
+        }
         for (int i = 1; i < n; i++) rows[i - 1] = subs[i].r;
         *base_ms = subs[0].r.frame_ms;
     }
@@ -698,14 +731,19 @@ static int stability_table(int json)
 static void print_preset_table(const row *rows, int nrows)
 {
     printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline | "
-           "x baseline, rounds min-max |\n");
-    printf("|---|---|---|---|---|---|---|---|---|\n");
+           "x baseline, rounds min-max | sky_update us |\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < nrows; i++) {
         const row *r = &rows[i];
-        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f | %.2f-%.2f |\n", r->preset, r->profile,
+        char us[32] = "-";
+        if (r->update_us >= 0.0) snprintf(us, sizeof us, "%.1f", r->update_us);
+        printf("| %s | %s | %zu | %d | %d | %d | %.2f | %.2f | %.2f-%.2f | %s |\n", r->preset, r->profile,
                r->st.gpu_bytes, r->st.textures, r->st.programs, r->st.draws_per_frame, r->frame_ms, r->ratio,
-               r->ratio_min, r->ratio_max);
+               r->ratio_min, r->ratio_max, us);
     }
+    printf("\nsky_update us: median of %d calls of sky_set_params, the time slider 1/7200 of a day further on\n"
+           "each call, and sky_update(1/60), CPU only (no draw); target <= 20 us.\n",
+           UPDATE_CALLS);
 }
 
 /* The baseline's medians over the rounds, then per round its figure and
@@ -726,7 +764,7 @@ static void print_baseline(const char *what, int w, int h, int frames, const dou
 }
 
 /* The JSON of the preset table, its rows as always with the rounds'
- * spread added. */
+ * spread and sky_update added. */
 static void print_presets_json(const row *rows, int nrows)
 {
     printf(" \"presets\": [\n");
@@ -734,9 +772,10 @@ static void print_presets_json(const row *rows, int nrows)
     for (int i = 0; i < nrows; i++) {
         const row *r = &rows[i];
         printf("%s  {\"preset\":\"%s\", \"profile\":\"%s\", \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "
-               "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f, \"ratio_min\":%.3f, \"ratio_max\":%.3f}",
+               "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f, \"ratio_min\":%.3f, \"ratio_max\":%.3f, "
+               "\"sky_update_us\":%.3f}",
                first ? "" : ",\n", r->preset, r->profile, r->st.gpu_bytes, r->st.textures, r->st.programs,
-               r->st.draws_per_frame, r->frame_ms, r->ratio, r->ratio_min, r->ratio_max);
+               r->st.draws_per_frame, r->frame_ms, r->ratio, r->ratio_min, r->ratio_max, r->update_us);
         first = 0;
     }
     printf("\n ]");
