@@ -10,7 +10,9 @@
  *
  * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
  * draws, frame ms and its ratio to the baseline of the same profile, and
- * the CPU cost of sky_update while the time slider moves. Then, per atmosphere path, setting and profile: frame ms of
+ * the CPU cost of sky_update while the time slider moves; next to them,
+ * Roden & Parberry's cloud shader as their paper prints it and packed into
+ * one texture. Then, per atmosphere path, setting and profile: frame ms of
  * the sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and
  * its error against the cached CPU reference (tools/atmo_error.c).
  *
@@ -167,6 +169,205 @@ static int baseline_create(quad *q, int core)
     return 0;
 }
 
+/* Roden & Parberry 2005, section 3.1, lines 10-28 of their HLSL, in our
+ * own GLSL: two cloud layers, cover, detail, density, the sunset gradient
+ * and the sunlight; then what their application did with the result: the
+ * cloud dome over the sky dome (here the sky colour interpolated from the
+ * vertices, blended by the cloud's alpha in the same pass) and a tone map
+ * of the period (exponential exposure, gamma 2.2). The textures are
+ * monochrome: each fetch is read as the same value in all four channels,
+ * except the sunset gradient's colour and strength. */
+static const char rp_maths[] =
+    "uniform float cover, sunset_amount, density, amount_sunlight, exposure;\n"
+    "vec4 rp_clouds(vec4 cloud1, vec4 cloud2, vec4 sunset, vec4 detail)\n"
+    "{\n"
+    "    vec4 c = cloud1 + cloud2 * (1.0 - cloud1);\n"
+    "    c.a -= 1.0 - cover;\n"
+    "    float k = clamp(cover, 0.05, 1.0);\n" /* a uniform cannot be assigned */
+    "    c.a *= 1.0 / k;\n"
+    "    c.rgb += detail.rgb * (1.0 - c.rgb);\n"
+    "    c.a *= mix(detail.a, 1.0, density);\n"
+    "    if (c.a > 0.0) {\n"
+    "        c += density * c.a * 2.0;\n"
+    "        if (c.r > 1.0) c.rgb = vec3(1.0 - (c.r - 1.0) * 0.5);\n"
+    "    }\n"
+    "    c = clamp(c, 0.0, 1.0);\n"
+    "    sunset.a *= sunset_amount;\n"
+    "    c.rgb = c.rgb * (1.0 - sunset.a) + sunset.rgb * sunset.a;\n"
+    "    c.rgb *= amount_sunlight;\n"
+    "    return c;\n"
+    "}\n"
+    "vec4 rp_over_sky(vec3 sky, vec4 c)\n"
+    "{\n"
+    "    vec3 x = mix(sky, c.rgb, c.a);\n"
+    "    x = 1.0 - exp(-x * exposure);\n"
+    "    return vec4(pow(x, vec3(1.0 / 2.2)), 1.0);\n"
+    "}\n";
+
+/* One source per stage serves GLSL 1.10 and 3.30 core through these. */
+static const char *const rp_vs_prologue[2] = {"#version 110\n#define ATTR attribute\n#define VARY varying\n",
+                                              "#version 330 core\n#define ATTR in\n#define VARY out\n"};
+static const char *const rp_fs_prologue[2] = {
+    "#version 110\n#define VARY varying\n#define TEX texture2D\n#define FRAG gl_FragColor\n",
+    "#version 330 core\n#define VARY in\n#define TEX texture\nout vec4 frag_out;\n#define FRAG frag_out\n"};
+
+/* As printed: four textures at four coordinates, all computed per vertex
+ * by the application. */
+static const char rp_printed_vs[] =
+    "ATTR vec2 p;\nATTR vec3 sky;\nATTR vec2 a_tc0, a_tc1, a_tc2, a_tc3;\n"
+    "VARY vec3 v_sky;\nVARY vec2 tc0, tc1, tc2, tc3;\n"
+    "void main(){v_sky=sky;tc0=a_tc0;tc1=a_tc1;tc2=a_tc2;tc3=a_tc3;gl_Position=vec4(p,0.0,1.0);}\n";
+static const char rp_printed_fs[] =
+    "VARY vec3 v_sky;\nVARY vec2 tc0, tc1, tc2, tc3;\n"
+    "uniform sampler2D photo_tex, noise_tex, sunset_tex, detail_tex;\n"
+    "void main(){FRAG=rp_over_sky(v_sky, rp_clouds(TEX(photo_tex,tc0), TEX(noise_tex,tc1), TEX(sunset_tex,tc2),"
+    " TEX(detail_tex,tc3)));}\n";
+/* Packed as the paper's section 3 suggests: the photo, noise and detail
+ * in the channels of one texture, fetched twice (photo and detail at tc0,
+ * noise at tc1); the sunset gradient, a smooth function of the direction,
+ * interpolated from the vertices. */
+static const char rp_packed_vs[] =
+    "ATTR vec2 p;\nATTR vec3 sky;\nATTR vec2 a_tc0, a_tc1;\nATTR vec4 sunset;\n"
+    "VARY vec3 v_sky;\nVARY vec2 tc0, tc1;\nVARY vec4 v_sunset;\n"
+    "void main(){v_sky=sky;tc0=a_tc0;tc1=a_tc1;v_sunset=sunset;gl_Position=vec4(p,0.0,1.0);}\n";
+static const char rp_packed_fs[] =
+    "VARY vec3 v_sky;\nVARY vec2 tc0, tc1;\nVARY vec4 v_sunset;\n"
+    "uniform sampler2D clouds_tex;\n"
+    "void main(){vec4 a=TEX(clouds_tex,tc0), b=TEX(clouds_tex,tc1);\n"
+    "FRAG=rp_over_sky(v_sky, rp_clouds(vec4(a.r), vec4(b.g), v_sunset, vec4(a.b)));}\n";
+
+/* Tileable value noise with period cells across the 512 texels, summed
+ * over octaves: plausible clouds (the cost does not depend on content). */
+static float lattice(int x, int y, unsigned seed)
+{
+    unsigned h = (unsigned)x * 374761393u + (unsigned)y * 668265263u + seed * 2246822519u;
+    h = (h ^ (h >> 13)) * 1274126177u;
+    return (float)((h ^ (h >> 16)) & 0xffffu) / 65535.0f;
+}
+
+static float fbm(int px, int py, int cells, int octaves, unsigned seed)
+{
+    float sum = 0.0f, amp = 0.5f, norm = 0.0f;
+    for (int o = 0; o < octaves; o++, cells *= 2, amp *= 0.5f) {
+        float fx = (float)px * (float)cells / 512.0f, fy = (float)py * (float)cells / 512.0f;
+        int x0 = (int)fx, y0 = (int)fy;
+        float tx = fx - (float)x0, ty = fy - (float)y0;
+        tx = tx * tx * (3.0f - 2.0f * tx), ty = ty * ty * (3.0f - 2.0f * ty);
+        int x1 = (x0 + 1) % cells, y1 = (y0 + 1) % cells;
+        unsigned s = seed + (unsigned)o * 7919u;
+        float a = lattice(x0, y0, s) + (lattice(x1, y0, s) - lattice(x0, y0, s)) * tx;
+        float b = lattice(x0, y1, s) + (lattice(x1, y1, s) - lattice(x0, y1, s)) * tx;
+        sum += amp * (a + (b - a) * ty);
+        norm += amp;
+    }
+    return sum / norm;
+}
+
+static unsigned char byte01(float v) { return (unsigned char)(v <= 0.0f ? 0 : v >= 1.0f ? 255 : v * 255.0f + 0.5f); }
+
+/* The sunset gradient at (x, y) in [0, 1]: red-orange near the sun's side
+ * and the horizon, its strength in alpha. */
+static void sunset_at(float x, float y, float out[4])
+{
+    out[0] = 1.0f, out[1] = 0.35f + 0.3f * y, out[2] = 0.15f + 0.25f * y;
+    out[3] = (1.0f - y) * (0.4f + 0.6f * (1.0f - x));
+}
+
+/* The four monochrome images of the paper's figure 3 as texels: photo,
+ * noise, detail, sunset strength. */
+static void rp_images(unsigned char *photo, unsigned char *noise, unsigned char *detail, unsigned char *sunset)
+{
+    for (int y = 0; y < 512; y++)
+        for (int x = 0; x < 512; x++) {
+            int i = y * 512 + x;
+            float ph = fbm(x, y, 4, 6, 1u), no = fbm(x, y, 8, 5, 2u), de = fbm(x, y, 32, 3, 3u), s[4];
+            /* a contrast stretch: thin clouds with gaps, as the photo */
+            photo[i] = byte01((ph - 0.35f) * 2.5f);
+            noise[i] = byte01((no - 0.3f) * 2.0f);
+            detail[i] = byte01(de);
+            sunset_at((float)x / 511.0f, (float)y / 511.0f, s);
+            for (int c = 0; c < 4; c++) sunset[4 * i + c] = byte01(s[c]);
+        }
+}
+
+/* The application's per-vertex work: the sky colour and the texture
+ * coordinates of each corner (drift, the second layer turned and scaled,
+ * the gradient's coordinate, the detail at three times the scale).
+ * Writes 4 vertices of 13 floats. */
+static void rp_vertices(int packed, float *v)
+{
+    static const float corner[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    const float drift = 0.13f, turn = 0.5f, scale = 1.7f;
+    for (int k = 0; k < 4; k++, v += 13) {
+        float u = corner[k][0] * 0.5f + 0.5f, w = corner[k][1] * 0.5f + 0.5f;
+        v[0] = corner[k][0], v[1] = corner[k][1];
+        /* horizon to zenith, in the linear units the tone map expects */
+        v[2] = 0.60f - 0.42f * w, v[3] = 0.72f - 0.36f * w, v[4] = 0.90f - 0.10f * w;
+        v[5] = u + drift, v[6] = w + 0.5f * drift;
+        v[7] = scale * (cosf(turn) * u - sinf(turn) * w) + 2.0f * drift;
+        v[8] = scale * (sinf(turn) * u + cosf(turn) * w);
+        if (packed)
+            sunset_at(u, w, v + 9);
+        else
+            v[9] = u, v[10] = w, v[11] = 3.0f * u, v[12] = 3.0f * w;
+    }
+}
+
+/* The cloud shader's row: as printed (four textures) or packed (one). */
+static int rp_create(quad *q, int core, int packed)
+{
+    memset(q, 0, sizeof *q);
+    q->core = core;
+    const char *vs[3] = {rp_vs_prologue[core], packed ? rp_packed_vs : rp_printed_vs};
+    const char *fs[3] = {rp_fs_prologue[core], rp_maths, packed ? rp_packed_fs : rp_printed_fs};
+    static const char *const printed_attribs[6] = {"p", "sky", "a_tc0", "a_tc1", "a_tc2", "a_tc3"};
+    static const char *const packed_attribs[5] = {"p", "sky", "a_tc0", "a_tc1", "sunset"};
+    q->prog = program(vs, 2, fs, 3, packed ? packed_attribs : printed_attribs, packed ? 5 : 6);
+    if (!q->prog) return -1;
+    unsigned char *img = malloc(512 * 512 * 7), *rgba = malloc(512 * 512 * 4);
+    if (!img || !rgba) {
+        free(img);
+        free(rgba);
+        return -1;
+    }
+    unsigned char *photo = img, *noise = img + 512 * 512, *detail = img + 2 * 512 * 512, *sunset = img + 3 * 512 * 512;
+    rp_images(photo, noise, detail, sunset);
+    glUseProgram(q->prog);
+    if (packed) {
+        for (int i = 0; i < 512 * 512; i++)
+            rgba[4 * i] = photo[i], rgba[4 * i + 1] = noise[i], rgba[4 * i + 2] = detail[i], rgba[4 * i + 3] = sunset[4 * i + 3];
+        q->tex[q->ntex++] = texture_512(rgba);
+        glUniform1i(glGetUniformLocation(q->prog, "clouds_tex"), 0);
+    } else {
+        const unsigned char *mono[3] = {photo, noise, detail};
+        static const char *const names[4] = {"photo_tex", "noise_tex", "sunset_tex", "detail_tex"};
+        for (int t = 0; t < 4; t++) {
+            if (t == 2)
+                memcpy(rgba, sunset, 512 * 512 * 4);
+            else
+                for (int i = 0; i < 512 * 512; i++) memset(rgba + 4 * i, mono[t < 2 ? t : 2][i], 4);
+            glActiveTexture(GL_TEXTURE0 + (GLenum)t);
+            q->tex[q->ntex++] = texture_512(rgba);
+            glUniform1i(glGetUniformLocation(q->prog, names[t]), t);
+        }
+        glActiveTexture(GL_TEXTURE0);
+    }
+    q->bytes += (size_t)q->ntex * 512 * 512 * 4;
+    free(img);
+    free(rgba);
+    /* mid-morning sliders: half cover, some density and sunset */
+    glUniform1f(glGetUniformLocation(q->prog, "cover"), 0.5f);
+    glUniform1f(glGetUniformLocation(q->prog, "density"), 0.3f);
+    glUniform1f(glGetUniformLocation(q->prog, "sunset_amount"), 0.4f);
+    glUniform1f(glGetUniformLocation(q->prog, "amount_sunlight"), 1.0f);
+    glUniform1f(glGetUniformLocation(q->prog, "exposure"), 1.5f);
+    float v[4 * 13];
+    rp_vertices(packed, v);
+    static const int printed_sizes[6] = {2, 3, 2, 2, 2, 2}, packed_sizes[5] = {2, 3, 2, 2, 4};
+    quad_vertices(q, v, 13, packed ? packed_sizes : printed_sizes, packed ? 5 : 6);
+    return 0;
+}
+
 /* Median ms of frames draws of the current context's quad (its context
  * holds its program, buffers and textures), each waited for; the first
  * draw of the call is not counted. */
@@ -195,6 +396,7 @@ typedef struct row {
     double frame_ms, ratio;
     double ratio_min, ratio_max; /* over the rounds */
     double update_us;            /* sky_set_params + sky_update, time slider moving; -1: not measured */
+    int fetches;                 /* a quad of our own: texture fetches per pixel; 0: a sky */
     double layer_ms[SKY_LAYER_COUNT]; /* medians with profile_layers, -1 if never drawn alone */
     double lut_start_ms, lut_rebuild_ms; /* tables built by creation; a rebuild after the sun moved */
     sky_stats st;
@@ -299,9 +501,11 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     return 0;
 }
 
-/* The baseline in a new context. */
-static int subject_quad(subject *sub, sky_gl_profile gl, int w, int h)
+/* A quad of our own (0 the baseline, 1 R-P as printed, 2 R-P packed) in
+ * a new context. */
+static int subject_quad(subject *sub, int kind, sky_gl_profile gl, int w, int h)
 {
+    static const char *const names[3] = {"baseline", "R-P 2005 as printed", "R-P packed (2 fetches)"};
     char err[512];
     memset(sub, 0, sizeof *sub);
     if (sky_osmesa_create(&sub->ctx, w, h, gl, 0, err, sizeof err)) {
@@ -309,13 +513,19 @@ static int subject_quad(subject *sub, sky_gl_profile gl, int w, int h)
         return -1;
     }
     int core = gl == SKY_GL_CORE33;
-    if (baseline_create(&sub->q, core)) {
-        fprintf(stderr, "sky-bench: the baseline shader failed\n");
+    if (kind ? rp_create(&sub->q, core, kind == 2) : baseline_create(&sub->q, core)) {
+        fprintf(stderr, "sky-bench: the %s shader failed\n", names[kind]);
         return -1;
     }
-    sub->r.preset = "baseline";
-    sub->r.profile = core ? "core" : "compat";
-    sub->r.update_us = -1.0;
+    row *r = &sub->r;
+    r->preset = names[kind];
+    r->profile = core ? "core" : "compat";
+    r->update_us = -1.0;
+    r->fetches = kind == 1 ? 4 : kind == 2 ? 2 : 1;
+    r->st.gpu_bytes = sub->q.bytes;
+    r->st.textures = sub->q.ntex;
+    r->st.programs = 1;
+    r->st.draws_per_frame = 1;
     return 0;
 }
 
@@ -484,25 +694,25 @@ static double update_us(sky *s, const sky_params *start, int n)
     return m;
 }
 
-/* The preset table of one profile, interleaved: the baseline and every
- * preset in each round. Writes np rows and the baseline's per-round
- * figures. */
+/* The preset table of one profile, interleaved: the baseline, the two R-P
+ * rows and every preset in each round. Writes 2 + np rows and the
+ * baseline's per-round figures. */
 static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, int w, int h, int frames, int rounds,
                          row *rows, double *base_ms, rounds_info *info)
 {
-    int n = 1 + np, rc = 0;
+    int n = 3 + np, rc = 0;
     subject *subs = calloc((size_t)n, sizeof *subs);
     if (!subs) return -1;
     for (int i = 0; i < n && !rc; i++)
-        if (!i)
-            rc = subject_quad(&subs[i], gl, w, h);
+        if (i < 3)
+            rc = subject_quad(&subs[i], i, gl, w, h);
         else {
-            char *argv[] = {"sky-bench", "--preset", (char *)presets[i - 1], NULL};
-            rc = subject_sky(&subs[i], 3, argv, presets[i - 1], gl, w, h, frames, 0);
+            char *argv[] = {"sky-bench", "--preset", (char *)presets[i - 3], NULL};
+            rc = subject_sky(&subs[i], 3, argv, presets[i - 3], gl, w, h, frames, 0);
         }
     if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
     if (!rc) {
-        for (int i = 1; i < n; i++) {
+        for (int i = 3; i < n; i++) {
             make_current(&subs[i].ctx);
             subs[i].r.update_us = update_us(subs[i].s, &subs[i].cli.params, UPDATE_CALLS);
         }
@@ -584,7 +794,7 @@ static int bench_atmosphere(sky_gl_profile gl, int w, int h, int frames, int rou
     int n = 1 + ATMO_SETTINGS;
     subject *subs = calloc((size_t)n, sizeof *subs);
     if (!subs) return -1;
-    int rc = subject_quad(&subs[0], gl, w, h);
+    int rc = subject_quad(&subs[0], 0, gl, w, h);
     for (int a = 0; a < ATMO_SETTINGS && !rc; a++) {
         char *argv[12] = {"sky-bench", "--features", "sun", "--time", "0.35"};
         int argc = setting_argv(&atmo_settings[a], argv, 5);
@@ -727,7 +937,7 @@ static int stability_table(int json)
 }
 
 
-/* Both profiles' rows. */
+/* Both profiles' rows, each profile's R-P rows first. */
 static void print_preset_table(const row *rows, int nrows)
 {
     printf("| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline | "
@@ -742,7 +952,9 @@ static void print_preset_table(const row *rows, int nrows)
                r->ratio_min, r->ratio_max, us);
     }
     printf("\nsky_update us: median of %d calls of sky_set_params, the time slider 1/7200 of a day further on\n"
-           "each call, and sky_update(1/60), CPU only (no draw); target <= 20 us.\n",
+           "each call, and sky_update(1/60), CPU only (no draw); target <= 20 us. R-P rows: Roden & Parberry's\n"
+           "cloud shader (2005, section 3.1) over a per-vertex sky with a tone map, as printed (4 textures, 4\n"
+           "fetches) and packed into one texture (2 fetches, the sunset gradient per vertex).\n",
            UPDATE_CALLS);
 }
 
@@ -763,19 +975,32 @@ static void print_baseline(const char *what, int w, int h, int frames, const dou
     }
 }
 
-/* The JSON of the preset table, its rows as always with the rounds'
- * spread and sky_update added. */
+/* The JSON of the preset table: the rows of real presets under "presets"
+ * as always (with the rounds' spread and sky_update added), the R-P
+ * shaders under "rp_rows". */
 static void print_presets_json(const row *rows, int nrows)
 {
     printf(" \"presets\": [\n");
     int first = 1;
     for (int i = 0; i < nrows; i++) {
         const row *r = &rows[i];
+        if (r->fetches) continue;
         printf("%s  {\"preset\":\"%s\", \"profile\":\"%s\", \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "
                "\"draws\":%d, \"frame_ms\":%.4f, \"ratio\":%.3f, \"ratio_min\":%.3f, \"ratio_max\":%.3f, "
                "\"sky_update_us\":%.3f}",
                first ? "" : ",\n", r->preset, r->profile, r->st.gpu_bytes, r->st.textures, r->st.programs,
                r->st.draws_per_frame, r->frame_ms, r->ratio, r->ratio_min, r->ratio_max, r->update_us);
+        first = 0;
+    }
+    printf("\n ],\n \"rp_rows\": [\n");
+    first = 1;
+    for (int i = 0; i < nrows; i++) {
+        const row *r = &rows[i];
+        if (!r->fetches) continue;
+        printf("%s  {\"name\":\"%s\", \"profile\":\"%s\", \"gpu_bytes\":%zu, \"textures\":%d, \"fetches\":%d, "
+               "\"frame_ms\":%.4f, \"ratio\":%.3f, \"ratio_min\":%.3f, \"ratio_max\":%.3f}",
+               first ? "" : ",\n", r->preset, r->profile, r->st.gpu_bytes, r->st.textures,
+               r->fetches, r->frame_ms, r->ratio, r->ratio_min, r->ratio_max);
         first = 0;
     }
     printf("\n ]");
@@ -865,7 +1090,7 @@ int main(int argc, char **argv)
     static const char *const presets[] = {"minimal", "noon",    "overcast", "sunset",
                                           "starry",  "moonlit", "eclipse",  "solar-eclipse"};
     enum { NP = sizeof presets / sizeof presets[0] };
-    row rows[2 * NP];
+    row rows[2 * (NP + 2)];
     /* the baseline's medians over the rounds of the preset table and of
      * the atmosphere table, and its per-round figures in the first */
     double base[2] = {0, 0}, base_atmo[2] = {0, 0}, night[2][NIGHT_COUNT];
@@ -876,7 +1101,7 @@ int main(int argc, char **argv)
         if (!only_atmosphere) {
             if (bench_presets(presets, NP, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
                 return 1;
-            nrows += NP;
+            nrows += NP + 2;
         }
         if (only_presets) continue;
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
