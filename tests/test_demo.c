@@ -1,7 +1,8 @@
 /*
  * The window programs under a real X server (Xvfb, installed by make's
  * deps step): sky-demo shows the sky with its sliders, a synthetic mouse
- * drag on the cover slider changes the clouds, and sky-game lights its
+ * drag on the cover slider changes the clouds, the readout's frame time is
+ * the sky's GPU time as sky-bench measures it, and sky-game lights its
  * world differently at noon and at night.
  */
 #include "test.h"
@@ -13,6 +14,7 @@
 
 void test_demo_window_shows_sky_and_sliders(void);
 void test_demo_drag_on_cover_slider(void);
+void test_demo_readout_is_gpu_frame_time(void);
 void test_game_lit_by_the_sky(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
@@ -92,6 +94,30 @@ void test_demo_drag_on_cover_slider(void)
           "the cover bar follows the drag");
     image_free(&before);
     image_free(&after);
+}
+
+/* The readout's cost line, which sky-demo also prints when it leaves
+ * after --frames: the sky's GPU frame time (median of the frames after the
+ * first, by a timer query that agreed with the clock, else by the clock
+ * around glFinish, as sky-bench) and the frame rate. */
+void test_demo_readout_is_gpu_frame_time(void)
+{
+    char path[512], cmd[2048], log[4096], png[256];
+    snprintf(cmd, sizeof cmd, XVFB "%s --size 320x180 --frames 8 --screenshot %s --preset noon 2>&1",
+             bin_path("sky-demo", path, sizeof path), tmp("readout.png", png, sizeof png));
+    int rc = run_command(cmd, log, sizeof log);
+    remove(png);
+    CHECK(rc == 0, "sky-demo under Xvfb (exit %d): %s", rc, log);
+    const char *line = strstr(log, "sky-demo: sky ");
+    double ms = -1, fps = -1;
+    int n = 0;
+    char method[32] = "";
+    if (line) sscanf(line, "sky-demo: sky %lf ms GPU (%31[^,], median of %d frames), %lf fps", &ms, method, &n, &fps);
+    NOTE("%.*s", line ? (int)strcspn(line, "\n") : 0, line ? line : "");
+    CHECK(ms > 0.0 && fps > 0.0, "the readout has a frame time and a frame rate: %s", line ? line : log);
+    CHECK(!strcmp(method, "timer query") || !strcmp(method, "glFinish"), "it says how it measured ('%s')", method);
+    CHECK(n == 7 || (!strcmp(method, "timer query") && n >= 1 && n <= 7),
+          "the median of every frame but the first (%d of 8; a timer query's come two frames late)", n);
 }
 
 void test_game_lit_by_the_sky(void)
