@@ -79,6 +79,8 @@ int test_skipped;
     X(demo_window_shows_sky_and_sliders)         \
     X(demo_drag_on_cover_slider)                 \
     X(demo_readout_is_gpu_frame_time)            \
+    X(bench_preset_table_in_rounds)              \
+    X(bench_rejects_bad_rounds)                  \
     X(game_lit_by_the_sky)                       \
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \

@@ -1,0 +1,104 @@
+/*
+ * sky-bench's preset table as a program: the interleaved rounds, the
+ * Roden & Parberry rows and sky_update's figure are all there and
+ * consistent. Speed itself is never asserted here: sky-bench reports it.
+ */
+#include "test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void test_bench_preset_table_in_rounds(void);
+void test_bench_rejects_bad_rounds(void);
+
+/* The number after "key": within [from, end), or NAN-like -1e300 if absent. */
+static double field(const char *from, const char *end, const char *key)
+{
+    char pat[64];
+    snprintf(pat, sizeof pat, "\"%s\":", key);
+    const char *p = strstr(from, pat);
+    if (!p || p >= end) return -1e300;
+    return strtod(p + strlen(pat), NULL);
+}
+
+/* How many numbers the JSON list "key":[...] holds, each > 0 or not. */
+static int positive_list(const char *json, const char *key, int *all_positive)
+{
+    char pat[64];
+    snprintf(pat, sizeof pat, "\"%s\":[", key);
+    const char *p = strstr(json, pat);
+    *all_positive = 1;
+    if (!p) return 0;
+    p += strlen(pat);
+    int n = 0;
+    while (*p && *p != ']') {
+        char *end;
+        double v = strtod(p, &end);
+        if (end == p) break;
+        n++;
+        if (!(v > 0.0)) *all_positive = 0;
+        p = *end == ',' ? end + 1 : end;
+    }
+    return n;
+}
+
+void test_bench_preset_table_in_rounds(void)
+{
+    char path[512], cmd[1024];
+    static char out[32768];
+    snprintf(cmd, sizeof cmd, "%s --only-presets --json --rounds 3 --frames 3 --size 64x36 2>&1",
+             bin_path("sky-bench", path, sizeof path));
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "sky-bench --only-presets --json exits 0 (exit %d): %.300s", rc, out);
+    if (rc) return;
+    CHECK(strstr(out, "\"rounds\":3") != NULL, "the JSON says how many rounds");
+    int pos;
+    CHECK(positive_list(out, "rounds_ms", &pos) == 3 && pos, "the core baseline has 3 positive per-round figures");
+    CHECK(positive_list(out, "compat_rounds_ms", &pos) == 3 && pos, "the compat baseline too");
+    CHECK(field(out, out + strlen(out), "frame_ms") > 0.0, "the baseline's median is there");
+
+    /* every preset row: the ratio is the median of the rounds', so within
+     * their range; sky_update's CPU figure is measured */
+    int presets = 0;
+    for (const char *r = strstr(out, "{\"preset\":"); r; r = strstr(r + 1, "{\"preset\":")) {
+        const char *end = strchr(r, '}');
+        if (!end) break;
+        double ratio = field(r, end, "ratio"), lo = field(r, end, "ratio_min"), hi = field(r, end, "ratio_max");
+        double us = field(r, end, "sky_update_us");
+        CHECK(ratio > 0.0 && lo <= ratio && ratio <= hi, "a preset's ratio %.3f within its rounds' %.3f-%.3f: %.80s",
+              ratio, lo, hi, r);
+        CHECK(us > 0.0, "a preset's sky_update us is measured (%.3f): %.80s", us, r);
+        presets++;
+    }
+    CHECK(presets == 16, "8 presets in 2 profiles (%d rows)", presets);
+
+    /* Roden & Parberry's shader, as printed and packed, in both profiles */
+    static const char *const names[2] = {"R-P 2005 as printed", "R-P packed (2 fetches)"};
+    static const int textures[2] = {4, 1}, fetches[2] = {4, 2};
+    for (int k = 0; k < 2; k++) {
+        char pat[96];
+        snprintf(pat, sizeof pat, "{\"name\":\"%s\"", names[k]);
+        int n = 0;
+        for (const char *r = strstr(out, pat); r; r = strstr(r + 1, pat)) {
+            const char *end = strchr(r, '}');
+            if (!end) break;
+            CHECK(field(r, end, "textures") == textures[k] && field(r, end, "fetches") == fetches[k],
+                  "%s: %d textures, %d fetches: %.120s", names[k], textures[k], fetches[k], r);
+            CHECK(field(r, end, "ratio") > 0.0 && field(r, end, "frame_ms") > 0.0, "%s is timed: %.120s", names[k], r);
+            n++;
+        }
+        CHECK(n == 2, "%s in both profiles (%d rows)", names[k], n);
+    }
+}
+
+void test_bench_rejects_bad_rounds(void)
+{
+    char path[512], cmd[1024], out[2048];
+    static const char *const bad[3] = {"0", "51", "x"};
+    for (int i = 0; i < 3; i++) {
+        snprintf(cmd, sizeof cmd, "%s --only-presets --rounds %s 2>&1", bin_path("sky-bench", path, sizeof path), bad[i]);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 2 && strstr(out, "--rounds"), "--rounds %s is a usage error naming the option (exit %d): %.200s",
+              bad[i], rc, out);
+    }
+}
