@@ -64,13 +64,14 @@ static int headless(const sky_cli *cli)
  * rendering, as the median of recent frames. Where the context has timer
  * queries (GL 3.3 or ARB_timer_query) a GL_TIME_ELAPSED query wraps
  * sky_draw and is read two frames later, when it is done, so the frame
- * does not wait for it. The first frame of a sky is not counted (sky-bench
- * draws once before it times: shaders are compiled at the first draw). But a query is only trusted after the first frames
+ * does not wait for it. But a query is only trusted once the first frames
  * have been measured both ways: llvmpipe (Mesa 22) reports about 0.02 ms
  * for a 17 ms frame, the time to bin the draws rather than to rasterise
- * them. Where there are no queries, or they disagree with the wall clock,
- * each frame waits with glFinish before and after sky_draw and times it
- * by the clock, exactly as sky-bench does. */
+ * them. Where there are no queries, or they disagree with the clock, each
+ * frame waits with glFinish before and after sky_draw and is timed by the
+ * clock, exactly as sky-bench does. The first frame of a sky is not
+ * counted (sky-bench draws once before it times: shaders are compiled at
+ * the first draw). */
 enum { TIMER_RING = 4, TIMER_LAG = 2, TIMER_SAMPLES = 30, TIMER_CALIBRATE = 3 };
 enum { TIMER_CALIBRATING, TIMER_QUERY, TIMER_FINISH };
 
@@ -98,7 +99,8 @@ static void timer_init(frame_timer *t, GLFWwindow *w)
 {
     memset(t, 0, sizeof *t);
     t->mode = TIMER_FINISH;
-    int major = glfwGetWindowAttrib(w, GLFW_CONTEXT_VERSION_MAJOR), minor = glfwGetWindowAttrib(w, GLFW_CONTEXT_VERSION_MINOR);
+    int major = glfwGetWindowAttrib(w, GLFW_CONTEXT_VERSION_MAJOR);
+    int minor = glfwGetWindowAttrib(w, GLFW_CONTEXT_VERSION_MINOR);
     if (major * 10 + minor < 33 && !glfwExtensionSupported("GL_ARB_timer_query")) return;
     t->gen_queries = (PFNGLGENQUERIESPROC)glfwGetProcAddress("glGenQueries");
     t->delete_queries = (PFNGLDELETEQUERIESPROC)glfwGetProcAddress("glDeleteQueries");
@@ -179,11 +181,11 @@ static void timer_end(frame_timer *t)
             t->calib_query[t->frame] = (double)ns * 1e-6;
             t->calib_wall[t->frame] = wall;
             if (t->frame + 1 == TIMER_CALIBRATE) {
-                /* the query must see at least half of what the clock saw
-                 * (below a quarter millisecond the clock is mostly driver
-                 * overhead and the query is the better figure) */
+                /* the query must see at least half of what the clock saw;
+                 * where it does not (or a tiny frame is mostly the clock's
+                 * overhead), the clock stays: slower, never wrong */
                 double q = median3(t->calib_query), c = median3(t->calib_wall);
-                t->mode = q >= 0.5 * c || c < 0.25 ? TIMER_QUERY : TIMER_FINISH;
+                t->mode = q >= 0.5 * c ? TIMER_QUERY : TIMER_FINISH;
                 t->frame = 0; /* the ring starts over */
                 return;
             }

@@ -335,7 +335,8 @@ static int rp_create(quad *q, int core, int packed)
     glUseProgram(q->prog);
     if (packed) {
         for (int i = 0; i < 512 * 512; i++)
-            rgba[4 * i] = photo[i], rgba[4 * i + 1] = noise[i], rgba[4 * i + 2] = detail[i], rgba[4 * i + 3] = sunset[4 * i + 3];
+            rgba[4 * i] = photo[i], rgba[4 * i + 1] = noise[i], rgba[4 * i + 2] = detail[i],
+            rgba[4 * i + 3] = sunset[4 * i + 3];
         q->tex[q->ntex++] = texture_512(rgba);
         glUniform1i(glGetUniformLocation(q->prog, "clouds_tex"), 0);
     } else {
@@ -619,7 +620,8 @@ static int run_rounds(subject *subs, int n, int rounds, int frames, rounds_info 
         subs[0].ms[k] = info->base_ms[k] = sky_cli_median(base, n - 1);
         subs[0].ratio[k] = 1.0;
         double busy1 = machine_busy_s(), wall = (sky_cli_now_ms() - wall0) * 1e-3;
-        info->others_cpus[k] = busy0 < 0.0 || busy1 < 0.0 ? -1.0 : fmax(0.0, (busy1 - busy0 - (own_busy_s() - own0)) / wall);
+        double others = (busy1 - busy0 - (own_busy_s() - own0)) / wall;
+        info->others_cpus[k] = busy0 < 0.0 || busy1 < 0.0 ? -1.0 : fmax(0.0, others);
     }
     for (int i = 0; i < n; i++) {
         double ms[MAX_ROUNDS], ratio[MAX_ROUNDS];
@@ -854,7 +856,8 @@ static void print_atmosphere_table(const atmo_row *rows, int n, const sky_atmo_r
            ">= 2; mean relative standard error %.2f %%), Earth preset. Frame: atmosphere + sun at the size above.\n"
            "Errors over an equal-area all-sky grid; day: sun >= 0 deg, twilight: -6 <= sun < 0 deg.\n\n",
            ref->paths, 100.0 * reference_rel_std_err(ref));
-    printf("| path | setting | profile | frame ms | x baseline | x baseline, rounds min-max | LUT ms at start | sky-view rebuild ms | "
+    printf("| path | setting | profile | frame ms | x baseline | x baseline, rounds min-max | LUT ms at start | "
+           "sky-view rebuild ms | "
            "mean rel err day | max rel err day | mean rel err twilight | mean dE2000 day |\n"
            "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++)
