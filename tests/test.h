@@ -87,6 +87,11 @@ typedef struct fixture {
     sky *s;
 } fixture;
 int fixture_open(fixture *f, sky_gl_profile profile, const sky_config *base);
+/* The same at w x h, with a float framebuffer (HDR output) or not. */
+int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profile profile, const sky_config *base);
+/* The equator at the 2026 March equinox: the time slider sweeps the sun
+ * from the nadir (0) through the zenith (0.5) with declination ~0. */
+sky_observer equator_equinox(void);
 void fixture_close(fixture *f);
 
 /* Path of a built program (SKY_BIN or build/bin). */

@@ -56,28 +56,19 @@ static int hdr_open(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profi
 static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
                          const sky_lut_settings *luts)
 {
-    char err[512];
     memset(h, 0, sizeof *h);
     h->size = size;
-    if (sky_osmesa_create(&h->ctx, size, size, profile, 1, err, sizeof err)) {
-        printf("    %s\n", err);
-        return -1;
-    }
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.get_proc_address = sky_osmesa_loader();
-    cfg.gl_profile = profile;
     cfg.output = SKY_OUTPUT_HDR;
     cfg.features = SKY_SUN; /* the sun quad too: its glare must stay finite */
     cfg.atmosphere = path;
     cfg.turbidity = turbidity;
     if (luts) cfg.luts = *luts;
-    h->s = sky_create(&cfg, err, sizeof err);
-    if (!h->s) {
-        printf("    sky_create: %s\n", err);
-        sky_osmesa_destroy(&h->ctx);
-        return -1;
-    }
+    fixture f;
+    if (fixture_open_sized(&f, size, size, 1, profile, &cfg)) return -1;
+    h->ctx = f.ctx;
+    h->s = f.s;
     return 0;
 }
 
@@ -85,17 +76,6 @@ static void hdr_close(hdr_sky *h)
 {
     sky_destroy(h->s);
     sky_osmesa_destroy(&h->ctx);
-}
-
-/* The equator at the 2026 March equinox: the time slider sweeps the sun
- * from the nadir (0) through the zenith (0.5) with declination ~0. */
-static sky_observer equator_equinox(void)
-{
-    sky_observer o;
-    memset(&o, 0, sizeof o);
-    o.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
-    o.time_from_params = 1;
-    return o;
 }
 
 static int hdr_draw(hdr_sky *h, const sky_observer *o, double t, const sky_params *base)

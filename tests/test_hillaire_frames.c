@@ -37,14 +37,6 @@ typedef struct lapse {
 
 /* The equator on the 2026 March equinox, where the time slider moves the
  * sun's elevation by its own angle. */
-static sky_observer equator_equinox(void)
-{
-    sky_observer o;
-    memset(&o, 0, sizeof o);
-    o.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
-    o.time_from_params = 1;
-    return o;
-}
 
 static double time_for_sun(double sun_deg)
 {
@@ -57,25 +49,16 @@ static double time_for_sun(double sun_deg)
  * horizon's glow, the sky above and the ground below. */
 static int lapse_open(lapse *l, sky_gl_profile profile, double time)
 {
-    char err[512];
     memset(l, 0, sizeof *l);
-    if (sky_osmesa_create(&l->ctx, SIZE, SIZE, profile, 1, err, sizeof err)) {
-        printf("    %s\n", err);
-        return -1;
-    }
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.get_proc_address = sky_osmesa_loader();
-    cfg.gl_profile = profile;
     cfg.output = SKY_OUTPUT_HDR;
     cfg.features = SKY_FEATURES_NONE;
     cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
-    l->s = sky_create(&cfg, err, sizeof err);
-    if (!l->s) {
-        printf("    sky_create: %s\n", err);
-        sky_osmesa_destroy(&l->ctx);
-        return -1;
-    }
+    fixture f;
+    if (fixture_open_sized(&f, SIZE, SIZE, 1, profile, &cfg)) return -1;
+    l->ctx = f.ctx;
+    l->s = f.s;
     l->o = equator_equinox();
     l->p = sky_default_params();
     l->p.cover = 0.0f;

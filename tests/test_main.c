@@ -190,9 +190,23 @@ int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
 
 int fixture_open(fixture *f, sky_gl_profile profile, const sky_config *base)
 {
+    return fixture_open_sized(f, 64, 48, 0, profile, base);
+}
+
+sky_observer equator_equinox(void)
+{
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
+    o.time_from_params = 1;
+    return o;
+}
+
+int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profile profile, const sky_config *base)
+{
     char err[512];
     memset(f, 0, sizeof *f);
-    if (sky_osmesa_create(&f->ctx, 64, 48, profile, 0, err, sizeof err)) {
+    if (sky_osmesa_create(&f->ctx, w, h, profile, float_buffer, err, sizeof err)) {
         printf("    %s\n", err);
         return -1;
     }
