@@ -267,6 +267,36 @@ void sky_program_apply(sky_core *s, const sky_program *p)
 
 static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
+/* The texture bound to target on unit 0, after its upload: one level (no
+ * mipmap chain: it would cost a third more memory and take the minimal
+ * path past its 1.5 MiB budget; the cloud shader fades detail by its
+ * screen-space footprint instead), its filter and wrap, unbound, and
+ * recorded with its bytes and owner; or, on a GL error, deleted. */
+static int finish_texture(sky_core *s, sky_texture *t, GLenum target, GLint filter, GLint wrap, int w, int h,
+                          size_t bytes, sky_layer owner, const char *what, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    gl->glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
+    gl->glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+    gl->glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+    gl->glTexParameteri(target, GL_TEXTURE_WRAP_S, wrap);
+    gl->glTexParameteri(target, GL_TEXTURE_WRAP_T, wrap);
+    gl->glBindTexture(target, 0);
+    GLenum e = gl->glGetError();
+    if (e != GL_NO_ERROR) {
+        gl->glDeleteTextures(1, &t->id);
+        t->id = 0;
+        sky_format(err, err_len, "creating a %dx%d %s failed (GL error 0x%04x)", w, h, what, e);
+        return -1;
+    }
+    t->target = target;
+    t->width = w;
+    t->height = h;
+    t->bytes = bytes;
+    t->owner = owner;
+    return 0;
+}
+
 int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
                        int repeat, char *err, size_t err_len)
 {
@@ -284,29 +314,8 @@ int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const un
     gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    /* No mipmap chain: it would cost a third more memory and take the
-     * minimal path past its 1.5 MiB budget. The cloud shader fades detail by
-     * its screen-space footprint instead (clouds.glsl). */
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    GLint wrap = repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
-    gl->glBindTexture(GL_TEXTURE_2D, 0);
-    GLenum e = gl->glGetError();
-    if (e != GL_NO_ERROR) {
-        gl->glDeleteTextures(1, &t->id);
-        t->id = 0;
-        sky_format(err, err_len, "uploading a %dx%d texture failed (GL error 0x%04x)", w, h, e);
-        return -1;
-    }
-    t->target = GL_TEXTURE_2D;
-    t->width = w;
-    t->height = h;
-    t->bytes = (size_t)w * (size_t)h * 4u;
-    t->owner = owner;
-    return 0;
+    return finish_texture(s, t, GL_TEXTURE_2D, GL_LINEAR, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE, w, h,
+                          (size_t)w * (size_t)h * 4u, owner, "texture", err, err_len);
 }
 
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
@@ -323,24 +332,8 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
         gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA8, size, size, 0, GL_RGBA,
                          GL_UNSIGNED_BYTE, faces + (size_t)f * face_bytes);
     gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, 0);
-    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
-    GLenum e = gl->glGetError();
-    if (e != GL_NO_ERROR) {
-        gl->glDeleteTextures(1, &t->id);
-        t->id = 0;
-        sky_format(err, err_len, "uploading a %dx%d cube map failed (GL error 0x%04x)", size, size, e);
-        return -1;
-    }
-    t->target = GL_TEXTURE_CUBE_MAP;
-    t->width = t->height = size;
-    t->bytes = 6u * face_bytes;
-    t->owner = owner;
-    return 0;
+    return finish_texture(s, t, GL_TEXTURE_CUBE_MAP, GL_LINEAR, GL_CLAMP_TO_EDGE, size, size, 6u * face_bytes, owner,
+                          "cube map", err, err_len);
 }
 
 /* Reads an override file with a hard size cap: hostile files never cause a
@@ -428,28 +421,10 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
     else
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
     /* an encoded table is decoded before it is blended: no filtering */
-    GLint filter = is_float ? GL_LINEAR : GL_NEAREST;
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    gl->glBindTexture(GL_TEXTURE_2D, 0);
-    GLenum e = gl->glGetError();
-    if (e != GL_NO_ERROR) {
-        gl->glDeleteTextures(1, &t->id);
-        t->id = 0;
-        sky_format(err, err_len, "creating a %dx%d %s lookup texture failed (GL error 0x%04x)", w, h,
-                   is_float ? "float" : "RGBA8", e);
-        return -1;
-    }
-    t->target = GL_TEXTURE_2D;
-    t->width = w;
-    t->height = h;
-    t->bytes = (size_t)w * (size_t)h * (is_float ? 16u : 4u);
-    t->owner = owner;
-    return 0;
+    return finish_texture(s, t, GL_TEXTURE_2D, is_float ? GL_LINEAR : GL_NEAREST, GL_CLAMP_TO_EDGE, w, h,
+                          (size_t)w * (size_t)h * (is_float ? 16u : 4u), owner,
+                          is_float ? "float lookup texture" : "RGBA8 lookup texture", err, err_len);
 }
 
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
