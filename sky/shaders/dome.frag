@@ -5,6 +5,9 @@ SKY_IN vec3 v_dir;
 SKY_IN vec4 v_color;  /* rgb: day gradient, a: galaxy */
 #ifdef SKY_HAS_GRADIENT
 SKY_IN vec3 v_sky;
+#if defined(SKY_HAS_FLICKER) || defined(SKY_HAS_STARMAP)
+SKY_IN float v_night_transmittance;
+#endif
 #endif
 #ifdef SKY_HAS_CLOUDS
 SKY_IN vec4 v_cloud_layers;
@@ -26,12 +29,20 @@ void main()
     vec3 L = sky_atmosphere(d, v_color.rgb);
 #endif
     /* night layers: only in the night variant of this program (dome.c),
-     * behind the atmosphere and dimmed by it */
+     * behind the atmosphere and dimmed by it (per vertex where the path
+     * is evaluated there: a smooth function of elevation) */
+#if defined(SKY_HAS_FLICKER) || defined(SKY_HAS_STARMAP)
+#ifdef SKY_HAS_GRADIENT
+    float night_t = v_night_transmittance;
+#else
+    float night_t = sky_atmosphere_transmittance(d);
+#endif
+#endif
 #ifdef SKY_HAS_FLICKER
-    L += sky_flicker(d, v_color.a) * sky_atmosphere_transmittance(d);
+    L += sky_flicker(d, v_color.a) * night_t;
 #endif
 #ifdef SKY_HAS_STARMAP
-    L += sky_starmap(d) * sky_atmosphere_transmittance(d);
+    L += sky_starmap(d) * night_t;
 #endif
 #ifdef SKY_HAS_CLOUDS
     vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade);

@@ -11,6 +11,9 @@ SKY_OUT vec3 v_dir;
 SKY_OUT vec4 v_color;
 #ifdef SKY_HAS_GRADIENT
 SKY_OUT vec3 v_sky;        /* the gradient path's radiance, kcd/m^2 */
+#if defined(SKY_HAS_FLICKER) || defined(SKY_HAS_STARMAP)
+SKY_OUT float v_night_transmittance; /* what reaches the eye from behind it */
+#endif
 #endif
 #ifdef SKY_HAS_CLOUDS
 SKY_OUT vec4 v_cloud_layers; /* sky_clouds_vertex's outputs */
@@ -23,6 +26,9 @@ void main()
     v_color = a_color;
 #ifdef SKY_HAS_GRADIENT
     v_sky = sky_atmosphere(a_dir, a_color.rgb);
+#if defined(SKY_HAS_FLICKER) || defined(SKY_HAS_STARMAP)
+    v_night_transmittance = sky_atmosphere_transmittance(a_dir);
+#endif
 #endif
 #ifdef SKY_HAS_CLOUDS
     sky_clouds_vertex(a_dir, v_cloud_layers, v_cloud_upper, v_cloud_shade);
