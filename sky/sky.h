@@ -70,7 +70,9 @@ typedef enum sky_feature {
     SKY_ECLIPSE       = SKY_LUNAR_ECLIPSE, /* deprecated: SKY_LUNAR_ECLIPSE   */
     SKY_SOLAR_ECLIPSE = 1u << 7, /* the moon hides the sun, dims the sky and
                                     the host's sunlight; nothing while they
-                                    are apart                              */
+                                    are apart. It creates no resource: left
+                                    out, the sun's and the sky's shaders
+                                    read "no eclipse"                      */
     SKY_FEATURES_NONE = 1u << 31
 } sky_feature;
 
