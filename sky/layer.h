@@ -30,8 +30,10 @@ typedef struct sky_layer_class {
     sky_dome_role dome_role;
     const sky_snippet *dome_snippet; /* with a dome role                      */
     sky_blend blend;          /* for draw                                     */
-    /* Resources. 0, or -1 with a message; destroy is called after a
-     * failed create too, on whatever create left. */
+    /* Resources. 0, or -1 with a message. destroy is called for every
+     * state sky.c allocated: after a failed create on whatever it left, and
+     * on a state still all zero when an earlier step failed (no GL object
+     * to delete then, so it must call no GL function). */
     int (*create)(sky_core *s, void *state, char *err, size_t err_len);
     void (*destroy)(sky_core *s, void *state);
     /* Clocks: dt seconds of running time (finite, >= 0). */

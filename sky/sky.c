@@ -204,7 +204,6 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
     if (sky_atmosphere_create(c, err, err_len)) goto fail;
     FOR_EACH_LAYER(s, L, state) {
-        s->layer_created[L->slot] = 1;
         if (L->create && L->create(c, state, err, err_len)) goto fail;
     }
     c->cfg.texture_dir = NULL;
@@ -228,7 +227,7 @@ void sky_destroy(sky *s)
     sky_core *c = &s->core;
     for (int i = LAYER_COUNT - 1; i >= 0; i--) {
         const sky_layer_class *L = layer_table[i];
-        if (s->layer_created[L->slot] && L->destroy) L->destroy(c, s->layer_state[L->slot]);
+        if (s->layer_state[L->slot] && L->destroy) L->destroy(c, s->layer_state[L->slot]);
         free(s->layer_state[L->slot]);
     }
     sky_atmosphere_destroy(c);

@@ -19,7 +19,6 @@
 struct sky {
     sky_core core;                        /* what every room reads          */
     void *layer_state[SKY_LAYER_COUNT];   /* each layer's own, by its slot  */
-    int layer_created[SKY_LAYER_COUNT];   /* create was called: destroy it  */
     sky_dome_snippets dome_snippets;      /* of the enabled layers          */
     GLuint vao;                           /* CORE33 only                    */
     char error[256];
