@@ -127,7 +127,9 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --atmosphere gradient|preetham|rayleigh|hillaire|blend   atmosphere path\n"
             "  --luts small|default|large   hillaire/blend: table sizes and samples (x0.5, Hillaire's, x2)\n"
             "  --blend W                blend: fixed weight 0 (analytic) .. 1 (Hillaire); default follows the sun\n"
-            "  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
+"  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
+            "  --dome-divisor N         8-bit output: the sky and clouds at 1/N of the pixels per axis,\n"
+            "                           filtered up (1..8; default 4; 1 = every pixel, the sharpest)\n"
             "  --planet earth|hazy|mars the atmosphere's composition (rayleigh, hillaire, blend)\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
             "                           solar-eclipse (or none); eclipse = the lunar one\n"
@@ -161,30 +163,34 @@ typedef struct preset {
     float cover, height, density, sunset, speed, time;
     const char *date; /* NULL: no date of its own */
     double lat, lon, yaw, pitch;
+    int dome_divisor; /* 0: the library's default */
 } preset;
 
 /* Every preset takes the solar eclipse: it costs nothing while the sun
  * and the moon are apart. */
 static const preset presets[] = {
-    {"noon", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f, NULL, 0, 0, 0, 0},
-    {"overcast", SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0},
+    {"noon", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.35f, 0.6f, 0.2f, 0.0f, 0.2f, 0.5f, NULL, 0, 0, 0, 0, 0},
+    {"overcast", SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0, 0},
     {"sunset", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f, NULL, 0, 0,
-     0, 0},
+     0, 0, 0},
     {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f,
-     0.0f, NULL, 0, 0, 0, 0},
+     0.0f, NULL, 0, 0, 0, 0, 0},
     /* the full moon of 2026-04-02 from 40 N, looking at it */
     {"moonlit", SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f,
-     0.0f, 0.1f, 0.0f, "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0},
+     0.0f, 0.1f, 0.0f, "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0, 0},
     /* the total lunar eclipse of 2026-03-03, greatest at about 11:33 UTC,
      * from Hawaii where the moon stands at 69 degrees */
     {"eclipse", SKY_MOON | SKY_LUNAR_ECLIPSE | SKY_STARS | SKY_STARMAP | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.0f, 0.6f,
-     0.2f, 0.0f, 0.1f, 0.0f, "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0},
+     0.2f, 0.0f, 0.1f, 0.0f, "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0, 0},
     /* the total solar eclipse of 2024-04-08 near Nazas, Durango, at its
      * greatest (18:17:20 UT), looking up toward the sun at 70 degrees */
     {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.1f,
-     0.6f, 0.2f, 0.0f, 0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0},
+     0.6f, 0.2f, 0.0f, 0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0, 0},
+    /* the weakest GPUs' preset: the dome at a fifth of the resolution
+     * (softer clouds), which keeps it within one and a half textured
+     * full-screen quads on a software rasteriser */
     {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f,
-     0.2f, 0.45f, NULL, 0, 0, 0, 0},
+     0.2f, 0.45f, NULL, 0, 0, 0, 0, 5},
 };
 
 static const preset *find_preset(const char *name)
@@ -198,6 +204,7 @@ static int apply_preset(sky_cli *cli, const preset *p, const int *given)
 {
     if (!given[0]) cli->features = p->features;
     if (!given[1]) cli->gl = p->gl;
+    if (!given[8]) cli->dome_divisor = p->dome_divisor;
     float *dst[6] = {&cli->params.cover, &cli->params.height, &cli->params.density,
                      &cli->params.sunset, &cli->params.speed, &cli->params.time};
     const float src[6] = {p->cover, p->height, p->density, p->sunset, p->speed, p->time};
@@ -222,7 +229,7 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
     sky_observer where = {0.0, 40.0, 0.0, 0.0, 1}; /* sky.h's documented default place */
     static const char *const sliders[6] = {"--cover", "--height", "--density", "--sunset", "--speed", "--time"};
     /* given[]: features, gl, six sliders; seen[] catches duplicates */
-    int given[8] = {0};
+    int given[9] = {0}; /* and the dome's divisor */
     const char *seen[64];
     int seen_count = 0;
     for (int i = 1; i < argc; i++) {
@@ -287,6 +294,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 0.5, 50.0, &v))
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
             cli->moon_scale = (float)v;
+        } else if (!strcmp(opt, "--dome-divisor")) {
+            if (!parse_number(val, 1.0, 8.0, &v) || v != floor(v))
+                return fail(err, len, "--dome-divisor: expected a whole number in 1..8, got '%s'", val ? val : "(nothing)");
+            cli->dome_divisor = (int)v;
+            given[8] = 1;
         } else if (!strcmp(opt, "--exposure")) {
             if (!parse_number(val, -10.0, 10.0, &v))
                 return fail(err, len, "--exposure: expected stops in -10..10, got '%s'", val ? val : "(nothing)");
@@ -436,6 +448,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.atmosphere = cli->atmosphere;
     cfg.moon_scale = cli->moon_scale;
     cfg.turbidity = cli->turbidity;
+    cfg.dome_divisor = cli->dome_divisor;
     cfg.luts = cli->luts;
     cfg.blend_manual = cli->blend_manual;
     cfg.blend_weight = cli->blend_weight;

@@ -23,6 +23,7 @@ typedef struct sky_cli {
     float moon_scale;       /* --moon-scale (0 = the library's default)  */
     float exposure;         /* --exposure: stops on the automatic exposure */
     float turbidity;        /* --turbidity (0 = the library's default)   */
+    int dome_divisor;       /* --dome-divisor (0 = the library's default) */
     sky_atmosphere_preset planet; /* --planet earth|hazy|mars          */
     sky_lut_settings luts;  /* --luts small|default|large              */
     int blend_manual;       /* --blend W                               */

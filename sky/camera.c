@@ -84,6 +84,11 @@ static int camera_rotation(const sky_core *s, const float view[16], double rot[9
     return 1;
 }
 
+static void set_viewport(sky_core *s, const GLint viewport[4])
+{
+    for (int i = 0; i < 4; i++) s->frame.viewport[i] = (float)viewport[i];
+}
+
 int sky_camera_set(sky_core *s, const float view[16], const float proj[16], const GLint viewport[4], char *err,
                    size_t err_len)
 {
@@ -114,6 +119,7 @@ int sky_camera_set(sky_core *s, const float view[16], const float proj[16], cons
             s->frame.view_proj[col * 4 + row] = (float)acc;
         }
     s->frame.fisheye = 0.0f;
+    set_viewport(s, viewport);
     /* radians per pixel at the view centre: 2 tan(fov/2) / height */
     s->frame.pixel_angle = (float)(2.0 / (fabs(p[5]) * (viewport[3] > 0 ? viewport[3] : 1)));
     return 0;
@@ -125,6 +131,7 @@ void sky_camera_fisheye(sky_core *s, const GLint viewport[4])
     s->frame.aspect[0] = (float)(w > h ? w / h : 1.0);
     s->frame.aspect[1] = (float)(h > w ? h / w : 1.0);
     s->frame.fisheye = 1.0f;
+    set_viewport(s, viewport);
     s->frame.pixel_angle = (float)(SKY_PI / (w < h ? w : h)); /* 90 degrees on the circle's radius */
 }
 

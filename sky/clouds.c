@@ -30,6 +30,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UF("u_density", SKY_U_F1, density),
     SKY_UF("u_sunset", SKY_U_F1, sunset),
     SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
+    SKY_UF("u_cloud_texels_per_step", SKY_U_F1, cloud_texels_per_step),
     SKY_UF("u_cloud_offset0", SKY_U_F2, cloud_offset0),
     SKY_UF("u_cloud_offset1", SKY_U_F2, cloud_offset1),
     SKY_UF("u_cloud_offset_upper", SKY_U_F2, cloud_offset_upper),
@@ -101,7 +102,17 @@ static int clouds_create(sky_core *s, void *state, char *err, size_t err_len)
         return -1;
     bake_detail(rgba);
     sample_sunset(rgba, s->frame.sunset_gradient);
-    int rc = sky_texture_create(s, SKY_TEX_CLOUDS, SKY_LAYER_CLOUDS, rgba, SKY_CLOUD_TEXTURE_SIZE,
+    /* Where the dome is drawn into its image, the quads over it read the
+     * clouds' cover from there and nothing reads the alpha channel: the
+     * texture keeps three channels (a quarter less memory). */
+    int channels = 4;
+    if (s->dome_divisor) {
+        enum { N = SKY_CLOUD_TEXTURE_SIZE };
+        for (int i = 0; i < N * N; i++)
+            for (int c = 0; c < 3; c++) rgba[3 * i + c] = rgba[4 * i + c];
+        channels = 3;
+    }
+    int rc = sky_texture_create(s, SKY_TEX_CLOUDS, SKY_LAYER_CLOUDS, rgba, channels, SKY_CLOUD_TEXTURE_SIZE,
                                 SKY_CLOUD_TEXTURE_SIZE, 1, err, err_len);
     sky_png_free(rgba);
     return rc;
@@ -129,6 +140,9 @@ static void clouds_frame(sky_core *s, void *state)
     /* height: high clouds (1) look smaller, so more texture periods fit
      * across the dome (R-P 3.1: height scales the texture coordinates). */
     f->cloud_uv_scale = (float)(0.15 * pow(4.0, p->height));
+    /* the fade of detail a pixel cannot hold is judged in the viewport's
+     * pixels: a step in the dome's image spans dome_divisor of them */
+    f->cloud_texels_per_step = (float)SKY_CLOUD_TEXTURE_SIZE / (float)(s->dome_divisor ? s->dome_divisor : 1);
     float *offsets[SKY_CLOUD_LAYERS] = {f->cloud_offset0, f->cloud_offset1, f->cloud_offset_upper};
     for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
         for (int i = 0; i < 2; i++) offsets[l][i] = (float)st->offsets[l][i];

@@ -68,13 +68,14 @@ int sky_image_decode(const unsigned char *data, size_t size, int expect_w, int e
 /* ---- textures ----------------------------------------------------------- */
 typedef enum sky_texture_id {
     SKY_TEX_CLOUDS = 0, /* RGBA: photo, noise, detail, sunset gradient (R-P sec. 3) */
-    SKY_TEX_FLICKER,    /* RGBA: intensity, rate, variance, phase (R-P sec. 4)      */
     SKY_TEX_STARMAP,    /* equirectangular J2000 faint stars + Milky Way (Mueller 4.4) */
     SKY_TEX_MOON,       /* 256x128 lunar albedo, selenographic (Mueller 2.2.2)       */
     SKY_TEX_ECLIPSE,    /* 128x1 eclipse colour h(t), log10-encoded (Mueller 3.2)    */
     SKY_TEX_SKYVIEW,    /* Hillaire's sky-view table (atmosphere/hillaire.c)       */
     SKY_TEX_TRANSMITTANCE, /* Hillaire's transmittance table (CORE33: GPU builds)  */
     SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
+    SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
+                           the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT
 } sky_texture_id;
 
@@ -149,6 +150,9 @@ typedef struct sky_frame {
     float aspect[2];         /* fisheye: ndc scale so the circle is round        */
     float view_proj[16];     /* horizon direction (w = 0) -> clip                */
     float pixel_angle;       /* radians per pixel at the view centre             */
+    float viewport[4];       /* window x, y, width, height of the host's viewport */
+    /* the dome's image (dome.c) */
+    float dome_texel[2];     /* 1 / its width, height                           */
     /* the sun (sun.c) */
     float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
     float sun_radius;        /* angular radius of the drawn disc, radians        */
@@ -156,6 +160,8 @@ typedef struct sky_frame {
     /* clouds (clouds.c, R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
+    float cloud_texels_per_step; /* texels per unit of coordinate over the pixels
+                                    of the viewport one fragment step spans  */
     float cloud_offset0[2], cloud_offset1[2], cloud_offset_upper[2];
     float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
     float sunset_color[3];
@@ -163,9 +169,10 @@ typedef struct sky_frame {
                                 angle from the sun, from the texture's alpha */
     /* flicker stars (flicker.c, R-P sec. 4) */
     float flicker_phase;     /* flicker time in rate units, wrapped             */
+    float flicker_point_max; /* the largest point size the context draws         */
     float star_luminance;    /* kcd/m^2 of a full-intensity star texel; 0: off   */
     /* catalogue stars (stars.c) */
-    float star_rot[16], star_aberration[3], star_viewport[4], star_pressure[3];
+    float star_rot[16], star_aberration[3], star_pressure[3];
     struct {                 /* u_star_size (Mueller eq. 9), pixels            */
         float q, glare_ck, max_radius, control_magnitude;
     } star_size;
@@ -205,6 +212,7 @@ typedef struct sky_core {
     sky_gl gl;
     sky_gl_profile profile;
     char gl_version[128];         /* copy of GL_VERSION                        */
+    sky_gl_caps caps;             /* what beyond GL 2.0 it may use (gl.c)       */
 
     sky_params params;
     sky_observer observer;
@@ -226,6 +234,9 @@ typedef struct sky_core {
     const struct sky_dome_snippets *dome_snippets; /* of the enabled layers (sky.c) */
     int dome_front_shows, dome_night_shows; /* this draw: a layer of that dome role
                                                is visible (sky.c)             */
+
+    int dome_divisor;             /* the dome's image is 1/divisor of the viewport
+                                     on each axis; 0: drawn directly (dome.c) */
 
     sky_frame frame;
 } sky_core;

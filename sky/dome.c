@@ -25,6 +25,19 @@ static const double dome_rings_down_deg[] = {-1.0, -3.0, -7.0, -15.0, -35.0, -65
 #define DOME_VERTICES ((DOME_RINGS_UP + DOME_RINGS_DOWN) * DOME_SEGMENTS + 2)
 #define DOME_FLOATS 7 /* direction xyz, gradient rgb, galaxy */
 
+/* The LDR dome's image: by default 1/4 of the viewport on each axis (1/16
+ * of its pixels; sky_config.dome_divisor). The dome's light (the
+ * atmosphere, the galaxy glow, the star map and Roden & Parberry's clouds)
+ * changes slowly across the screen, and a fetch is most of what a pixel
+ * costs on a software rasteriser: evaluated on a sixteenth of the pixels
+ * and drawn over the viewport with one filtered fetch (and the dither),
+ * the dome costs about what one textured full-screen quad does. What is
+ * sharp is drawn at full resolution over it: the sun, the moon and the
+ * stars, each hidden by the clouds' alpha read from the image at its
+ * pixel. HDR output and contexts without framebuffer objects draw the
+ * dome at every pixel. */
+#define DOME_DIVISOR 4
+
 typedef struct dome_state {
     GLuint vertices, indices;    /* direction, gradient colour, galaxy      */
     size_t vertex_bytes, index_bytes;
@@ -37,6 +50,10 @@ typedef struct dome_state {
     sky_program night;           /* the same with the night backdrop        */
     sky_program night_clear;     /* the night backdrop without the front    */
     sky_program ground;          /* below the horizon: atmosphere only      */
+    /* the image (dome_divisor > 0): its framebuffer, the quad that draws
+     * it over the viewport, and the program that does */
+    GLuint fbo, quad;
+    sky_program composite, composite_fisheye;
 } dome_state;
 
 static void ring_vertex(float *v, double elevation_sine, int seg)
@@ -143,9 +160,69 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
     gl->glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_SHORT, (const void *)(first * sizeof(unsigned short)));
 }
 
+/* Drawn into the image, the dome writes the clouds' alpha beside the
+ * colour. */
+static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL};
+
 static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, char *err, size_t err_len)
 {
-    return sky_program_build(s, p, "dome.vert", "dome.frag", snippets, n, err, err_len);
+    const sky_snippet *list[SKY_MAX_SNIPPETS + 1];
+    for (int i = 0; i < n; i++) list[i] = snippets[i];
+    if (s->dome_divisor) list[n++] = &into_image_snippet;
+    return sky_program_build(s, p, "dome.vert", "dome.frag", list, n, err, err_len);
+}
+
+int sky_dome_divisor_for(const sky_core *s)
+{
+    int divisor = s->cfg.dome_divisor ? s->cfg.dome_divisor : DOME_DIVISOR;
+    return s->cfg.output == SKY_OUTPUT_LDR && s->caps.render_to_rgba8 && divisor > 1 ? divisor : 0;
+}
+
+/* The image's uniform (where a fragment finds itself in it comes from the
+ * common u_viewport). */
+static const sky_uniform_desc image_uniforms[] = {
+    SKY_UT("u_dome_tex", SKY_TEX_DOME),
+    SKY_UF("u_dome_texel", SKY_U_F2, dome_texel),
+};
+static const sky_snippet composite_snippet = {NULL, NULL, image_uniforms, SKY_UNIFORM_COUNT(image_uniforms), NULL};
+static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL};
+static const sky_snippet cover_snippet = {"SKY_HAS_DOME_COVER", "dome_cover.glsl", image_uniforms,
+                                          SKY_UNIFORM_COUNT(image_uniforms), NULL};
+
+/* The image's size for a viewport: 1/divisor on each axis, rounded up; a
+ * context without NPOT textures takes the nearest powers of two. */
+static void image_size(const sky_core *s, int *w, int *h)
+{
+    int size[2] = {s->viewport[2], s->viewport[3]};
+    for (int i = 0; i < 2; i++) {
+        int n = (size[i] + s->dome_divisor - 1) / s->dome_divisor;
+        if (n < 1) n = 1;
+        if (!s->caps.npot) {
+            int p = 1;
+            while (p < n) p *= 2;
+            if (p > 1 && (double)p / n > (double)n / (p / 2)) p /= 2; /* nearer in ratio */
+            n = p;
+        }
+        size[i] = n;
+    }
+    *w = size[0], *h = size[1];
+}
+
+static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_len)
+{
+    const sky_snippet *own[2] = {&composite_snippet, &fisheye_circle_snippet};
+    if (sky_program_build(s, &st->composite, "composite.vert", "composite.frag", own, 1, err, err_len) ||
+        sky_program_build(s, &st->composite_fisheye, "composite.vert", "composite.frag", own, 2, err, err_len))
+        return -1;
+    static const float corners[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    st->quad = sky_buffer_create(s, GL_ARRAY_BUFFER, corners, sizeof corners, GL_STATIC_DRAW);
+    /* a first image, to check the framebuffer with; resized by dome_view */
+    if (!st->quad || sky_texture_create_image(s, SKY_TEX_DOME, SKY_LAYER_ATMOSPHERE, 4, 4, err, err_len)) {
+        if (!st->quad) sky_format(err, err_len, "glGenBuffers failed for the dome's quad");
+        return -1;
+    }
+    st->fbo = sky_gl_target_create(s, SKY_TEX_DOME, err, err_len);
+    return st->fbo ? 0 : -1;
 }
 
 static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
@@ -153,6 +230,7 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     dome_state *st = state;
     const sky_dome_snippets *d = s->dome_snippets;
     if (create_mesh(s, st, err, err_len)) return -1;
+    if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
     const sky_snippet *list[SKY_MAX_SNIPPETS];
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->profile != SKY_GL_CORE33, list), n = atmosphere;
     if (n + d->front_count + d->night_count > SKY_MAX_SNIPPETS) {
@@ -188,9 +266,27 @@ static void dome_destroy(sky_core *s, void *state)
     sky_program_destroy(s, &st->night);
     sky_program_destroy(s, &st->night_clear);
     sky_program_destroy(s, &st->ground);
-    const GLuint buffers[2] = {st->vertices, st->indices};
-    const size_t bytes[2] = {st->vertex_bytes, st->index_bytes};
-    sky_buffers_destroy(s, buffers, bytes, 2);
+    sky_program_destroy(s, &st->composite);
+    sky_program_destroy(s, &st->composite_fisheye);
+    const GLuint buffers[3] = {st->vertices, st->indices, st->quad};
+    const size_t bytes[3] = {st->vertex_bytes, st->index_bytes, 8 * sizeof(float)};
+    sky_buffers_destroy(s, buffers, bytes, 3);
+    sky_gl_target_destroy(s, st->fbo);
+}
+
+/* The image follows the viewport's size. */
+static void dome_view(sky_core *s, void *state)
+{
+    dome_state *st = state;
+    if (!st->fbo) return;
+    int w, h;
+    image_size(s, &w, &h);
+    const sky_texture *t = &s->textures[SKY_TEX_DOME];
+    /* should it fail (out of memory), the old image is stretched over the
+     * viewport */
+    if (t->width != w || t->height != h) (void)sky_texture_resize_image(s, SKY_TEX_DOME, w, h);
+    s->frame.dome_texel[0] = 1.0f / (float)t->width;
+    s->frame.dome_texel[1] = 1.0f / (float)t->height;
 }
 
 static int dome_visible(const sky_core *s, const void *state)
@@ -212,25 +308,48 @@ static int dome_draw(sky_core *s, void *state)
     int clear = s->dome_snippets->front_count && !s->dome_front_shows;
     const sky_program *upper = night ? (clear ? &st->night_clear : &st->night) : (clear ? &st->ground : &st->day);
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
+    const sky_texture *image = &s->textures[SKY_TEX_DOME];
+    sky_gl_target target;
+    int into_image = st->fbo != 0;
+    if (into_image) {
+        sky_gl_target_begin(s, st->fbo, SKY_TEX_DOME, image->width, image->height, &target);
+        if (f->fisheye >= 0.5f) { /* the margin around the all-sky circle */
+            const GLint all[4] = {0, 0, image->width, image->height};
+            sky_gl_clear_viewport(s, all);
+        }
+    }
     sky_program_apply(s, upper);
     draw_hemisphere(s, st, 1);
+    int draws = 1;
     /* the lower hemisphere: its own cheap program when the upper one
      * carries more than the atmosphere; none in the all-sky image */
-    if (f->fisheye >= 0.5f) return 1;
-    if (!st->ground.id) {
+    if (f->fisheye < 0.5f) {
+        if (st->ground.id) {
+            sky_program_apply(s, &st->ground);
+            draws++;
+        }
         draw_hemisphere(s, st, 0);
-        return 1;
     }
-    sky_program_apply(s, &st->ground);
-    draw_hemisphere(s, st, 0);
-    return 2;
+    if (!into_image) return draws;
+    sky_gl_target_end(s, &target);
+    /* the image over the viewport: one filtered fetch and the dither */
+    const sky_gl *gl = &s->gl;
+    sky_program_apply(s, f->fisheye >= 0.5f ? &st->composite_fisheye : &st->composite);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, st->quad);
+    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), (const void *)0);
+    gl->glEnableVertexAttribArray(0);
+    gl->glDisableVertexAttribArray(1);
+    gl->glDisableVertexAttribArray(2);
+    gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    return draws + 1;
 }
 
 static size_t dome_buffer_bytes(const sky_core *s, const void *state)
 {
     (void)s;
     const dome_state *st = state;
-    return (st->vertices ? st->vertex_bytes : 0) + (st->indices ? st->index_bytes : 0);
+    return (st->vertices ? st->vertex_bytes : 0) + (st->indices ? st->index_bytes : 0) +
+           (st->quad ? 8 * sizeof(float) : 0);
 }
 
 int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
@@ -243,7 +362,10 @@ int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_
         sky_format(err, err_len, "too many shader snippets for %s", frag_main);
         return -1;
     }
-    for (int i = 0; i < dome->front_count; i++) list[n++] = dome->front[i];
+    if (s->dome_divisor && dome->front_count)
+        list[n++] = &cover_snippet;
+    else
+        for (int i = 0; i < dome->front_count; i++) list[n++] = dome->front[i];
     for (int i = 0; i < own_count; i++) list[n++] = own[i];
     return sky_program_build(s, p, vert_main, frag_main, list, n, err, err_len);
 }
@@ -254,6 +376,7 @@ const sky_layer_class sky_dome_layer = {
     .blend = SKY_BLEND_NONE,
     .create = dome_create,
     .destroy = dome_destroy,
+    .view = dome_view,
     .visible = dome_visible,
     .draw = dome_draw,
     .buffer_bytes = dome_buffer_bytes,

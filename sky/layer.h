@@ -70,8 +70,12 @@ typedef struct sky_dome_snippets {
     const sky_snippet *front[SKY_MAX_SNIPPETS], *night[SKY_MAX_SNIPPETS];
     int front_count, night_count;
 } sky_dome_snippets;
-/* Builds a program of a layer drawn over the dome: the front snippets,
- * then its own. */
+/* dome.c: the divisor of the dome's image for this context and output
+ * (0: the dome is drawn directly), decided before any layer is created. */
+int sky_dome_divisor_for(const sky_core *s);
+/* Builds a program of a layer drawn over the dome: what it needs to hide
+ * behind the front layers (their snippets, or where the dome has an image,
+ * the image's alpha: dome_cover.glsl), then its own snippets. */
 int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
                                 const char *frag_main, const sky_snippet *const *own, int own_count, char *err,
                                 size_t err_len);

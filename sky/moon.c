@@ -98,7 +98,7 @@ static int moon_create(sky_core *s, void *state, char *err, size_t err_len)
             for (int c = 0; c < 3; c++) lut[4 * i + c] = (unsigned char)lround(sky_clampd(-h[c] / 5.0, 0.0, 1.0) * 255.0);
             lut[4 * i + 3] = 255;
         }
-        if (sky_texture_create(s, SKY_TEX_ECLIPSE, SKY_LAYER_MOON, lut, 128, 1, 0, err, err_len)) return -1;
+        if (sky_texture_create(s, SKY_TEX_ECLIPSE, SKY_LAYER_MOON, lut, 4, 128, 1, 0, err, err_len)) return -1;
     }
     const sky_snippet *own[2];
     int n = 0;

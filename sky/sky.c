@@ -141,6 +141,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                 return NULL;
             }
     }
+    if (cfg->dome_divisor < 0 || cfg->dome_divisor > 8) {
+        sky_format(err, err_len, "sky_create: dome_divisor %d is out of range (0 = default, 1..8)", cfg->dome_divisor);
+        return NULL;
+    }
     if (!isfinite(cfg->turbidity) || (cfg->turbidity != 0.0f && (cfg->turbidity < 1.0f || cfg->turbidity > 64.0f))) {
         sky_format(err, err_len, "sky_create: turbidity %g is out of range (0 = default, or 1..64)",
                    (double)cfg->turbidity);
@@ -201,6 +205,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
 
     if (sky_gl_init(c, err, err_len)) goto fail;
     if (c->profile == SKY_GL_CORE33) s->vao = sky_gl_vertex_array_create(c);
+    c->dome_divisor = sky_dome_divisor_for(c);
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
     if (sky_atmosphere_create(c, err, err_len)) goto fail;
     FOR_EACH_LAYER(s, L, state) {

@@ -183,6 +183,18 @@ typedef struct sky_config {
     sky_gl_profile gl_profile;
     sky_get_proc_address_fn get_proc_address; /* required                     */
     sky_output output;
+    /* LDR: the dome (atmosphere, galaxy glow, star map and clouds) is
+     * evaluated on 1/dome_divisor of the viewport's pixels along each axis,
+     * into an image filtered up to the viewport; the sun, the moon and the
+     * stars stay at full resolution, hidden by the clouds' alpha from that
+     * image. 0 = 4 (a sixteenth of the pixels: clouds a little softer, the
+     * frame about as cheap as one textured full-screen quad on a software
+     * rasteriser); 1 = every pixel (the sharpest clouds, about 2.3 times
+     * that cost); up to 8. Needs framebuffer objects (GL 3.0, or
+     * ARB/EXT_framebuffer_object on 2.0); without them, and for HDR output,
+     * the dome is drawn at every pixel. The image is one RGBA8 texture,
+     * counted in sky_stats (about 230 KB at 1280x720 and 4). */
+    int dome_divisor;
     /* Optional directory whose PNG files replace the embedded textures of the
      * same name (clouds.png, flicker.png, galaxy.png, gradient.png). NULL =
      * embedded only. */

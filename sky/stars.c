@@ -43,7 +43,6 @@ static const sky_uniform_desc star_uniforms[] = {
     SKY_UF("u_star_rot", SKY_U_M4, star_rot),
     SKY_UF("u_star_aberration", SKY_U_F3, star_aberration),
     SKY_UF("u_star_size", SKY_U_F4, star_size),
-    SKY_UF("u_star_viewport", SKY_U_F4, star_viewport),
     SKY_UF("u_star_pressure", SKY_U_F3, star_pressure),
     SKY_UF("u_star_flux_scale", SKY_U_F1, star_flux_scale),
     SKY_UF("u_star_extinction", SKY_U_F3, star_extinction),
@@ -166,7 +165,6 @@ static void stars_view(sky_core *s, void *state)
     stars_state *st = state;
     sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
-    for (int i = 0; i < 4; i++) f->star_viewport[i] = (float)s->viewport[i];
     /* proper motion moves Arcturus 0.1" a month: refresh past half a year */
     if (fabs(a->years_since_j2000 - st->epoch) > 0.5) upload_stars(s, st, a->years_since_j2000, NULL, 0);
     for (int i = 0; i < 3; i++)

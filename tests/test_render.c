@@ -23,6 +23,7 @@ void test_render_sun_in_fisheye(void);
 void test_render_hdr_finite_everywhere(void);
 void test_profiles_core_and_compat_agree(void);
 void test_render_total_solar_eclipse(void);
+void test_render_dome_image_agrees_with_every_pixel(void);
 
 #define PI 3.14159265358979323846
 
@@ -712,4 +713,52 @@ void test_render_total_solar_eclipse(void)
           "left out, the eclipse still dims the scene (sun %g, ambient %g klx)", (double)plain.sun_color[1],
           (double)plain.ambient_color[1]);
     fixture_close(&fx);
+}
+
+/* The LDR dome drawn into its reduced image (the default, 1/4 per axis)
+ * against the dome at every pixel (dome_divisor 1): the same sky and
+ * clouds, a little softer; the sun, and at night the stars and the
+ * flicker stars, as sharp and as bright, where the clouds let them be. */
+void test_render_dome_image_agrees_with_every_pixel(void)
+{
+    scene day = scene_default();
+    day.cfg.features = SKY_CLOUDS | SKY_SUN;
+    day.params.time = 0.45f;
+    day.params.cover = 0.5f;
+    day.w = 320;
+    day.h = 240;
+    day.pitch = 40.0;
+    scene night = sky_only(SKY_CLOUDS | SKY_STARS | SKY_FLICKER_STARS);
+    night.params.time = 0.0f;
+    night.params.cover = 0.3f;
+    night.w = 320;
+    night.h = 240;
+    scene *scenes[2] = {&day, &night};
+    for (int k = 0; k < 2; k++) {
+        scene full = *scenes[k], reduced = *scenes[k];
+        full.cfg.dome_divisor = 1;
+        image a, b;
+        if (render_scene(&full, 0, SKY_GL_AUTO, &a) || render_scene(&reduced, 0, SKY_GL_AUTO, &b)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        double ma = mean_luminance(&a), mb = mean_luminance(&b), psnr = image_psnr(&a, &b);
+        NOTE("%s: mean 8-bit luminance %.4f at every pixel, %.4f from the image; PSNR %.1f dB", k ? "night" : "day", ma,
+             mb, psnr);
+        CHECK(fabs(mb / ma - 1.0) < 0.02, "the image keeps the sky's brightness (%.4f vs %.4f)", mb, ma);
+        CHECK(psnr > 30.0, "the image shows the same sky (PSNR %.1f dB)", psnr);
+        if (k == 0) {
+            double ax, ay, ap, bx, by, bp;
+            bright_centroid(&a, &ax, &ay, &ap);
+            bright_centroid(&b, &bx, &by, &bp);
+            NOTE("sun at (%.2f, %.2f) peak %.3f, from the image at (%.2f, %.2f) peak %.3f", ax, ay, ap, bx, by, bp);
+            CHECK(hypot(ax - bx, ay - by) < 0.5 && fabs(ap - bp) < 0.02, "the sun is drawn at full resolution");
+        } else {
+            int sa = count_point_sources(&a, 0.1f), sb = count_point_sources(&b, 0.1f);
+            NOTE("point sources: %d at every pixel, %d over the image", sa, sb);
+            CHECK(sa > 100 && abs(sa - sb) < sa / 10, "the stars stay sharp (%d vs %d)", sa, sb);
+        }
+        image_free(&a);
+        image_free(&b);
+    }
 }

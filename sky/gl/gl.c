@@ -21,6 +21,49 @@ static int parse_version(const char *v)
     return major * 10 + minor;
 }
 
+/* Whether a compatibility context's extension string names ext (a whole
+ * word of it). */
+static int has_extension(const sky_gl *gl, const char *ext)
+{
+    const char *all = (const char *)gl->glGetString(GL_EXTENSIONS);
+    size_t n = strlen(ext);
+    for (const char *p = all; p && (p = strstr(p, ext)) != NULL; p += n)
+        if ((p == all || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return 1;
+    return 0;
+}
+
+/* What beyond OpenGL 2.0 the sky may use. A 2004 GPU renders into a texture
+ * through EXT_framebuffer_object, whose entry points may carry the EXT
+ * suffix, and binds one framebuffer for drawing and reading alike; NPOT
+ * textures need ARB_texture_non_power_of_two there. */
+static void detect_caps(sky_core *s, int gl_ver)
+{
+    sky_gl *gl = &s->gl;
+    sky_gl_caps *caps = &s->caps;
+    memset(caps, 0, sizeof *caps);
+    if (s->profile == SKY_GL_CORE33) {
+        caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = 1;
+        return;
+    }
+    int arb_fbo = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_object");
+    int ext_fbo = has_extension(gl, "GL_EXT_framebuffer_object");
+    if (!arb_fbo && ext_fbo && !gl->glGenFramebuffers) {
+        sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
+#define SKY_GL_LOAD_EXT(name, params) gl->name = (void(SKY_APIENTRY *) params)gpa(#name "EXT");
+        SKY_GL_LOAD_EXT(glGenFramebuffers, (GLsizei n, GLuint *f))
+        SKY_GL_LOAD_EXT(glDeleteFramebuffers, (GLsizei n, const GLuint *f))
+        SKY_GL_LOAD_EXT(glBindFramebuffer, (GLenum target, GLuint f))
+        SKY_GL_LOAD_EXT(glFramebufferTexture2D, (GLenum target, GLenum att, GLenum textarget, GLuint t, GLint level))
+#undef SKY_GL_LOAD_EXT
+        gl->glCheckFramebufferStatus = (GLenum(SKY_APIENTRY *)(GLenum))gpa("glCheckFramebufferStatusEXT");
+    }
+    caps->render_to_rgba8 = (arb_fbo || ext_fbo) && gl->glGenFramebuffers && gl->glDeleteFramebuffers &&
+                            gl->glBindFramebuffer && gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus;
+    caps->separate_framebuffers = arb_fbo || has_extension(gl, "GL_EXT_framebuffer_blit");
+    caps->npot = gl_ver >= 30 || has_extension(gl, "GL_ARB_texture_non_power_of_two");
+    while (gl->glGetError() != GL_NO_ERROR) {}
+}
+
 int sky_gl_init(sky_core *s, char *err, size_t err_len)
 {
     sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
@@ -88,6 +131,7 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
         }
     }
     s->profile = want;
+    detect_caps(s, gl_ver);
     return 0;
 }
 
@@ -100,6 +144,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_aspect", SKY_U_F2, aspect),
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
     SKY_UF("u_view_proj", SKY_U_M4, view_proj),
+    SKY_UF("u_viewport", SKY_U_F4, viewport),
     SKY_UF("u_night_shift", SKY_U_F1, night_shift),
     SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
@@ -297,25 +342,56 @@ static int finish_texture(sky_core *s, sky_texture *t, GLenum target, GLint filt
     return 0;
 }
 
-int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
-                       int repeat, char *err, size_t err_len)
+/* An 8-bit 2D texture of 3 or 4 channels, linear; pixels may be NULL. */
+static int create_2d(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *pixels, int channels,
+                     int w, int h, GLint wrap, const char *what, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
+    sky_texture *t = &s->textures[id];
+    gl->glGenTextures(1, &t->id);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_2D, t->id);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl->glTexImage2D(GL_TEXTURE_2D, 0, channels == 3 ? GL_RGB8 : GL_RGBA8, w, h, 0, channels == 3 ? GL_RGB : GL_RGBA,
+                     GL_UNSIGNED_BYTE, pixels);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    return finish_texture(s, t, GL_TEXTURE_2D, GL_LINEAR, wrap, w, h, (size_t)w * (size_t)h * (size_t)channels,
+                          owner, what, err, err_len);
+}
+
+int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *pixels, int channels,
+                       int w, int h, int repeat, char *err, size_t err_len)
+{
     if (!is_pow2(w) || !is_pow2(h)) {
         /* COMPAT20 has no NPOT textures; keeping one rule for both profiles
          * makes the compat path the tested path. */
         sky_format(err, err_len, "texture %dx%d is not a power of two", w, h);
         return -1;
     }
-    sky_texture *t = &s->textures[id];
-    gl->glGenTextures(1, &t->id);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_2D, t->id);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    return finish_texture(s, t, GL_TEXTURE_2D, GL_LINEAR, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE, w, h,
-                          (size_t)w * (size_t)h * 4u, owner, "texture", err, err_len);
+    return create_2d(s, id, owner, pixels, channels, w, h, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE, "texture", err,
+                     err_len);
+}
+
+int sky_texture_resize_image(sky_core *s, sky_texture_id id, int w, int h)
+{
+    sky_texture old = s->textures[id];
+    char err[8];
+    if (sky_texture_create_image(s, id, old.owner, w, h, err, sizeof err)) {
+        s->textures[id] = old;
+        return -1;
+    }
+    if (old.id) s->gl.glDeleteTextures(1, &old.id);
+    return 0;
+}
+
+int sky_texture_create_image(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, char *err,
+                             size_t err_len)
+{
+    if (!s->caps.npot && (!is_pow2(w) || !is_pow2(h))) {
+        sky_format(err, err_len, "image %dx%d is not a power of two, and the context has no NPOT textures", w, h);
+        return -1;
+    }
+    return create_2d(s, id, owner, NULL, 4, w, h, GL_CLAMP_TO_EDGE, "render image", err, err_len);
 }
 
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
@@ -397,7 +473,7 @@ int sky_texture_load(sky_core *s, sky_texture_id id, sky_layer owner, const char
 {
     unsigned char *rgba = NULL;
     if (sky_asset_load_rgba(s, name, expect_w, expect_h, &rgba, err, err_len)) return -1;
-    int rc = sky_texture_create(s, id, owner, rgba, expect_w, expect_h, repeat, err, err_len);
+    int rc = sky_texture_create(s, id, owner, rgba, 4, expect_w, expect_h, repeat, err, err_len);
     sky_png_free(rgba);
     return rc;
 }
@@ -685,7 +761,8 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
 {
     const sky_gl *gl = &s->gl;
     gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &t->draw);
-    gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
+    t->read = t->draw;
+    if (s->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
     gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
     t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
     t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
@@ -704,8 +781,12 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
 void sky_gl_target_end(sky_core *s, const sky_gl_target *t)
 {
     const sky_gl *gl = &s->gl;
-    gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)t->draw);
-    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)t->read);
+    if (s->caps.separate_framebuffers) {
+        gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)t->draw);
+        gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)t->read);
+    } else {
+        gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)t->draw);
+    }
     gl->glViewport(t->viewport[0], t->viewport[1], t->viewport[2], t->viewport[3]);
     if (t->scissor) gl->glEnable(GL_SCISSOR_TEST);
     if (t->discard) gl->glEnable(GL_RASTERIZER_DISCARD);

@@ -70,9 +70,15 @@ void sky_program_destroy(sky_core *s, sky_program *p);
 void sky_program_apply(sky_core *s, const sky_program *p);
 
 /* ---- textures and buffers ------------------------------------------------ */
-/* Uploads an RGBA8 image. repeat: wrap mode. Power-of-two sizes only. */
-int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *rgba, int w, int h,
-                       int repeat, char *err, size_t err_len);
+/* Uploads an 8-bit image of 3 (RGB) or 4 (RGBA) channels. repeat: wrap
+ * mode. Power-of-two sizes only. */
+int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *pixels, int channels,
+                       int w, int h, int repeat, char *err, size_t err_len);
+/* An RGBA8 image to render into (sky_gl_target_begin) and sample: linear,
+ * clamped, no mipmaps, so any size where the context has NPOT textures
+ * (the subset GL 2.0 and ES 2.0 hardware filter), powers of two elsewhere. */
+int sky_texture_create_image(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, char *err,
+                             size_t err_len);
 /* Loads a texture by file name: the override directory first, then the
  * embedded copy. Checks size and channel count against what is expected. */
 int sky_texture_load(sky_core *s, sky_texture_id id, sky_layer owner, const char *name, int expect_w, int expect_h,
@@ -90,6 +96,8 @@ void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const 
  * clamped at the edges. */
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
                             char *err, size_t err_len);
+/* A new size for such an image; on failure the old one stays. */
+int sky_texture_resize_image(sky_core *s, sky_texture_id id, int w, int h);
 void sky_texture_destroy(sky_core *s, sky_texture_id id);
 /* Reads an asset (override directory first, then the embedded copy) and
  * decodes it to RGBA8, checking its size. Free with sky_png_free. */

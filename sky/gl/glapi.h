@@ -60,6 +60,7 @@ typedef ptrdiff_t GLintptr;
 #define GL_MAX_TEXTURE_SIZE 0x0D33
 #define GL_TEXTURE_2D 0x0DE1
 #define GL_UNSIGNED_BYTE 0x1401
+#define GL_SHORT 0x1402
 #define GL_FLOAT 0x1406
 #define GL_RGBA 0x1908
 #define GL_RGB 0x1907
@@ -78,6 +79,7 @@ typedef ptrdiff_t GLintptr;
 #define GL_CLAMP_TO_EDGE 0x812F
 #define GL_TEXTURE_MAX_LEVEL 0x813D
 #define GL_RGBA8 0x8058
+#define GL_RGB8 0x8051
 #define GL_RGBA32F 0x8814
 #define GL_RGB32F 0x8815
 #define GL_TEXTURE0 0x84C0
@@ -219,5 +221,12 @@ typedef struct sky_gl {
     SKY_GL_FUNCS_30(SKY_GL_MEMBER)
 #undef SKY_GL_MEMBER
 } sky_gl;
+
+/* What a context offers beyond OpenGL 2.0 that the sky uses (gl.c). */
+typedef struct sky_gl_caps {
+    int render_to_rgba8;       /* framebuffer objects (3.0, ARB or EXT)     */
+    int separate_framebuffers; /* draw and read bindings apart (3.0, ARB, EXT_blit) */
+    int npot;                  /* non-power-of-two textures (3.0 or ARB)   */
+} sky_gl_caps;
 
 #endif /* SKY_GLAPI_H */

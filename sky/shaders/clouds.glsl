@@ -9,6 +9,8 @@
 uniform sampler2D u_clouds_tex;
 uniform float u_cover, u_density, u_sunset;
 uniform float u_cloud_uv_scale;      /* from the height slider               */
+uniform float u_cloud_texels_per_step; /* 512 over the viewport pixels a
+                                        fragment step spans (clouds.c)      */
 uniform vec2 u_cloud_offset0, u_cloud_offset1, u_cloud_offset_upper;
 uniform vec3 u_cloud_light;          /* kcd/m^2 of a white cloud: R-P's
                                         amount_sunlight, tinted             */
@@ -91,12 +93,12 @@ vec2 sky_cloud_grey(vec4 first, float noise, float upper)
 }
 
 /* Beyond the paper: the texture has no mipmaps (memory budget), so where
- * one pixel spans many texels the pattern would alias; fade the clouds
- * there, as haze would near the horizon anyway. fw: the first layer's
- * coordinate change across a pixel. */
+ * one pixel of the viewport spans many texels the pattern would alias;
+ * fade the clouds there, as haze would near the horizon anyway. fw: the
+ * first layer's coordinate change across a fragment step. */
 float sky_cloud_footprint_fade(vec2 fw)
 {
-    float footprint = max(fw.x, fw.y) * 512.0;
+    float footprint = max(fw.x, fw.y) * u_cloud_texels_per_step;
     return 1.0 - 0.8 * smoothstep(2.0, 10.0, footprint);
 }
 
@@ -128,4 +130,8 @@ vec4 sky_clouds(vec3 d)
                              SKY_TEX2D(u_clouds_tex, sky_cloud_upper(p, 1.0)).g);
     return vec4(sky_cloud_colour(ga.x, sunset_amount), ga.y * sky_cloud_footprint_fade(fw) * smoothstep(0.0, 0.06, d.y));
 }
+
+/* What hides a fragment of the quads over the dome (dome_cover.glsl's,
+ * where the dome has an image). */
+float sky_front_cover(vec3 d) { return sky_clouds(d).a; }
 #endif

@@ -8,6 +8,7 @@ uniform vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round  
 uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
 uniform float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
 uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
+uniform vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
 uniform float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
 
 const float SKY_PI = 3.14159265;

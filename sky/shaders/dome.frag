@@ -39,14 +39,21 @@ void main()
 #endif
 #endif
 #ifdef SKY_HAS_FLICKER
-    L += sky_flicker(d, v_color.a) * night_t;
+    L += sky_galaxy_glow(v_color.a) * night_t;
 #endif
 #ifdef SKY_HAS_STARMAP
     L += sky_starmap(d) * night_t;
 #endif
+    float cover = 0.0;
 #ifdef SKY_HAS_CLOUDS
     vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade);
     L = mix(L, c.rgb, c.a);
+    cover = c.a;
 #endif
+#ifdef SKY_DOME_INTO_IMAGE
+    /* the image keeps the clouds' alpha for what is drawn over it */
+    SKY_FRAG_COLOR = sky_output(L, cover);
+#else
     SKY_FRAG_COLOR = sky_output(L, 1.0);
+#endif
 }

@@ -71,8 +71,8 @@ void main()
         float r = sqrt(r2), w = (4.0 - r) / 3.0;
         L = u_moon_color * u_moon_terms.y * u_moon_terms.z * w * w / r2;
     }
-#ifdef SKY_HAS_CLOUDS
-    float c = sky_clouds(d).a;
+#if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
+    float c = sky_front_cover(d);
     L *= 1.0 - c;
     cover *= 1.0 - c;
 #endif

@@ -18,8 +18,8 @@ void main()
     float psf = ls < 1.0 ? (2.0 * ls - 3.0) * ls * ls + 1.0 : 0.0;
     float glare = v_size.y > 1.0 ? 0.01 * (1.0 - pow(l, 1.0 / 6.0)) : 0.0;
     vec3 L = v_light * (psf + glare);
-#ifdef SKY_HAS_CLOUDS
-    L *= 1.0 - sky_clouds(v_dir).a;
+#if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
+    L *= 1.0 - sky_front_cover(v_dir);
 #endif
     if (u_output_hdr < 0.5 && max(L.r, max(L.g, L.b)) * u_exposure < 1.0 / 1024.0) discard;
     SKY_FRAG_COLOR = sky_output(L, 1.0);

@@ -15,7 +15,6 @@ uniform float u_star_seed;        /* scintillation clock, 10 per second, wrapped
 uniform mat4 u_star_rot;          /* J2000 -> horizon (precession, nutation, sidereal) */
 uniform vec3 u_star_aberration;   /* annual aberration, horizon frame          */
 uniform vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
-uniform vec4 u_star_viewport;     /* x, y, width, height                       */
 uniform vec3 u_star_pressure;     /* refraction pressure factor, -, -          */
 uniform vec4 u_star_occulter;     /* moon's true direction, cos of its drawn radius */
 SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed)         */
@@ -99,5 +98,5 @@ void main()
     if (d.y < 0.0 || clip.w <= 0.0 || occulted || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
     gl_Position = clip;
     gl_PointSize = 2.0 * k + 1.0;
-    v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_star_viewport.zw + u_star_viewport.xy;
+    v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_viewport.zw + u_viewport.xy;
 }

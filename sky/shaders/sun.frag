@@ -46,8 +46,8 @@ void main()
                  (1.0 - behind_moon) / u_sun_luminance;
     }
     vec3 L = u_sun_luminance * (disc + glare + corona) * u_sun_transmittance;
-#ifdef SKY_HAS_CLOUDS
-    L *= 1.0 - sky_clouds(view).a;
+#if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
+    L *= 1.0 - sky_front_cover(view);
 #endif
     /* nothing below the refracted horizon: there the ground is */
     if (view.y < 0.0) discard;

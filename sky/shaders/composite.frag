@@ -1,0 +1,23 @@
+/* composite.frag: the dome's image, already tone mapped, filtered up to
+ * the viewport's pixels and dithered again at their scale (the image's own
+ * dither is spread over the pixels of a texel by the filter). The all-sky
+ * image's variant keeps its circle sharp: outside it stays the margin
+ * sky_draw cleared (a discard costs every pixel, so only that variant has
+ * one), and the rim is read from one and a half texels inside, where the
+ * filter does not reach the image's black margin. */
+uniform sampler2D u_dome_tex;
+uniform vec2 u_dome_texel; /* 1 / the image's width, height */
+SKY_IN vec2 v_image;
+void main()
+{
+    vec2 uv = v_image;
+#ifdef SKY_FISHEYE_CIRCLE
+    vec2 circle = (uv * 2.0 - 1.0) * u_aspect;
+    float r = length(circle);
+    if (r > 1.0) discard;
+    vec2 texel = 2.0 * u_aspect * u_dome_texel; /* in the circle's units */
+    float rim = 1.0 - 1.5 * max(texel.x, texel.y);
+    if (r > rim) uv = (circle * (rim / r) / u_aspect + 1.0) * 0.5;
+#endif
+    SKY_FRAG_COLOR = vec4(sky_dither(SKY_TEX2D(u_dome_tex, uv).rgb), 1.0);
+}

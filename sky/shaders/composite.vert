@@ -1,0 +1,9 @@
+/* composite.vert: the dome's image (dome.c) over the whole viewport: a
+ * quad of two triangles whose corners are the image's. */
+SKY_ATTR vec2 a_pos;
+SKY_OUT vec2 v_image;
+void main()
+{
+    v_image = a_pos * 0.5 + 0.5;
+    gl_Position = vec4(a_pos, 0.0, 1.0);
+}
