@@ -709,8 +709,14 @@ static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, 
         if (i < 3)
             rc = subject_quad(&subs[i], i, gl, w, h);
         else {
-            char *argv[] = {"sky-bench", "--preset", (char *)presets[i - 3], NULL};
-            rc = subject_sky(&subs[i], 3, argv, presets[i - 3], gl, w, h, frames, 0);
+            /* a row is a preset, perhaps with options after it
+             * ("noon --atmosphere hillaire"): split at the spaces */
+            char words[128], *argv[8] = {"sky-bench", "--preset"};
+            int argc = 2;
+            snprintf(words, sizeof words, "%s", presets[i - 3]);
+            for (char *t = strtok(words, " "); t && argc < 7; t = strtok(NULL, " ")) argv[argc++] = t;
+            argv[argc] = NULL;
+            rc = subject_sky(&subs[i], argc, argv, presets[i - 3], gl, w, h, frames, 0);
         }
     if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
     if (!rc) {
@@ -1092,8 +1098,10 @@ int main(int argc, char **argv)
     }
     atmo_row atmo[2 * ATMO_SETTINGS];
     int natmo = 0;
+    /* the presets, and noon's clouds over the physical paths */
     static const char *const presets[] = {"minimal", "noon",    "overcast", "sunset",
-                                          "starry",  "moonlit", "eclipse",  "solar-eclipse"};
+                                          "starry",  "moonlit", "eclipse",  "solar-eclipse",
+                                          "noon --atmosphere hillaire", "noon --atmosphere preetham"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * (NP + 2)];
     /* the baseline's medians over the rounds of the preset table and of

@@ -1,6 +1,8 @@
-/* composite.frag: the dome's image, already tone mapped, filtered up to
- * the viewport's pixels and dithered again at their scale (the image's own
- * dither is spread over the pixels of a texel by the filter). The all-sky
+/* composite.frag: the dome's image, already tone mapped and dithered at
+ * its own scale, filtered up to the viewport's pixels: one fetch. (A
+ * second dither at the viewport's scale would cost a tenth of a textured
+ * full-screen quad; the image's dither, spread over a few pixels by the
+ * filter, already keeps 8-bit gradients from banding.) The all-sky
  * image's variant keeps its circle sharp: outside it stays the margin
  * sky_draw cleared (a discard costs every pixel, so only that variant has
  * one), and the rim is read from one and a half texels inside, where the
@@ -19,5 +21,5 @@ void main()
     float rim = 1.0 - 1.5 * max(texel.x, texel.y);
     if (r > rim) uv = (circle * (rim / r) / u_aspect + 1.0) * 0.5;
 #endif
-    SKY_FRAG_COLOR = vec4(sky_dither(SKY_TEX2D(u_dome_tex, uv).rgb), 1.0);
+    SKY_FRAG_COLOR = vec4(SKY_TEX2D(u_dome_tex, uv).rgb, 1.0);
 }
