@@ -266,7 +266,10 @@ SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
 /* Draws the sky into the current framebuffer and viewport. view and proj are
  * column-major; only the rotation part of view is used (the sky is
  * centred on the viewer). Depth is neither tested nor written; all GL state
- * that the call changes is restored before it returns. */
+ * that the call changes is restored before it returns. With LDR output it
+ * first renders the dome into an image of its own through a framebuffer
+ * object of its own (sky_config.dome_divisor), and puts the host's draw
+ * and read framebuffers and viewport back before drawing into the host's. */
 SKY_API sky_result sky_draw(sky *s, const float view[16], const float proj[16]);
 /* Draws an equidistant all-sky image into the viewport: zenith at the
  * centre, horizon on the inscribed circle, north at the top, east on the

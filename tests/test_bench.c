@@ -70,7 +70,8 @@ void test_bench_preset_table_in_rounds(void)
         CHECK(us > 0.0, "a preset's sky_update us is measured (%.3f): %.80s", us, r);
         presets++;
     }
-    CHECK(presets == 20, "8 presets and noon over hillaire and preetham, in 2 profiles (%d rows)", presets);
+    CHECK(presets == 24, "8 presets, noon over hillaire and preetham and at two dome divisors, in 2 profiles (%d rows)",
+          presets);
 
     /* Roden & Parberry's shader, as printed and packed, in both profiles */
     static const char *const names[2] = {"R-P 2005 as printed", "R-P packed (2 fetches)"};

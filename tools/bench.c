@@ -1098,10 +1098,12 @@ int main(int argc, char **argv)
     }
     atmo_row atmo[2 * ATMO_SETTINGS];
     int natmo = 0;
-    /* the presets, and noon's clouds over the physical paths */
+    /* the presets; noon's clouds over the physical paths; noon's dome at
+     * every pixel and at half the resolution (the cost of sharper clouds) */
     static const char *const presets[] = {"minimal", "noon",    "overcast", "sunset",
                                           "starry",  "moonlit", "eclipse",  "solar-eclipse",
-                                          "noon --atmosphere hillaire", "noon --atmosphere preetham"};
+                                          "noon --atmosphere hillaire", "noon --atmosphere preetham",
+                                          "noon --dome-divisor 1", "noon --dome-divisor 2"};
     enum { NP = sizeof presets / sizeof presets[0] };
     row rows[2 * (NP + 2)];
     /* the baseline's medians over the rounds of the preset table and of
