@@ -130,6 +130,9 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
 "  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
             "  --dome-divisor N         8-bit output: the sky and clouds at 1/N of the pixels per axis,\n"
             "                           filtered up (1..8; default 4; 1 = every pixel, the sharpest)\n"
+            "  --tone-map hue|filmic|neutral   8-bit output's curve: hue keeps each colour's hue and\n"
+            "                           saturation (default), filmic is libsky's old per-channel curve,\n"
+            "                           neutral is Khronos PBR Neutral\n"
             "  --planet earth|hazy|mars the atmosphere's composition (rayleigh, hillaire, blend)\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
             "                           solar-eclipse (or none); eclipse = the lunar one\n"
@@ -294,6 +297,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 0.5, 50.0, &v))
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
             cli->moon_scale = (float)v;
+        } else if (!strcmp(opt, "--tone-map")) {
+            if (val && !strcmp(val, "hue")) cli->tone_map = SKY_TONE_MAP_HUE;
+            else if (val && !strcmp(val, "filmic")) cli->tone_map = SKY_TONE_MAP_FILMIC;
+            else if (val && !strcmp(val, "neutral")) cli->tone_map = SKY_TONE_MAP_NEUTRAL;
+            else return fail(err, len, "--tone-map: expected hue, filmic or neutral, got '%s'", val ? val : "(nothing)");
         } else if (!strcmp(opt, "--dome-divisor")) {
             if (!parse_number(val, 1.0, 8.0, &v) || v != floor(v))
                 return fail(err, len, "--dome-divisor: expected a whole number in 1..8, got '%s'", val ? val : "(nothing)");
@@ -449,6 +457,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.moon_scale = cli->moon_scale;
     cfg.turbidity = cli->turbidity;
     cfg.dome_divisor = cli->dome_divisor;
+    cfg.tone_map = cli->tone_map;
     cfg.luts = cli->luts;
     cfg.blend_manual = cli->blend_manual;
     cfg.blend_weight = cli->blend_weight;

@@ -24,6 +24,7 @@ typedef struct sky_cli {
     float exposure;         /* --exposure: stops on the automatic exposure */
     float turbidity;        /* --turbidity (0 = the library's default)   */
     int dome_divisor;       /* --dome-divisor (0 = the library's default) */
+    sky_tone_map tone_map;  /* --tone-map hue|filmic|neutral              */
     sky_atmosphere_preset planet; /* --planet earth|hazy|mars          */
     sky_lut_settings luts;  /* --luts small|default|large              */
     int blend_manual;       /* --blend W                               */

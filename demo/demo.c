@@ -275,6 +275,10 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     if (key == GLFW_KEY_S) d->save = 1;
     if (key == GLFW_KEY_L) d->profiling = !d->profiling, d->recreate = 1;
     if (key == GLFW_KEY_G) d->switch_profile = 1;
+    if (key == GLFW_KEY_O) { /* the next tone map */
+        d->cli.tone_map = d->cli.tone_map >= SKY_TONE_MAP_NEUTRAL ? SKY_TONE_MAP_HUE : d->cli.tone_map + 1;
+        d->recreate = 1;
+    }
     if (key == GLFW_KEY_A) { /* the next atmosphere path */
         d->cli.atmosphere = d->cli.atmosphere >= SKY_ATMOSPHERE_BLEND ? SKY_ATMOSPHERE_GRADIENT : d->cli.atmosphere + 1;
         d->recreate = 1;
@@ -537,8 +541,9 @@ int main(int argc, char **argv)
         if (a.solar_obscuration > 0.0)
             used += snprintf(lines + used, sizeof lines - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
                              100 * a.solar_obscuration, a.solar_magnitude, 0);
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  fov %.0f  time %s x%.0f%c",
-                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", d.cli.fov,
+        static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  tone map %s  fov %.0f  time %s x%.0f%c",
+                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", tone_maps[d.cli.tone_map], d.cli.fov,
                          d.running ? "running" : "paused", d.time_rate * 86400.0, 0);
         /* the cost: the sky's GPU frame time as sky-bench measures it, and
          * the frame rate of the window */

@@ -115,6 +115,7 @@ typedef struct sky_frame {
     float moonlight;         /* 0..25: the moon's brightening of the night sky    */
     float ambient_rgb[3];    /* sky irradiance on an upward surface, klx         */
     float fog_rgb[3];        /* horizon luminance, kcd/m^2                       */
+    float ground_rgb[3];     /* the ground below the horizon, kcd/m^2            */
     /* Preetham (preetham.c): Perez A..E and zenith values for (Y, x, y) */
     float perez[5][3], perez_zenith[3];
     /* analytic Rayleigh + Mie (rayleigh.c) */
@@ -152,7 +153,8 @@ typedef struct sky_frame {
     float pixel_angle;       /* radians per pixel at the view centre             */
     float viewport[4];       /* window x, y, width, height of the host's viewport */
     /* the dome's image (dome.c) */
-    float dome_texel[2];     /* 1 / its width, height                           */
+    float dome_texel[2];     /* 1 / its texture's width, height                  */
+    float dome_scale[2];     /* the share of the texture it uses, per axis       */
     /* the sun (sun.c) */
     float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
     float sun_radius;        /* angular radius of the drawn disc, radians        */

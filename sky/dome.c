@@ -54,6 +54,7 @@ typedef struct dome_state {
      * it over the viewport, and the program that does */
     GLuint fbo, quad;
     sky_program composite, composite_fisheye;
+    int used[2];                 /* this draw: the image's corner in use    */
 } dome_state;
 
 static void ring_vertex(float *v, double elevation_sine, int seg)
@@ -183,29 +184,25 @@ int sky_dome_divisor_for(const sky_core *s)
 static const sky_uniform_desc image_uniforms[] = {
     SKY_UT("u_dome_tex", SKY_TEX_DOME),
     SKY_UF("u_dome_texel", SKY_U_F2, dome_texel),
+    SKY_UF("u_dome_scale", SKY_U_F2, dome_scale),
 };
 static const sky_snippet composite_snippet = {NULL, NULL, image_uniforms, SKY_UNIFORM_COUNT(image_uniforms), NULL};
 static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL};
 static const sky_snippet cover_snippet = {"SKY_HAS_DOME_COVER", "dome_cover.glsl", image_uniforms,
                                           SKY_UNIFORM_COUNT(image_uniforms), NULL};
 
-/* The image's size for a viewport: 1/divisor on each axis, rounded up; a
- * context without NPOT textures takes the nearest powers of two. */
-static void image_size(const sky_core *s, int *w, int *h)
+/* The image for a viewport: 1/divisor of it on each axis, rounded up
+ * (used), in a texture of that size, or without NPOT textures of the
+ * powers of two that hold it (its corner used: the same picture on every
+ * GPU, at up to four times the memory). */
+static void image_size(const sky_core *s, int used[2], int size[2])
 {
-    int size[2] = {s->viewport[2], s->viewport[3]};
     for (int i = 0; i < 2; i++) {
-        int n = (size[i] + s->dome_divisor - 1) / s->dome_divisor;
-        if (n < 1) n = 1;
-        if (!s->caps.npot) {
-            int p = 1;
-            while (p < n) p *= 2;
-            if (p > 1 && (double)p / n > (double)n / (p / 2)) p /= 2; /* nearer in ratio */
-            n = p;
-        }
-        size[i] = n;
+        int n = (s->viewport[2 + i] + s->dome_divisor - 1) / s->dome_divisor, p = 1;
+        used[i] = n < 1 ? 1 : n;
+        while (p < used[i]) p *= 2;
+        size[i] = s->caps.npot ? used[i] : p;
     }
-    *w = size[0], *h = size[1];
 }
 
 static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_len)
@@ -279,14 +276,21 @@ static void dome_view(sky_core *s, void *state)
 {
     dome_state *st = state;
     if (!st->fbo) return;
-    int w, h;
-    image_size(s, &w, &h);
+    int used[2], size[2];
+    image_size(s, used, size);
     const sky_texture *t = &s->textures[SKY_TEX_DOME];
-    /* should it fail (out of memory), the old image is stretched over the
-     * viewport */
-    if (t->width != w || t->height != h) (void)sky_texture_resize_image(s, SKY_TEX_DOME, w, h);
-    s->frame.dome_texel[0] = 1.0f / (float)t->width;
-    s->frame.dome_texel[1] = 1.0f / (float)t->height;
+    /* should it fail (out of memory), the old texture stays, its corner
+     * stretched over the viewport */
+    if ((t->width != size[0] || t->height != size[1]) && sky_texture_resize_image(s, SKY_TEX_DOME, size[0], size[1])) {
+        used[0] = used[0] < t->width ? used[0] : t->width;
+        used[1] = used[1] < t->height ? used[1] : t->height;
+    }
+    sky_frame *f = &s->frame;
+    for (int i = 0; i < 2; i++) {
+        st->used[i] = used[i];
+        f->dome_texel[i] = 1.0f / (float)(i ? t->height : t->width);
+        f->dome_scale[i] = (float)used[i] * f->dome_texel[i];
+    }
 }
 
 static int dome_visible(const sky_core *s, const void *state)
@@ -308,13 +312,12 @@ static int dome_draw(sky_core *s, void *state)
     int clear = s->dome_snippets->front_count && !s->dome_front_shows;
     const sky_program *upper = night ? (clear ? &st->night_clear : &st->night) : (clear ? &st->ground : &st->day);
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
-    const sky_texture *image = &s->textures[SKY_TEX_DOME];
     sky_gl_target target;
     int into_image = st->fbo != 0;
     if (into_image) {
-        sky_gl_target_begin(s, st->fbo, SKY_TEX_DOME, image->width, image->height, &target);
+        sky_gl_target_begin(s, st->fbo, SKY_TEX_DOME, st->used[0], st->used[1], &target);
         if (f->fisheye >= 0.5f) { /* the margin around the all-sky circle */
-            const GLint all[4] = {0, 0, image->width, image->height};
+            const GLint all[4] = {0, 0, st->used[0], st->used[1]};
             sky_gl_clear_viewport(s, all);
         }
     }

@@ -141,6 +141,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                 return NULL;
             }
     }
+    if ((unsigned)cfg->tone_map > SKY_TONE_MAP_NEUTRAL) {
+        sky_format(err, err_len, "sky_create: tone_map %d is out of range (hue, filmic or neutral)", (int)cfg->tone_map);
+        return NULL;
+    }
     if (cfg->dome_divisor < 0 || cfg->dome_divisor > 8) {
         sky_format(err, err_len, "sky_create: dome_divisor %d is out of range (0 = default, 1..8)", cfg->dome_divisor);
         return NULL;

@@ -99,6 +99,21 @@ typedef enum sky_gl_profile {
     SKY_GL_COMPAT20    /* OpenGL 2.0, GLSL 110, RGBA8 power-of-two only     */
 } sky_gl_profile;
 
+/* How LDR output turns the sky's light into 8-bit colour (HDR output is
+ * linear and untouched by it). */
+typedef enum sky_tone_map {
+    SKY_TONE_MAP_HUE = 0, /* the default: a filmic curve on each colour's
+                             largest channel, the colour scaled with it, so
+                             hue and saturation survive (a sunset stays
+                             orange, noon stays blue); only the sun and its
+                             glare, far above white, turn white           */
+    SKY_TONE_MAP_FILMIC,  /* Hejl and Burgess-Dawson's curve on each channel
+                             apart: contrasty, and bright colours drift
+                             toward white and yellow (libsky before 2026-11) */
+    SKY_TONE_MAP_NEUTRAL  /* Khronos PBR Neutral: linear to 0.76, then a soft
+                             shoulder with slight desaturation; flatter   */
+} sky_tone_map;
+
 typedef enum sky_output {
     SKY_OUTPUT_LDR = 0, /* exposure, tone map, sRGB encode and dither built in */
     SKY_OUTPUT_HDR      /* linear RGB, luminance in kcd/m^2 (sRGB primaries), for
@@ -195,6 +210,8 @@ typedef struct sky_config {
      * the dome is drawn at every pixel. The image is one RGBA8 texture,
      * counted in sky_stats (about 230 KB at 1280x720 and 4). */
     int dome_divisor;
+    /* LDR: the tone map (above); 0 = SKY_TONE_MAP_HUE. */
+    sky_tone_map tone_map;
     /* Optional directory whose PNG files replace the embedded textures of the
      * same name (clouds.png, flicker.png, galaxy.png, gradient.png). NULL =
      * embedded only. */

@@ -83,6 +83,9 @@ void test_api_rejects_null_and_bad_config(void)
     cfg.dome_divisor = -1;
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "dome_divisor"), "negative divisor: %s", err);
     cfg.dome_divisor = 0;
+    cfg.tone_map = (sky_tone_map)3; /* hue, filmic or neutral */
+    CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "tone_map"), "bad tone map: %s", err);
+    cfg.tone_map = SKY_TONE_MAP_HUE;
     cfg.features = 1u << 20; /* no such feature */
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "not built yet"), "unknown feature: %s", err);
     cfg.features = 0;

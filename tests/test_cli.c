@@ -199,6 +199,7 @@ void test_cli_exit_codes_and_messages(void)
         {"--date 2011-06-15", 2, "--date"},
         {"--turbidity 0.5", 2, "--turbidity"},
         {"--dome-divisor 9", 2, "--dome-divisor"},
+        {"--tone-map aces", 2, "--tone-map"},
         {"--dome-divisor 2.5", 2, "--dome-divisor"},
         {"--planet venus", 2, "--planet"},
         {"--bogus", 2, "--bogus"},

@@ -138,10 +138,14 @@ static double vs_table(const lapse *l, double *mean, long *bad)
             double rgb[3], expect[3], got[3];
             sky_hillaire_sky(t, d, sun, rgb);
             static const double tint[3] = {0.55, 0.7, 1.0}; /* atmosphere.glsl */
-            double floor_scale = d[1] < 0.0 ? 2.0 / (1.0 - 4.0 * d[1]) : 2.0 - d[1];
+            /* below the horizon, atmosphere.glsl's ground: the horizon's
+             * mean fading into the lit ground over 2 degrees */
+            double ground = sky_smoothstep(0.0, 0.035, -d[1]);
             const float *v = lapse_pixel(l, x, y);
             for (int k = 0; k < 3; k++) {
-                expect[k] = rgb[k] * c->frame.sun_irradiance[k] + floor_scale * tint[k] * c->frame.night_luminance;
+                expect[k] = d[1] < 0.0 ? c->frame.fog_rgb[k] + (c->frame.ground_rgb[k] - c->frame.fog_rgb[k]) * ground
+                                       : rgb[k] * c->frame.sun_irradiance[k] +
+                                             (2.0 - d[1]) * tint[k] * c->frame.night_luminance;
                 got[k] = v[k];
                 if (!isfinite(v[k]) || v[k] < 0.0f) (*bad)++;
             }

@@ -43,6 +43,10 @@ int test_skipped;
     X(render_sun_in_fisheye)                     \
     X(render_hdr_finite_everywhere)              \
     X(render_dome_image_agrees_with_every_pixel) \
+    X(colour_hue_and_saturation_kept)            \
+    X(colour_old_curve_fails_the_measure)        \
+    X(colour_one_ground_below_the_horizon)       \
+    X(colour_noon_as_bright_as_before)           \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
     X(profiles_too_old_context_is_an_error)      \

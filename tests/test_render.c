@@ -200,7 +200,9 @@ void test_render_day_bright_night_dark_with_stars(void)
     CHECK(stars_night > 150, "a clear night shows many stars (%d)", stars_night);
     CHECK(stars_day == 0, "no star at noon (%d)", stars_day);
     CHECK(mean_luminance(&nl) < 0.25, "the night image is dark (mean %.3f)", mean_luminance(&nl));
-    CHECK(mean_luminance(&dl) > 0.5, "the day image is bright (mean %.3f)", mean_luminance(&dl));
+    /* (the default tone map keeps the sky's saturation: a blue noon is
+     * 5-10 % darker in mean than the old per-channel curve made it) */
+    CHECK(mean_luminance(&dl) > 0.45, "the day image is bright (mean %.3f)", mean_luminance(&dl));
     image_free(&dh);
     image_free(&nh);
     image_free(&dl);

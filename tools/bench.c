@@ -4,7 +4,7 @@
  * the cheapest thing a sky could possibly be.
  *
  *   sky-bench [--json] [--size WxH] [--frames N] [--rounds R] [--reference FILE]
- *             [--only-atmosphere | --only-presets] [--plot FILE.png]
+ *             [--only-atmosphere | --only-presets | --only-colour] [--tone-map NAME] [--plot FILE.png]
  *   sky-bench --stability [--json]
  *   sky-bench --make-reference FILE [--paths N]
  *
@@ -14,7 +14,9 @@
  * Roden & Parberry's cloud shader as their paper prints it and packed into
  * one texture. Then, per atmosphere path, setting and profile: frame ms of
  * the sky (atmosphere + sun), its ratio to the baseline, LUT build ms, and
- * its error against the cached CPU reference (tools/atmo_error.c).
+ * its error against the cached CPU reference (tools/atmo_error.c). Last,
+ * the colour section: per path, sun height and view, what the 8-bit
+ * output keeps of the sky's hue and saturation (tools/colour.c).
  *
  * Frame times are interleaved: R rounds; in each, every row is measured
  * right after a measurement of the baseline (median of N frames each), so
@@ -30,6 +32,7 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include "atmo_error.h"
 #include "cli.h"
+#include "colour.h"
 #include "osmesa_ctx.h"
 #include "plot.h"
 #include "stability.h"
@@ -1038,10 +1041,92 @@ static void print_baseline_json(const char *key, const double base[2], const rou
     printf("}");
 }
 
+/* ---- colour: the 8-bit output against the sky's own (tools/colour.c) ---------------- */
+
+#define COLOUR_PATHS 5
+#define COLOUR_ROWS (COLOUR_PATHS * SKY_COLOUR_SUNS * 2)
+static const char *const colour_path_names[COLOUR_PATHS] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
+static const sky_atmosphere_path colour_paths[COLOUR_PATHS] = {
+    SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
+    SKY_ATMOSPHERE_BLEND};
+static const char *const tone_map_names[3] = {"hue", "filmic", "neutral"};
+
+/* Every path, sun height and view at 480x270, core profile. */
+static int colour_rows(sky_tone_map tm, sky_colour_row *rows)
+{
+    char err[256];
+    int n = 0;
+    for (int p = 0; p < COLOUR_PATHS; p++)
+        for (int k = 0; k < SKY_COLOUR_SUNS; k++)
+            for (int toward = 1; toward >= 0; toward--)
+                if (sky_colour_measure(colour_paths[p], tm, SKY_GL_AUTO, sky_colour_suns[k], toward, 480, 270,
+                                       &rows[n++], err, sizeof err)) {
+                    fprintf(stderr, "sky-bench: colour: %s\n", err);
+                    return -1;
+                }
+    return 0;
+}
+
+static const char *colour_path_name(sky_atmosphere_path path)
+{
+    for (int p = 0; p < COLOUR_PATHS; p++)
+        if (colour_paths[p] == path) return colour_path_names[p];
+    return "?";
+}
+
+static void print_colour_table(const sky_colour_row *rows, int n)
+{
+    printf("| path | sun deg | view | pixels | saturation kept, median | p10 | hue shift deg, median | p90 | "
+           "clipped %% | ground under sun / elsewhere | twilight ground / sky | targets |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    int met = 0;
+    for (int i = 0; i < n; i++) {
+        const sky_colour_row *r = &rows[i];
+        char why[128], pillar[16] = "-", ground[16] = "-";
+        int ok = sky_colour_row_ok(r, why, sizeof why);
+        met += ok;
+        if (r->pillar >= 0.0) snprintf(pillar, sizeof pillar, "%.3f", r->pillar);
+        if (r->ground_to_sky >= 0.0) snprintf(ground, sizeof ground, "%.3f", r->ground_to_sky);
+        if (r->counted > 0)
+            printf("| %s | %g | %s | %d | %.2f | %.2f | %.1f | %.1f | %.2f | %s | %s | %s |\n", colour_path_name(r->path),
+                   r->sun_deg, r->toward ? "toward" : "away", r->counted, r->saturation_kept_median,
+                   r->saturation_kept_p10, r->hue_shift_median, r->hue_shift_p90, 100.0 * r->clipped, pillar, ground,
+                   ok ? "met" : why);
+        else
+            printf("| %s | %g | %s | 0 | - | - | - | - | %.2f | %s | %s | %s |\n", colour_path_name(r->path), r->sun_deg,
+                   r->toward ? "toward" : "away", 100.0 * r->clipped, pillar, ground, ok ? "met" : why);
+    }
+    printf("\nTargets met in %d of %d rows. Pixels: sky pixels more than 3 degrees from the sun with a linear\n"
+           "saturation above 0.15 and an 8-bit value (largest channel) of at least 25, at 480x270, 40 N 0 E on\n"
+           "2026-06-21 (an evening sun), 60-degree field, facing the sun at pitch 8 or away at pitch 20. Targets\n"
+           "(sun -4..60): hue shift median <= 3, p90 <= 8 degrees; saturation kept median >= 0.85, p10 >= 0.6;\n"
+           "clipped <= 1 %% of the sky; the ground under a 0-8 degree sun <= 1.05x the ground elsewhere; the\n"
+           "ground under a sun below the horizon >= 0.05 of the sky (HDR).\n",
+           met, n);
+}
+
+static void print_colour_json(sky_tone_map tm, const sky_colour_row *rows, int n)
+{
+    printf(" \"colour\": {\"tone_map\":\"%s\", \"rows\": [\n", tone_map_names[tm]);
+    for (int i = 0; i < n; i++) {
+        const sky_colour_row *r = &rows[i];
+        char why[128];
+        int ok = sky_colour_row_ok(r, why, sizeof why);
+        printf("  {\"path\":\"%s\", \"sun_deg\":%g, \"view\":\"%s\", \"pixels\":%d, \"saturation_kept_median\":%.4f, "
+               "\"saturation_kept_p10\":%.4f, \"hue_shift_median\":%.3f, \"hue_shift_p90\":%.3f, \"clipped\":%.5f, "
+               "\"pillar\":%.4f, \"twilight_ground_to_sky\":%.4f, \"targets_met\":%s}%s\n",
+               colour_path_name(r->path), r->sun_deg, r->toward ? "toward" : "away", r->counted,
+               r->saturation_kept_median, r->saturation_kept_p10, r->hue_shift_median, r->hue_shift_p90, r->clipped,
+               r->pillar, r->ground_to_sky, ok ? "true" : "false", i + 1 < n ? "," : "");
+    }
+    printf(" ]}");
+}
+
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0;
+        only_presets = 0, only_colour = 0;
+    sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--json"))
@@ -1050,6 +1135,13 @@ int main(int argc, char **argv)
             only_atmosphere = 1;
         else if (!strcmp(argv[i], "--only-presets"))
             only_presets = 1;
+        else if (!strcmp(argv[i], "--only-colour"))
+            only_colour = 1;
+        else if (!strcmp(argv[i], "--tone-map") && i + 1 < argc &&
+                 (!strcmp(argv[i + 1], "hue") || !strcmp(argv[i + 1], "filmic") || !strcmp(argv[i + 1], "neutral")))
+            tone_map = !strcmp(argv[++i], "hue") ? SKY_TONE_MAP_HUE
+                       : !strcmp(argv[i], "filmic") ? SKY_TONE_MAP_FILMIC
+                                                    : SKY_TONE_MAP_NEUTRAL;
         else if (!strcmp(argv[i], "--make-reference") && i + 1 < argc)
             make_reference = argv[++i];
         else if (!strcmp(argv[i], "--reference") && i + 1 < argc)
@@ -1070,7 +1162,8 @@ int main(int argc, char **argv)
             i++;
         else {
             fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3] "
-                    "[--rounds 1..%d] [--reference FILE] [--only-atmosphere | --only-presets] [--plot FILE.png]\n"
+                    "[--rounds 1..%d] [--reference FILE] [--only-atmosphere | --only-presets | --only-colour]\n"
+                    "       [--tone-map hue|filmic|neutral] [--plot FILE.png]\n"
                     "       sky-bench --stability [--json]\n"
                     "       sky-bench --make-reference FILE [--paths N]\n",
                     argv[i], MAX_ROUNDS);
@@ -1078,6 +1171,19 @@ int main(int argc, char **argv)
         }
     }
     if (stability) return stability_table(json);
+    static sky_colour_row colour[COLOUR_ROWS];
+    if (only_colour) {
+        if (colour_rows(tone_map, colour)) return 1;
+        if (json) {
+            printf("{\n");
+            print_colour_json(tone_map, colour, COLOUR_ROWS);
+            printf("\n}\n");
+        } else {
+            printf("Colour (tone map %s):\n\n", tone_map_names[tone_map]);
+            print_colour_table(colour, COLOUR_ROWS);
+        }
+        return 0;
+    }
     if (make_reference) {
         char err[512];
         fprintf(stderr, "sky-bench: computing the reference sky (%d x %d directions, %d paths), minutes\n",
@@ -1148,6 +1254,7 @@ int main(int argc, char **argv)
     }
     if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
     double astro = astro_us(2000);
+    if (colour_rows(tone_map, colour)) return 1;
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
                rounds, astro);
@@ -1177,7 +1284,9 @@ int main(int argc, char **argv)
             for (int s = 0; s < SKY_ATMO_SUNS; s++) printf("%.5f%s", r->err.mean_rel[s], s + 1 < SKY_ATMO_SUNS ? "," : "");
             printf("]}%s\n", i + 1 < natmo ? "," : "");
         }
-        printf(" ]}\n");
+        printf(" ],\n");
+        print_colour_json(tone_map, colour, COLOUR_ROWS);
+        printf("}\n");
         return 0;
     }
     printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then each\n"
@@ -1201,5 +1310,9 @@ int main(int argc, char **argv)
     printf("\n");
     print_baseline(" in the atmosphere rounds", w, h, frames, base_atmo, ainfo);
     print_atmosphere_table(atmo, natmo, &ref);
+    printf("\nColour: what the 8-bit output (tone map %s) keeps of the sky's own, per pixel against the HDR\n"
+           "frame (the atmosphere and the sun):\n\n",
+           tone_map_names[tone_map]);
+    print_colour_table(colour, COLOUR_ROWS);
     return 0;
 }

@@ -15,6 +15,8 @@
 static const sky_uniform_desc atmosphere_uniforms[] = {
     SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
     SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
+    SKY_UF("u_ground", SKY_U_F3, ground_rgb),
+    SKY_UF("u_horizon", SKY_U_F3, fog_rgb),
 };
 /* in both stages: pure arithmetic, which a path evaluated per vertex needs */
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
@@ -249,6 +251,14 @@ void sky_atmosphere_frame(sky_core *s)
     /* the fog was taken at the summary's lowest ring, or at the horizon
      * itself for the gradient */
     sky_solar_eclipse_sky(s, s->atmosphere == SKY_ATMOSPHERE_GRADIENT ? 0.0 : mu_node[0]);
+    /* The ground under every path (atmosphere.glsl): Lambertian, its
+     * luminance the albedo over pi times the illuminance on it, the sky's
+     * (the summary's irradiance) and the sun's beam through the air, with
+     * what a solar eclipse leaves of it. */
+    double beam = fmax(sin(f->sun_altitude), 0.0) * sky_solar_eclipse_light_left(s);
+    for (int i = 0; i < 3; i++)
+        f->ground_rgb[i] = (float)(s->atm.ground_albedo[i] / SKY_PI *
+                                   (f->ambient_rgb[i] + s->sun_irradiance_klx[i] * f->sun_transmittance[i] * beam));
 }
 
 int sky_atmosphere_create(sky_core *s, char *err, size_t err_len)

@@ -207,8 +207,10 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     }
     /* prologue, feature defines, common code, snippets, main */
     const char *parts[3 + SKY_MAX_SNIPPETS + 2];
-    char defines[256] = "";
-    size_t used = 0;
+    /* the tone map (common.glsl), then the snippets' defines */
+    static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
+    char defines[256];
+    size_t used = (size_t)snprintf(defines, sizeof defines, "%s", tone_maps[s->cfg.tone_map]);
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define) {
             int n = snprintf(defines + used, sizeof defines - used, "#define %s 1\n", snippets[i]->define);

@@ -4,6 +4,9 @@
 uniform float u_night_luminance;  /* kcd/m^2 of the night sky (moonlit or not) */
 uniform vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light left,
                                      yzw the extra left at the horizon (rgb) */
+uniform vec3 u_ground;            /* kcd/m^2: the ground lit by sun and sky     */
+uniform vec3 u_horizon;           /* kcd/m^2: the sky just above the horizon, its
+                                     mean over azimuth                        */
 
 /* A solar eclipse dims the day sky by the light the moon hides (x). Around
  * totality what is left comes from the air outside the moon's shadow, lit
@@ -24,17 +27,21 @@ vec3 sky_night_floor(vec3 d)
     return u_night_luminance * vec3(0.55, 0.7, 1.0) * (2.0 - clamp(d.y, 0.0, 1.0));
 }
 
-/* Below the horizon a path shows the haze of the horizon, darkening with
- * depth, so a host's terrain gap shows haze rather than black: the
- * direction to evaluate is the horizon's below the point (else a sun
- * under the horizon would shine through the ground), and the factor
- * that darkens it. */
+/* One rule below the horizon for every path (atmosphere.c): a Lambertian
+ * ground of the atmosphere's albedo lit by the sun and by the sky, seen
+ * through the haze of the horizon, which fades into it over the first two
+ * degrees. Both are means over azimuth, so no column of light stands
+ * under a low sun, and a twilight sky lights its ground. The paths
+ * evaluate their sky at the horizon's direction above a point under it
+ * (a sun under the horizon must not shine through the ground) and then
+ * take this instead. */
 vec3 sky_horizon_clamp(vec3 d)
 {
     float h = length(d.xz);
     return d.y < 0.0 ? (h > 1e-6 ? vec3(d.x / h, 0.0, d.z / h) : vec3(0.0, 0.0, -1.0)) : d;
 }
-float sky_below_horizon(vec3 d) { return d.y < 0.0 ? 1.0 / (1.0 - 4.0 * d.y) : 1.0; }
+vec3 sky_ground(vec3 d) { return mix(u_horizon, u_ground, smoothstep(0.0, 0.035, -d.y)); }
+vec3 sky_or_ground(vec3 d, vec3 sky) { return d.y < 0.0 ? sky_ground(d) : sky; }
 
 /* Extinction toward space with a Kasten-Young-like air mass that stays
  * finite at the horizon (zero below it: the ground). */

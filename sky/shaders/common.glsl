@@ -59,10 +59,33 @@ vec3 sky_unrefract(vec3 d)
     return d * cos(lift) - toward_zenith * sin(lift);
 }
 
-/* Linear luminance (kcd/m^2) to display values (LDR): exposure, then Hejl
- * and Burgess-Dawson's filmic curve, a rational fit that includes the
- * sRGB-like display gamma (no exp, no pow: cheap on weak GPUs). In both
- * stages: the gradient sky maps its vertices (dome.vert). */
+/* Hejl and Burgess-Dawson's filmic curve: a rational fit whose output
+ * already carries an sRGB-like display gamma (no exp, no pow). */
+vec3 sky_filmic(vec3 e)
+{
+    vec3 x = max(e - 0.004, vec3(0.0));
+    return (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
+}
+
+/* IEC 61966-2-1: linear to sRGB, and back. */
+vec3 sky_srgb_encode(vec3 c)
+{
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+float sky_srgb_decode(float v) { return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4); }
+
+/* Linear luminance (kcd/m^2) to display values (LDR): exposure, the night
+ * shift, then the tone map sky_config.tone_map chose (sky.h):
+ *  hue (default): the filmic curve on the largest channel only, the colour
+ *    scaled with it in linear light, so hue and saturation stay what the
+ *    sky computed; only what is far above white (the sun, its glare) turns
+ *    toward white, from 8 to 128 times the exposure's white; then sRGB;
+ *  filmic: the curve on each channel apart (bright colours drift toward
+ *    white and yellow, the classic shoulder);
+ *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
+ *    rational shoulder on the largest channel with a little
+ *    desaturation, then sRGB. */
 vec3 sky_tonemap(vec3 L)
 {
     /* Mueller sec. 6: rods see no colour and peak in the blue-green, so a
@@ -71,8 +94,27 @@ vec3 sky_tonemap(vec3 L)
     vec3 e = max(L * u_exposure, vec3(0.0));
     float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
     e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.05, y)));
-    vec3 x = max(e - 0.004, vec3(0.0));
-    return (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
+#if defined(SKY_TONE_MAP_FILMIC)
+    return sky_filmic(e);
+#elif defined(SKY_TONE_MAP_NEUTRAL)
+    /* the toe: a small offset taken off dark colours (Khronos' 0.04) */
+    float lo = min(e.r, min(e.g, e.b));
+    e -= lo < 0.08 ? lo - 6.25 * lo * lo : 0.04;
+    float peak = max(e.r, max(e.g, e.b));
+    const float start = 0.76, span = 0.24; /* 0.8 - 0.04, 1 - start */
+    if (peak >= start) {
+        float top = 1.0 - span * span / (peak + span - start);
+        e *= top / peak;
+        e = mix(e, vec3(top), 1.0 - 1.0 / (0.15 * (peak - top) + 1.0));
+    }
+    return sky_srgb_encode(e);
+#else
+    float m = max(e.r, max(e.g, e.b));
+    float white = sky_srgb_decode(sky_filmic(vec3(m)).r); /* the largest channel, linear */
+    vec3 c = e * (white / max(m, 1e-8));
+    c = mix(c, vec3(white), clamp(log2(max(m, 1e-8) / 8.0) * 0.25, 0.0, 1.0));
+    return sky_srgb_encode(c);
+#endif
 }
 
 #ifdef SKY_FRAGMENT

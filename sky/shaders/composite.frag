@@ -8,18 +8,20 @@
  * one), and the rim is read from one and a half texels inside, where the
  * filter does not reach the image's black margin. */
 uniform sampler2D u_dome_tex;
-uniform vec2 u_dome_texel; /* 1 / the image's width, height */
+uniform vec2 u_dome_texel; /* 1 / its texture's width, height */
+uniform vec2 u_dome_scale; /* the share of the texture the image uses */
 SKY_IN vec2 v_image;
 void main()
 {
     vec2 uv = v_image;
 #ifdef SKY_FISHEYE_CIRCLE
-    vec2 circle = (uv * 2.0 - 1.0) * u_aspect;
+    vec2 circle = (uv / u_dome_scale * 2.0 - 1.0) * u_aspect;
     float r = length(circle);
     if (r > 1.0) discard;
-    vec2 texel = 2.0 * u_aspect * u_dome_texel; /* in the circle's units */
+    vec2 texel = 2.0 * u_aspect * u_dome_texel / u_dome_scale; /* in the circle's units */
     float rim = 1.0 - 1.5 * max(texel.x, texel.y);
-    if (r > rim) uv = (circle * (rim / r) / u_aspect + 1.0) * 0.5;
+    if (r > rim) uv = (circle * (rim / r) / u_aspect + 1.0) * 0.5 * u_dome_scale;
 #endif
-    SKY_FRAG_COLOR = vec4(SKY_TEX2D(u_dome_tex, uv).rgb, 1.0);
+    /* (the filter must not reach past the corner in use) */
+    SKY_FRAG_COLOR = vec4(SKY_TEX2D(u_dome_tex, min(uv, u_dome_scale - 0.5 * u_dome_texel)).rgb, 1.0);
 }

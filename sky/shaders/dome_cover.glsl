@@ -3,5 +3,11 @@
  * fragment's place, filtered from the image, in place of evaluating the
  * clouds again. */
 uniform sampler2D u_dome_tex;
+uniform vec2 u_dome_texel; /* 1 / its texture's width, height */
+uniform vec2 u_dome_scale; /* the share of the texture the image uses */
 
-float sky_front_cover(vec3 d) { return SKY_TEX2D(u_dome_tex, (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw).a; }
+float sky_front_cover(vec3 d)
+{
+    vec2 uv = (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw * u_dome_scale;
+    return SKY_TEX2D(u_dome_tex, min(uv, u_dome_scale - 0.5 * u_dome_texel)).a;
+}

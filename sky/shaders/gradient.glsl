@@ -8,7 +8,7 @@ uniform vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient
 
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {
-    /* the ground takes the horizon's colour (sky_below_horizon darkens it) */
+    /* (below the horizon: atmosphere.glsl's ground) */
     float e = clamp(d.y, 0.0, 1.0);
     float mu = max(dot(d, u_sun_dir), 0.0);
     float mu2 = mu * mu, mu4 = mu2 * mu2, mu8 = mu4 * mu4;
@@ -19,7 +19,7 @@ vec3 sky_atmosphere(vec3 d, vec3 day)
      * most strongly on the sun's side. */
     float low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu) / (1.0 - 6.0 * min(d.y, 0.0));
     vec3 L = u_day_luminance * (day * mix(vec3(1.0), u_horizon_tint, low) + aureole * u_sun_transmittance);
-    return (L * sky_eclipse_dim(d) + sky_night_floor(d)) * sky_below_horizon(d);
+    return sky_or_ground(d, L * sky_eclipse_dim(d) + sky_night_floor(d));
 }
 
 float sky_atmosphere_transmittance(vec3 d) { return sky_air_mass_transmittance(d); }

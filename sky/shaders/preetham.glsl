@@ -21,7 +21,7 @@ vec3 sky_atmosphere(vec3 view, vec3 day)
     vec3 XYZ = vec3(Yxy.y / y, 1.0, (1.0 - Yxy.y - Yxy.z) / y) * Yxy.x;
     vec3 rgb = vec3(dot(vec3(3.2406, -1.5372, -0.4986), XYZ), dot(vec3(-0.9689, 1.8758, 0.0415), XYZ),
                     dot(vec3(0.0557, -0.2040, 1.0570), XYZ));
-    return (max(rgb, vec3(0.0)) * sky_eclipse_dim(view) + sky_night_floor(view)) * sky_below_horizon(view);
+    return sky_or_ground(view, max(rgb, vec3(0.0)) * sky_eclipse_dim(view) + sky_night_floor(view));
 }
 
 float sky_atmosphere_transmittance(vec3 d) { return sky_air_mass_transmittance(d); }

@@ -28,6 +28,6 @@ vec3 sky_rayleigh_radiance(vec3 view)
 #ifndef SKY_HAS_BLEND
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {
-    return (sky_rayleigh_radiance(d) * sky_eclipse_dim(d) + sky_night_floor(d)) * sky_below_horizon(d);
+    return sky_or_ground(d, sky_rayleigh_radiance(d) * sky_eclipse_dim(d) + sky_night_floor(d));
 }
 #endif

@@ -1,0 +1,108 @@
+/*
+ * Look: what the 8-bit output keeps of the sky's colours, and the one
+ * ground below the horizon (tools/colour.c measures both, as sky-bench's
+ * colour section does).
+ */
+#include "test.h"
+#include "colour.h"
+
+#include <math.h>
+#include <string.h>
+
+void test_colour_hue_and_saturation_kept(void);
+void test_colour_old_curve_fails_the_measure(void);
+void test_colour_one_ground_below_the_horizon(void);
+void test_colour_noon_as_bright_as_before(void);
+
+static int measure(sky_atmosphere_path path, sky_tone_map tm, double sun, int toward, sky_colour_row *r)
+{
+    char err[256];
+    if (sky_colour_measure(path, tm, SKY_GL_AUTO, sun, toward, 320, 180, r, err, sizeof err)) {
+        CHECK(0, "colour measure: %s", err);
+        return -1;
+    }
+    return 0;
+}
+
+/* Two paths at three sun heights, facing the sun, with the default tone
+ * map: the issue's targets (hue shift median <= 3, p90 <= 8 degrees;
+ * saturation kept median >= 0.85, p10 >= 0.6; clipped <= 1 %). */
+void test_colour_hue_and_saturation_kept(void)
+{
+    const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE};
+    const double suns[3] = {0.5, 8.0, 30.0};
+    for (int p = 0; p < 2; p++)
+        for (int k = 0; k < 3; k++) {
+            sky_colour_row r;
+            if (measure(paths[p], SKY_TONE_MAP_HUE, suns[k], 1, &r)) return;
+            NOTE("%s, sun %g: %d pixels, saturation kept %.2f / %.2f, hue shift %.1f / %.1f deg, clipped %.2f %%",
+                 p ? "hillaire" : "rayleigh", suns[k], r.counted, r.saturation_kept_median, r.saturation_kept_p10,
+                 r.hue_shift_median, r.hue_shift_p90, 100.0 * r.clipped);
+            char why[128];
+            CHECK(r.counted > 1000, "enough coloured sky pixels (%d)", r.counted);
+            CHECK(sky_colour_row_ok(&r, why, sizeof why), "%s, sun %g: %s", p ? "hillaire" : "rayleigh", suns[k], why);
+        }
+}
+
+/* The measure sees what the issue saw in the per-channel filmic curve:
+ * near the horizon at sunset, orange turned yellow and pale. */
+void test_colour_old_curve_fails_the_measure(void)
+{
+    sky_colour_row r;
+    if (measure(SKY_ATMOSPHERE_RAYLEIGH, SKY_TONE_MAP_FILMIC, 0.5, 1, &r)) return;
+    NOTE("filmic, rayleigh, sun 0.5: saturation kept %.2f / %.2f, hue shift %.1f / %.1f deg", r.saturation_kept_median,
+         r.saturation_kept_p10, r.hue_shift_median, r.hue_shift_p90);
+    CHECK(r.hue_shift_p90 > 8.0 && r.saturation_kept_median < 0.85, "the old curve shifts hue (%.1f) and pales (%.2f)",
+          r.hue_shift_p90, r.saturation_kept_median);
+}
+
+/* Below the horizon: no column under a low sun (the analytic paths used
+ * to mirror the horizon downward), and a twilight sky lights its ground
+ * (Hillaire's table left it black). */
+void test_colour_one_ground_below_the_horizon(void)
+{
+    const sky_atmosphere_path paths[4] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
+                                          SKY_ATMOSPHERE_HILLAIRE};
+    static const char *const names[4] = {"gradient", "preetham", "rayleigh", "hillaire"};
+    for (int p = 0; p < 4; p++) {
+        sky_colour_row low, twilight;
+        if (measure(paths[p], SKY_TONE_MAP_HUE, 3.0, 1, &low) || measure(paths[p], SKY_TONE_MAP_HUE, -4.0, 1, &twilight))
+            return;
+        NOTE("%s: ground under a 3-degree sun %.3f x the rest; at -4 degrees the ground is %.3f of the sky", names[p],
+             low.pillar, twilight.ground_to_sky);
+        CHECK(low.pillar > 0.0 && low.pillar <= 1.05, "%s: no column under the sun (%.3f)", names[p], low.pillar);
+        CHECK(twilight.ground_to_sky >= 0.05, "%s: a twilight ground, not black (%.3f)", names[p],
+              twilight.ground_to_sky);
+    }
+}
+
+static double mean_luminance_of(const image *im)
+{
+    double s = 0.0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) s += image_luminance(im, x, y);
+    return s / (im->w * im->h);
+}
+
+/* The new default keeps noon about as bright as the old curve showed it
+ * (within 10 %). */
+void test_colour_noon_as_bright_as_before(void)
+{
+    scene hue = scene_default(), filmic;
+    hue.params.time = 0.5f;
+    hue.params.cover = 0.35f;
+    hue.w = 320;
+    hue.h = 180;
+    filmic = hue;
+    filmic.cfg.tone_map = SKY_TONE_MAP_FILMIC;
+    image a, b;
+    if (render_scene(&hue, 0, SKY_GL_AUTO, &a) || render_scene(&filmic, 0, SKY_GL_AUTO, &b)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    double la = mean_luminance_of(&a), lb = mean_luminance_of(&b);
+    NOTE("noon's mean luminance: %.4f with hue, %.4f with filmic", la, lb);
+    CHECK(fabs(la / lb - 1.0) <= 0.10, "noon within 10 %% of the old brightness (%.3f)", la / lb);
+    image_free(&a);
+    image_free(&b);
+}

@@ -1,0 +1,233 @@
+/*
+ * The 8-bit output's colours against the sky's own (colour.h). Terms: the
+ * saturation of linear RGB is (largest - smallest) / largest, its hue the
+ * HSV hue; an 8-bit value is a pixel's largest channel. The LDR frame is
+ * read back as floats, quantised to 8 bits as a display would show it,
+ * then decoded from sRGB to linear light.
+ */
+#include "colour.h"
+
+#include "osmesa_ctx.h"
+#include "cli.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+const double sky_colour_suns[SKY_COLOUR_SUNS] = {-8.0, -4.0, 0.5, 3.0, 8.0, 15.0, 30.0, 60.0};
+
+/* 40 N 0 E, the sunset preset's place, on the 2026 June solstice, when
+ * the sun reaches every height of the table; an evening sun, as the
+ * preset's. */
+static sky_observer colour_observer(void)
+{
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.latitude_deg = 40.0;
+    o.julian_day_utc = sky_julian_day(2026, 6, 21, 12, 0, 0.0);
+    o.time_from_params = 1;
+    return o;
+}
+
+/* The time slider after noon at which the sun stands at alt_deg. */
+static double evening_time(const sky_observer *o, double alt_deg)
+{
+    double lo = 0.5, hi = 1.0; /* the sun sinks from noon to midnight */
+    for (int i = 0; i < 50; i++) {
+        double mid = 0.5 * (lo + hi);
+        sky_astronomy a;
+        if (sky_compute_astronomy(o, (float)mid, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) break;
+        if (a.sun.alt_deg > alt_deg) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+static double luminance(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+/* HSV hue (degrees) and saturation of linear RGB; saturation 0 for black. */
+static void hue_saturation(const double c[3], double *hue, double *sat)
+{
+    double mx = fmax(c[0], fmax(c[1], c[2])), mn = fmin(c[0], fmin(c[1], c[2])), d = mx - mn;
+    *sat = mx > 0.0 ? d / mx : 0.0;
+    double h = 0.0;
+    if (d > 0.0) {
+        if (mx == c[0]) h = fmod((c[1] - c[2]) / d, 6.0);
+        else if (mx == c[1]) h = (c[2] - c[0]) / d + 2.0;
+        else h = (c[0] - c[1]) / d + 4.0;
+    }
+    h *= 60.0;
+    *hue = h < 0.0 ? h + 360.0 : h;
+}
+
+static double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4); }
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double quantile(double *v, int n, double q)
+{
+    if (n <= 0) return -1.0;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    int i = (int)floor(q * (n - 1) + 0.5);
+    return v[i < 0 ? 0 : (i >= n ? n - 1 : i)];
+}
+
+/* One frame of the sky in its own float context: HDR or LDR output. */
+static int render(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_profile profile, sky_output output,
+                  double t, const float view[16], const float proj[16], int w, int h, float *out, float sun_dir[3],
+                  char *err, size_t err_len)
+{
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, w, h, profile, 1, err, err_len)) return -1;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_SUN;
+    cfg.atmosphere = path;
+    cfg.output = output;
+    cfg.tone_map = tone_map;
+    cfg.gl_profile = profile;
+    cfg.get_proc_address = sky_osmesa_loader();
+    sky *s = sky_create(&cfg, err, err_len);
+    int rc = -1;
+    if (s) {
+        sky_observer o = colour_observer();
+        sky_params p = sky_default_params();
+        p.cover = 0.0f;
+        p.time = (float)t;
+        sky_set_observer(s, &o);
+        sky_set_params(s, &p);
+        sky_lighting l;
+        sky_get_lighting(s, &l);
+        memcpy(sun_dir, l.sun_direction, sizeof l.sun_direction);
+        if (sky_draw(s, view, proj) == SKY_OK) {
+            sky_osmesa_finish(&ctx);
+            memcpy(out, ctx.pixels, sizeof(float) * 4 * (size_t)w * (size_t)h);
+            rc = 0;
+        } else {
+            snprintf(err, err_len, "sky_draw: %s", sky_last_error(s));
+        }
+        sky_destroy(s);
+    }
+    sky_osmesa_destroy(&ctx);
+    return rc;
+}
+
+int sky_colour_measure(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_profile profile, double sun_deg,
+                       int toward, int w, int h, sky_colour_row *row, char *err, size_t err_len)
+{
+    memset(row, 0, sizeof *row);
+    row->path = path;
+    row->tone_map = tone_map;
+    row->sun_deg = sun_deg;
+    row->toward = toward;
+    sky_observer o = colour_observer();
+    double t = evening_time(&o, sun_deg);
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, (float)t, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+        snprintf(err, err_len, "no astronomy for time %g", t);
+        return -1;
+    }
+    /* the sun's true azimuth: the camera faces it, or turns its back */
+    double yaw = a.sun.az_deg + (toward ? 0.0 : 180.0), pitch = toward ? 8.0 : 20.0;
+    float view[16], proj[16];
+    sky_cli_camera_at(yaw, pitch, 60.0, w, h, view, proj);
+    size_t n = (size_t)w * (size_t)h;
+    float *hdr = malloc(sizeof(float) * 4 * n), *ldr = malloc(sizeof(float) * 4 * n);
+    double *kept = malloc(sizeof(double) * n), *shift = malloc(sizeof(double) * n);
+    float sun[3];
+    int rc = -1;
+    if (!hdr || !ldr || !kept || !shift) {
+        snprintf(err, err_len, "out of memory");
+        goto done;
+    }
+    if (render(path, tone_map, profile, SKY_OUTPUT_HDR, t, view, proj, w, h, hdr, sun, err, err_len) ||
+        render(path, tone_map, profile, SKY_OUTPUT_LDR, t, view, proj, w, h, ldr, sun, err, err_len))
+        goto done;
+    /* each pixel's direction: the camera's right, up and forward axes are
+     * the view matrix's rows */
+    const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
+                 fwd[3] = {-view[2], -view[6], -view[10]};
+    double sun_az = atan2(sun[0], -sun[2]);
+    int counted = 0, sky_px = 0, clipped = 0, under = 0, elsewhere = 0, ground_px = 0;
+    double sky_sum = 0.0, ground_sum = 0.0, under_sum = 0.0, elsewhere_sum = 0.0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5], d[3];
+            for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
+            double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            for (int i = 0; i < 3; i++) d[i] /= len;
+            const float *H = hdr + 4 * ((size_t)y * w + x), *L = ldr + 4 * ((size_t)y * w + x);
+            if (d[1] < 0.0) {
+                double lum = luminance(H), daz = fabs(remainder(atan2(d[0], -d[2]) - sun_az, 2.0 * PI)) * 180.0 / PI;
+                ground_sum += lum, ground_px++;
+                if (daz < 4.0) under_sum += lum, under++;
+                if (daz > 20.0) elsewhere_sum += lum, elsewhere++;
+                continue;
+            }
+            sky_sum += luminance(H);
+            double cos_sun = d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2];
+            if (cos_sun > cos(3.0 * PI / 180.0)) continue;
+            sky_px++;
+            int byte[3], top = 0;
+            double lin[3], hdr_rgb[3] = {H[0], H[1], H[2]};
+            for (int i = 0; i < 3; i++) {
+                double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
+                byte[i] = (int)floor(v * 255.0 + 0.5);
+                if (byte[i] > top) top = byte[i];
+                lin[i] = srgb_decode(byte[i] / 255.0);
+            }
+            if (top == 255) clipped++;
+            double hue_h, sat_h, hue_l, sat_l;
+            hue_saturation(hdr_rgb, &hue_h, &sat_h);
+            if (sat_h <= 0.15 || top < 25) continue;
+            hue_saturation(lin, &hue_l, &sat_l);
+            kept[counted] = sat_l / sat_h;
+            double dh = fabs(hue_l - hue_h);
+            shift[counted] = dh > 180.0 ? 360.0 - dh : dh;
+            counted++;
+        }
+    row->counted = counted;
+    row->saturation_kept_median = quantile(kept, counted, 0.5);
+    row->saturation_kept_p10 = quantile(kept, counted, 0.1);
+    row->hue_shift_median = quantile(shift, counted, 0.5);
+    row->hue_shift_p90 = quantile(shift, counted, 0.9);
+    row->clipped = sky_px ? (double)clipped / sky_px : 0.0;
+    row->pillar = toward && sun_deg >= 0.0 && sun_deg <= 8.0 && under && elsewhere && elsewhere_sum > 0.0
+                      ? (under_sum / under) / (elsewhere_sum / elsewhere)
+                      : -1.0;
+    int sky_all = w * h - ground_px;
+    row->ground_to_sky =
+        sun_deg < 0.0 && ground_px && sky_all && sky_sum > 0.0 ? (ground_sum / ground_px) / (sky_sum / sky_all) : -1.0;
+    rc = 0;
+done:
+    free(hdr);
+    free(ldr);
+    free(kept);
+    free(shift);
+    return rc;
+}
+
+int sky_colour_row_ok(const sky_colour_row *r, char *why, size_t why_len)
+{
+    why[0] = '\0';
+    int colour = r->sun_deg >= -4.0; /* the colour targets' range */
+    if (colour && r->counted > 0 && (r->hue_shift_median > 3.0 || r->hue_shift_p90 > 8.0))
+        snprintf(why, why_len, "hue shift %.1f / %.1f degrees (<= 3 / 8)", r->hue_shift_median, r->hue_shift_p90);
+    else if (colour && r->counted > 0 && (r->saturation_kept_median < 0.85 || r->saturation_kept_p10 < 0.6))
+        snprintf(why, why_len, "saturation kept %.2f / %.2f (>= 0.85 / 0.6)", r->saturation_kept_median,
+                 r->saturation_kept_p10);
+    else if (colour && r->clipped > 0.01)
+        snprintf(why, why_len, "%.1f %% of the sky clipped (<= 1 %%)", 100.0 * r->clipped);
+    else if (r->pillar > 1.05)
+        snprintf(why, why_len, "the ground under the sun %.2fx the rest (<= 1.05)", r->pillar);
+    else if (r->ground_to_sky >= 0.0 && r->ground_to_sky < 0.05)
+        snprintf(why, why_len, "the twilight ground %.3f of the sky (>= 0.05)", r->ground_to_sky);
+    return why[0] == '\0';
+}

@@ -1,0 +1,47 @@
+/*
+ * What the 8-bit output does to the sky's colours (issue "Look"): one
+ * frame rendered twice, linear (HDR) and tone-mapped (LDR), and compared
+ * per pixel. sky-bench prints the table; the tests hold two paths to it.
+ */
+#ifndef SKY_COLOUR_H
+#define SKY_COLOUR_H
+
+#include "sky.h"
+
+#include <stddef.h>
+
+/* The sun heights of the table, degrees. The colour targets hold from -4
+ * to 60; -8 is there for the twilight ground. */
+#define SKY_COLOUR_SUNS 8
+extern const double sky_colour_suns[SKY_COLOUR_SUNS];
+
+typedef struct sky_colour_row {
+    sky_atmosphere_path path;
+    sky_tone_map tone_map;
+    double sun_deg;        /* asked for; the frame's is within 0.01 degree */
+    int toward;            /* 1: facing the sun, pitch 8; 0: away, pitch 20  */
+    /* over sky pixels more than 3 degrees from the sun whose linear
+     * saturation exceeds 0.15 and whose 8-bit value (largest channel) is
+     * at least 25; -1 when there are none */
+    int counted;
+    double saturation_kept_median, saturation_kept_p10; /* LDR / HDR        */
+    double hue_shift_median, hue_shift_p90;            /* degrees           */
+    double clipped;        /* share of all sky pixels with a channel at 255 */
+    /* below the horizon (HDR): the ground within 4 degrees of the sun's
+     * azimuth over the ground further than 20 degrees from it (sun 0..8
+     * degrees and facing it; else -1), and the ground's mean luminance over
+     * the sky's (sun below the horizon; else -1) */
+    double pillar, ground_to_sky;
+} sky_colour_row;
+
+/* Renders the frame (the sunset preset's place and date, the sun at
+ * sun_deg, the atmosphere and the sun only, size w x h) with both outputs
+ * and fills row. Returns 0, or -1 with err. */
+int sky_colour_measure(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_profile profile, double sun_deg,
+                       int toward, int w, int h, sky_colour_row *row, char *err, size_t err_len);
+
+/* Whether a row meets the targets that apply at its sun height; why not
+ * in why. */
+int sky_colour_row_ok(const sky_colour_row *row, char *why, size_t why_len);
+
+#endif /* SKY_COLOUR_H */
