@@ -190,6 +190,8 @@ static const sky_snippet composite_snippet = {NULL, NULL, image_uniforms, SKY_UN
 static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL};
 static const sky_snippet cover_snippet = {"SKY_HAS_DOME_COVER", "dome_cover.glsl", image_uniforms,
                                           SKY_UNIFORM_COUNT(image_uniforms), NULL};
+/* without NPOT textures the image is the corner of a power of two */
+static const sky_snippet corner_snippet = {"SKY_DOME_CORNER", NULL, NULL, 0, NULL};
 
 /* The image for a viewport: 1/divisor of it on each axis, rounded up
  * (used), in a texture of that size, or without NPOT textures of the
@@ -207,9 +209,11 @@ static void image_size(const sky_core *s, int used[2], int size[2])
 
 static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_len)
 {
-    const sky_snippet *own[2] = {&composite_snippet, &fisheye_circle_snippet};
-    if (sky_program_build(s, &st->composite, "composite.vert", "composite.frag", own, 1, err, err_len) ||
-        sky_program_build(s, &st->composite_fisheye, "composite.vert", "composite.frag", own, 2, err, err_len))
+    const sky_snippet *own[3] = {&composite_snippet, &corner_snippet, &fisheye_circle_snippet};
+    int n = s->caps.npot ? 1 : 2; /* (own[1] only without NPOT) */
+    if (s->caps.npot) own[1] = &fisheye_circle_snippet;
+    if (sky_program_build(s, &st->composite, "composite.vert", "composite.frag", own, n, err, err_len) ||
+        sky_program_build(s, &st->composite_fisheye, "composite.vert", "composite.frag", own, n + 1, err, err_len))
         return -1;
     static const float corners[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
     st->quad = sky_buffer_create(s, GL_ARRAY_BUFFER, corners, sizeof corners, GL_STATIC_DRAW);
@@ -361,13 +365,14 @@ int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_
 {
     const sky_snippet *list[SKY_MAX_SNIPPETS];
     int n = 0;
-    if (dome->front_count + own_count > SKY_MAX_SNIPPETS) {
+    if (dome->front_count + own_count + 1 > SKY_MAX_SNIPPETS) {
         sky_format(err, err_len, "too many shader snippets for %s", frag_main);
         return -1;
     }
-    if (s->dome_divisor && dome->front_count)
+    if (s->dome_divisor && dome->front_count) {
         list[n++] = &cover_snippet;
-    else
+        if (!s->caps.npot) list[n++] = &corner_snippet;
+    } else
         for (int i = 0; i < dome->front_count; i++) list[n++] = dome->front[i];
     for (int i = 0; i < own_count; i++) list[n++] = own[i];
     return sky_program_build(s, p, vert_main, frag_main, list, n, err, err_len);

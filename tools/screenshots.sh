@@ -22,6 +22,14 @@ for a in gradient preetham rayleigh hillaire blend; do
     $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.255 --yaw 91 --pitch 15 --fov 70 --out $out/atm-$a-sunrise.png
     $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.235 --yaw 87 --pitch 15 --fov 70 --out $out/atm-$a-twilight.png
 done
+# the 8-bit output's colours (issue Look): a sunset toward the sun, 3
+# degrees up, and Hillaire's twilight, 11 degrees down; the "before"
+# pictures beside them were rendered by the code before that issue
+mkdir -p $out/look
+for a in gradient preetham rayleigh hillaire blend; do
+    $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.74 --yaw 268 --pitch 6 --fov 70 --out $out/look/$a-after.png
+done
+$r --size 320x180 --atmosphere hillaire --features sun --cover 0 --time 0.79 --yaw 268 --pitch 6 --fov 70 --out $out/look/hillaire-twilight-after.png
 # one description, three planets (Hillaire's tables)
 for p in earth hazy mars; do
     $r --size 320x180 --atmosphere hillaire --planet $p --features sun --cover 0 --time 0.35 --yaw 100 --pitch 20 --fov 70 --out $out/planet-$p-day.png
@@ -67,7 +75,7 @@ moon moon-eclipse-2011 2011-06-15T20:11:31Z -20 57 ",eclipse"
 # the windows need a display: under Xvfb when there is none
 x=""
 [ -n "${DISPLAY:-}" ] || x="xvfb-run -a -s '-screen 0 1280x720x24'"
-eval $x build/bin/sky-demo --size 960x540 --frames 3 --screenshot $out/demo.png --preset starry \
+eval $x build/bin/sky-demo --size 960x540 --frames 30 --screenshot $out/demo.png --preset starry \
     --date 2024-01-15T21:00:00Z --lat 45 --lon 10 --yaw 180 --pitch 30 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-noon.png --time 0.45 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-dusk.png --time 0.74 --sunset 0.8 >/dev/null

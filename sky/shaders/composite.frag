@@ -22,6 +22,11 @@ void main()
     float rim = 1.0 - 1.5 * max(texel.x, texel.y);
     if (r > rim) uv = (circle * (rim / r) / u_aspect + 1.0) * 0.5 * u_dome_scale;
 #endif
-    /* (the filter must not reach past the corner in use) */
-    SKY_FRAG_COLOR = vec4(SKY_TEX2D(u_dome_tex, min(uv, u_dome_scale - 0.5 * u_dome_texel)).rgb, 1.0);
+#ifdef SKY_DOME_CORNER
+    /* a power-of-two texture: the filter must not reach past the corner
+     * in use (elsewhere the texture's edge clamps; the pass stays a bare
+     * fetch, which llvmpipe draws on its fastest path) */
+    uv = min(uv, u_dome_scale - 0.5 * u_dome_texel);
+#endif
+    SKY_FRAG_COLOR = vec4(SKY_TEX2D(u_dome_tex, uv).rgb, 1.0);
 }

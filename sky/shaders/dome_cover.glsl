@@ -9,5 +9,8 @@ uniform vec2 u_dome_scale; /* the share of the texture the image uses */
 float sky_front_cover(vec3 d)
 {
     vec2 uv = (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw * u_dome_scale;
-    return SKY_TEX2D(u_dome_tex, min(uv, u_dome_scale - 0.5 * u_dome_texel)).a;
+#ifdef SKY_DOME_CORNER
+    uv = min(uv, u_dome_scale - 0.5 * u_dome_texel); /* composite.frag says why */
+#endif
+    return SKY_TEX2D(u_dome_tex, uv).a;
 }
