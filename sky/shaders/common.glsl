@@ -76,14 +76,18 @@ vec3 sky_srgb_encode(vec3 c)
 
 /* Linear luminance (kcd/m^2) to display values (LDR): exposure, the night
  * shift, then the tone map sky_config.tone_map chose (sky.h):
- *  hue (default): the filmic curve on the largest channel only, the colour
+ *  hue (default): the filmic curve on the colour's luminance, the colour
  *    scaled with it in linear light, so hue and saturation stay what the
- *    sky computed; only what is far above white (the sun, its glare) turns
- *    toward white, from 8 to 128 times the exposure's white. The curve's
- *    output carries its display gamma of about 2.2, so the other channels
- *    are its value times their ratio to the largest to the power 1 / 2.2,
- *    taken as 1.109 sqrt(r) - 0.109 r (within 1.5 % from r = 0.2 to 1, 5 %
- *    at 0.05): a software rasteriser pays for every pow;
+ *    sky computed and the brightness is what filmic gives a grey; a soft
+ *    shoulder on the largest channel keeps it below white (from 0.8 of
+ *    the display range), and only what is far above white (the sun, its
+ *    glare) turns white, from 8 to 128 times the exposure's white. The
+ *    curve's output carries its display gamma of about 2.2, so the other
+ *    channels are the largest one's value times their ratio to it to the
+ *    power 1 / 2.2 (and the largest the grey's over the luminance's ratio
+ *    to it to that power), each power taken as 1.109 sqrt(r) - 0.109 r
+ *    (within 1.5 % from r = 0.2 to 1, 5 % at 0.05): a software rasteriser
+ *    pays for every pow;
  *  filmic: the curve on each channel apart (bright colours drift toward
  *    white and yellow, the classic shoulder);
  *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
@@ -112,9 +116,15 @@ vec3 sky_tonemap(vec3 L)
     }
     return sky_srgb_encode(e);
 #else
-    float m = max(e.r, max(e.g, e.b));
-    vec3 r = e / max(m, 1e-8);
-    float x = max(m - 0.004, 0.0), top = (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
+    /* the display value of a grey of the colour's luminance, and what the
+     * largest channel then needs to keep the colour (display values carry
+     * the curve's gamma of 2.2) */
+    float m = max(max(e.r, max(e.g, e.b)), 1e-8), x = max(y - 0.004, 0.0), s = max(y, 1e-8) / m;
+    float top = (x * (6.2 * x + 0.5)) / ((x * (6.2 * x + 1.7) + 0.06) * (1.109 * sqrt(s) - 0.109 * s));
+    /* a soft shoulder keeps that channel below white: the colour's hue and
+     * saturation survive, only its brightness gives way */
+    top = top <= 0.8 ? top : 0.8 + 0.2 * (top - 0.8) / (top - 0.6);
+    vec3 r = e / m;
     vec3 c = top * (1.109 * sqrt(r) - 0.109 * r);
     return mix(c, vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));
 #endif
