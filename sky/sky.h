@@ -208,7 +208,8 @@ typedef struct sky_config {
      * that cost); up to 8. Needs framebuffer objects (GL 3.0, or
      * ARB/EXT_framebuffer_object on 2.0); without them, and for HDR output,
      * the dome is drawn at every pixel. The image is one RGBA8 texture,
-     * counted in sky_stats (about 230 KB at 1280x720 and 4). */
+     * counted in sky_stats (about 230 KB at 1280x720 and 4; the viewport's
+     * size while sky_draw_fisheye draws). */
     int dome_divisor;
     /* LDR: the tone map (above); 0 = SKY_TONE_MAP_HUE. */
     sky_tone_map tone_map;
@@ -290,7 +291,9 @@ SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
 SKY_API sky_result sky_draw(sky *s, const float view[16], const float proj[16]);
 /* Draws an equidistant all-sky image into the viewport: zenith at the
  * centre, horizon on the inscribed circle, north at the top, east on the
- * left (as seen looking up). Outside the circle is black. */
+ * left (as seen looking up). Outside the circle is black. An image to
+ * look at rather than a frame rate: with LDR output its dome is drawn at
+ * every pixel (its image the viewport's size) whatever dome_divisor says. */
 SKY_API sky_result sky_draw_fisheye(sky *s);
 
 /* ---- where and when ----------------------------------------------------------
