@@ -237,6 +237,9 @@ typedef struct sky_core {
     int dome_front_shows, dome_night_shows; /* this draw: a layer of that dome role
                                                is visible (sky.c)             */
 
+    GLuint identity_program;      /* the first program built: a context where it
+                                     is no program is not the sky's (sky.c)   */
+    int drawing;                  /* inside sky_draw (sky.c)                   */
     int dome_divisor;             /* the dome's image is 1/divisor of the viewport
                                      on each axis; 0: drawn directly (dome.c) */
 

@@ -184,6 +184,8 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         return NULL;
     }
     sky_core *c = &s->core;
+    sky_gl_state host; /* saved once the GL functions are loaded */
+    int saved = 0;
     c->cfg = *cfg; /* texture_dir is the caller's string: used during create only */
     c->features = features;
     c->atm = atm;
@@ -208,6 +210,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     }
 
     if (sky_gl_init(c, err, err_len)) goto fail;
+    /* what creating binds and sets (buffers, textures, units, the pixel
+     * store, the VAO) is the host's again when sky_create returns */
+    sky_gl_state_save(c, &host);
+    saved = 1;
     if (c->profile == SKY_GL_CORE33) s->vao = sky_gl_vertex_array_create(c);
     c->dome_divisor = sky_dome_divisor_for(c);
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
@@ -216,16 +222,17 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         if (L->create && L->create(c, state, err, err_len)) goto fail;
     }
     c->cfg.texture_dir = NULL;
-    sky_gl_vertex_array_bind(c, 0);
     GLenum e = sky_gl_error(c);
     if (e != GL_NO_ERROR) {
         sky_format(err, err_len, "sky_create: GL error 0x%04x while creating resources", e);
         goto fail;
     }
     compute_frame(s);
+    sky_gl_state_restore(c, &host);
     return s;
 fail:
     c->cfg.texture_dir = NULL;
+    if (saved) sky_gl_state_restore(c, &host);
     sky_destroy(s);
     return NULL;
 }
@@ -395,6 +402,7 @@ static sky_result draw_frame(sky *s)
     FOR_EACH_LAYER(s, L, state) {
         if (L->draw && L->visible(c, state)) draw_layer(s, L, state);
     }
+    if (!c->cfg.check_gl_errors) return SKY_OK;
     GLenum e = sky_gl_error(c);
     if (e != GL_NO_ERROR) return sky_fail(s, SKY_ERR_GL, "sky_draw: GL error 0x%04x", e);
     return SKY_OK;
@@ -404,9 +412,22 @@ static sky_result draw_with(sky *s, const float *view, const float *proj)
 {
     double t0 = sky_now_ms();
     sky_core *c = &s->core;
+    /* a context to draw in, and the sky's: found without glGetError */
+    if (!sky_gl_context_current(c))
+        return sky_fail(s, SKY_ERR_GL, "sky_draw: no GL context is current");
+    if (!sky_gl_is_program(c, c->identity_program))
+        return sky_fail(s, SKY_ERR_GL,
+                        "sky_draw: the current GL context is not the one the sky was created in (a sky draws "
+                        "only in its own context, or one sharing its objects)");
+    if (c->cfg.check_gl_errors) {
+        GLenum pending = sky_gl_error(c);
+        if (pending != GL_NO_ERROR)
+            return sky_fail(s, SKY_ERR_GL, "sky_draw: GL error 0x%04x was pending before the call: the host's, "
+                            "not the sky's (cfg.check_gl_errors)", pending);
+    }
     sky_gl_state host;
-    sky_gl_drain_errors(c); /* the host's errors are not ours */
     sky_gl_state_save(c, &host);
+    c->drawing = 1;
     reset_layer_stats(s);
     memcpy(c->viewport, host.viewport, sizeof c->viewport);
     sky_result rc = SKY_OK;
@@ -418,6 +439,7 @@ static sky_result draw_with(sky *s, const float *view, const float *proj)
     }
     if (rc == SKY_OK) rc = draw_frame(s);
     sky_gl_state_restore(c, &host);
+    c->drawing = 0;
     if (c->cfg.profile_layers) sky_gl_finish(c);
     s->stats.frame_ms = sky_now_ms() - t0;
     return rc;

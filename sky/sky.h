@@ -68,13 +68,15 @@ typedef enum sky_feature {
     SKY_STARMAP       = 1u << 5, /* Milky Way star map (Mueller sec. 4.4)    */
     SKY_LUNAR_ECLIPSE = 1u << 6, /* lunar eclipses on the moon (needs MOON)  */
     SKY_ECLIPSE       = SKY_LUNAR_ECLIPSE, /* deprecated: SKY_LUNAR_ECLIPSE   */
-    SKY_SOLAR_ECLIPSE = 1u << 7, /* the moon hides the sun, dims the sky and
+    SKY_SOLAR_ECLIPSE = 1u << 7  /* the moon hides the sun, dims the sky and
                                     the host's sunlight; nothing while they
                                     are apart. It creates no resource: left
                                     out, the sun's and the sky's shaders
                                     read "no eclipse"                      */
-    SKY_FEATURES_NONE = 1u << 31
 } sky_feature;
+/* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
+ * to fit an int. */
+#define SKY_FEATURES_NONE 0x80000000u
 
 #define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE)
 /* The features this build can render; asking for others is
@@ -213,6 +215,14 @@ typedef struct sky_config {
     int dome_divisor;
     /* LDR: the tone map (above); 0 = SKY_TONE_MAP_HUE. */
     sky_tone_map tone_map;
+    /* Non-zero: sky_draw asks GL for errors (glGetError, a pipeline stall on
+     * some drivers): one the host left pending before the call is reported
+     * as the host's, one of the sky's own as SKY_ERR_GL. Zero (the default):
+     * sky_draw calls no glGetError and leaves pending errors to the host;
+     * it still detects, without glGetError, that no context is current or
+     * that the current one is not the sky's. sky_create always drains the
+     * errors pending before it starts and checks its own. */
+    int check_gl_errors;
     /* Optional directory whose PNG files replace the embedded textures of the
      * same name (clouds.png, flicker.png, galaxy.png, gradient.png). NULL =
      * embedded only. */

@@ -22,6 +22,7 @@ void test_api_gl_objects_deleted(void);
 void test_api_leaks_1000_cycles(void);
 void test_gl_state_restored_core(void);
 void test_gl_state_restored_compat(void);
+void test_gl_host_raster_state_ignored(void);
 
 static void default_camera(float view[16], float proj[16])
 {
@@ -342,6 +343,8 @@ typedef struct gl_snapshot {
     GLint bsrc, bdst, bsrca, bdsta, beq, beqa, depth_func;
     GLint attrib_enabled[3], attrib_size[3], attrib_stride[3], attrib_buffer[3];
     GLint draw_framebuffer, read_framebuffer;
+    GLint unpack[4], unpack_buffer, pack_alignment, polygon_mode[2];
+    GLboolean framebuffer_srgb;
 } gl_snapshot;
 
 static void snapshot(gl_snapshot *g, int core)
@@ -353,6 +356,13 @@ static void snapshot(gl_snapshot *g, int core)
     if (core) glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &g->vao);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &g->draw_framebuffer);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &g->read_framebuffer);
+    static const GLenum unpack[4] = {GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS,
+                                     GL_UNPACK_SKIP_PIXELS};
+    for (int i = 0; i < 4; i++) glGetIntegerv(unpack[i], &g->unpack[i]);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &g->unpack_buffer);
+    glGetIntegerv(GL_PACK_ALIGNMENT, &g->pack_alignment);
+    glGetIntegerv(GL_POLYGON_MODE, g->polygon_mode);
+    g->framebuffer_srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
     glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &g->element_buffer);
     glGetIntegerv(GL_VIEWPORT, g->viewport);
     glGetIntegerv(GL_SCISSOR_BOX, g->scissor_box);
@@ -405,22 +415,34 @@ static GLuint host_program(int core)
     return p;
 }
 
+/* Compares two snapshots; names the words that differ. */
+static int same_state(const gl_snapshot *before, const gl_snapshot *after, const char *when)
+{
+    if (!memcmp(before, after, sizeof *before)) return 1;
+    const GLint *a = (const GLint *)(const void *)before, *b = (const GLint *)(const void *)after;
+    for (size_t i = 0; i < sizeof *before / sizeof(GLint); i++)
+        if (a[i] != b[i]) NOTE("%s: word %zu: %d -> %d", when, i, a[i], b[i]);
+    return 0;
+}
+
+/* A client outside the library: its own VAO, program, textures on four
+ * units, draw and read framebuffers, viewport, scissor, blend, cull,
+ * depth, sRGB conversion, polygon mode, pixel store and a bound pixel
+ * unpack buffer; every value the same after sky_create, sky_draw,
+ * sky_draw_fisheye and sky_destroy. Hillaire's path: its tables are built
+ * and uploaded (COMPAT20: on the CPU, uploaded at draws). */
 static void state_restored(sky_gl_profile profile)
 {
-    fixture f;
-    /* Hillaire's path: its first draw builds the sky-view table (CORE33:
-     * into a framebuffer of its own, with a viewport of its own) */
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
-    if (fixture_open(&f, profile, &cfg)) {
-        CHECK(0, "fixture");
+    char err[256];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 32, 32, profile, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
         return;
     }
     int core = profile == SKY_GL_CORE33;
-    /* an unusual host state: drawing into a framebuffer of its own while
-     * reading from another (sky_draw renders its dome's image through a
-     * third and must put both back) */
+    /* drawing into a framebuffer of its own while reading from another
+     * (sky_draw renders its dome's image through a third and must put
+     * both back) */
     GLuint host_fbo[2], host_color[2];
     glGenTextures(2, host_color);
     glGenFramebuffers(2, host_fbo);
@@ -432,7 +454,7 @@ static void state_restored(sky_gl_profile profile)
     }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_fbo[0]);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, host_fbo[1]);
-    GLuint prog = host_program(core), vao = 0, buf = 0, tex[4];
+    GLuint prog = host_program(core), vao = 0, buf = 0, tex[4], pbo = 0;
     if (core) {
         glGenVertexArrays(1, &vao);
         glBindVertexArray(vao);
@@ -466,22 +488,47 @@ static void state_restored(sky_gl_profile profile)
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 7);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 1);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 8);
+    glGenBuffers(1, &pbo);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
+    glBufferData(GL_PIXEL_UNPACK_BUFFER, 64, NULL, GL_STREAM_DRAW);
     gl_snapshot before, after;
     snapshot(&before, core);
-    float view[16], proj[16];
-    default_camera(view, proj);
-    CHECK(sky_draw(f.s, view, proj) == SKY_OK, "draw: %s", sky_last_error(f.s));
+
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    cfg.gl_profile = profile;
+    cfg.check_gl_errors = 1;
+    cfg.get_proc_address = sky_osmesa_loader();
+    sky *s = sky_create(&cfg, err, sizeof err);
+    CHECK(s != NULL, "sky_create: %s", err);
     snapshot(&after, core);
-    CHECK(!memcmp(&before, &after, sizeof before), "GL state differs after sky_draw");
-    CHECK(sky_draw_fisheye(f.s) == SKY_OK, "fisheye: %s", sky_last_error(f.s));
-    snapshot(&after, core);
-    CHECK(!memcmp(&before, &after, sizeof before), "GL state differs after sky_draw_fisheye");
-    if (memcmp(&before, &after, sizeof before)) {
-        const GLint *a = (const GLint *)(const void *)&before, *b = (const GLint *)(const void *)&after;
-        for (size_t i = 0; i < sizeof before / sizeof(GLint); i++)
-            if (a[i] != b[i]) NOTE("word %zu: %d -> %d", i, a[i], b[i]);
+    CHECK(same_state(&before, &after, "sky_create"), "GL state differs after sky_create");
+    if (s) {
+        float view[16], proj[16];
+        default_camera(view, proj);
+        for (int k = 0; k < 2; k++) { /* the second draw: tables uploaded, the image resized */
+            CHECK(sky_draw(s, view, proj) == SKY_OK, "draw: %s", sky_last_error(s));
+            snapshot(&after, core);
+            CHECK(same_state(&before, &after, "sky_draw"), "GL state differs after sky_draw");
+        }
+        CHECK(sky_draw_fisheye(s) == SKY_OK, "fisheye: %s", sky_last_error(s));
+        snapshot(&after, core);
+        CHECK(same_state(&before, &after, "sky_draw_fisheye"), "GL state differs after sky_draw_fisheye");
+        sky_destroy(s);
+        snapshot(&after, core);
+        CHECK(same_state(&before, &after, "sky_destroy"), "GL state differs after sky_destroy");
     }
     CHECK(glGetError() == GL_NO_ERROR, "no GL error");
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glDeleteBuffers(1, &pbo);
     glUseProgram(0);
     glDeleteProgram(prog);
     glDeleteTextures(4, tex);
@@ -491,8 +538,60 @@ static void state_restored(sky_gl_profile profile)
     glDeleteBuffers(1, &buf);
     glDeleteBuffers(1, &ebo);
     if (core) glDeleteVertexArrays(1, &vao);
-    fixture_close(&f);
+    sky_osmesa_destroy(&ctx);
 }
 
 void test_gl_state_restored_core(void) { state_restored(SKY_GL_CORE33); }
 void test_gl_state_restored_compat(void) { state_restored(SKY_GL_COMPAT20); }
+
+/* The host's raster state that would change the sky's picture is set
+ * aside for its draws: filled polygons whatever glPolygonMode says, and no
+ * second sRGB encoding by a framebuffer with GL_FRAMEBUFFER_SRGB on (the
+ * 8-bit output is encoded by the sky). The same frame drawn into a plain
+ * RGBA8 target and into an sRGB one under those settings: the same bytes. */
+void test_gl_host_raster_state_ignored(void)
+{
+    enum { W = 64, H = 48 };
+    fixture f;
+    if (fixture_open_sized(&f, W, H, 0, SKY_GL_CORE33, NULL)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    GLuint fbo[2], color[2];
+    glGenTextures(2, color);
+    glGenFramebuffers(2, fbo);
+    for (int i = 0; i < 2; i++) {
+        glBindTexture(GL_TEXTURE_2D, color[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, i ? GL_SRGB8_ALPHA8 : GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color[i], 0);
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+    static unsigned char px[2][W * H * 4];
+    float view[16], proj[16];
+    default_camera(view, proj);
+    glViewport(0, 0, W, H);
+    for (int i = 0; i < 2; i++) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[i]);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        if (i) {
+            glEnable(GL_FRAMEBUFFER_SRGB);
+            glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        }
+        CHECK(sky_draw(f.s, view, proj) == SKY_OK, "draw: %s", sky_last_error(f.s));
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px[i]);
+    }
+    int worst = 0;
+    for (int k = 0; k < W * H * 4; k++)
+        if (k % 4 != 3) worst = abs(px[0][k] - px[1][k]) > worst ? abs(px[0][k] - px[1][k]) : worst;
+    NOTE("largest difference between the plain and the sRGB, wireframe-mode target: %d", worst);
+    CHECK(worst <= 1, "the sky ignores the host's polygon mode and sRGB conversion (%d levels apart)", worst);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(2, fbo);
+    glDeleteTextures(2, color);
+    fixture_close(&f);
+}

@@ -30,6 +30,7 @@ int test_skipped;
     X(api_leaks_1000_cycles)                     \
     X(gl_state_restored_core)                    \
     X(gl_state_restored_compat)                  \
+    X(gl_host_raster_state_ignored)                  \
     X(render_cover_zero_has_no_clouds)           \
     X(render_full_cover_hides_sky)               \
     X(render_density_darkens_clouds)             \
@@ -158,6 +159,7 @@ int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)
     cfg.get_proc_address = sky_osmesa_loader();
     cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
     cfg.gl_profile = want;
+    cfg.check_gl_errors = 1; /* the tests want every GL error the sky makes */
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         printf("    render_scene: %s\n", err);
@@ -222,6 +224,7 @@ int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profil
         memset(&cfg, 0, sizeof cfg);
     cfg.get_proc_address = sky_osmesa_loader();
     cfg.gl_profile = profile;
+    cfg.check_gl_errors = 1; /* the tests want every GL error the sky makes */
     f->s = sky_create(&cfg, err, sizeof err);
     if (!f->s) {
         printf("    sky_create: %s\n", err);

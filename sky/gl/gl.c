@@ -42,9 +42,13 @@ static void detect_caps(sky_core *s, int gl_ver)
     sky_gl_caps *caps = &s->caps;
     memset(caps, 0, sizeof *caps);
     if (s->profile == SKY_GL_CORE33) {
-        caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = 1;
+        caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = caps->pixel_buffers = 1;
+        caps->framebuffer_srgb = 1;
         return;
     }
+    caps->pixel_buffers = gl_ver >= 21 || has_extension(gl, "GL_ARB_pixel_buffer_object");
+    caps->framebuffer_srgb = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_sRGB") ||
+                             has_extension(gl, "GL_EXT_framebuffer_sRGB");
     int arb_fbo = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_object");
     int ext_fbo = has_extension(gl, "GL_EXT_framebuffer_object");
     if (!arb_fbo && ext_fbo && !gl->glGenFramebuffers) {
@@ -264,6 +268,7 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
             p->uniform_count++;
         }
     s->program_count++;
+    if (!s->identity_program) s->identity_program = p->id;
     return 0;
 fail:
     for (int i = 0; i < 2; i++)
@@ -320,7 +325,7 @@ static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
  * screen-space footprint instead), its filter and wrap, unbound, and
  * recorded with its bytes and owner; or, on a GL error, deleted. */
 static int finish_texture(sky_core *s, sky_texture *t, GLenum target, GLint filter, GLint wrap, int w, int h,
-                          size_t bytes, sky_layer owner, const char *what, char *err, size_t err_len)
+                          size_t bytes, sky_layer owner, const char *what, int check, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
     gl->glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
@@ -329,7 +334,7 @@ static int finish_texture(sky_core *s, sky_texture *t, GLenum target, GLint filt
     gl->glTexParameteri(target, GL_TEXTURE_WRAP_S, wrap);
     gl->glTexParameteri(target, GL_TEXTURE_WRAP_T, wrap);
     gl->glBindTexture(target, 0);
-    GLenum e = gl->glGetError();
+    GLenum e = check ? gl->glGetError() : GL_NO_ERROR;
     if (e != GL_NO_ERROR) {
         gl->glDeleteTextures(1, &t->id);
         t->id = 0;
@@ -344,21 +349,52 @@ static int finish_texture(sky_core *s, sky_texture *t, GLenum target, GLint filt
     return 0;
 }
 
+/* Uploads read client memory as tightly packed rows: the host's unpack
+ * state (alignment, row length, skips, a bound pixel-unpack buffer) is set
+ * aside around each, and put back after it. */
+typedef struct unpack_state {
+    GLint store[4], buffer;
+} unpack_state;
+static const GLenum unpack_names[4] = {GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS,
+                                       GL_UNPACK_SKIP_PIXELS};
+
+static void unpack_begin(sky_core *s, unpack_state *u)
+{
+    const sky_gl *gl = &s->gl;
+    for (int i = 0; i < 4; i++) {
+        gl->glGetIntegerv(unpack_names[i], &u->store[i]);
+        gl->glPixelStorei(unpack_names[i], i == 0 ? 1 : 0);
+    }
+    u->buffer = 0;
+    if (s->caps.pixel_buffers) {
+        gl->glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &u->buffer);
+        gl->glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    }
+}
+
+static void unpack_end(sky_core *s, const unpack_state *u)
+{
+    const sky_gl *gl = &s->gl;
+    for (int i = 0; i < 4; i++) gl->glPixelStorei(unpack_names[i], u->store[i]);
+    if (s->caps.pixel_buffers) gl->glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)u->buffer);
+}
+
 /* An 8-bit 2D texture of 3 or 4 channels, linear; pixels may be NULL. */
 static int create_2d(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *pixels, int channels,
-                     int w, int h, GLint wrap, const char *what, char *err, size_t err_len)
+                     int w, int h, GLint wrap, const char *what, int check, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
     sky_texture *t = &s->textures[id];
     gl->glGenTextures(1, &t->id);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_2D, t->id);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    unpack_state unpack;
+    unpack_begin(s, &unpack);
     gl->glTexImage2D(GL_TEXTURE_2D, 0, channels == 3 ? GL_RGB8 : GL_RGBA8, w, h, 0, channels == 3 ? GL_RGB : GL_RGBA,
                      GL_UNSIGNED_BYTE, pixels);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    unpack_end(s, &unpack);
     return finish_texture(s, t, GL_TEXTURE_2D, GL_LINEAR, wrap, w, h, (size_t)w * (size_t)h * (size_t)channels,
-                          owner, what, err, err_len);
+                          owner, what, check, err, err_len);
 }
 
 int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *pixels, int channels,
@@ -370,7 +406,7 @@ int sky_texture_create(sky_core *s, sky_texture_id id, sky_layer owner, const un
         sky_format(err, err_len, "texture %dx%d is not a power of two", w, h);
         return -1;
     }
-    return create_2d(s, id, owner, pixels, channels, w, h, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE, "texture", err,
+    return create_2d(s, id, owner, pixels, channels, w, h, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE, "texture", 1, err,
                      err_len);
 }
 
@@ -393,7 +429,10 @@ int sky_texture_create_image(sky_core *s, sky_texture_id id, sky_layer owner, in
         sky_format(err, err_len, "image %dx%d is not a power of two, and the context has no NPOT textures", w, h);
         return -1;
     }
-    return create_2d(s, id, owner, NULL, 4, w, h, GL_CLAMP_TO_EDGE, "render image", err, err_len);
+    /* at draw time (a resize) the host's pending errors are the host's: no
+     * glGetError unless it asked for checks */
+    int check = !s->drawing || s->cfg.check_gl_errors;
+    return create_2d(s, id, owner, NULL, 4, w, h, GL_CLAMP_TO_EDGE, "render image", check, err, err_len);
 }
 
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
@@ -404,14 +443,15 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
     gl->glGenTextures(1, &t->id);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_CUBE_MAP, t->id);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    unpack_state unpack;
+    unpack_begin(s, &unpack);
     size_t face_bytes = (size_t)size * (size_t)size * 4u;
     for (int f = 0; f < 6; f++)
         gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA8, size, size, 0, GL_RGBA,
                          GL_UNSIGNED_BYTE, faces + (size_t)f * face_bytes);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    unpack_end(s, &unpack);
     return finish_texture(s, t, GL_TEXTURE_CUBE_MAP, GL_LINEAR, GL_CLAMP_TO_EDGE, size, size, 6u * face_bytes, owner,
-                          "cube map", err, err_len);
+                          "cube map", 1, err, err_len);
 }
 
 /* Reads an override file with a hard size cap: hostile files never cause a
@@ -495,14 +535,17 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
     /* float (CORE33): RGBA32F, the precision twilight needs (16F would
      * lose the darkest tables' low bits) and a format every GL 3.3 can
      * render into; else RGBA8 for an encoding */
+    unpack_state unpack; /* NULL means no data only without a bound unpack buffer */
+    unpack_begin(s, &unpack);
     if (is_float)
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
     else
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    unpack_end(s, &unpack);
     /* an encoded table is decoded before it is blended: no filtering */
     return finish_texture(s, t, GL_TEXTURE_2D, is_float ? GL_LINEAR : GL_NEAREST, GL_CLAMP_TO_EDGE, w, h,
                           (size_t)w * (size_t)h * (is_float ? 16u : 4u), owner,
-                          is_float ? "float lookup texture" : "RGBA8 lookup texture", err, err_len);
+                          is_float ? "float lookup texture" : "RGBA8 lookup texture", 1, err, err_len);
 }
 
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
@@ -510,12 +553,13 @@ void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const 
     const sky_gl *gl = &s->gl;
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_2D, s->textures[id].id);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    unpack_state unpack;
+    unpack_begin(s, &unpack);
     if (rgba8)
         gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba8);
     else
         gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, rgb32f);
-    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    unpack_end(s, &unpack);
     gl->glBindTexture(GL_TEXTURE_2D, 0);
 }
 
@@ -581,6 +625,8 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
     st->scissor_test = gl->glIsEnabled(GL_SCISSOR_TEST);
     st->stencil_test = gl->glIsEnabled(GL_STENCIL_TEST);
     st->program_point_size = gl->glIsEnabled(GL_PROGRAM_POINT_SIZE);
+    if (s->caps.framebuffer_srgb) st->framebuffer_srgb = gl->glIsEnabled(GL_FRAMEBUFFER_SRGB);
+    gl->glGetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
     gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
     gl->glGetBooleanv(GL_COLOR_WRITEMASK, st->color_mask);
     gl->glGetIntegerv(GL_BLEND_SRC_RGB, &st->blend_src_rgb);
@@ -653,6 +699,13 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
     set_cap(gl, GL_SCISSOR_TEST, st->scissor_test);
     set_cap(gl, GL_STENCIL_TEST, st->stencil_test);
     set_cap(gl, GL_PROGRAM_POINT_SIZE, st->program_point_size);
+    if (s->caps.framebuffer_srgb) set_cap(gl, GL_FRAMEBUFFER_SRGB, st->framebuffer_srgb);
+    if (st->polygon_mode[0] == st->polygon_mode[1] || s->profile == SKY_GL_CORE33) {
+        gl->glPolygonMode(GL_FRONT_AND_BACK, (GLenum)st->polygon_mode[0]);
+    } else { /* a compatibility context may draw the two faces apart */
+        gl->glPolygonMode(GL_FRONT, (GLenum)st->polygon_mode[0]);
+        gl->glPolygonMode(GL_BACK, (GLenum)st->polygon_mode[1]);
+    }
     gl->glDepthMask(st->depth_mask);
     gl->glColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
     gl->glBlendFuncSeparate((GLenum)st->blend_src_rgb, (GLenum)st->blend_dst_rgb, (GLenum)st->blend_src_alpha,
@@ -686,6 +739,8 @@ void sky_gl_frame_begin(sky_core *s, GLuint vao)
     gl->glDepthMask(GL_FALSE);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->glDisable(GL_BLEND);
+    gl->glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    if (s->caps.framebuffer_srgb) gl->glDisable(GL_FRAMEBUFFER_SRGB);
     if (vao) gl->glBindVertexArray(vao);
 }
 
@@ -731,10 +786,9 @@ void sky_gl_finish(sky_core *s) { s->gl.glFinish(); }
 
 GLenum sky_gl_error(sky_core *s) { return s->gl.glGetError(); }
 
-void sky_gl_drain_errors(sky_core *s)
-{
-    while (s->gl.glGetError() != GL_NO_ERROR) {}
-}
+int sky_gl_context_current(sky_core *s) { return s->gl.glGetString(GL_VERSION) != NULL; }
+
+int sky_gl_is_program(sky_core *s, GLuint program) { return program && s->gl.glIsProgram(program) == GL_TRUE; }
 
 /* ---- render targets ------------------------------------------------------------ */
 

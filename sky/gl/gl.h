@@ -118,7 +118,8 @@ typedef struct sky_gl_state {
     GLint textures[4], cube_textures[4]; /* units 0..3: 2D and cube map bindings */
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
     GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
-    GLboolean program_point_size;
+    GLboolean program_point_size, framebuffer_srgb;
+    GLint polygon_mode[2];                /* front, back                        */
     GLint attrib_enabled[SKY_ATTRIBS], attrib_size[SKY_ATTRIBS], attrib_type[SKY_ATTRIBS], attrib_norm[SKY_ATTRIBS],
         attrib_stride[SKY_ATTRIBS], attrib_buffer[SKY_ATTRIBS];
     void *attrib_pointer[SKY_ATTRIBS];
@@ -132,8 +133,10 @@ GLuint sky_gl_vertex_array_create(sky_core *s);
 void sky_gl_vertex_array_bind(sky_core *s, GLuint vao);
 void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao);
 /* The sky's own state for drawing: no depth test or write, no culling or
- * stencil, all colour channels, no blending, its vertex array (vao:
- * CORE33's, 0 in COMPAT20). */
+ * stencil, all colour channels, no blending, filled polygons, no sRGB
+ * conversion by the framebuffer (LDR output is sRGB-encoded by the sky
+ * itself, HDR output is linear), its vertex array (vao: CORE33's, 0 in
+ * COMPAT20). */
 void sky_gl_frame_begin(sky_core *s, GLuint vao);
 /* How a layer's fragments combine with what is under them. */
 typedef enum sky_blend {
@@ -153,8 +156,11 @@ void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4]);
 void sky_gl_finish(sky_core *s);
 /* The first GL error since the last call, GL_NO_ERROR if none. */
 GLenum sky_gl_error(sky_core *s);
-/* Drops errors the host left pending: they are not ours. */
-void sky_gl_drain_errors(sky_core *s);
+/* Whether a context is current (GL_VERSION answers), and whether program
+ * is one in it: a foreign context, sharing nothing, has no such name.
+ * Neither calls glGetError. */
+int sky_gl_context_current(sky_core *s);
+int sky_gl_is_program(sky_core *s, GLuint program);
 
 /* ---- render targets (the lookup tables) ------------------------------------ */
 /* Rendering into a texture: the framebuffer bindings (draw and read),

@@ -124,6 +124,17 @@ typedef ptrdiff_t GLintptr;
 #define GL_PACK_SKIP_PIXELS 0x0D04
 #define GL_PIXEL_PACK_BUFFER 0x88EB
 #define GL_PIXEL_PACK_BUFFER_BINDING 0x88ED
+#define GL_UNPACK_ROW_LENGTH 0x0CF2
+#define GL_UNPACK_SKIP_ROWS 0x0CF3
+#define GL_UNPACK_SKIP_PIXELS 0x0CF4
+#define GL_PIXEL_UNPACK_BUFFER 0x88EC
+#define GL_PIXEL_UNPACK_BUFFER_BINDING 0x88EF
+#define GL_FRAMEBUFFER_SRGB 0x8DB9
+#define GL_POLYGON_MODE 0x0B40
+#define GL_FRONT 0x0404
+#define GL_BACK 0x0405
+#define GL_FRONT_AND_BACK 0x0408
+#define GL_FILL 0x1B02
 #define GL_COLOR_ATTACHMENT0 0x8CE0
 #define GL_FRAMEBUFFER_COMPLETE 0x8CD5
 #define GL_NUM_EXTENSIONS 0x821D
@@ -138,6 +149,7 @@ typedef ptrdiff_t GLintptr;
 #define SKY_GL_FUNCS_20(X)                                                                    \
     X(GLenum, glGetError, (void))                                                             \
     X(const GLubyte *, glGetString, (GLenum name))                                            \
+    X(void, glPolygonMode, (GLenum face, GLenum mode))                                        \
     X(void, glGetIntegerv, (GLenum pname, GLint *data))                                       \
     X(void, glGetBooleanv, (GLenum pname, GLboolean *data))                                   \
     X(GLboolean, glIsEnabled, (GLenum cap))                                                   \
@@ -227,6 +239,8 @@ typedef struct sky_gl_caps {
     int render_to_rgba8;       /* framebuffer objects (3.0, ARB or EXT)     */
     int separate_framebuffers; /* draw and read bindings apart (3.0, ARB, EXT_blit) */
     int npot;                  /* non-power-of-two textures (3.0 or ARB)   */
+    int pixel_buffers;         /* PIXEL_UNPACK_BUFFER exists (2.1 or ARB)  */
+    int framebuffer_srgb;      /* GL_FRAMEBUFFER_SRGB exists (3.0 or ARB/EXT) */
 } sky_gl_caps;
 
 #endif /* SKY_GLAPI_H */
