@@ -220,8 +220,11 @@ typedef struct sky_config {
      * as the host's, one of the sky's own as SKY_ERR_GL. Zero (the default):
      * sky_draw calls no glGetError and leaves pending errors to the host;
      * it still detects, without glGetError, that no context is current or
-     * that the current one is not the sky's. sky_create always drains the
-     * errors pending before it starts and checks its own. */
+     * that the current one is not the sky's (a context holding no program
+     * of the sky's first program's name; one that happens to hold a
+     * program of that name, another sky's say, is not noticed). sky_create
+     * always drains the errors pending before it starts and checks its
+     * own. */
     int check_gl_errors;
     /* Optional directory whose PNG files replace the embedded textures of the
      * same name (clouds.png, flicker.png, galaxy.png, gradient.png). NULL =

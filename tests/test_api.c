@@ -7,6 +7,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <GL/osmesa.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +24,7 @@ void test_api_leaks_1000_cycles(void);
 void test_gl_state_restored_core(void);
 void test_gl_state_restored_compat(void);
 void test_gl_host_raster_state_ignored(void);
+void test_gl_errors_left_to_host_and_contexts_checked(void);
 
 static void default_camera(float view[16], float proj[16])
 {
@@ -594,4 +596,71 @@ void test_gl_host_raster_state_ignored(void)
     glDeleteFramebuffers(2, fbo);
     glDeleteTextures(2, color);
     fixture_close(&f);
+}
+
+static sky *sky_in(sky_osmesa *ctx, int check, char *err, size_t len)
+{
+    if (sky_osmesa_create(ctx, 32, 32, SKY_GL_AUTO, 0, err, len)) return NULL;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.check_gl_errors = check;
+    return sky_create(&cfg, err, len);
+}
+
+static void make_current(const sky_osmesa *o)
+{
+    OSMesaMakeCurrent((OSMesaContext)o->ctx, o->pixels, GL_UNSIGNED_BYTE, o->width, o->height);
+}
+
+/* GL errors the host left pending are the host's: sky_draw neither takes
+ * them (by default it calls no glGetError) nor reports them as its own
+ * (with cfg.check_gl_errors it says they were pending before the call).
+ * No current context, and a context that is not the sky's, are found
+ * without glGetError. */
+void test_gl_errors_left_to_host_and_contexts_checked(void)
+{
+    char err[256];
+    sky_osmesa a, b;
+    sky *plain = sky_in(&a, 0, err, sizeof err);
+    CHECK(plain != NULL, "sky: %s", err);
+    sky *checking = sky_in(&b, 1, err, sizeof err);
+    CHECK(checking != NULL, "checking sky: %s", err);
+    if (!plain || !checking) return;
+    float view[16], proj[16];
+    default_camera(view, proj);
+
+    make_current(&a);
+    glEnable(0xBEEF); /* the host's mistake: GL_INVALID_ENUM pending */
+    CHECK(sky_draw(plain, view, proj) == SKY_OK, "draw: %s", sky_last_error(plain));
+    GLenum e = glGetError();
+    CHECK(e == GL_INVALID_ENUM, "the host's pending error is still its own after sky_draw (0x%04x)", e);
+
+    make_current(&b);
+    glEnable(0xBEEF);
+    sky_result rc = sky_draw(checking, view, proj);
+    NOTE("with checks: %s", sky_last_error(checking));
+    CHECK(rc == SKY_ERR_GL && strstr(sky_last_error(checking), "pending before"),
+          "with checks the host's error is named as pending before the call: %s", sky_last_error(checking));
+    CHECK(sky_draw(checking, view, proj) == SKY_OK, "then the sky's own draw is clean: %s", sky_last_error(checking));
+
+    /* a context of the host's own, without a sky */
+    sky_osmesa other;
+    if (sky_osmesa_create(&other, 32, 32, SKY_GL_AUTO, 0, err, sizeof err) == 0) {
+        rc = sky_draw(plain, view, proj);
+        NOTE("in a foreign context: %s", sky_last_error(plain));
+        CHECK(rc == SKY_ERR_GL && strstr(sky_last_error(plain), "not the one"), "a foreign context is refused");
+        sky_osmesa_destroy(&other);
+    }
+    OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
+    rc = sky_draw(plain, view, proj);
+    NOTE("with no context: %s", sky_last_error(plain));
+    CHECK(rc == SKY_ERR_GL && strstr(sky_last_error(plain), "no GL context"), "no current context is refused");
+
+    make_current(&a);
+    sky_destroy(plain);
+    sky_osmesa_destroy(&a);
+    make_current(&b);
+    sky_destroy(checking);
+    sky_osmesa_destroy(&b);
 }

@@ -30,7 +30,9 @@ int test_skipped;
     X(api_leaks_1000_cycles)                     \
     X(gl_state_restored_core)                    \
     X(gl_state_restored_compat)                  \
-    X(gl_host_raster_state_ignored)                  \
+    X(gl_host_raster_state_ignored)              \
+    X(gl_errors_left_to_host_and_contexts_checked) \
+    X(header_compiles_pedantic)                  \
     X(render_cover_zero_has_no_clouds)           \
     X(render_full_cover_hides_sky)               \
     X(render_density_darkens_clouds)             \
