@@ -350,8 +350,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         } else if (!strcmp(opt, "--date")) {
             if (!parse_date(val, &date_jd))
                 return fail(err, len, "--date: expected YYYY-MM-DDTHH:MM:SSZ (UTC), got '%s'", val ? val : "(nothing)");
-            double year = 2000.0 + (date_jd - 2451545.0) / 365.25;
-            if (year < -1999.0 || year >= 3001.0)
+            /* The library's own bounds (sky_set_observer): the calendar's
+             * first and after-last instants, not a Julian-year estimate,
+             * which drifts by a month at the ends and let 3001-01-01 reach
+             * the library, which failed it at run time (exit 1). */
+            if (date_jd < sky_julian_day(-1999, 1, 1, 0, 0, 0.0) || date_jd >= sky_julian_day(3001, 1, 1, 0, 0, 0.0))
                 return fail(err, len, "--date: '%s' is outside the supported years -1999..3000", val);
             have_date = 1;
         } else if (!strcmp(opt, "--lat")) {

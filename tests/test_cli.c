@@ -197,6 +197,15 @@ void test_cli_exit_codes_and_messages(void)
         {"--blend 1.5", 2, "--blend"},
         {"--preset beach", 2, "--preset"},
         {"--date 2011-06-15", 2, "--date"},
+        /* the supported years' calendar edges: the option is named with
+         * its range before any rendering (it used to reach the library
+         * and exit 1 with an observer message) */
+        {"--size 8x8 --date 3001-01-01T00:00:00Z", 2, "--date"},
+        {"--size 8x8 --date 3001-01-01T00:00:00Z", 2, "-1999..3000"},
+        {"--size 8x8 --date 3000-12-31T23:59:60.5Z", 2, "--date"},
+        {"--size 8x8 --date -2000-12-31T23:59:59Z", 2, "--date"},
+        {"--query --date 3000-12-31T23:59:59Z", 0, ""},
+        {"--query --date -1999-01-01T00:00:00Z", 0, ""},
         {"--turbidity 0.5", 2, "--turbidity"},
         {"--dome-divisor 9", 2, "--dome-divisor"},
         {"--tone-map aces", 2, "--tone-map"},
