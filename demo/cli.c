@@ -4,6 +4,7 @@
  */
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -57,6 +58,18 @@ static int parse_date(const char *s, double *jd)
     int leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
     if (day < 1 || day > days[month - 1] || (month == 2 && day == 29 && !leap)) return 0;
     *jd = sky_julian_day(year, month, day, hour, minute, second);
+    return 1;
+}
+
+/* Whether name ends in ext (".png"), in any case. The writers take the
+ * format from the option, not the name, so a name promising another format
+ * (a.jpg holding PNG data) is refused rather than written. */
+static int has_extension(const char *name, const char *ext)
+{
+    size_t n = strlen(name), e = strlen(ext);
+    if (n < e) return 0;
+    for (size_t i = 0; i < e; i++)
+        if (tolower((unsigned char)name[n - e + i]) != tolower((unsigned char)ext[i])) return 0;
     return 1;
 }
 
@@ -410,12 +423,19 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             cli->preset = val;
         } else if (!is_demo && !strcmp(opt, "--out")) {
             if (!val || !*val) return fail(err, len, "--out: expected a file name");
+            if (!has_extension(val, ".png"))
+                return fail(err, len, "--out: expected a file name ending in .png (an 8-bit PNG; --out-pfm FILE.pfm "
+                            "for linear float), got '%s'", val);
             cli->out_png = val;
         } else if (!is_demo && !strcmp(opt, "--out-pfm")) {
             if (!val || !*val) return fail(err, len, "--out-pfm: expected a file name");
+            if (!has_extension(val, ".pfm"))
+                return fail(err, len, "--out-pfm: expected a file name ending in .pfm (linear float RGB), got '%s'", val);
             cli->out_pfm = val;
         } else if (is_demo && !strcmp(opt, "--screenshot")) {
             if (!val || !*val) return fail(err, len, "--screenshot: expected a file name");
+            if (!has_extension(val, ".png"))
+                return fail(err, len, "--screenshot: expected a file name ending in .png, got '%s'", val);
             cli->screenshot = val;
         } else {
             known = 0;

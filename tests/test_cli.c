@@ -18,6 +18,7 @@ void test_cli_exit_codes_and_messages(void);
 void test_flicker_texture_neighbourhoods(void);
 void test_cli_outputs_png_pfm_stats(void);
 void test_cli_every_option_checked(void);
+void test_cli_screenshot_must_be_png(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -89,7 +90,7 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
 void test_profiles_too_old_context_is_an_error(void)
 {
     char render[512], cmd[1024], out[2048];
-    snprintf(cmd, sizeof cmd, "MESA_GL_VERSION_OVERRIDE=1.5 %s --size 16x16 --out /dev/null 2>&1",
+    snprintf(cmd, sizeof cmd, "MESA_GL_VERSION_OVERRIDE=1.5 %s --size 16x16 --stats 2>&1",
              bin_path("sky-render", render, sizeof render));
     int rc = run_command(cmd, out, sizeof out);
     CHECK(rc == 1 && strstr(out, "too old") && strstr(out, "2.0"), "GL 1.5 context: exit 1 with a clear message (%d: %s)",
@@ -216,6 +217,16 @@ void test_cli_exit_codes_and_messages(void)
         {"--cover 0.2 --cover 0.3", 2, "more than once"},
         {"--seconds -1", 2, "--seconds"},
         {"--out /nonexistent-dir/x.png --size 8x8", 1, "/nonexistent-dir/x.png"},
+        /* an output's name says its format: PNG data in a.jpg was written
+         * without a word; the case of the extension does not matter (the
+         * accepted ones fail only at writing, exit 1) */
+        {"--size 8x8 --out /nonexistent-dir/a.jpg", 2, "--out"},
+        {"--size 8x8 --out /nonexistent-dir/a.jpg", 2, ".png"},
+        {"--size 8x8 --out /nonexistent-dir/png", 2, "--out"},
+        {"--size 8x8 --out-pfm /nonexistent-dir/a.png", 2, "--out-pfm"},
+        {"--size 8x8 --out-pfm /nonexistent-dir/a.png", 2, ".pfm"},
+        {"--size 8x8 --out /nonexistent-dir/X.PNG", 1, "X.PNG"},
+        {"--size 8x8 --out-pfm /nonexistent-dir/X.Pfm", 1, "X.Pfm"},
         {"--size 8x8 --cover 0 --cover-typo 1", 2, "--cover-typo"},
         {"--help", 0, ""},
         {"--size 16x8 --preset overcast --cover 0.1", 0, ""},
@@ -264,8 +275,9 @@ void test_cli_every_option_checked(void)
                 snprintf(cmd, sizeof cmd, "%s %s%s 2>&1 >/dev/null", render, extra, o); /* missing value */
             else if (v == 3)
                 snprintf(cmd, sizeof cmd, "%s %s%s %s %s %s 2>&1 >/dev/null", render, extra, o,
-                         !strcmp(o, "--out") || !strcmp(o, "--out-pfm") ? "/tmp/x" : (opts[i].out_of_range ? "1" : "auto"),
-                         o, !strcmp(o, "--out") || !strcmp(o, "--out-pfm") ? "/tmp/y" : "1"); /* twice */
+                         !strcmp(o, "--out") ? "/tmp/x.png" : !strcmp(o, "--out-pfm") ? "/tmp/x.pfm"
+                                                 : (opts[i].out_of_range ? "1" : "auto"),
+                         o, !strcmp(o, "--out") ? "/tmp/y.png" : !strcmp(o, "--out-pfm") ? "/tmp/y.pfm" : "1"); /* twice */
             else if (variants[v])
                 snprintf(cmd, sizeof cmd, "%s %s%s '%s' 2>&1 >/dev/null", render, extra, o, variants[v]);
             else
@@ -341,4 +353,32 @@ void test_cli_outputs_png_pfm_stats(void)
     }
     remove(png);
     remove(pfm);
+}
+
+/* sky-demo and sky-game write their --screenshot as PNG whatever its name:
+ * a name that does not end in .png (any case) is a bad argument, exit 2
+ * naming --screenshot, before any window or rendering. Without a display
+ * the demo renders headless, so the old behaviour showed as an attempt to
+ * write the file (exit 1). */
+void test_cli_screenshot_must_be_png(void)
+{
+    static const char *const progs[2] = {"sky-demo", "sky-game"};
+    char bin[512], cmd[1024], out[2048];
+    for (int p = 0; p < 2; p++) {
+        bin_path(progs[p], bin, sizeof bin);
+        snprintf(cmd, sizeof cmd,
+                 "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 8x8 --frames 1 --screenshot /nonexistent-dir/shot.jpg "
+                 "2>&1 >/dev/null",
+                 bin);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 2 && strstr(out, "--screenshot") && strstr(out, ".png"),
+              "%s --screenshot shot.jpg: exit 2 naming --screenshot and .png (%d: %s)", progs[p], rc, out);
+        snprintf(cmd, sizeof cmd,
+                 "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 8x8 --frames 1 --screenshot /nonexistent-dir/SHOT.PNG "
+                 "2>&1 >/dev/null",
+                 bin);
+        rc = run_command(cmd, out, sizeof out);
+        CHECK(rc != 2 && !strstr(out, "--screenshot"), "%s --screenshot SHOT.PNG is accepted (%d: %s)", progs[p], rc,
+              out);
+    }
 }

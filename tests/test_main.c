@@ -55,6 +55,7 @@ int test_skipped;
     X(flicker_texture_neighbourhoods)            \
     X(cli_exit_codes_and_messages)               \
     X(cli_every_option_checked)                  \
+    X(cli_screenshot_must_be_png)                \
     X(astro_time_scales)                         \
     X(astro_sun_vs_erfa)                         \
     X(astro_moon_vs_erfa)                        \
