@@ -19,6 +19,7 @@ void test_flicker_texture_neighbourhoods(void);
 void test_cli_outputs_png_pfm_stats(void);
 void test_cli_every_option_checked(void);
 void test_cli_screenshot_must_be_png(void);
+void test_cli_no_output_says_so(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -380,5 +381,25 @@ void test_cli_screenshot_must_be_png(void)
         rc = run_command(cmd, out, sizeof out);
         CHECK(rc != 2 && !strstr(out, "--screenshot"), "%s --screenshot SHOT.PNG is accepted (%d: %s)", progs[p], rc,
               out);
+    }
+}
+
+/* sky-render with nothing to write (no --out, --out-pfm, --stats or
+ * --query) still renders, as a check of GL, but says on stderr that
+ * nothing was written and how to write; a command with an output does not. */
+void test_cli_no_output_says_so(void)
+{
+    char render[512], cmd[1024], out[2048];
+    bin_path("sky-render", render, sizeof render);
+    snprintf(cmd, sizeof cmd, "%s --size 8x8 --preset noon 2>&1 >/dev/null", render);
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "no output is not an error (exit %d: %s)", rc, out);
+    CHECK(strstr(out, "nothing") && strstr(out, "--out FILE.png") && strstr(out, "--out-pfm FILE.pfm"),
+          "stderr says nothing was written and names --out and --out-pfm: '%s'", out);
+    static const char *const with_output[2] = {"--size 8x8 --stats", "--query"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(cmd, sizeof cmd, "%s %s 2>&1 >/dev/null", render, with_output[k]);
+        rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 0 && !strstr(out, "nothing"), "'%s' prints no such note (%d: '%s')", with_output[k], rc, out);
     }
 }
