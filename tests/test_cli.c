@@ -20,6 +20,7 @@ void test_cli_outputs_png_pfm_stats(void);
 void test_cli_every_option_checked(void);
 void test_cli_screenshot_must_be_png(void);
 void test_cli_no_output_says_so(void);
+void test_cli_help_exits_0(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -402,4 +403,25 @@ void test_cli_no_output_says_so(void)
         rc = run_command(cmd, out, sizeof out);
         CHECK(rc == 0 && !strstr(out, "nothing"), "'%s' prints no such note (%d: '%s')", with_output[k], rc, out);
     }
+}
+
+/* --help and -h print the usage on stdout and exit 0, with nothing on
+ * stderr (sky-bench called them a bad argument, exit 2). */
+void test_cli_help_exits_0(void)
+{
+    static const char *const progs[2] = {"sky-render", "sky-bench"};
+    static const char *const flags[2] = {"--help", "-h"};
+    char bin[512], cmd[1024], out[8192], usage[64];
+    for (int p = 0; p < 2; p++)
+        for (int f = 0; f < 2; f++) {
+            bin_path(progs[p], bin, sizeof bin);
+            snprintf(usage, sizeof usage, "usage: %s", progs[p]);
+            snprintf(cmd, sizeof cmd, "%s %s 2>/dev/null", bin, flags[f]);
+            int rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 0 && strstr(out, usage) && strstr(out, "--size"),
+                  "%s %s: exit 0 with the usage on stdout (%d: %.200s)", progs[p], flags[f], rc, out);
+            snprintf(cmd, sizeof cmd, "%s %s 2>&1 >/dev/null", bin, flags[f]);
+            rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 0 && out[0] == '\0', "%s %s: nothing on stderr (%d: %.200s)", progs[p], flags[f], rc, out);
+        }
 }
