@@ -158,9 +158,15 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           --time sets the local solar time on that date\n"
             "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
             prog);
-    if (is_demo)
+    if (is_demo) {
         fprintf(out, "  --screenshot FILE.png    with --frames: save the last frame and quit\n");
-    else
+        /* sky-game shares these options but has no keys; sky-demo prints
+         * its other keys after its own options (demo.c), these were left
+         * out of that list */
+        if (!strcmp(prog, "sky-demo"))
+            fprintf(out, "keys, besides those below: Left/Right turn the view (5 degrees a press),\n"
+                         "      O the next tone map (hue, filmic, neutral; the sky is rebuilt)\n");
+    } else
         fprintf(out, "  --out FILE.png           8-bit sRGB image (with --frames: FILE_0001.png ...)\n"
                      "  --out-pfm FILE.pfm       linear float RGB, luminance in kcd/m^2\n"
                      "  --stats                  print JSON statistics after rendering\n"

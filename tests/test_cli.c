@@ -21,6 +21,7 @@ void test_cli_every_option_checked(void);
 void test_cli_screenshot_must_be_png(void);
 void test_cli_no_output_says_so(void);
 void test_cli_help_exits_0(void);
+void test_cli_demo_help_lists_every_key(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -424,4 +425,66 @@ void test_cli_help_exits_0(void)
             rc = run_command(cmd, out, sizeof out);
             CHECK(rc == 0 && out[0] == '\0', "%s %s: nothing on stderr (%d: %.200s)", progs[p], flags[f], rc, out);
         }
+}
+
+/* Whether word is one of text's words (split at spaces, punctuation and
+ * slashes, so "Up/Down" holds "Up" and "Down", "+/-" holds "+" and "-"). */
+static int has_word(const char *text, const char *word)
+{
+    static const char *const seps = " \t\n,;:/()";
+    size_t n = strlen(word);
+    for (const char *p = text; *p;) {
+        p += strspn(p, seps);
+        size_t k = strcspn(p, seps);
+        if (k == n && !strncmp(p, word, n)) return 1;
+        p += k;
+    }
+    return 0;
+}
+
+/* sky-demo --help names every key demo.c's handler answers (Left/Right
+ * and O were missing): each GLFW_KEY_ in demo/demo.c is looked up in the
+ * usage, so a key added without its line fails here. sky-game, which has
+ * no keys, lists none. */
+void test_cli_demo_help_lists_every_key(void)
+{
+    static const struct {
+        const char *glfw, *shown;
+    } names[] = {{"LEFT", "Left"},   {"RIGHT", "Right"}, {"UP", "Up"},         {"DOWN", "Down"},
+                 {"SPACE", "Space"}, {"EQUAL", "+"},     {"KP_ADD", "+"},      {"MINUS", "-"},
+                 {"KP_SUBTRACT", "-"}, {"ESCAPE", "Esc"}, {"1", "1-6"},        {"6", "1-6"}};
+    char bin[512], cmd[1024];
+    static char help[16384], game_help[16384];
+    snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin_path("sky-demo", bin, sizeof bin));
+    int rc = run_command(cmd, help, sizeof help);
+    CHECK(rc == 0 && strstr(help, "usage: sky-demo"), "sky-demo --help exits 0 (%d)", rc);
+    FILE *f = fopen("demo/demo.c", "rb");
+    CHECK(f != NULL, "demo/demo.c readable from the working directory");
+    if (!f) return;
+    static char src[262144];
+    size_t len = fread(src, 1, sizeof src - 1, f);
+    src[len] = '\0';
+    fclose(f);
+    int keys = 0;
+    for (const char *p = strstr(src, "GLFW_KEY_"); p; p = strstr(p + 1, "GLFW_KEY_")) {
+        char id[32];
+        size_t k = 0;
+        for (const char *q = p + 9; k + 1 < sizeof id && (*q == '_' || (*q >= 'A' && *q <= 'Z') || (*q >= '0' && *q <= '9'));
+             q++)
+            id[k++] = *q;
+        id[k] = '\0';
+        const char *shown = k == 1 && id[0] >= 'A' && id[0] <= 'Z' ? id : NULL;
+        for (size_t i = 0; !shown && i < sizeof names / sizeof names[0]; i++)
+            if (!strcmp(names[i].glfw, id)) shown = names[i].shown;
+        CHECK(shown != NULL, "GLFW_KEY_%s: this test has no help name for it", id);
+        if (!shown) continue;
+        CHECK(has_word(help, shown), "sky-demo --help names the key GLFW_KEY_%s as '%s'", id, shown);
+        keys++;
+    }
+    NOTE("%d key uses in demo/demo.c checked against sky-demo --help", keys);
+    CHECK(keys >= 20, "the key handler was found (%d keys)", keys);
+    CHECK(strstr(help, "Left/Right") && strstr(help, "turn the view"), "Left/Right: turn the view");
+    snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin_path("sky-game", bin, sizeof bin));
+    rc = run_command(cmd, game_help, sizeof game_help);
+    CHECK(rc == 0 && !strstr(game_help, "Left/Right"), "sky-game, which has no keys, lists none (%d)", rc);
 }

@@ -58,6 +58,7 @@ int test_skipped;
     X(cli_screenshot_must_be_png)                \
     X(cli_no_output_says_so)                     \
     X(cli_help_exits_0)                          \
+    X(cli_demo_help_lists_every_key)             \
     X(astro_time_scales)                         \
     X(astro_sun_vs_erfa)                         \
     X(astro_moon_vs_erfa)                        \
