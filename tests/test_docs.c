@@ -9,6 +9,7 @@
 #include <string.h>
 
 void test_docs_no_paths_outside_the_repository(void);
+void test_docs_readme_figures_agree(void);
 
 /* Split so that this file does not match itself. */
 static const char *const outside[] = {"../" "shared/", "DESIGN" ".md", "ANCHORS" ".md"};
@@ -65,4 +66,45 @@ void test_docs_no_paths_outside_the_repository(void)
     }
     NOTE("%d files listed, %d text files scanned", files, text);
     CHECK(saw_readme && saw_cli, "the scan covered README.md and demo/cli.c");
+}
+
+/* README.md, whole, or NULL. */
+static char *read_readme(void)
+{
+    FILE *f = fopen("README.md", "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = size > 0 ? malloc((size_t)size + 1) : NULL;
+    size_t got = buf ? fread(buf, 1, (size_t)size, f) : 0;
+    fclose(f);
+    if (buf) buf[got] = '\0';
+    return buf;
+}
+
+/* The README says one thing once: the astronomy's cost where the
+ * astronomy is described is the figure of the Measured section (sky-bench's
+ * "astronomy:" line; they said 13 and 8.1 us), and the LDR output's tone
+ * map is not called exponential (the maps are hue, filmic and neutral). */
+void test_docs_readme_figures_agree(void)
+{
+    char *readme = read_readme();
+    CHECK(readme != NULL, "README.md readable from the working directory");
+    if (!readme) return;
+    const char *prose = strstr(readme, "astronomy update costs ");
+    const char *measured = strstr(readme, "Astronomy: ");
+    CHECK(prose && measured, "both figures are there (prose %s, Measured %s)", prose ? "yes" : "no",
+          measured ? "yes" : "no");
+    if (prose && measured) {
+        const char *q = prose + strlen("astronomy update costs ");
+        if (!strncmp(q, "about ", 6)) q += 6;
+        double a = strtod(q, NULL);
+        double b = strtod(measured + strlen("Astronomy: "), NULL);
+        CHECK(a > 0.0 && a == b, "the astronomy's cost: %g us in the prose, %g us in Measured", a, b);
+    }
+    CHECK(!strstr(readme, "exponential tone map"), "README calls a tone map exponential");
+    static const char *const maps[3] = {"| `hue` (default) |", "| `filmic` |", "| `neutral` |"};
+    for (int k = 0; k < 3; k++) CHECK(strstr(readme, maps[k]) != NULL, "the Colour table has the row %s", maps[k]);
+    free(readme);
 }

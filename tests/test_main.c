@@ -60,6 +60,7 @@ int test_skipped;
     X(cli_help_exits_0)                          \
     X(cli_demo_help_lists_every_key)             \
     X(docs_no_paths_outside_the_repository)      \
+    X(docs_readme_figures_agree)                 \
     X(astro_time_scales)                         \
     X(astro_sun_vs_erfa)                         \
     X(astro_moon_vs_erfa)                        \
