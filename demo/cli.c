@@ -4,6 +4,7 @@
  */
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -57,6 +58,18 @@ static int parse_date(const char *s, double *jd)
     int leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
     if (day < 1 || day > days[month - 1] || (month == 2 && day == 29 && !leap)) return 0;
     *jd = sky_julian_day(year, month, day, hour, minute, second);
+    return 1;
+}
+
+/* Whether name ends in ext (".png"), in any case. The writers take the
+ * format from the option, not the name, so a name promising another format
+ * (a.jpg holding PNG data) is refused rather than written. */
+static int has_extension(const char *name, const char *ext)
+{
+    size_t n = strlen(name), e = strlen(ext);
+    if (n < e) return 0;
+    for (size_t i = 0; i < e; i++)
+        if (tolower((unsigned char)name[n - e + i]) != tolower((unsigned char)ext[i])) return 0;
     return 1;
 }
 
@@ -145,9 +158,15 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           --time sets the local solar time on that date\n"
             "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
             prog);
-    if (is_demo)
+    if (is_demo) {
         fprintf(out, "  --screenshot FILE.png    with --frames: save the last frame and quit\n");
-    else
+        /* sky-game shares these options but has no keys; sky-demo prints
+         * its other keys after its own options (demo.c), these were left
+         * out of that list */
+        if (!strcmp(prog, "sky-demo"))
+            fprintf(out, "keys, besides those below: Left/Right turn the view (5 degrees a press),\n"
+                         "      O the next tone map (hue, filmic, neutral; the sky is rebuilt)\n");
+    } else
         fprintf(out, "  --out FILE.png           8-bit sRGB image (with --frames: FILE_0001.png ...)\n"
                      "  --out-pfm FILE.pfm       linear float RGB, luminance in kcd/m^2\n"
                      "  --stats                  print JSON statistics after rendering\n"
@@ -350,8 +369,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         } else if (!strcmp(opt, "--date")) {
             if (!parse_date(val, &date_jd))
                 return fail(err, len, "--date: expected YYYY-MM-DDTHH:MM:SSZ (UTC), got '%s'", val ? val : "(nothing)");
-            double year = 2000.0 + (date_jd - 2451545.0) / 365.25;
-            if (year < -1999.0 || year >= 3001.0)
+            /* The library's own bounds (sky_set_observer): the calendar's
+             * first and after-last instants, not a Julian-year estimate,
+             * which drifts by a month at the ends and let 3001-01-01 reach
+             * the library, which failed it at run time (exit 1). */
+            if (date_jd < sky_julian_day(-1999, 1, 1, 0, 0, 0.0) || date_jd >= sky_julian_day(3001, 1, 1, 0, 0, 0.0))
                 return fail(err, len, "--date: '%s' is outside the supported years -1999..3000", val);
             have_date = 1;
         } else if (!strcmp(opt, "--lat")) {
@@ -407,12 +429,19 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             cli->preset = val;
         } else if (!is_demo && !strcmp(opt, "--out")) {
             if (!val || !*val) return fail(err, len, "--out: expected a file name");
+            if (!has_extension(val, ".png"))
+                return fail(err, len, "--out: expected a file name ending in .png (an 8-bit PNG; --out-pfm FILE.pfm "
+                            "for linear float), got '%s'", val);
             cli->out_png = val;
         } else if (!is_demo && !strcmp(opt, "--out-pfm")) {
             if (!val || !*val) return fail(err, len, "--out-pfm: expected a file name");
+            if (!has_extension(val, ".pfm"))
+                return fail(err, len, "--out-pfm: expected a file name ending in .pfm (linear float RGB), got '%s'", val);
             cli->out_pfm = val;
         } else if (is_demo && !strcmp(opt, "--screenshot")) {
             if (!val || !*val) return fail(err, len, "--screenshot: expected a file name");
+            if (!has_extension(val, ".png"))
+                return fail(err, len, "--screenshot: expected a file name ending in .png, got '%s'", val);
             cli->screenshot = val;
         } else {
             known = 0;

@@ -1,6 +1,8 @@
 /*
- * The command line shared by sky-render and sky-demo (DESIGN.md's
- * contract): parsing, presets and the camera it describes.
+ * The command line shared by sky-render, sky-demo and sky-game (the
+ * contract is README's sky-render section: exit 0 on success, 2 for a bad
+ * argument, named with its range, 1 for a runtime failure): parsing,
+ * presets and the camera it describes.
  */
 #ifndef SKY_CLI_H
 #define SKY_CLI_H
@@ -60,10 +62,11 @@ void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
  * north through east), fov vertical in degrees, for a width x height view. */
 void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int height, float view[16], float proj[16]);
 
-/* Prints the --query JSON object of DESIGN.md. */
+/* Prints the --query JSON object (its fields: README's "Where and when";
+ * their meaning: sky_astronomy in sky.h). */
 void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count);
 
-/* Prints sky_get_stats as the JSON object of DESIGN.md. frame_ms overrides
+/* Prints sky_get_stats as a JSON object (sky_stats in sky.h). frame_ms overrides
  * the sky's own figure (sky-render passes a median). */
 void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms);
 

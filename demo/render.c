@@ -121,7 +121,11 @@ int main(int argc, char **argv)
     }
     /* The PFM needs a float buffer and a linear sky, the PNG an 8-bit one:
      * one pass each. Statistics come from the PNG pass when there is one.
-     * With neither output, render anyway (a smoke test of GL). */
+     * With neither output, render anyway (a check that GL works, exit 0),
+     * but say so first: a forgotten --out otherwise looked like success. */
+    if (!cli.out_png && !cli.out_pfm && !cli.stats)
+        fprintf(stderr, "sky-render: nothing will be written (no --out, --out-pfm or --stats): rendering once as a "
+                        "check of GL; add --out FILE.png or --out-pfm FILE.pfm to keep the image\n");
     int png_pass = cli.out_png || !cli.out_pfm;
     if (cli.out_pfm && (rc = render_pass(&cli, 1, cli.out_pfm, cli.stats && !png_pass))) return rc;
     if (png_pass && (rc = render_pass(&cli, 0, cli.out_png, cli.stats))) return rc;

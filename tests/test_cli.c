@@ -18,10 +18,14 @@ void test_cli_exit_codes_and_messages(void);
 void test_flicker_texture_neighbourhoods(void);
 void test_cli_outputs_png_pfm_stats(void);
 void test_cli_every_option_checked(void);
+void test_cli_screenshot_must_be_png(void);
+void test_cli_no_output_says_so(void);
+void test_cli_help_exits_0(void);
+void test_cli_demo_help_lists_every_key(void);
 
 double image_psnr(const image *a, const image *b);
 
-/* Mesa pretending to be a 2004-class GPU (DESIGN.md, GL profiles). */
+/* Mesa pretending to be a 2004-class GPU (README's "Old GPUs"). */
 #define OLD_GPU                                                                                  \
     "MESA_GL_VERSION_OVERRIDE=2.0 MESA_GLSL_VERSION_OVERRIDE=110 MESA_EXTENSION_MAX_YEAR=2004 " \
     "MESA_EXTENSION_OVERRIDE='-GL_ARB_texture_float -GL_ARB_framebuffer_object "               \
@@ -89,7 +93,7 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
 void test_profiles_too_old_context_is_an_error(void)
 {
     char render[512], cmd[1024], out[2048];
-    snprintf(cmd, sizeof cmd, "MESA_GL_VERSION_OVERRIDE=1.5 %s --size 16x16 --out /dev/null 2>&1",
+    snprintf(cmd, sizeof cmd, "MESA_GL_VERSION_OVERRIDE=1.5 %s --size 16x16 --stats 2>&1",
              bin_path("sky-render", render, sizeof render));
     int rc = run_command(cmd, out, sizeof out);
     CHECK(rc == 1 && strstr(out, "too old") && strstr(out, "2.0"), "GL 1.5 context: exit 1 with a clear message (%d: %s)",
@@ -197,6 +201,15 @@ void test_cli_exit_codes_and_messages(void)
         {"--blend 1.5", 2, "--blend"},
         {"--preset beach", 2, "--preset"},
         {"--date 2011-06-15", 2, "--date"},
+        /* the supported years' calendar edges: the option is named with
+         * its range before any rendering (it used to reach the library
+         * and exit 1 with an observer message) */
+        {"--size 8x8 --date 3001-01-01T00:00:00Z", 2, "--date"},
+        {"--size 8x8 --date 3001-01-01T00:00:00Z", 2, "-1999..3000"},
+        {"--size 8x8 --date 3000-12-31T23:59:60.5Z", 2, "--date"},
+        {"--size 8x8 --date -2000-12-31T23:59:59Z", 2, "--date"},
+        {"--query --date 3000-12-31T23:59:59Z", 0, ""},
+        {"--query --date -1999-01-01T00:00:00Z", 0, ""},
         {"--turbidity 0.5", 2, "--turbidity"},
         {"--dome-divisor 9", 2, "--dome-divisor"},
         {"--tone-map aces", 2, "--tone-map"},
@@ -207,6 +220,16 @@ void test_cli_exit_codes_and_messages(void)
         {"--cover 0.2 --cover 0.3", 2, "more than once"},
         {"--seconds -1", 2, "--seconds"},
         {"--out /nonexistent-dir/x.png --size 8x8", 1, "/nonexistent-dir/x.png"},
+        /* an output's name says its format: PNG data in a.jpg was written
+         * without a word; the case of the extension does not matter (the
+         * accepted ones fail only at writing, exit 1) */
+        {"--size 8x8 --out /nonexistent-dir/a.jpg", 2, "--out"},
+        {"--size 8x8 --out /nonexistent-dir/a.jpg", 2, ".png"},
+        {"--size 8x8 --out /nonexistent-dir/png", 2, "--out"},
+        {"--size 8x8 --out-pfm /nonexistent-dir/a.png", 2, "--out-pfm"},
+        {"--size 8x8 --out-pfm /nonexistent-dir/a.png", 2, ".pfm"},
+        {"--size 8x8 --out /nonexistent-dir/X.PNG", 1, "X.PNG"},
+        {"--size 8x8 --out-pfm /nonexistent-dir/X.Pfm", 1, "X.Pfm"},
         {"--size 8x8 --cover 0 --cover-typo 1", 2, "--cover-typo"},
         {"--help", 0, ""},
         {"--size 16x8 --preset overcast --cover 0.1", 0, ""},
@@ -255,8 +278,9 @@ void test_cli_every_option_checked(void)
                 snprintf(cmd, sizeof cmd, "%s %s%s 2>&1 >/dev/null", render, extra, o); /* missing value */
             else if (v == 3)
                 snprintf(cmd, sizeof cmd, "%s %s%s %s %s %s 2>&1 >/dev/null", render, extra, o,
-                         !strcmp(o, "--out") || !strcmp(o, "--out-pfm") ? "/tmp/x" : (opts[i].out_of_range ? "1" : "auto"),
-                         o, !strcmp(o, "--out") || !strcmp(o, "--out-pfm") ? "/tmp/y" : "1"); /* twice */
+                         !strcmp(o, "--out") ? "/tmp/x.png" : !strcmp(o, "--out-pfm") ? "/tmp/x.pfm"
+                                                 : (opts[i].out_of_range ? "1" : "auto"),
+                         o, !strcmp(o, "--out") ? "/tmp/y.png" : !strcmp(o, "--out-pfm") ? "/tmp/y.pfm" : "1"); /* twice */
             else if (variants[v])
                 snprintf(cmd, sizeof cmd, "%s %s%s '%s' 2>&1 >/dev/null", render, extra, o, variants[v]);
             else
@@ -332,4 +356,135 @@ void test_cli_outputs_png_pfm_stats(void)
     }
     remove(png);
     remove(pfm);
+}
+
+/* sky-demo and sky-game write their --screenshot as PNG whatever its name:
+ * a name that does not end in .png (any case) is a bad argument, exit 2
+ * naming --screenshot, before any window or rendering. Without a display
+ * the demo renders headless, so the old behaviour showed as an attempt to
+ * write the file (exit 1). */
+void test_cli_screenshot_must_be_png(void)
+{
+    static const char *const progs[2] = {"sky-demo", "sky-game"};
+    char bin[512], cmd[1024], out[2048];
+    for (int p = 0; p < 2; p++) {
+        bin_path(progs[p], bin, sizeof bin);
+        snprintf(cmd, sizeof cmd,
+                 "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 8x8 --frames 1 --screenshot /nonexistent-dir/shot.jpg "
+                 "2>&1 >/dev/null",
+                 bin);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 2 && strstr(out, "--screenshot") && strstr(out, ".png"),
+              "%s --screenshot shot.jpg: exit 2 naming --screenshot and .png (%d: %s)", progs[p], rc, out);
+        snprintf(cmd, sizeof cmd,
+                 "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 8x8 --frames 1 --screenshot /nonexistent-dir/SHOT.PNG "
+                 "2>&1 >/dev/null",
+                 bin);
+        rc = run_command(cmd, out, sizeof out);
+        CHECK(rc != 2 && !strstr(out, "--screenshot"), "%s --screenshot SHOT.PNG is accepted (%d: %s)", progs[p], rc,
+              out);
+    }
+}
+
+/* sky-render with nothing to write (no --out, --out-pfm, --stats or
+ * --query) still renders, as a check of GL, but says on stderr that
+ * nothing was written and how to write; a command with an output does not. */
+void test_cli_no_output_says_so(void)
+{
+    char render[512], cmd[1024], out[2048];
+    bin_path("sky-render", render, sizeof render);
+    snprintf(cmd, sizeof cmd, "%s --size 8x8 --preset noon 2>&1 >/dev/null", render);
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "no output is not an error (exit %d: %s)", rc, out);
+    CHECK(strstr(out, "nothing") && strstr(out, "--out FILE.png") && strstr(out, "--out-pfm FILE.pfm"),
+          "stderr says nothing was written and names --out and --out-pfm: '%s'", out);
+    static const char *const with_output[2] = {"--size 8x8 --stats", "--query"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(cmd, sizeof cmd, "%s %s 2>&1 >/dev/null", render, with_output[k]);
+        rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 0 && !strstr(out, "nothing"), "'%s' prints no such note (%d: '%s')", with_output[k], rc, out);
+    }
+}
+
+/* --help and -h print the usage on stdout and exit 0, with nothing on
+ * stderr (sky-bench called them a bad argument, exit 2). */
+void test_cli_help_exits_0(void)
+{
+    static const char *const progs[2] = {"sky-render", "sky-bench"};
+    static const char *const flags[2] = {"--help", "-h"};
+    char bin[512], cmd[1024], out[8192], usage[64];
+    for (int p = 0; p < 2; p++)
+        for (int f = 0; f < 2; f++) {
+            bin_path(progs[p], bin, sizeof bin);
+            snprintf(usage, sizeof usage, "usage: %s", progs[p]);
+            snprintf(cmd, sizeof cmd, "%s %s 2>/dev/null", bin, flags[f]);
+            int rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 0 && strstr(out, usage) && strstr(out, "--size"),
+                  "%s %s: exit 0 with the usage on stdout (%d: %.200s)", progs[p], flags[f], rc, out);
+            snprintf(cmd, sizeof cmd, "%s %s 2>&1 >/dev/null", bin, flags[f]);
+            rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 0 && out[0] == '\0', "%s %s: nothing on stderr (%d: %.200s)", progs[p], flags[f], rc, out);
+        }
+}
+
+/* Whether word is one of text's words (split at spaces, punctuation and
+ * slashes, so "Up/Down" holds "Up" and "Down", "+/-" holds "+" and "-"). */
+static int has_word(const char *text, const char *word)
+{
+    static const char *const seps = " \t\n,;:/()";
+    size_t n = strlen(word);
+    for (const char *p = text; *p;) {
+        p += strspn(p, seps);
+        size_t k = strcspn(p, seps);
+        if (k == n && !strncmp(p, word, n)) return 1;
+        p += k;
+    }
+    return 0;
+}
+
+/* sky-demo --help names every key demo.c's handler answers (Left/Right
+ * and O were missing): each GLFW_KEY_ in demo/demo.c is looked up in the
+ * usage, so a key added without its line fails here. sky-game, which has
+ * no keys, lists none. */
+void test_cli_demo_help_lists_every_key(void)
+{
+    static const struct {
+        const char *glfw, *shown;
+    } names[] = {{"LEFT", "Left"},   {"RIGHT", "Right"}, {"UP", "Up"},         {"DOWN", "Down"},
+                 {"SPACE", "Space"}, {"EQUAL", "+"},     {"KP_ADD", "+"},      {"MINUS", "-"},
+                 {"KP_SUBTRACT", "-"}, {"ESCAPE", "Esc"}, {"1", "1-6"},        {"6", "1-6"}};
+    char bin[512], cmd[1024];
+    static char help[16384], game_help[16384];
+    snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin_path("sky-demo", bin, sizeof bin));
+    int rc = run_command(cmd, help, sizeof help);
+    CHECK(rc == 0 && strstr(help, "usage: sky-demo"), "sky-demo --help exits 0 (%d)", rc);
+    FILE *f = fopen("demo/demo.c", "rb");
+    CHECK(f != NULL, "demo/demo.c readable from the working directory");
+    if (!f) return;
+    static char src[262144];
+    size_t len = fread(src, 1, sizeof src - 1, f);
+    src[len] = '\0';
+    fclose(f);
+    int keys = 0;
+    for (const char *p = strstr(src, "GLFW_KEY_"); p; p = strstr(p + 1, "GLFW_KEY_")) {
+        char id[32];
+        size_t k = 0;
+        for (const char *q = p + 9; k + 1 < sizeof id && (*q == '_' || (*q >= 'A' && *q <= 'Z') || (*q >= '0' && *q <= '9'));
+             q++)
+            id[k++] = *q;
+        id[k] = '\0';
+        const char *shown = k == 1 && id[0] >= 'A' && id[0] <= 'Z' ? id : NULL;
+        for (size_t i = 0; !shown && i < sizeof names / sizeof names[0]; i++)
+            if (!strcmp(names[i].glfw, id)) shown = names[i].shown;
+        CHECK(shown != NULL, "GLFW_KEY_%s: this test has no help name for it", id);
+        if (!shown) continue;
+        CHECK(has_word(help, shown), "sky-demo --help names the key GLFW_KEY_%s as '%s'", id, shown);
+        keys++;
+    }
+    NOTE("%d key uses in demo/demo.c checked against sky-demo --help", keys);
+    CHECK(keys >= 20, "the key handler was found (%d keys)", keys);
+    CHECK(strstr(help, "Left/Right") && strstr(help, "turn the view"), "Left/Right: turn the view");
+    snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin_path("sky-game", bin, sizeof bin));
+    rc = run_command(cmd, game_help, sizeof game_help);
+    CHECK(rc == 0 && !strstr(game_help, "Left/Right"), "sky-game, which has no keys, lists none (%d)", rc);
 }

@@ -58,6 +58,12 @@ int test_skipped;
     X(flicker_texture_neighbourhoods)            \
     X(cli_exit_codes_and_messages)               \
     X(cli_every_option_checked)                  \
+    X(cli_screenshot_must_be_png)                \
+    X(cli_no_output_says_so)                     \
+    X(cli_help_exits_0)                          \
+    X(cli_demo_help_lists_every_key)             \
+    X(docs_no_paths_outside_the_repository)      \
+    X(docs_readme_figures_agree)                 \
     X(astro_time_scales)                         \
     X(astro_sun_vs_erfa)                         \
     X(astro_moon_vs_erfa)                        \

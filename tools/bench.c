@@ -1122,6 +1122,17 @@ static void print_colour_json(sky_tone_map tm, const sky_colour_row *rows, int n
     printf(" ]}");
 }
 
+static void bench_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
+            "[--only-atmosphere | --only-presets | --only-colour]\n"
+            "       [--tone-map hue|filmic|neutral] [--plot FILE.png]\n"
+            "       sky-bench --stability [--json]\n"
+            "       sky-bench --make-reference FILE [--paths N]\n",
+            MAX_ROUNDS);
+}
+
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
@@ -1129,7 +1140,11 @@ int main(int argc, char **argv)
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--json"))
+        /* asking for the usage is not a mistake: stdout, exit 0 */
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            bench_usage(stdout);
+            return 0;
+        } else if (!strcmp(argv[i], "--json"))
             json = 1;
         else if (!strcmp(argv[i], "--only-atmosphere"))
             only_atmosphere = 1;
@@ -1161,12 +1176,8 @@ int main(int argc, char **argv)
                  rounds <= MAX_ROUNDS)
             i++;
         else {
-            fprintf(stderr, "sky-bench: bad argument '%s'\nusage: sky-bench [--json] [--size WxH] [--frames N>=3] "
-                    "[--rounds 1..%d] [--reference FILE] [--only-atmosphere | --only-presets | --only-colour]\n"
-                    "       [--tone-map hue|filmic|neutral] [--plot FILE.png]\n"
-                    "       sky-bench --stability [--json]\n"
-                    "       sky-bench --make-reference FILE [--paths N]\n",
-                    argv[i], MAX_ROUNDS);
+            fprintf(stderr, "sky-bench: bad argument '%s'\n", argv[i]);
+            bench_usage(stderr);
             return 2;
         }
     }
