@@ -105,10 +105,12 @@ typedef enum sky_gl_profile {
  * linear and untouched by it). */
 typedef enum sky_tone_map {
     SKY_TONE_MAP_HUE = 0, /* the default: a filmic curve on each colour's
-                             largest channel, the colour scaled with it, so
-                             hue and saturation survive (a sunset stays
-                             orange, noon stays blue); only the sun and its
-                             glare, far above white, turn white           */
+                             luminance, the colour scaled with it (a soft
+                             shoulder keeps its largest channel below
+                             white), so hue and saturation survive (a
+                             sunset stays orange, noon stays blue); only
+                             the sun and its glare, far above white, turn
+                             white                                        */
     SKY_TONE_MAP_FILMIC,  /* Hejl and Burgess-Dawson's curve on each channel
                              apart: contrasty, and bright colours drift
                              toward white and yellow (libsky before 2026-11) */
@@ -296,8 +298,11 @@ SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
 
 /* Draws the sky into the current framebuffer and viewport. view and proj are
  * column-major; only the rotation part of view is used (the sky is
- * centred on the viewer). Depth is neither tested nor written; all GL state
- * that the call changes is restored before it returns. With LDR output it
+ * centred on the viewer). Depth is neither tested nor written; polygons are
+ * filled whatever glPolygonMode says, and GL_FRAMEBUFFER_SRGB is off for its
+ * draws (LDR output is sRGB-encoded by the sky itself: into an sRGB target
+ * it lands as the encoded bytes); all GL state that the call changes is
+ * restored before it returns, as sky_create restores what it binds. With LDR output it
  * first renders the dome into an image of its own through a framebuffer
  * object of its own (sky_config.dome_divisor), and puts the host's draw
  * and read framebuffers and viewport back before drawing into the host's. */
