@@ -77,10 +77,15 @@ void sky_osmesa_destroy(sky_osmesa *o)
 static sky_gl_proc loader(const char *name) { return (sky_gl_proc)OSMesaGetProcAddress(name); }
 sky_get_proc_address_fn sky_osmesa_loader(void) { return loader; }
 
+/* glFinish through OSMesa's own table: a program that also links -lGL
+ * (sky-demo, sky-game) would otherwise bind the symbol to GLVND's libGL,
+ * whose glFinish without a current GLX context does nothing, and llvmpipe
+ * would never render into the buffer before it is read. */
 void sky_osmesa_finish(sky_osmesa *o)
 {
     (void)o;
-    glFinish();
+    void (*finish)(void) = (void (*)(void))loader("glFinish");
+    if (finish) finish();
 }
 
 int sky_osmesa_write_png(const sky_osmesa *o, const char *path)

@@ -3,7 +3,8 @@
  * deps step): sky-demo shows the sky with its sliders, a synthetic mouse
  * drag on the cover slider changes the clouds, the readout's frame time is
  * the sky's GPU time as sky-bench measures it, and sky-game lights its
- * world differently at noon and at night.
+ * world differently at noon and at night. And their headless paths
+ * (DISPLAY unset), which render through OSMesa.
  */
 #include "test.h"
 
@@ -16,6 +17,7 @@ void test_demo_window_shows_sky_and_sliders(void);
 void test_demo_drag_on_cover_slider(void);
 void test_demo_readout_is_gpu_frame_time(void);
 void test_game_lit_by_the_sky(void);
+void test_headless_frames_are_rendered(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -146,4 +148,49 @@ void test_game_lit_by_the_sky(void)
     }
     NOTE("sky-game: a box's mean brightness %.3f at noon, %.3f at midnight", mean[0], mean[1]);
     CHECK(mean[0] > 0.15 && mean[0] > 5.0 * mean[1] + 0.02, "the world is lit by the sky: bright at noon, dark at night");
+}
+
+/* The spread of an image's luminance: its 95th percentile less its 5th
+ * (0 for a uniform image such as an unrendered buffer). */
+static double luminance_spread(const image *im)
+{
+    int hist[256] = {0}, n = im->w * im->h;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) hist[(int)(image_luminance(im, x, y) * 255.0f + 0.5f)]++;
+    int lo = -1, hi = -1, seen = 0;
+    for (int v = 0; v < 256; v++) {
+        seen += hist[v];
+        if (lo < 0 && seen > n / 20) lo = v;
+        if (hi < 0 && seen >= n - n / 20) hi = v;
+    }
+    return (hi - lo) / 255.0;
+}
+
+/* With DISPLAY unset each window program falls back to OSMesa; the frame
+ * it writes must be the rendered sky, not the untouched (black) buffer. */
+void test_headless_frames_are_rendered(void)
+{
+    static const char *const progs[] = {"sky-demo"};
+    for (size_t k = 0; k < sizeof progs / sizeof progs[0]; k++) {
+        char path[512], cmd[2048], log[4096], png[256];
+        tmp("headless.png", png, sizeof png);
+        remove(png);
+        snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 320x180 --preset noon --screenshot %s 2>&1",
+                 bin_path(progs[k], path, sizeof path), png);
+        int rc = run_command(cmd, log, sizeof log);
+        image im;
+        if (rc != 0 || image_load_png(png, &im)) {
+            CHECK(0, "%s headless: exit %d: %s", progs[k], rc, log);
+            continue;
+        }
+        double mean = 0.0;
+        for (int y = 0; y < im.h; y++)
+            for (int x = 0; x < im.w; x++) mean += image_luminance(&im, x, y);
+        mean /= (double)im.w * im.h;
+        double spread = luminance_spread(&im);
+        NOTE("%s headless, noon: mean luminance %.3f, 5-95 %% spread %.3f", progs[k], mean, spread);
+        CHECK(mean > 0.2 && spread > 0.05, "%s renders a noon sky headless, not a uniform buffer", progs[k]);
+        image_free(&im);
+        remove(png);
+    }
 }

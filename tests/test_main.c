@@ -96,6 +96,7 @@ int test_skipped;
     X(bench_preset_table_in_rounds)              \
     X(bench_rejects_bad_rounds)                  \
     X(game_lit_by_the_sky)                       \
+    X(headless_frames_are_rendered)              \
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
