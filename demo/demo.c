@@ -17,11 +17,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int headless(const sky_cli *cli)
+/* out: the PNG to write (relative to the current directory, so an
+ * installed sky-demo works anywhere). */
+static int headless(const sky_cli *cli, const char *out)
 {
     char err[512];
     sky_osmesa ctx;
-    const char *out = cli->screenshot ? cli->screenshot : "build/sky.png";
     if (sky_osmesa_create(&ctx, cli->width, cli->height, cli->gl, 0, err, sizeof err)) {
         fprintf(stderr, "sky-demo: %s\n", err);
         return 1;
@@ -406,13 +407,22 @@ int main(int argc, char **argv)
     demo d;
     memset(&d, 0, sizeof d);
     d.time_rate = 1.0 / 120.0; /* a day in two minutes */
-    /* --drag is sky-demo's own option: take it out before the shared parse */
-    const char *drag = NULL;
+    /* --drag and --out are sky-demo's own options: take them out before
+     * the shared parse */
+    const char *drag = NULL, *out = NULL;
     char *args[64];
     int n = 0;
     for (int i = 0; i < argc && n < 64; i++) {
         if (!strcmp(argv[i], "--drag") && i + 1 < argc) {
             drag = argv[++i];
+            continue;
+        }
+        if (!strcmp(argv[i], "--out")) {
+            if (i + 1 == argc || !*argv[i + 1]) {
+                fprintf(stderr, "sky-demo: --out: expected a file name\n");
+                return 2;
+            }
+            out = argv[++i];
             continue;
         }
         args[n++] = argv[i];
@@ -421,7 +431,9 @@ int main(int argc, char **argv)
     int rc = sky_cli_parse(&d.cli, n, args, 1, err, sizeof err);
     if (rc == SKY_CLI_HELP) {
         sky_cli_usage(stdout, "sky-demo", 1);
-        printf("  --drag SLIDER:FROM:TO    with --screenshot: drag a slider with the mouse first (tests)\n"
+        printf("  --out FILE.png           without a display: the image rendered headless (default\n"
+               "                           sky.png; else --screenshot's file)\n"
+               "  --drag SLIDER:FROM:TO    with --screenshot: drag a slider with the mouse first (tests)\n"
                "keys: 1-6 pick a slider, Up/Down move it, Space runs time, +/- its speed, F fisheye,\n"
                "      C U M K T P E toggle clouds sun moon flicker stars starmap eclipse, A atmosphere\n"
                "      path, G GL profile,\n"
@@ -435,13 +447,14 @@ int main(int argc, char **argv)
     }
     int automated = d.cli.screenshot != NULL;
     values_from_params(d.values, &d.cli.params);
+    if (!out) out = d.cli.screenshot ? d.cli.screenshot : "sky.png";
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
         fprintf(stderr, "sky-demo: no display found (DISPLAY is unset)\n");
-        return headless(&d.cli);
+        return headless(&d.cli, out);
     }
     if (!glfwInit()) {
         fprintf(stderr, "sky-demo: GLFW cannot open the display\n");
-        return headless(&d.cli);
+        return headless(&d.cli, out);
     }
     d.features = d.cli.features ? d.cli.features : (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP);
     if (d.features & SKY_FEATURES_NONE) d.features = SKY_FEATURES_NONE;
@@ -451,7 +464,7 @@ int main(int argc, char **argv)
     if (!win) {
         fprintf(stderr, "sky-demo: no GL window could be created\n");
         glfwTerminate();
-        return headless(&d.cli);
+        return headless(&d.cli, out);
     }
     d.overlay = ui_create(core);
     timer_init(&d.timer, win);

@@ -8,6 +8,7 @@
  */
 #include "test.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,7 @@ void test_demo_drag_on_cover_slider(void);
 void test_demo_readout_is_gpu_frame_time(void);
 void test_game_lit_by_the_sky(void);
 void test_headless_frames_are_rendered(void);
+void test_headless_demo_writes_where_asked(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -193,4 +195,41 @@ void test_headless_frames_are_rendered(void)
         image_free(&im);
         remove(png);
     }
+}
+
+/* Outside the source tree (a temporary directory, no build/ in it) the
+ * headless sky-demo writes sky.png in the current directory, or --out's
+ * file. */
+void test_headless_demo_writes_where_asked(void)
+{
+    char rel[512], bin[PATH_MAX], dir[256], cmd[PATH_MAX + 1024], log[4096], png[600];
+    if (!realpath(bin_path("sky-demo", rel, sizeof rel), bin)) {
+        CHECK(0, "no %s", rel);
+        return;
+    }
+    tmp("elsewhere", dir, sizeof dir);
+    snprintf(cmd, sizeof cmd, "rm -rf %s && mkdir %s", dir, dir);
+    CHECK(run_command(cmd, log, sizeof log) == 0, "mkdir %s: %s", dir, log);
+    static const char *const outs[2] = {"", "--out named.png"};
+    static const char *const files[2] = {"sky.png", "named.png"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(cmd, sizeof cmd, "cd %s && env -u DISPLAY -u WAYLAND_DISPLAY %s --size 64x36 %s 2>&1", dir, bin, outs[k]);
+        int rc = run_command(cmd, log, sizeof log);
+        snprintf(png, sizeof png, "%s/%s", dir, files[k]);
+        image im;
+        int loaded = image_load_png(png, &im) == 0;
+        CHECK(rc == 0 && loaded && im.w == 64 && im.h == 36, "sky-demo %s in %s: exit %d, %s %s: %s", outs[k], dir,
+              rc, files[k], loaded ? "written" : "missing", log);
+        if (loaded) image_free(&im);
+    }
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    run_command(cmd, NULL, 0);
+    /* make run's script still leaves build/sky.png in the source tree */
+    remove("build/sky.png");
+    int rc = run_command("env -u DISPLAY -u WAYLAND_DISPLAY sh tools/run.sh --size 48x27 2>&1", log, sizeof log);
+    image im;
+    int loaded = image_load_png("build/sky.png", &im) == 0;
+    CHECK(rc == 0 && loaded && im.w == 48, "tools/run.sh headless: exit %d, build/sky.png %s: %s", rc,
+          loaded ? "written" : "missing", log);
+    if (loaded) image_free(&im);
 }
