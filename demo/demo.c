@@ -329,20 +329,25 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
     d->cli.fov = d->cli.fov < 1.0 ? 1.0 : d->cli.fov > 120.0 ? 120.0 : d->cli.fov;
 }
 
-static void save_screenshot(int width, int height, const char *path)
+/* Returns 0, or -1 after saying why. */
+static int save_screenshot(int width, int height, const char *path)
 {
     sky_osmesa shot = {0};
     shot.width = width;
     shot.height = height;
     shot.pixels = malloc((size_t)width * (size_t)height * 4u);
-    if (!shot.pixels) return;
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
-    if (sky_osmesa_write_png(&shot, path))
+    int rc = -1;
+    if (shot.pixels) {
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
+        rc = sky_osmesa_write_png(&shot, path);
+    }
+    if (rc)
         fprintf(stderr, "sky-demo: cannot write %s\n", path);
     else
         printf("sky-demo: saved %s\n", path);
     free(shot.pixels);
+    return rc;
 }
 
 static GLFWwindow *open_window(demo *d, int core)
@@ -480,6 +485,7 @@ int main(int argc, char **argv)
         return 2;
     }
     double last = glfwGetTime();
+    int status = 0;
     for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
         double now = glfwGetTime();
         double dt = automated ? 1.0 / 30.0 : now - last;
@@ -578,13 +584,16 @@ int main(int argc, char **argv)
         lines[used] = '\0';
         ui_draw(d.overlay, fw, fh, d.values, d.slider, lines);
         if (d.save || (automated && frame + 1 >= d.cli.frames)) {
-            save_screenshot(fw, fh, automated ? d.cli.screenshot : "sky-demo.png");
+            const char *path = automated ? d.cli.screenshot : "sky-demo.png";
+            int saved = save_screenshot(fw, fh, path) == 0;
             d.save = 0;
             if (automated) {
                 printf("sky-demo: sky %.2f ms GPU (%s, median of %d frames), %.1f fps\n", gpu_ms,
                        timer_method(&d.timer), d.timer.count, fps);
+                status = saved ? 0 : 1; /* a script must see that its image is missing */
                 break;
             }
+            if (!saved) snprintf(d.message, sizeof d.message, "cannot write %.160s", path);
         }
         glfwSwapBuffers(win);
         timer_tick(&d.timer);
@@ -595,5 +604,5 @@ int main(int argc, char **argv)
     timer_destroy(&d.timer);
     glfwDestroyWindow(win);
     glfwTerminate();
-    return 0;
+    return status;
 }

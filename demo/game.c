@@ -128,6 +128,7 @@ int main(int argc, char **argv)
     glAttachShader(prog, shader(GL_VERTEX_SHADER, vs));
     glAttachShader(prog, shader(GL_FRAGMENT_SHADER, fs));
     glLinkProgram(prog);
+    int status = 0;
     for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);
@@ -166,8 +167,11 @@ int main(int argc, char **argv)
             shot.width = w, shot.height = h;
             shot.pixels = malloc((size_t)w * (size_t)h * 4u);
             glPixelStorei(GL_PACK_ALIGNMENT, 1);
-            glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
-            if (sky_osmesa_write_png(&shot, cli.screenshot)) fprintf(stderr, "sky-game: cannot write %s\n", cli.screenshot);
+            if (shot.pixels) glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
+            if (!shot.pixels || sky_osmesa_write_png(&shot, cli.screenshot)) {
+                fprintf(stderr, "sky-game: cannot write %s\n", cli.screenshot);
+                status = 1; /* a script must see that its image is missing */
+            }
             free(shot.pixels);
             break;
         }
@@ -176,5 +180,5 @@ int main(int argc, char **argv)
     }
     sky_destroy(s);
     glfwTerminate();
-    return 0;
+    return status;
 }

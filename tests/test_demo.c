@@ -20,6 +20,7 @@ void test_demo_readout_is_gpu_frame_time(void);
 void test_game_lit_by_the_sky(void);
 void test_headless_frames_are_rendered(void);
 void test_headless_demo_writes_where_asked(void);
+void test_unwritable_screenshot_fails(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -232,4 +233,27 @@ void test_headless_demo_writes_where_asked(void)
     CHECK(rc == 0 && loaded && im.w == 48, "tools/run.sh headless: exit %d, build/sky.png %s: %s", rc,
           loaded ? "written" : "missing", log);
     if (loaded) image_free(&im);
+}
+
+/* xvfb-run is there (make's deps step installs it; a machine without it
+ * skips the window tests that use this). */
+static int have_xvfb(void) { return run_command("command -v xvfb-run >/dev/null 2>&1", NULL, 0) == 0; }
+
+/* A screenshot that cannot be written is a failure a script must see:
+ * exit status 1 and the message, in a window and headless. */
+void test_unwritable_screenshot_fails(void)
+{
+    if (!have_xvfb()) {
+        SKIP("xvfb-run is not installed");
+        return;
+    }
+    static const char *const runs[][2] = {
+        {XVFB, "sky-demo"}, {XVFB, "sky-game"}, {"env -u DISPLAY -u WAYLAND_DISPLAY ", "sky-demo"}};
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        char path[512], cmd[2048], log[4096];
+        snprintf(cmd, sizeof cmd, "%s%s --size 64x36 --frames 1 --screenshot /nonexistent/x.png 2>&1", runs[k][0],
+                 bin_path(runs[k][1], path, sizeof path));
+        int rc = run_command(cmd, log, sizeof log);
+        CHECK(rc == 1 && strstr(log, "cannot write /nonexistent/x.png"), "%s: exit %d (want 1): %s", cmd, rc, log);
+    }
 }
