@@ -1,47 +1,112 @@
 /*
  * sky-game: the smallest honest game loop around libsky. The host owns the
- * window and the context (GLFW, OpenGL 3.3 core), draws the sky first each
- * frame, then its own depth-tested world lit by sky_get_lighting: the sun
- * and moon as directional lights, the sky as ambient light, its horizon as
- * fog, and the sky's exposure so world and sky share one brightness scale.
+ * window and the context (GLFW: OpenGL 3.3 core, or 2.0 with --gl compat)
+ * and loads its own GL entry points through the loader it gives the sky.
+ * Each frame it draws the sky first, then its own depth-tested world lit by
+ * sky_get_lighting: the sun and moon as directional lights, the sky as
+ * ambient light, its horizon as fog, and the sky's exposure so world and
+ * sky share one brightness scale. Without a display it renders the same
+ * frames headless through OSMesa.
  *
  *   sky-game [--time T] [--date ... --lat ... --lon ...] [--frames N --screenshot FILE]
  */
-#define GL_GLEXT_PROTOTYPES 1
+#define GLFW_INCLUDE_GLEXT /* GLchar, GLsizeiptr and the 2.0 enums */
 #include "cli.h"
 #include "osmesa_ctx.h"
 
-#include <GL/gl.h>
-#include <GL/glext.h>
 #include <GLFW/glfw3.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const char *vs = "#version 330 core\n"
-                        "layout(location = 0) in vec3 pos;\nlayout(location = 1) in vec3 nrm;\n"
-                        "uniform mat4 mvp;\nout vec3 n;\nout float dist;\n"
-                        "void main() { n = nrm; dist = length(pos.xz); gl_Position = mvp * vec4(pos, 1.0); }\n";
+/* Every GL call of the game goes through these pointers, loaded from the
+ * context's own loader: a program linked with both -lGL and OSMesa would
+ * otherwise send its calls to whichever library the linker bound. */
+#define GAME_GL(X)                                                                   \
+    X(void, Viewport, (GLint, GLint, GLsizei, GLsizei))                              \
+    X(void, Clear, (GLbitfield))                                                     \
+    X(void, Enable, (GLenum))                                                        \
+    X(void, Disable, (GLenum))                                                       \
+    X(void, DrawArrays, (GLenum, GLint, GLsizei))                                    \
+    X(void, PixelStorei, (GLenum, GLint))                                            \
+    X(void, ReadPixels, (GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *))    \
+    X(GLuint, CreateShader, (GLenum))                                                \
+    X(void, ShaderSource, (GLuint, GLsizei, const GLchar *const *, const GLint *))   \
+    X(void, CompileShader, (GLuint))                                                 \
+    X(void, GetShaderiv, (GLuint, GLenum, GLint *))                                  \
+    X(void, GetShaderInfoLog, (GLuint, GLsizei, GLsizei *, GLchar *))                \
+    X(void, DeleteShader, (GLuint))                                                  \
+    X(GLuint, CreateProgram, (void))                                                 \
+    X(void, AttachShader, (GLuint, GLuint))                                          \
+    X(void, BindAttribLocation, (GLuint, GLuint, const GLchar *))                    \
+    X(void, LinkProgram, (GLuint))                                                   \
+    X(void, GetProgramiv, (GLuint, GLenum, GLint *))                                 \
+    X(void, GetProgramInfoLog, (GLuint, GLsizei, GLsizei *, GLchar *))               \
+    X(void, DeleteProgram, (GLuint))                                                 \
+    X(void, UseProgram, (GLuint))                                                    \
+    X(GLint, GetUniformLocation, (GLuint, const GLchar *))                           \
+    X(void, Uniform1f, (GLint, GLfloat))                                             \
+    X(void, Uniform3fv, (GLint, GLsizei, const GLfloat *))                           \
+    X(void, UniformMatrix4fv, (GLint, GLsizei, GLboolean, const GLfloat *))          \
+    X(void, GenBuffers, (GLsizei, GLuint *))                                         \
+    X(void, DeleteBuffers, (GLsizei, const GLuint *))                                \
+    X(void, BindBuffer, (GLenum, GLuint))                                            \
+    X(void, BufferData, (GLenum, GLsizeiptr, const void *, GLenum))                  \
+    X(void, VertexAttribPointer, (GLuint, GLint, GLenum, GLboolean, GLsizei, const void *)) \
+    X(void, EnableVertexAttribArray, (GLuint))                                       \
+    X(void, DisableVertexAttribArray, (GLuint))
+/* a 3.3 core context draws nothing without a vertex array object; 2.0 has none */
+#define GAME_GL_CORE(X)                                 \
+    X(void, GenVertexArrays, (GLsizei, GLuint *))       \
+    X(void, BindVertexArray, (GLuint))                  \
+    X(void, DeleteVertexArrays, (GLsizei, const GLuint *))
+
+typedef struct game_gl {
+#define FIELD(ret, name, args) ret(APIENTRY *name) args;
+    GAME_GL(FIELD)
+    GAME_GL_CORE(FIELD)
+#undef FIELD
+} game_gl;
+
+/* Returns 0, or -1 naming the first entry point missing. */
+static int load_gl(game_gl *gl, sky_get_proc_address_fn loader, int core)
+{
+    memset(gl, 0, sizeof *gl);
+#define LOAD(ret, name, args)                                          \
+    if (!(gl->name = (ret(APIENTRY *) args)loader("gl" #name))) {       \
+        fprintf(stderr, "sky-game: the context has no gl%s\n", #name); \
+        return -1;                                                     \
+    }
+    GAME_GL(LOAD)
+    if (core) {
+        GAME_GL_CORE(LOAD)
+    }
+#undef LOAD
+    return 0;
+}
+
+/* One source for both profiles: a prologue per profile defines how
+ * attributes, varyings and the output are spelled. */
+static const char *const vs_core = "#version 330 core\n#define ATTR in\n#define VARY out\n";
+static const char *const fs_core = "#version 330 core\n#define VARY in\nout vec4 frag;\n#define FRAG frag\n";
+static const char *const vs_compat = "#version 110\n#define ATTR attribute\n#define VARY varying\n";
+static const char *const fs_compat = "#version 110\n#define VARY varying\n#define FRAG gl_FragColor\n";
+
+static const char *const vs =
+    "ATTR vec3 pos;\nATTR vec3 nrm;\nuniform mat4 mvp;\nVARY vec3 n;\nVARY float dist;\n"
+    "void main() { n = nrm; dist = length(pos.xz); gl_Position = mvp * vec4(pos, 1.0); }\n";
 /* luminance = albedo / pi * illuminance (kcd/m^2 from klx); fog toward the
  * horizon sky; then the sky's exposure and the same filmic curve it uses */
-static const char *fs =
-    "#version 330 core\nin vec3 n;\nin float dist;\nout vec4 color;\n"
+static const char *const fs =
+    "VARY vec3 n;\nVARY float dist;\n"
     "uniform vec3 sun_dir, sun_col, moon_dir, moon_col, ambient, fog;\nuniform float exposure;\n"
     "void main() {\n"
     "  vec3 albedo = n.y > 0.9 ? vec3(0.20, 0.30, 0.12) : vec3(0.45, 0.40, 0.35);\n"
     "  vec3 E = sun_col * max(dot(n, sun_dir), 0.0) + moon_col * max(dot(n, moon_dir), 0.0) + ambient * (0.6 + 0.4 * n.y);\n"
     "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-dist / 400.0));\n"
     "  vec3 x = max(L * exposure - 0.004, vec3(0.0));\n"
-    "  color = vec4((x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06), 1.0);\n}\n";
-
-static GLuint shader(GLenum type, const char *src)
-{
-    GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &src, NULL);
-    glCompileShader(s);
-    return s;
-}
+    "  FRAG = vec4((x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06), 1.0);\n"
+    "}\n";
 
 /* A ground plane and five boxes: position and normal per vertex. */
 static int build_world(float *v)
@@ -75,11 +140,214 @@ static int build_world(float *v)
     return n;
 }
 
+/* The host's world: its GL entry points, program and buffers. */
+typedef struct world {
+    game_gl gl;
+    GLuint prog, vbo, vao; /* vao: core profile only */
+    int count;
+} world;
+
+static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *body)
+{
+    const char *src[2] = {prologue, body};
+    GLuint s = gl->CreateShader(type);
+    gl->ShaderSource(s, 2, src, NULL);
+    gl->CompileShader(s);
+    GLint ok = 0;
+    gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        gl->GetShaderInfoLog(s, sizeof log, NULL, log);
+        fprintf(stderr, "sky-game: the world's %s shader: %s\n", type == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+    }
+    return s;
+}
+
+/* In the current context. Returns 0, or -1 after saying why. */
+static int world_create(world *w, sky_get_proc_address_fn loader, int core)
+{
+    memset(w, 0, sizeof *w);
+    game_gl *gl = &w->gl;
+    if (load_gl(gl, loader, core)) return -1;
+    static float verts[(6 + 5 * 6 * 5) * 6];
+    w->count = build_world(verts);
+    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, vs);
+    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, fs);
+    w->prog = gl->CreateProgram();
+    gl->AttachShader(w->prog, v);
+    gl->AttachShader(w->prog, f);
+    gl->BindAttribLocation(w->prog, 0, "pos");
+    gl->BindAttribLocation(w->prog, 1, "nrm");
+    gl->LinkProgram(w->prog);
+    gl->DeleteShader(v);
+    gl->DeleteShader(f);
+    GLint linked = 0;
+    gl->GetProgramiv(w->prog, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        char log[1024] = "";
+        gl->GetProgramInfoLog(w->prog, sizeof log, NULL, log);
+        fprintf(stderr, "sky-game: the world's program: %s\n", log);
+        gl->DeleteProgram(w->prog);
+        return -1;
+    }
+    if (core) gl->GenVertexArrays(1, &w->vao);
+    gl->GenBuffers(1, &w->vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, w->vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * (size_t)w->count), verts, GL_STATIC_DRAW);
+    gl->BindBuffer(GL_ARRAY_BUFFER, 0);
+    return 0;
+}
+
+static void world_destroy(world *w)
+{
+    const game_gl *gl = &w->gl;
+    gl->DeleteProgram(w->prog);
+    gl->DeleteBuffers(1, &w->vbo);
+    if (w->vao) gl->DeleteVertexArrays(1, &w->vao);
+}
+
+/* One frame into the current w x h framebuffer: the sky, then the world. */
+static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int height)
+{
+    const game_gl *gl = &w->gl;
+    gl->Viewport(0, 0, width, height);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    cli->width = width, cli->height = height;
+    float view[16], proj[16], mvp[16];
+    sky_cli_camera(cli, view, proj);
+    /* 1. the sky: first, it writes no depth and restores what it touched */
+    if (sky_draw(s, view, proj) != SKY_OK) fprintf(stderr, "sky-game: %s\n", sky_last_error(s));
+    /* 2. the world, lit by the sky; the eye stands 1.7 m up */
+    sky_lighting l;
+    sky_get_lighting(s, &l);
+    for (int r = 0; r < 3; r++) view[12 + r] -= 1.7f * view[4 + r]; /* -R * eye, eye = (0, 1.7, 0) */
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++) {
+            mvp[c * 4 + r] = 0;
+            for (int k = 0; k < 4; k++) mvp[c * 4 + r] += proj[k * 4 + r] * view[c * 4 + k];
+        }
+    gl->Enable(GL_DEPTH_TEST);
+    gl->UseProgram(w->prog);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(w->prog, "mvp"), 1, GL_FALSE, mvp);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_dir"), 1, l.sun_direction);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_col"), 1, l.sun_color);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_col"), 1, l.moon_color);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "ambient"), 1, l.ambient_color);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "fog"), 1, l.fog_color);
+    gl->Uniform1f(gl->GetUniformLocation(w->prog, "exposure"), l.exposure);
+    if (w->vao) gl->BindVertexArray(w->vao);
+    gl->BindBuffer(GL_ARRAY_BUFFER, w->vbo);
+    gl->VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (void *)0);
+    gl->VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (void *)12);
+    gl->EnableVertexAttribArray(0);
+    gl->EnableVertexAttribArray(1);
+    gl->DrawArrays(GL_TRIANGLES, 0, w->count);
+    /* left as found, so the next frame's sky_draw meets no stray arrays */
+    gl->DisableVertexAttribArray(0);
+    gl->DisableVertexAttribArray(1);
+    gl->BindBuffer(GL_ARRAY_BUFFER, 0);
+    if (w->vao) gl->BindVertexArray(0);
+    gl->UseProgram(0);
+    gl->Disable(GL_DEPTH_TEST);
+}
+
+/* Saves the framebuffer's w x h pixels. Returns 0, or 1 after saying why
+ * (the exit status: a script must see that its image is missing). */
+static int save_frame(const world *w, int width, int height, const char *path)
+{
+    sky_osmesa shot = {0};
+    shot.width = width, shot.height = height;
+    shot.pixels = malloc((size_t)width * (size_t)height * 4u);
+    int rc = -1;
+    if (shot.pixels) {
+        w->gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+        w->gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
+        rc = sky_osmesa_write_png(&shot, path);
+    }
+    free(shot.pixels);
+    if (rc) fprintf(stderr, "sky-game: cannot write %s\n", path);
+    return rc ? 1 : 0;
+}
+
+/* The sky for the host's context, set up from the command line. */
+static sky *make_sky(const sky_cli *cli, sky_get_proc_address_fn loader)
+{
+    char err[512];
+    sky_config cfg = sky_cli_config(cli, loader);
+    if (!cfg.features) cfg.features = SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP;
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        fprintf(stderr, "sky-game: %s\n", err);
+        return NULL;
+    }
+    sky_set_params(s, &cli->params);
+    sky_set_observer(s, &cli->observer);
+    return s;
+}
+
+/* No display: the same frames, 1/30 s apart, into an OSMesa buffer. */
+static int headless(sky_cli *cli, const char *out)
+{
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, cli->width, cli->height, cli->gl, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-game: %s\n", err);
+        return 1;
+    }
+    world w;
+    sky *s = NULL;
+    int status = 1;
+    if (!world_create(&w, sky_osmesa_loader(), ctx.is_core)) {
+        s = make_sky(cli, sky_osmesa_loader());
+        if (s) {
+            int width = cli->width, height = cli->height;
+            for (int frame = 0; frame < cli->frames; frame++) {
+                if (frame) sky_update(s, 1.0 / 30.0);
+                draw_frame(&w, s, cli, width, height);
+            }
+            status = save_frame(&w, width, height, out);
+            if (!status) printf("sky-game: no display; rendered %s headless\n", out);
+            sky_destroy(s);
+        }
+        world_destroy(&w);
+    }
+    sky_osmesa_destroy(&ctx);
+    return status;
+}
+
+/* core: OpenGL 3.3 core; else 2.0 in a compatibility context (what
+ * SKY_GL_COMPAT20 needs: a core context has no fixed legacy state). */
+static GLFWwindow *open_window(const sky_cli *cli, int core)
+{
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, core ? 3 : 2);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, core ? 3 : 0);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, core ? GLFW_OPENGL_CORE_PROFILE : GLFW_OPENGL_ANY_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_FALSE);
+    return glfwCreateWindow(cli->width, cli->height, "libsky game", NULL, NULL);
+}
+
 int main(int argc, char **argv)
 {
+    /* --out is the game's own option: taken out before the shared parse */
+    const char *out = NULL;
+    char *args[64];
+    int n = 0;
+    for (int i = 0; i < argc && n < 64; i++) {
+        if (!strcmp(argv[i], "--out")) {
+            if (i + 1 == argc || !*argv[i + 1]) {
+                fprintf(stderr, "sky-game: --out: expected a file name\n");
+                return 2;
+            }
+            out = argv[++i];
+            continue;
+        }
+        args[n++] = argv[i];
+    }
     sky_cli cli;
     char err[512];
-    int rc = sky_cli_parse(&cli, argc, argv, 1, err, sizeof err);
+    int rc = sky_cli_parse(&cli, n, args, 1, err, sizeof err);
     if (rc == SKY_CLI_HELP) {
         sky_cli_usage(stdout, "sky-game", 1);
         return 0;
@@ -88,97 +356,51 @@ int main(int argc, char **argv)
         fprintf(stderr, "sky-game: %s\n", err);
         return 2;
     }
-    if (!glfwInit()) {
-        fprintf(stderr, "sky-game: no display (GLFW cannot initialise)\n");
-        return 1;
+    if (!out) out = cli.screenshot ? cli.screenshot : "sky-game.png";
+    if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
+        fprintf(stderr, "sky-game: no display found (DISPLAY is unset)\n");
+        return headless(&cli, out);
     }
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    GLFWwindow *win = glfwCreateWindow(cli.width, cli.height, "libsky game", NULL, NULL);
+    if (!glfwInit()) {
+        fprintf(stderr, "sky-game: GLFW cannot open the display\n");
+        return headless(&cli, out);
+    }
+    int core = cli.gl != SKY_GL_COMPAT20;
+    GLFWwindow *win = open_window(&cli, core);
+    if (!win && cli.gl == SKY_GL_AUTO) win = open_window(&cli, core = 0);
     if (!win) {
-        fprintf(stderr, "sky-game: no OpenGL 3.3 window\n");
+        fprintf(stderr, "sky-game: no OpenGL %s window\n", core ? "3.3 core" : "2.0");
         glfwTerminate();
         return 1;
     }
     glfwMakeContextCurrent(win);
-    /* the sky: the host's loader, its features, its sliders and observer */
-    sky_config cfg = sky_cli_config(&cli, glfwGetProcAddress);
-    if (!cfg.features) cfg.features = SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP;
-    sky *s = sky_create(&cfg, err, sizeof err);
-    if (!s) {
-        fprintf(stderr, "sky-game: %s\n", err);
+    world w;
+    if (world_create(&w, glfwGetProcAddress, core)) {
+        glfwTerminate();
         return 1;
     }
-    sky_set_params(s, &cli.params);
-    sky_set_observer(s, &cli.observer);
-    /* the world: the host's own buffers and program */
-    static float verts[(6 + 5 * 6 * 5) * 6];
-    int count = build_world(verts);
-    GLuint vao, vbo, prog = glCreateProgram();
-    glGenVertexArrays(1, &vao);
-    glBindVertexArray(vao);
-    glGenBuffers(1, &vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, vbo);
-    glBufferData(GL_ARRAY_BUFFER, sizeof(float) * 6 * (size_t)count, verts, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (void *)0);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 24, (void *)12);
-    glEnableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
-    glAttachShader(prog, shader(GL_VERTEX_SHADER, vs));
-    glAttachShader(prog, shader(GL_FRAGMENT_SHADER, fs));
-    glLinkProgram(prog);
+    /* the sky: the host's loader, its features, its sliders and observer */
+    sky *s = make_sky(&cli, glfwGetProcAddress);
+    if (!s) {
+        world_destroy(&w);
+        glfwTerminate();
+        return 1;
+    }
     int status = 0;
     for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
-        int w, h;
-        glfwGetFramebufferSize(win, &w, &h);
-        glViewport(0, 0, w, h);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        int width, height;
+        glfwGetFramebufferSize(win, &width, &height);
         sky_update(s, 1.0 / 60.0);
-        cli.width = w, cli.height = h;
-        float view[16], proj[16], mvp[16];
-        sky_cli_camera(&cli, view, proj);
-        /* 1. the sky: first, it writes no depth and restores what it touched */
-        if (sky_draw(s, view, proj) != SKY_OK) fprintf(stderr, "sky-game: %s\n", sky_last_error(s));
-        /* 2. the world, lit by the sky; the eye stands 1.7 m up */
-        sky_lighting l;
-        sky_get_lighting(s, &l);
-        for (int r = 0; r < 3; r++) view[12 + r] -= 1.7f * view[4 + r]; /* -R * eye, eye = (0, 1.7, 0) */
-        for (int c = 0; c < 4; c++)
-            for (int r = 0; r < 4; r++) {
-                mvp[c * 4 + r] = 0;
-                for (int k = 0; k < 4; k++) mvp[c * 4 + r] += proj[k * 4 + r] * view[c * 4 + k];
-            }
-        glEnable(GL_DEPTH_TEST);
-        glUseProgram(prog);
-        glBindVertexArray(vao);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "mvp"), 1, GL_FALSE, mvp);
-        glUniform3fv(glGetUniformLocation(prog, "sun_dir"), 1, l.sun_direction);
-        glUniform3fv(glGetUniformLocation(prog, "sun_col"), 1, l.sun_color);
-        glUniform3fv(glGetUniformLocation(prog, "moon_dir"), 1, l.moon_direction);
-        glUniform3fv(glGetUniformLocation(prog, "moon_col"), 1, l.moon_color);
-        glUniform3fv(glGetUniformLocation(prog, "ambient"), 1, l.ambient_color);
-        glUniform3fv(glGetUniformLocation(prog, "fog"), 1, l.fog_color);
-        glUniform1f(glGetUniformLocation(prog, "exposure"), l.exposure);
-        glDrawArrays(GL_TRIANGLES, 0, count);
-        glDisable(GL_DEPTH_TEST);
+        draw_frame(&w, s, &cli, width, height);
         if (cli.screenshot && frame + 1 >= cli.frames) {
-            sky_osmesa shot = {0};
-            shot.width = w, shot.height = h;
-            shot.pixels = malloc((size_t)w * (size_t)h * 4u);
-            glPixelStorei(GL_PACK_ALIGNMENT, 1);
-            if (shot.pixels) glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
-            if (!shot.pixels || sky_osmesa_write_png(&shot, cli.screenshot)) {
-                fprintf(stderr, "sky-game: cannot write %s\n", cli.screenshot);
-                status = 1; /* a script must see that its image is missing */
-            }
-            free(shot.pixels);
+            status = save_frame(&w, width, height, cli.screenshot);
             break;
         }
         glfwSwapBuffers(win);
         glfwPollEvents();
     }
     sky_destroy(s);
+    world_destroy(&w);
     glfwTerminate();
     return status;
 }

@@ -21,6 +21,7 @@ void test_game_lit_by_the_sky(void);
 void test_headless_frames_are_rendered(void);
 void test_headless_demo_writes_where_asked(void);
 void test_unwritable_screenshot_fails(void);
+void test_game_compat_context(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -173,7 +174,7 @@ static double luminance_spread(const image *im)
  * it writes must be the rendered sky, not the untouched (black) buffer. */
 void test_headless_frames_are_rendered(void)
 {
-    static const char *const progs[] = {"sky-demo"};
+    static const char *const progs[] = {"sky-demo", "sky-game"};
     for (size_t k = 0; k < sizeof progs / sizeof progs[0]; k++) {
         char path[512], cmd[2048], log[4096], png[256];
         tmp("headless.png", png, sizeof png);
@@ -248,7 +249,8 @@ void test_unwritable_screenshot_fails(void)
         return;
     }
     static const char *const runs[][2] = {
-        {XVFB, "sky-demo"}, {XVFB, "sky-game"}, {"env -u DISPLAY -u WAYLAND_DISPLAY ", "sky-demo"}};
+        {XVFB, "sky-demo"}, {XVFB, "sky-game"}, {"env -u DISPLAY -u WAYLAND_DISPLAY ", "sky-demo"},
+        {"env -u DISPLAY -u WAYLAND_DISPLAY ", "sky-game"}};
     for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
         char path[512], cmd[2048], log[4096];
         snprintf(cmd, sizeof cmd, "%s%s --size 64x36 --frames 1 --screenshot /nonexistent/x.png 2>&1", runs[k][0],
@@ -256,4 +258,44 @@ void test_unwritable_screenshot_fails(void)
         int rc = run_command(cmd, log, sizeof log);
         CHECK(rc == 1 && strstr(log, "cannot write /nonexistent/x.png"), "%s: exit %d (want 1): %s", cmd, rc, log);
     }
+}
+
+/* Mean absolute difference of two images of one size, over every channel. */
+static double mean_abs_diff(const image *a, const image *b)
+{
+    double d = 0.0;
+    size_t n = 3u * (size_t)a->w * (size_t)a->h;
+    for (size_t i = 0; i < n; i++) d += fabs(a->px[i] - b->px[i]);
+    return d / (double)n;
+}
+
+/* sky-game --gl compat asks GLFW for a 2.0 compatibility context, which
+ * SKY_GL_COMPAT20 needs, and draws its world there in GLSL 1.10: the same
+ * picture as the 3.3 core profile's. */
+void test_game_compat_context(void)
+{
+    if (!have_xvfb()) {
+        SKIP("xvfb-run is not installed");
+        return;
+    }
+    image im[2];
+    static const char *const gl[2] = {"core", "compat"};
+    for (int k = 0; k < 2; k++) {
+        char path[512], cmd[2048], log[4096], png[256];
+        tmp(k ? "compat.png" : "core.png", png, sizeof png);
+        snprintf(cmd, sizeof cmd, XVFB "%s --size 320x180 --frames 2 --time 0.45 --gl %s --screenshot %s 2>&1",
+                 bin_path("sky-game", path, sizeof path), gl[k], png);
+        int rc = run_command(cmd, log, sizeof log);
+        if (rc != 0 || image_load_png(png, &im[k])) {
+            CHECK(0, "sky-game --gl %s under Xvfb: exit %d: %s", gl[k], rc, log);
+            if (k) image_free(&im[0]);
+            return;
+        }
+        remove(png);
+    }
+    double d = mean_abs_diff(&im[0], &im[1]);
+    NOTE("sky-game: core and compat pictures differ by %.4f on average", d);
+    CHECK(d < 2.0 / 255.0, "the compat profile's picture is the core one's (mean difference %.4f)", d);
+    image_free(&im[0]);
+    image_free(&im[1]);
 }
