@@ -8,7 +8,7 @@
  * sky share one brightness scale. Without a display it renders the same
  * frames headless through OSMesa.
  *
- *   sky-game [--time T] [--date ... --lat ... --lon ...] [--frames N --screenshot FILE]
+ *   sky-game [--time T] [--preset P] [--gl compat] [--frames N --screenshot FILE]   (--help)
  */
 #define GLFW_INCLUDE_GLEXT /* GLchar, GLsizeiptr and the 2.0 enums */
 #include "cli.h"
@@ -283,6 +283,8 @@ static sky *make_sky(const sky_cli *cli, sky_get_proc_address_fn loader)
     }
     sky_set_params(s, &cli->params);
     sky_set_observer(s, &cli->observer);
+    sky_set_elapsed(s, cli->seconds);
+    sky_set_exposure_bias(s, cli->exposure);
     return s;
 }
 
@@ -328,6 +330,24 @@ static GLFWwindow *open_window(const sky_cli *cli, int core)
     return glfwCreateWindow(cli->width, cli->height, "libsky game", NULL, NULL);
 }
 
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: sky-game [options]\n"
+            "  --size WxH               window size (default 1280x720)\n"
+            "  --cover F --height F --density F --sunset F --speed F --time F\n"
+            "                           the sky's six sliders, each 0..1 (time: 0 midnight, 0.5 noon)\n"
+            "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
+            "  --date YYYY-MM-DDTHH:MM:SSZ --lat DEG --lon DEG --alt M   where and when\n"
+            "  --yaw DEG --pitch DEG --fov DEG   the eye's view (1.7 m above the ground)\n"
+            "  --features LIST --atmosphere PATH --exposure STOPS --seconds S   the sky, as in sky-render\n"
+            "                           (also --turbidity --planet --luts --blend --moon-scale --dome-divisor)\n"
+            "  --gl auto|core|compat    OpenGL 3.3 core, or 2.0 in a compatibility context\n"
+            "  --frames N --screenshot FILE.png   draw N frames 1/30 s apart, save the last, quit\n"
+            "  --out FILE.png           without a display: the image rendered headless (default\n"
+            "                           sky-game.png; else --screenshot's file)\n");
+}
+
 int main(int argc, char **argv)
 {
     /* --out is the game's own option: taken out before the shared parse */
@@ -349,11 +369,16 @@ int main(int argc, char **argv)
     char err[512];
     int rc = sky_cli_parse(&cli, n, args, 1, err, sizeof err);
     if (rc == SKY_CLI_HELP) {
-        sky_cli_usage(stdout, "sky-game", 1);
+        usage(stdout);
         return 0;
     }
     if (rc) {
         fprintf(stderr, "sky-game: %s\n", err);
+        return 2;
+    }
+    /* the world has a perspective camera and the sky's default curve */
+    if (cli.fisheye || cli.tone_map != SKY_TONE_MAP_HUE) {
+        fprintf(stderr, "sky-game: --fisheye and --tone-map are sky-render's options, not the game's (see --help)\n");
         return 2;
     }
     if (!out) out = cli.screenshot ? cli.screenshot : "sky-game.png";

@@ -22,6 +22,7 @@ void test_headless_frames_are_rendered(void);
 void test_headless_demo_writes_where_asked(void);
 void test_unwritable_screenshot_fails(void);
 void test_game_compat_context(void);
+void test_game_options_are_its_own(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -298,4 +299,70 @@ void test_game_compat_context(void)
     CHECK(d < 2.0 / 255.0, "the compat profile's picture is the core one's (mean difference %.4f)", d);
     image_free(&im[0]);
     image_free(&im[1]);
+}
+
+/* Mean luminance of an image. */
+static double mean_luminance(const image *im)
+{
+    double s = 0.0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) s += image_luminance(im, x, y);
+    return s / ((double)im->w * im->h);
+}
+
+/* sky-game renders headless (DISPLAY unset) with these options; returns 0
+ * with the image, or -1 after a failed CHECK. */
+static int game_headless(const char *args, image *out)
+{
+    char path[512], cmd[2048], log[4096], png[256];
+    tmp("game.png", png, sizeof png);
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 320x180 %s --out %s 2>&1",
+             bin_path("sky-game", path, sizeof path), args, png);
+    int rc = run_command(cmd, log, sizeof log);
+    if (rc != 0 || image_load_png(png, out)) {
+        CHECK(0, "%s: exit %d: %s", cmd, rc, log);
+        return -1;
+    }
+    remove(png);
+    return 0;
+}
+
+/* sky-game's --help lists the game's options, not sky-render's; the ones
+ * it lists do something, and sky-render's that make no sense for a world
+ * (--fisheye, --tone-map) are refused. */
+void test_game_options_are_its_own(void)
+{
+    char path[512], cmd[1024], log[8192];
+    snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin_path("sky-game", path, sizeof path));
+    int rc = run_command(cmd, log, sizeof log);
+    CHECK(rc == 0 && strstr(log, "usage: sky-game"), "sky-game --help: exit %d: %s", rc, log);
+    static const char *const listed[] = {"--screenshot", "--out FILE.png", "--gl auto|core|compat", "--seconds",
+                                         "--exposure", "--preset"};
+    for (size_t k = 0; k < sizeof listed / sizeof listed[0]; k++)
+        CHECK(strstr(log, listed[k]) != NULL, "sky-game --help lists %s", listed[k]);
+    static const char *const absent[] = {"--fisheye", "--tone-map", "--out-pfm", "--stats"};
+    for (size_t k = 0; k < sizeof absent / sizeof absent[0]; k++)
+        CHECK(strstr(log, absent[k]) == NULL, "sky-game --help does not list %s", absent[k]);
+    static const char *const refused[] = {"--fisheye", "--tone-map filmic"};
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        snprintf(cmd, sizeof cmd, "env -u DISPLAY %s %s --size 64x36 --out /dev/null 2>&1", path, refused[k]);
+        rc = run_command(cmd, log, sizeof log);
+        CHECK(rc == 2, "sky-game %s: exit %d (want 2): %s", refused[k], rc, log);
+    }
+    /* --seconds moves the clouds; --exposure brightens the frame */
+    image base, later, darker;
+    if (game_headless("--time 0.45 --speed 1", &base)) return;
+    if (!game_headless("--time 0.45 --speed 1 --seconds 600", &later)) {
+        double d = mean_abs_diff(&base, &later);
+        NOTE("--seconds 600: the frame changes by %.4f on average", d);
+        CHECK(d > 2.0 / 255.0, "--seconds moves the clouds (mean difference %.4f)", d);
+        image_free(&later);
+    }
+    if (!game_headless("--time 0.45 --speed 1 --exposure -1", &darker)) {
+        double a = mean_luminance(&base), b = mean_luminance(&darker);
+        NOTE("--exposure -1: mean luminance %.3f against %.3f", b, a);
+        CHECK(b < a - 0.05, "--exposure -1 darkens sky and world (%.3f against %.3f)", b, a);
+        image_free(&darker);
+    }
+    image_free(&base);
 }

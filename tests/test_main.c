@@ -100,6 +100,7 @@ int test_skipped;
     X(headless_demo_writes_where_asked)          \
     X(unwritable_screenshot_fails)               \
     X(game_compat_context)                       \
+    X(game_options_are_its_own)                  \
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
