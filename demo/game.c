@@ -318,6 +318,13 @@ static int headless(sky_cli *cli, const char *out)
     return status;
 }
 
+static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
+{
+    (void)scancode;
+    (void)mods;
+    if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(win, 1);
+}
+
 /* core: OpenGL 3.3 core; else 2.0 in a compatibility context (what
  * SKY_GL_COMPAT20 needs: a core context has no fixed legacy state). */
 static GLFWwindow *open_window(const sky_cli *cli, int core)
@@ -327,7 +334,9 @@ static GLFWwindow *open_window(const sky_cli *cli, int core)
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, core ? 3 : 0);
     glfwWindowHint(GLFW_OPENGL_PROFILE, core ? GLFW_OPENGL_CORE_PROFILE : GLFW_OPENGL_ANY_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_FALSE);
-    return glfwCreateWindow(cli->width, cli->height, "libsky game", NULL, NULL);
+    GLFWwindow *win = glfwCreateWindow(cli->width, cli->height, "libsky game", NULL, NULL);
+    if (win) glfwSetKeyCallback(win, on_key);
+    return win;
 }
 
 static void usage(FILE *f)
@@ -345,7 +354,8 @@ static void usage(FILE *f)
             "  --gl auto|core|compat    OpenGL 3.3 core, or 2.0 in a compatibility context\n"
             "  --frames N --screenshot FILE.png   draw N frames 1/30 s apart, save the last, quit\n"
             "  --out FILE.png           without a display: the image rendered headless (default\n"
-            "                           sky-game.png; else --screenshot's file)\n");
+            "                           sky-game.png; else --screenshot's file)\n"
+            "keys: Esc quits\n");
 }
 
 int main(int argc, char **argv)
@@ -411,13 +421,27 @@ int main(int argc, char **argv)
         glfwTerminate();
         return 1;
     }
+    /* --screenshot runs step 1/30 s a frame, as --frames promises, so
+     * their pictures do not depend on the machine's speed */
+    int automated = cli.screenshot != NULL;
     int status = 0;
+    double last = glfwGetTime();
     for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
         int width, height;
         glfwGetFramebufferSize(win, &width, &height);
-        sky_update(s, 1.0 / 60.0);
+        if (width <= 0 || height <= 0) { /* minimised: no view to draw */
+            glfwWaitEvents();
+            last = glfwGetTime();
+            continue;
+        }
+        /* the real time since the last frame, but never more than a
+         * quarter second: a stall (a dragged window, a debugger) must not
+         * fling the clouds across the sky */
+        double now = glfwGetTime(), dt = now - last;
+        last = now;
+        if (frame) sky_update(s, automated ? 1.0 / 30.0 : dt < 0.0 ? 0.0 : dt > 0.25 ? 0.25 : dt);
         draw_frame(&w, s, &cli, width, height);
-        if (cli.screenshot && frame + 1 >= cli.frames) {
+        if (automated && frame + 1 >= cli.frames) {
             status = save_frame(&w, width, height, cli.screenshot);
             break;
         }
