@@ -4,9 +4,9 @@
  * and loads its own GL entry points through the loader it gives the sky.
  * Each frame it draws the sky first, then its own depth-tested world lit by
  * sky_get_lighting: the sun and moon as directional lights, the sky as
- * ambient light, its horizon as fog, and the sky's exposure so world and
- * sky share one brightness scale. Without a display it renders the same
- * frames headless through OSMesa.
+ * ambient light, its horizon as fog (per pixel), and the sky's exposure so
+ * world and sky share one brightness scale. Without a display it renders
+ * the same frames headless through OSMesa.
  *
  *   sky-game [--time T] [--preset P] [--gl compat] [--frames N --screenshot FILE]   (--help)
  */
@@ -93,20 +93,25 @@ static const char *const vs_compat = "#version 110\n#define ATTR attribute\n#def
 static const char *const fs_compat = "#version 110\n#define VARY varying\n#define FRAG gl_FragColor\n";
 
 static const char *const vs =
-    "ATTR vec3 pos;\nATTR vec3 nrm;\nuniform mat4 mvp;\nVARY vec3 n;\nVARY float dist;\n"
-    "void main() { n = nrm; dist = length(pos.xz); gl_Position = mvp * vec4(pos, 1.0); }\n";
-/* luminance = albedo / pi * illuminance (kcd/m^2 from klx); fog toward the
- * horizon sky; then the sky's exposure and the same filmic curve it uses */
+    "ATTR vec3 pos;\nATTR vec3 nrm;\nuniform mat4 mvp;\nVARY vec3 n;\nVARY vec3 world;\n"
+    "void main() { n = nrm; world = pos; gl_Position = mvp * vec4(pos, 1.0); }\n";
+/* Luminance = albedo / pi * illuminance (kcd/m^2 from klx). The fog is
+ * found per pixel from the distance to the eye: per vertex, the ground's
+ * four corners 2.8 km away would fog all of it. Then the sky's exposure
+ * and the same filmic curve it uses. */
 static const char *const fs =
-    "VARY vec3 n;\nVARY float dist;\n"
-    "uniform vec3 sun_dir, sun_col, moon_dir, moon_col, ambient, fog;\nuniform float exposure;\n"
+    "VARY vec3 n;\nVARY vec3 world;\n"
+    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, ambient, fog;\nuniform float exposure;\n"
     "void main() {\n"
     "  vec3 albedo = n.y > 0.9 ? vec3(0.20, 0.30, 0.12) : vec3(0.45, 0.40, 0.35);\n"
     "  vec3 E = sun_col * max(dot(n, sun_dir), 0.0) + moon_col * max(dot(n, moon_dir), 0.0) + ambient * (0.6 + 0.4 * n.y);\n"
-    "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-dist / 400.0));\n"
+    "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-length(world - eye) / 400.0));\n"
     "  vec3 x = max(L * exposure - 0.004, vec3(0.0));\n"
     "  FRAG = vec4((x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06), 1.0);\n"
     "}\n";
+
+/* The eye stands 1.7 m above the ground at the origin. */
+static const float eye[3] = {0.0f, 1.7f, 0.0f};
 
 /* A ground plane and five boxes: position and normal per vertex. */
 static int build_world(float *v)
@@ -217,10 +222,14 @@ static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int heig
     sky_cli_camera(cli, view, proj);
     /* 1. the sky: first, it writes no depth and restores what it touched */
     if (sky_draw(s, view, proj) != SKY_OK) fprintf(stderr, "sky-game: %s\n", sky_last_error(s));
-    /* 2. the world, lit by the sky; the eye stands 1.7 m up */
+    /* 2. the world, lit by the sky, seen from the eye; its own depth range,
+     * from 0.25 m to past the ground's far corners (2.8 km) */
     sky_lighting l;
     sky_get_lighting(s, &l);
-    for (int r = 0; r < 3; r++) view[12 + r] -= 1.7f * view[4 + r]; /* -R * eye, eye = (0, 1.7, 0) */
+    const float zn = 0.25f, zf = 4000.0f;
+    proj[10] = (zf + zn) / (zn - zf);
+    proj[14] = 2.0f * zf * zn / (zn - zf);
+    for (int r = 0; r < 3; r++) view[12 + r] -= eye[1] * view[4 + r]; /* -R * eye, eye = (0, y, 0) */
     for (int c = 0; c < 4; c++)
         for (int r = 0; r < 4; r++) {
             mvp[c * 4 + r] = 0;
@@ -229,6 +238,7 @@ static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int heig
     gl->Enable(GL_DEPTH_TEST);
     gl->UseProgram(w->prog);
     gl->UniformMatrix4fv(gl->GetUniformLocation(w->prog, "mvp"), 1, GL_FALSE, mvp);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "eye"), 1, eye);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_dir"), 1, l.sun_direction);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_col"), 1, l.sun_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);

@@ -23,6 +23,7 @@ void test_headless_demo_writes_where_asked(void);
 void test_unwritable_screenshot_fails(void);
 void test_game_compat_context(void);
 void test_game_options_are_its_own(void);
+void test_game_fog_grows_with_distance(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -365,4 +366,47 @@ void test_game_options_are_its_own(void)
         image_free(&darker);
     }
     image_free(&base);
+}
+
+/* Mean colour of a region (x0 <= x < x1, y0 <= y < y1). */
+static void region_mean(const image *im, int x0, int y0, int x1, int y1, double rgb[3])
+{
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++)
+            for (int c = 0; c < 3; c++) rgb[c] += im->px[3 * (y * im->w + x) + c];
+    for (int c = 0; c < 3; c++) rgb[c] /= (double)(x1 - x0) * (y1 - y0);
+}
+
+static double colour_distance(const double a[3], const double b[3])
+{
+    return fabs(a[0] - b[0]) + fabs(a[1] - b[1]) + fabs(a[2] - b[2]);
+}
+
+/* The fog is found per pixel: the ground at the eye's feet is green and
+ * sunlit, the ground hundreds of metres away near the horizon has faded
+ * toward the horizon sky. (Found per vertex, every corner of the 4 km
+ * ground was 2.8 km away, and all of it was fog.) */
+void test_game_fog_grows_with_distance(void)
+{
+    image im;
+    if (game_headless("--time 0.45", &im)) return;
+    /* 320x180, pitch 20, fov 60: the horizon is at row 146.7; the bottom
+     * rows are 11 m away, row 147 390 m (63 % fog); columns clear of the boxes */
+    double near[3], far_l[3], far_r[3], far[3], sky_l[3], sky_r[3], horizon[3];
+    region_mean(&im, 0, 172, 320, 180, near);
+    region_mean(&im, 0, 147, 55, 148, far_l);
+    region_mean(&im, 245, 147, 310, 148, far_r);
+    region_mean(&im, 0, 140, 55, 144, sky_l);
+    region_mean(&im, 245, 140, 310, 144, sky_r);
+    for (int c = 0; c < 3; c++) far[c] = 0.5 * (far_l[c] + far_r[c]), horizon[c] = 0.5 * (sky_l[c] + sky_r[c]);
+    NOTE("near ground %.3f %.3f %.3f, far ground %.3f %.3f %.3f, sky above the horizon %.3f %.3f %.3f", near[0],
+         near[1], near[2], far[0], far[1], far[2], horizon[0], horizon[1], horizon[2]);
+    CHECK(near[1] > near[2] + 0.1, "the near ground is green grass (g %.3f, b %.3f)", near[1], near[2]);
+    CHECK(colour_distance(near, far) > 0.1, "the near ground differs from the far ground (%.3f)",
+          colour_distance(near, far));
+    CHECK(colour_distance(far, horizon) < 0.75 * colour_distance(near, horizon),
+          "the far ground has faded toward the horizon sky (%.3f from it, the near ground %.3f)",
+          colour_distance(far, horizon), colour_distance(near, horizon));
+    image_free(&im);
 }
