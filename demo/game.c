@@ -3,10 +3,10 @@
  * window and the context (GLFW: OpenGL 3.3 core, or 2.0 with --gl compat)
  * and loads its own GL entry points through the loader it gives the sky.
  * Each frame it draws the sky first, then its own depth-tested world lit by
- * sky_get_lighting: the sun and moon as directional lights, the sky as
- * ambient light, its horizon as fog (per pixel), and the sky's exposure so
- * world and sky share one brightness scale. Without a display it renders
- * the same frames headless through OSMesa.
+ * sky_get_lighting: the sun and moon as directional lights, the sky and the
+ * ground it lights as ambient light, its horizon as fog (per pixel), and the
+ * sky's exposure and tone map so world and sky share one brightness scale.
+ * Without a display it renders the same frames headless through OSMesa.
  *
  *   sky-game [--time T] [--preset P] [--gl compat] [--frames N --screenshot FILE]   (--help)
  */
@@ -98,16 +98,32 @@ static const char *const vs =
 /* Luminance = albedo / pi * illuminance (kcd/m^2 from klx). The fog is
  * found per pixel from the distance to the eye: per vertex, the ground's
  * four corners 2.8 km away would fog all of it. Then the sky's exposure
- * and the same filmic curve it uses. */
+ * and its default tone map (sky_tonemap in common.glsl, SKY_TONE_MAP_HUE,
+ * without the night-vision shift, which sky_lighting does not report), so
+ * a wall and the sky behind it are judged on one scale. */
 static const char *const fs =
     "VARY vec3 n;\nVARY vec3 world;\n"
     "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, ambient, fog;\nuniform float exposure;\n"
+    "const vec3 grass = vec3(0.20, 0.30, 0.12), stone = vec3(0.45, 0.40, 0.35);\n"
+    "vec3 tonemap(vec3 e) {\n"
+    "  float y = dot(e, vec3(0.2126, 0.7152, 0.0722));\n"
+    "  float m = max(max(e.r, max(e.g, e.b)), 1e-8), x = max(y - 0.004, 0.0), s = max(y, 1e-8) / m;\n"
+    "  float top = (x * (6.2 * x + 0.5)) / ((x * (6.2 * x + 1.7) + 0.06) * (1.109 * sqrt(s) - 0.109 * s));\n"
+    "  top = top <= 0.8 ? top : 0.8 + 0.2 * (top - 0.8) / (top - 0.6);\n"
+    "  vec3 r = e / m;\n"
+    "  return mix(top * (1.109 * sqrt(r) - 0.109 * r), vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));\n"
+    "}\n"
     "void main() {\n"
-    "  vec3 albedo = n.y > 0.9 ? vec3(0.20, 0.30, 0.12) : vec3(0.45, 0.40, 0.35);\n"
-    "  vec3 E = sun_col * max(dot(n, sun_dir), 0.0) + moon_col * max(dot(n, moon_dir), 0.0) + ambient * (0.6 + 0.4 * n.y);\n"
+    "  vec3 nn = normalize(n);\n"
+    "  vec3 albedo = world.y < 0.01 ? grass : stone;\n"
+    /* a surface sees the sky above its horizon and the lit ground below
+     * it: at night a wall turned from the moon is lit by the moonlit
+     * ground and the sky, as dark as they make it but not black */
+    "  vec3 on_ground = sun_col * max(sun_dir.y, 0.0) + moon_col * max(moon_dir.y, 0.0) + ambient;\n"
+    "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0)\n"
+    "         + ambient * (0.5 + 0.5 * nn.y) + grass * on_ground * (0.5 - 0.5 * nn.y);\n"
     "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-length(world - eye) / 400.0));\n"
-    "  vec3 x = max(L * exposure - 0.004, vec3(0.0));\n"
-    "  FRAG = vec4((x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06), 1.0);\n"
+    "  FRAG = vec4(tonemap(max(L * exposure, vec3(0.0))), 1.0);\n"
     "}\n";
 
 /* The eye stands 1.7 m above the ground at the origin. */

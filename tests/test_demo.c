@@ -24,6 +24,7 @@ void test_unwritable_screenshot_fails(void);
 void test_game_compat_context(void);
 void test_game_options_are_its_own(void);
 void test_game_fog_grows_with_distance(void);
+void test_game_walls_seen_at_night(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -408,5 +409,27 @@ void test_game_fog_grows_with_distance(void)
     CHECK(colour_distance(far, horizon) < 0.75 * colour_distance(near, horizon),
           "the far ground has faded toward the horizon sky (%.3f from it, the near ground %.3f)",
           colour_distance(far, horizon), colour_distance(near, horizon));
+    image_free(&im);
+}
+
+/* Under the full moon of the moonlit preset, a wall facing the eye (and
+ * away from the moon) is lit by the sky and the moonlit ground at the
+ * sky's exposure: darker than the sky behind it, as a silhouette, but not
+ * black (it was: lit by the sky's ambient alone, it fell below the tone
+ * curve's toe). */
+void test_game_walls_seen_at_night(void)
+{
+    image im;
+    if (game_headless("--preset moonlit --yaw 180 --pitch 20", &im)) return;
+    /* 320x180: the face of the tall box on the left, and the sky beside it
+     * just above the horizon (row 146.7) */
+    double wall[3], sky_beside[3];
+    region_mean(&im, 90, 120, 118, 145, wall);
+    region_mean(&im, 0, 120, 55, 140, sky_beside);
+    double w = 0.2126 * wall[0] + 0.7152 * wall[1] + 0.0722 * wall[2];
+    double s = 0.2126 * sky_beside[0] + 0.7152 * sky_beside[1] + 0.0722 * sky_beside[2];
+    NOTE("moonlit: wall %.1f, sky beside it %.1f (8-bit luma)", 255.0 * w, 255.0 * s);
+    CHECK(w > 0.1 * s && w < 0.8 * s, "the wall is darker than the sky but not black (%.1f against %.1f of 255)",
+          255.0 * w, 255.0 * s);
     image_free(&im);
 }
