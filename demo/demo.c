@@ -13,6 +13,7 @@
 
 #define GLFW_INCLUDE_GLEXT /* the query entry points' types and enums */
 #include <GLFW/glfw3.h>
+#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -240,6 +241,7 @@ typedef struct demo {
     double last_x, last_y;
     unsigned features;
     int recreate;     /* features changed: build a new sky */
+    sky_atmosphere_path atmosphere; /* the path of the sky on screen */
     int switch_profile;
     float values[6];  /* the six sliders, in sky_params order */
     char message[200]; /* the last error, shown in the readout */
@@ -280,8 +282,9 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         d->cli.tone_map = d->cli.tone_map >= SKY_TONE_MAP_NEUTRAL ? SKY_TONE_MAP_HUE : d->cli.tone_map + 1;
         d->recreate = 1;
     }
-    if (key == GLFW_KEY_A) { /* the next atmosphere path */
-        d->cli.atmosphere = d->cli.atmosphere >= SKY_ATMOSPHERE_BLEND ? SKY_ATMOSPHERE_GRADIENT : d->cli.atmosphere + 1;
+    if (key == GLFW_KEY_A) { /* the next atmosphere path; DEFAULT is GRADIENT, so it goes on to PREETHAM */
+        sky_atmosphere_path p = d->cli.atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : d->cli.atmosphere;
+        d->cli.atmosphere = p >= SKY_ATMOSPHERE_BLEND ? SKY_ATMOSPHERE_GRADIENT : p + 1;
         d->recreate = 1;
     }
     /* feature toggles: the sky is rebuilt with only what is on */
@@ -383,8 +386,15 @@ static sky *make_sky(demo *d, char *err, size_t len)
         sky_set_params(s, &d->cli.params);
         sky_set_observer(s, &d->cli.observer);
         sky_set_exposure_bias(s, d->cli.exposure);
+        d->atmosphere = cfg.atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg.atmosphere;
     }
     return s;
+}
+
+static const char *atmosphere_name(sky_atmosphere_path p)
+{
+    static const char *const names[] = {"gradient", "gradient", "preetham", "rayleigh", "hillaire", "blend"};
+    return (unsigned)p < sizeof names / sizeof names[0] ? names[p] : "?";
 }
 
 /* The --drag SLIDER:FROM:TO test hook: a left-button drag on a slider,
@@ -412,14 +422,22 @@ int main(int argc, char **argv)
     demo d;
     memset(&d, 0, sizeof d);
     d.time_rate = 1.0 / 120.0; /* a day in two minutes */
-    /* --drag and --out are sky-demo's own options: take them out before
-     * the shared parse */
-    const char *drag = NULL, *out = NULL;
+    /* --drag, --keys and --out are sky-demo's own options: take them out
+     * before the shared parse */
+    const char *drag = NULL, *keys = NULL, *out = NULL;
     char *args[64];
     int n = 0;
     for (int i = 0; i < argc && n < 64; i++) {
         if (!strcmp(argv[i], "--drag") && i + 1 < argc) {
             drag = argv[++i];
+            continue;
+        }
+        if (!strcmp(argv[i], "--keys") && i + 1 < argc) {
+            keys = argv[++i];
+            if (strspn(keys, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789") != strlen(keys)) {
+                fprintf(stderr, "sky-demo: --keys: expected letters and digits, e.g. CC, got '%s'\n", keys);
+                return 2;
+            }
             continue;
         }
         if (!strcmp(argv[i], "--out")) {
@@ -439,6 +457,8 @@ int main(int argc, char **argv)
         printf("  --out FILE.png           without a display: the image rendered headless (default\n"
                "                           sky.png; else --screenshot's file)\n"
                "  --drag SLIDER:FROM:TO    with --screenshot: drag a slider with the mouse first (tests)\n"
+               "  --keys KEYS              with --screenshot and --frames 2 or more: press these keys\n"
+               "                           after the first frame (tests)\n"
                "keys: 1-6 pick a slider, Up/Down move it, Space runs time, +/- its speed, F fisheye,\n"
                "      C U M K T P E toggle clouds sun moon flicker stars starmap eclipse, A atmosphere\n"
                "      path, G GL profile,\n"
@@ -490,6 +510,8 @@ int main(int argc, char **argv)
         double now = glfwGetTime();
         double dt = automated ? 1.0 / 30.0 : now - last;
         last = now;
+        if (keys && frame == 1) /* the --keys test hook, through the same handler as the keyboard */
+            for (const char *k = keys; *k; k++) on_key(win, toupper((unsigned char)*k), 0, GLFW_PRESS, 0);
         if (d.switch_profile) { /* a new context: the sky and overlay go with the old one */
             d.switch_profile = 0;
             sky_destroy(d.s);
@@ -561,8 +583,10 @@ int main(int argc, char **argv)
             used += snprintf(lines + used, sizeof lines - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
                              100 * a.solar_obscuration, a.solar_magnitude, 0);
         static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  tone map %s  fov %.0f  time %s x%.0f%c",
-                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", tone_maps[d.cli.tone_map], d.cli.fov,
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  atmosphere %s  tone map %s%c",
+                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", atmosphere_name(d.atmosphere),
+                         tone_maps[d.cli.tone_map], 0);
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "fov %.0f  time %s x%.0f%c", d.cli.fov,
                          d.running ? "running" : "paused", d.time_rate * 86400.0, 0);
         /* the cost: the sky's GPU frame time as sky-bench measures it, and
          * the frame rate of the window */
@@ -590,6 +614,7 @@ int main(int argc, char **argv)
             if (automated) {
                 printf("sky-demo: sky %.2f ms GPU (%s, median of %d frames), %.1f fps\n", gpu_ms,
                        timer_method(&d.timer), d.timer.count, fps);
+                printf("sky-demo: atmosphere %s\n", atmosphere_name(d.atmosphere)); /* as the readout says */
                 status = saved ? 0 : 1; /* a script must see that its image is missing */
                 break;
             }

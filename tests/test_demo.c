@@ -25,6 +25,7 @@ void test_game_compat_context(void);
 void test_game_options_are_its_own(void);
 void test_game_fog_grows_with_distance(void);
 void test_game_walls_seen_at_night(void);
+void test_demo_atmosphere_key(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -432,4 +433,62 @@ void test_game_walls_seen_at_night(void)
     CHECK(w > 0.1 * s && w < 0.8 * s, "the wall is darker than the sky but not black (%.1f against %.1f of 255)",
           255.0 * w, 255.0 * s);
     image_free(&im);
+}
+
+/* sky-demo under Xvfb, 640x360, three frames; keys (--keys) are pressed
+ * after the first. The sky below the overlay (rows 180 to 360) into
+ * *out, and what sky-demo printed into log. Returns 0, or -1 after a
+ * failed CHECK. */
+static int demo_sky(const char *args, image *out, char *log, size_t len)
+{
+    char path[512], cmd[2048], png[256];
+    tmp("keys.png", png, sizeof png);
+    snprintf(cmd, sizeof cmd, XVFB "%s --size 640x360 --frames 3 --screenshot %s %s 2>&1",
+             bin_path("sky-demo", path, sizeof path), png, args);
+    int rc = run_command(cmd, log, len);
+    image full;
+    if (rc != 0 || image_load_png(png, &full)) {
+        CHECK(0, "%s: exit %d: %s", cmd, rc, log);
+        return -1;
+    }
+    remove(png);
+    out->w = full.w;
+    out->h = full.h - 180;
+    out->px = malloc(sizeof(float) * 3u * (size_t)out->w * (size_t)out->h);
+    memcpy(out->px, full.px + 3 * 180 * full.w, sizeof(float) * 3u * (size_t)out->w * (size_t)out->h);
+    image_free(&full);
+    return 0;
+}
+
+/* The A key's first press goes to the next real path (the default path
+ * is the gradient), five presses come back round, and the demo names the
+ * path on screen. */
+void test_demo_atmosphere_key(void)
+{
+    if (!have_xvfb()) {
+        SKIP("xvfb-run is not installed");
+        return;
+    }
+    char log[4096];
+    image none, once, five;
+    if (demo_sky("--time 0.45", &none, log, sizeof log)) return;
+    CHECK(strstr(log, "sky-demo: atmosphere gradient") != NULL, "the default path is named gradient: %s", log);
+    if (demo_sky("--time 0.45 --keys A", &once, log, sizeof log)) {
+        image_free(&none);
+        return;
+    }
+    CHECK(strstr(log, "sky-demo: atmosphere preetham") != NULL, "one press: preetham: %s", log);
+    if (demo_sky("--time 0.45 --keys AAAAA", &five, log, sizeof log)) {
+        image_free(&none);
+        image_free(&once);
+        return;
+    }
+    CHECK(strstr(log, "sky-demo: atmosphere gradient") != NULL, "five presses: gradient again: %s", log);
+    double d1 = mean_abs_diff(&none, &once), d5 = mean_abs_diff(&none, &five);
+    NOTE("the sky after one press differs by %.4f, after five by %.4f", d1, d5);
+    CHECK(d1 > 5.0 / 255.0, "the first press changes the sky (%.4f)", d1);
+    CHECK(d5 < 0.5 / 255.0, "five presses bring the same sky back (%.4f)", d5);
+    image_free(&none);
+    image_free(&once);
+    image_free(&five);
 }
