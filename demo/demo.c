@@ -241,6 +241,7 @@ typedef struct demo {
     double last_x, last_y;
     unsigned features;
     int recreate;     /* features changed: build a new sky */
+    double elapsed;   /* the animation clock, carried into every new sky */
     sky_atmosphere_path atmosphere; /* the path of the sky on screen */
     int switch_profile;
     float values[6];  /* the six sliders, in sky_params order */
@@ -376,6 +377,8 @@ static GLFWwindow *open_window(demo *d, int core)
     return w;
 }
 
+/* A new sky for the demo's options, its clock where the last one's was
+ * (a rebuilt sky must not make the clouds jump back to their start). */
 static sky *make_sky(demo *d, char *err, size_t len)
 {
     sky_config cfg = sky_cli_config(&d->cli, glfwGetProcAddress);
@@ -386,6 +389,7 @@ static sky *make_sky(demo *d, char *err, size_t len)
         sky_set_params(s, &d->cli.params);
         sky_set_observer(s, &d->cli.observer);
         sky_set_exposure_bias(s, d->cli.exposure);
+        sky_set_elapsed(s, d->elapsed);
         d->atmosphere = cfg.atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg.atmosphere;
     }
     return s;
@@ -493,13 +497,13 @@ int main(int argc, char **argv)
     }
     d.overlay = ui_create(core);
     timer_init(&d.timer, win);
+    d.elapsed = d.cli.seconds;
     d.s = make_sky(&d, err, sizeof err);
     if (!d.s) {
         fprintf(stderr, "sky-demo: %s\n", err);
         glfwTerminate();
         return 1;
     }
-    sky_set_elapsed(d.s, d.cli.seconds);
     if (drag && simulate_drag(&d, drag)) {
         fprintf(stderr, "sky-demo: --drag: expected SLIDER:FROM:TO, e.g. cover:0.1:0.9\n");
         return 2;
@@ -553,6 +557,7 @@ int main(int argc, char **argv)
         d.cli.params = params_from_values(d.values);
         sky_set_params(d.s, &d.cli.params);
         sky_update(d.s, dt);
+        d.elapsed += dt;
         int fw, fh;
         glfwGetFramebufferSize(win, &fw, &fh);
         glViewport(0, 0, fw, fh);

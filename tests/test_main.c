@@ -103,6 +103,7 @@ int test_skipped;
     X(game_options_are_its_own)                  \
     X(game_fog_grows_with_distance)              \
     X(game_walls_seen_at_night)                  \
+    X(demo_rebuild_keeps_the_clock)              \
     X(demo_atmosphere_key)                       \
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
