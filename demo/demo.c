@@ -3,8 +3,8 @@
  * by Roden & Parberry's six sliders drawn over it (drag them, or 1-6 and
  * Up/Down). Space runs the time of day, +/- its speed; C U M K T P E
  * toggle the layers, A the atmosphere path, G the GL profile; right-drag
- * looks around, the wheel
- * zooms; L times each layer; S saves sky-demo.png. --help lists it all.
+ * looks around, Left/Right turn, the wheel zooms; L times each layer; S
+ * saves sky-demo.png. --help lists it all.
  * Without a display it says so and renders headless through OSMesa.
  */
 #include "cli.h"
