@@ -27,6 +27,7 @@ void test_game_fog_grows_with_distance(void);
 void test_game_walls_seen_at_night(void);
 void test_demo_rebuild_keeps_the_clock(void);
 void test_demo_atmosphere_key(void);
+void test_headless_out_must_be_png(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
@@ -527,4 +528,23 @@ void test_demo_atmosphere_key(void)
     image_free(&none);
     image_free(&once);
     image_free(&five);
+}
+
+/* --out, like --screenshot, takes only a name ending in .png (any case):
+ * anything else is a bad argument naming it, exit 2, before rendering. */
+void test_headless_out_must_be_png(void)
+{
+    static const char *const progs[2] = {"sky-demo", "sky-game"};
+    for (int p = 0; p < 2; p++) {
+        char path[512], cmd[1024], log[2048];
+        bin_path(progs[p], path, sizeof path);
+        snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 8x8 --out /nonexistent-dir/x.jpg 2>&1", path);
+        int rc = run_command(cmd, log, sizeof log);
+        CHECK(rc == 2 && strstr(log, "--out") && strstr(log, ".png"), "%s --out x.jpg: exit %d (want 2): %s",
+              progs[p], rc, log);
+        snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY %s --size 8x8 --out /nonexistent-dir/X.PNG 2>&1", path);
+        rc = run_command(cmd, log, sizeof log);
+        CHECK(rc == 1 && strstr(log, "cannot write"), "%s --out X.PNG is taken (then cannot be written): exit %d: %s",
+              progs[p], rc, log);
+    }
 }

@@ -105,6 +105,7 @@ int test_skipped;
     X(game_walls_seen_at_night)                  \
     X(demo_rebuild_keeps_the_clock)              \
     X(demo_atmosphere_key)                       \
+    X(headless_out_must_be_png)                  \
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
