@@ -53,9 +53,14 @@ $(LIB)/libsky.a: $(SKY_OBJ)
 	@mkdir -p $(@D)
 	rm -f $@ && ar rcs $@ $^
 
+# The version is sky.h's; the soname follows its rule (sky.h, Versions):
+# libsky.so.0.MINOR before 1.0, libsky.so.MAJOR after.
+SKY_VERSION := $(shell sed -n 's/^\#define SKY_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\)$$/\2/p' sky/sky.h | paste -sd.)
+SKY_SONAME := libsky.so.$(if $(filter 0.%,$(SKY_VERSION)),0.$(word 2,$(subst ., ,$(SKY_VERSION))),$(word 1,$(subst ., ,$(SKY_VERSION))))
+
 $(LIB)/libsky.so: $(SKY_OBJ)
 	@mkdir -p $(@D)
-	$(CC) -shared -Wl,-soname,libsky.so.0 -o $@ $^ $(LDLIBS_M)
+	$(CC) -shared -Wl,-soname,$(SKY_SONAME) -o $@ $^ $(LDLIBS_M)
 
 $(BUILD)/include/sky.h: sky/sky.h
 	@mkdir -p $(@D)
@@ -187,10 +192,10 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
 	install -m 644 sky/sky.h $(DESTDIR)$(PREFIX)/include/sky.h
 	install -m 644 $(LIB)/libsky.a $(DESTDIR)$(PREFIX)/lib/libsky.a
-	install -m 755 $(LIB)/libsky.so $(DESTDIR)$(PREFIX)/lib/libsky.so.0
-	ln -sf libsky.so.0 $(DESTDIR)$(PREFIX)/lib/libsky.so
+	install -m 755 $(LIB)/libsky.so $(DESTDIR)$(PREFIX)/lib/$(SKY_SONAME)
+	ln -sf $(SKY_SONAME) $(DESTDIR)$(PREFIX)/lib/libsky.so
 	install -m 755 $(BIN)/sky-render $(BIN)/sky-demo $(DESTDIR)$(PREFIX)/bin/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|0.1.0|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(SKY_VERSION)|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
 
 # ---- assets ---------------------------------------------------------------------------
 # Rebuilds textures/ from their origins (see textures/README.md). Needs

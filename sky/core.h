@@ -221,6 +221,7 @@ typedef struct sky_core {
     sky_astro astro;              /* for observer + time slider; see observer.c */
     float exposure_bias;          /* stops, sky_set_exposure_bias               */
     float horizon_to_world[9];    /* column-major; identity when cfg's is zero   */
+    int horizon_handedness;       /* its determinant's sign: -1 a reflection     */
 
     sky_atmosphere_path atmosphere;  /* resolved: never DEFAULT                  */
     sky_atmosphere_params atm;       /* checked; the Earth preset when zero      */

@@ -45,6 +45,11 @@ static sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
 
 const char *sky_last_error(const sky *s) { return s ? s->error : "sky is NULL"; }
 
+unsigned sky_version(void)
+{
+    return ((unsigned)SKY_VERSION_MAJOR << 16) | ((unsigned)SKY_VERSION_MINOR << 8) | (unsigned)SKY_VERSION_PATCH;
+}
+
 const char *sky_layer_name(sky_layer layer)
 {
     static const char *const names[SKY_LAYER_COUNT] = {"starmap", "stars", "flicker", "moon",
@@ -174,7 +179,9 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     }
     float horizon_to_world[9];
     if (sky_camera_horizon_to_world(cfg->horizon_to_world, horizon_to_world)) {
-        sky_format(err, err_len, "sky_create: horizon_to_world is not a rotation (columns must be orthonormal)");
+        sky_format(err, err_len,
+                   "sky_create: horizon_to_world is not orthonormal (its columns must be unit vectors at right "
+                   "angles: a rotation, or a reflection for a left-handed world; all zero = identity)");
         return NULL;
     }
 
@@ -193,6 +200,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     sky_sun_irradiance_rgb(c->sun_irradiance_klx);
     c->atmosphere = cfg->atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg->atmosphere;
     memcpy(c->horizon_to_world, horizon_to_world, sizeof horizon_to_world);
+    const float *m = horizon_to_world; /* columns a, b, c: det = a . (b x c) */
+    double det = m[0] * ((double)m[4] * m[8] - (double)m[5] * m[7]) - m[1] * ((double)m[3] * m[8] - (double)m[5] * m[6]) +
+                 m[2] * ((double)m[3] * m[7] - (double)m[4] * m[6]);
+    c->horizon_handedness = det < 0.0 ? -1 : 1;
     c->params = sky_default_params();
     c->observer = sky_default_observer();
     c->dome_snippets = &s->dome_snippets;
@@ -449,7 +460,18 @@ sky_result sky_draw(sky *s, const float view[16], const float proj[16])
 {
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!view || !proj) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_draw: view or proj is NULL");
-    return draw_with(s, view, proj);
+    sky_result rc = draw_with(s, view, proj);
+    /* A projection whose clip w is +z in eye space is a left-handed one
+     * (OpenGL's is -z); its world must come with a reflecting
+     * horizon_to_world, or the sky is a mirror image (sky.h, Conventions). */
+    if (rc == SKY_OK && isfinite(proj[11]) && (proj[11] > 0.0f) != (s->core.horizon_handedness < 0))
+        return sky_fail(s, SKY_WARN_MIRRORED,
+                        "sky_draw: drawn mirrored: the projection is %s-handed (clip w = %sz) but horizon_to_world "
+                        "is a %s; a left-handed engine passes a reflecting one, such as diag(1, 1, -1) (sky.h, "
+                        "Conventions)",
+                        proj[11] > 0.0f ? "left" : "right", proj[11] > 0.0f ? "+" : "-",
+                        s->core.horizon_handedness < 0 ? "reflection" : "rotation");
+    return rc;
 }
 
 sky_result sky_draw_fisheye(sky *s)

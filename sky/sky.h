@@ -15,9 +15,38 @@
  *   ...
  *   sky_destroy(s);
  *
- * Coordinates (the horizon frame): +x east, +y up (zenith), +z south, so a
- * camera looking down -z faces north. Matrices are column-major, as OpenGL
- * expects. A Z-up engine passes sky_config.horizon_to_world.
+ * Conventions
+ *   Matrices are column-major, as OpenGL expects (m[col * 4 + row]). The
+ *   sky's own frame, the horizon frame, is right-handed: +x east, +y up (the
+ *   zenith), +z south, so a camera looking down -z faces north.
+ *   sky_config.horizon_to_world (column-major 3x3, its columns the horizon
+ *   frame's x, y, z axes in the host's world) says how the host's world
+ *   lies; sky_draw takes the host's own view and projection:
+ *
+ *   engine                    horizon_to_world           projection
+ *   right-handed, Y up        all zero (identity)        OpenGL's (clip w = -z)
+ *     (OpenGL, three.js, Godot, SDL + your own maths)
+ *   right-handed, Z up        {1,0,0, 0,0,1, 0,-1,0}     OpenGL's
+ *     (OpenSceneGraph, Blender-like worlds: north +y, up +z)
+ *   left-handed, Y up         {1,0,0, 0,1,0, 0,0,-1}     the engine's own (clip
+ *     (Irrlicht, Unity, DirectX-style maths)               w = +z): pass it as is
+ *
+ *   A reflecting horizon_to_world is how a left-handed world states its
+ *   handedness; any orthonormal matrix is accepted (determinant +1 or -1),
+ *   anything else is rejected by sky_create. Where the projection and
+ *   horizon_to_world disagree (a left-handed projection with a rotation, or
+ *   a right-handed one with a reflection), sky_draw draws a mirror image and
+ *   returns SKY_WARN_MIRRORED. Only the rotation of the view is used (the sky
+ *   is centred on the viewer); any near and far planes, an infinite far plane
+ *   and reversed-Z projections work, because the sky neither tests nor
+ *   writes depth: it is drawn first, right after glClear, and the scene over
+ *   it. sky_draw_fisheye needs no matrices.
+ *
+ * Versions: SKY_VERSION_MAJOR, _MINOR, _PATCH below, sky_version() at run
+ * time, and the same in sky.pc. Before 1.0 every minor version may change
+ * sky_config or a function (binary incompatible): the shared library's
+ * soname is libsky.so.0.MINOR; from 1.0 on it is libsky.so.MAJOR and
+ * changes only with the major version.
  */
 #ifndef SKY_H
 #define SKY_H
@@ -29,7 +58,7 @@ extern "C" {
 #endif
 
 #define SKY_VERSION_MAJOR 0
-#define SKY_VERSION_MINOR 1
+#define SKY_VERSION_MINOR 2
 #define SKY_VERSION_PATCH 0
 
 /* Symbols the shared library exports; everything else stays hidden. */
@@ -49,6 +78,9 @@ typedef struct sky sky;
 typedef enum sky_result {
     SKY_OK = 0,
     SKY_CLAMPED = 1,
+    SKY_WARN_MIRRORED = 2,    /* sky_draw drew, but the projection's and
+                                 horizon_to_world's handedness disagree: the
+                                 sky is a mirror image (see Conventions)     */
     SKY_ERR_INVALID_ARGUMENT = -1,
     SKY_ERR_GL = -2,          /* the context cannot do what was asked     */
     SKY_ERR_ASSET = -3,       /* an embedded or override asset is broken  */
@@ -235,8 +267,9 @@ typedef struct sky_config {
     /* Non-zero: sky_draw waits for the GPU around each layer so sky_get_stats
      * can report per-layer milliseconds. Costs a pipeline stall; for tools. */
     int profile_layers;
-    /* Optional rotation (column-major 3x3) from the horizon frame above to
-     * the host's world frame; all zero = identity (y up). */
+    /* From the horizon frame to the host's world (column-major 3x3, see
+     * Conventions at the top): orthonormal, a rotation or, for a left-handed
+     * world, a reflection; all zero = identity (right-handed, y up). */
     float horizon_to_world[9];
     /* Mueller's control magnitude m_a for catalogue stars: stars are drawn
      * 2.512^(m_a - 4) times their physical brightness, and those brighter
@@ -280,6 +313,9 @@ SKY_API void sky_destroy(sky *s); /* NULL is fine; needs the creating context cu
 
 /* Text of the most recent non-OK result of this sky ("" if none). */
 SKY_API const char *sky_last_error(const sky *s);
+/* The library's version as built: (MAJOR << 16) | (MINOR << 8) | PATCH;
+ * compare with the SKY_VERSION_* macros a host was compiled against. */
+SKY_API unsigned sky_version(void);
 
 SKY_API sky_result sky_set_params(sky *s, const sky_params *p);
 SKY_API sky_result sky_get_params(const sky *s, sky_params *p);

@@ -33,6 +33,8 @@ int test_skipped;
     X(gl_host_raster_state_ignored)              \
     X(gl_errors_left_to_host_and_contexts_checked) \
     X(header_compiles_pedantic)                  \
+    X(conventions_left_handed_host)              \
+    X(conventions_version_everywhere)            \
     X(render_cover_zero_has_no_clouds)           \
     X(render_full_cover_hides_sky)               \
     X(render_density_darkens_clouds)             \

@@ -3,7 +3,7 @@
 # they are missing: apt-get as root, sudo otherwise, a clear message if
 # neither is possible.
 set -e
-PACKAGES="gcc make libc6-dev libgl-dev libosmesa6-dev libglfw3-dev libstb-dev liberfa-dev xvfb xauth"
+PACKAGES="gcc make libc6-dev libgl-dev libosmesa6-dev libglfw3-dev libstb-dev liberfa-dev xvfb xauth pkgconf"
 missing=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
