@@ -44,9 +44,17 @@ static int invert4(const double m[16], double out[16])
     inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] +
               m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
     double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
-    double scale = 0.0;
-    for (int i = 0; i < 16; i++) scale = fmax(scale, fabs(m[i]));
-    if (!isfinite(det) || fabs(det) <= 1e-12 * pow(scale, 4.0)) return 0;
+    /* Singular relative to Hadamard's bound, the product of the columns'
+     * lengths (|det| reaches it for orthogonal columns): free of the
+     * matrix's scale, so an extreme aspect ratio, one huge and one small
+     * column, is not mistaken for a singular projection. */
+    double bound = 1.0;
+    for (int c = 0; c < 4; c++) {
+        double len2 = 0.0;
+        for (int r = 0; r < 4; r++) len2 += m[c * 4 + r] * m[c * 4 + r];
+        bound *= sqrt(len2);
+    }
+    if (!isfinite(det) || !(fabs(det) > 1e-12 * bound)) return 0;
     for (int i = 0; i < 16; i++) out[i] = inv[i] / det;
     return 1;
 }

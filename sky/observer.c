@@ -22,20 +22,32 @@ sky_observer sky_default_observer(void)
     return o;
 }
 
+/* The calendar arithmetic holds in longs for a million years either way
+ * of year 0 (Julian day 1721059.5 is 0000-01-01), far beyond any
+ * ephemeris: the public functions take only that. */
+#define SKY_CALENDAR_YEARS 1000000
+#define SKY_CALENDAR_JD_YEAR0 1721059.5
+#define SKY_CALENDAR_JD_SPAN ((SKY_CALENDAR_YEARS + 1) * 365.2425)
+
 double sky_julian_day(int year, int month, int day, int hour, int minute, double second)
 {
+    if (year < -SKY_CALENDAR_YEARS || year > SKY_CALENDAR_YEARS || month < 1 || month > 12 || day < 1 || day > 31 ||
+        hour < 0 || hour > 24 || minute < 0 || minute > 60 || !(second >= 0.0 && second <= 61.0))
+        return NAN;
     return sky_jd_from_calendar(year, month, day, hour, minute, second);
 }
 
-void sky_calendar(double jd, int *year, int *month, int *day, double *day_fraction)
+sky_result sky_calendar(double jd, int *year, int *month, int *day, double *day_fraction)
 {
     int y = 0, m = 0, d = 0;
     double f = 0.0;
-    if (isfinite(jd)) sky_calendar_from_jd(jd, &y, &m, &d, &f);
+    int ok = isfinite(jd) && fabs(jd - SKY_CALENDAR_JD_YEAR0) <= SKY_CALENDAR_JD_SPAN;
+    if (ok) sky_calendar_from_jd(jd, &y, &m, &d, &f);
     if (year) *year = y;
     if (month) *month = m;
     if (day) *day = d;
     if (day_fraction) *day_fraction = f;
+    return ok ? SKY_OK : SKY_ERR_INVALID_ARGUMENT;
 }
 
 int sky_observer_check(const sky_observer *o, char *err, size_t err_len)

@@ -159,8 +159,24 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    (double)cfg->turbidity);
         return NULL;
     }
+    if ((cfg->features & SKY_FEATURES_NONE) && cfg->features != SKY_FEATURES_NONE) {
+        sky_format(err, err_len, "sky_create: features 0x%x: SKY_FEATURES_NONE (an empty sky) cannot be combined "
+                   "with other features", cfg->features);
+        return NULL;
+    }
+    if (!isfinite(cfg->moon_scale) || (cfg->moon_scale != 0.0f && (cfg->moon_scale < 0.5f || cfg->moon_scale > 50.0f))) {
+        sky_format(err, err_len, "sky_create: moon_scale %g is out of range (0 = default, or 0.5..50)",
+                   (double)cfg->moon_scale);
+        return NULL;
+    }
+    if (!isfinite(cfg->star_control_magnitude) ||
+        (cfg->star_control_magnitude != 0.0f && (cfg->star_control_magnitude < 1.0f || cfg->star_control_magnitude > 10.0f))) {
+        sky_format(err, err_len, "sky_create: star_control_magnitude %g is out of range (0 = default, or 1..10)",
+                   (double)cfg->star_control_magnitude);
+        return NULL;
+    }
     unsigned features = cfg->features == 0 ? SKY_FEATURES_DEFAULT
-                        : (cfg->features & SKY_FEATURES_NONE) ? 0u : cfg->features;
+                        : cfg->features == SKY_FEATURES_NONE ? 0u : cfg->features;
     if (features & ~(unsigned)SKY_FEATURES_AVAILABLE) {
         sky_format(err, err_len, "sky_create: features 0x%x are not built yet (available: 0x%x)",
                    features & ~(unsigned)SKY_FEATURES_AVAILABLE, (unsigned)SKY_FEATURES_AVAILABLE);

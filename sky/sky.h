@@ -123,8 +123,11 @@ typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_PREETHAM,    /* Preetham's analytic daylight (turbidity) */
     SKY_ATMOSPHERE_RAYLEIGH,    /* closed-form Rayleigh + Mie single scattering
                                    of sky_config.atmosphere_params         */
-    SKY_ATMOSPHERE_HILLAIRE,    /* (not built yet)                          */
-    SKY_ATMOSPHERE_BLEND        /* (not built yet)                          */
+    SKY_ATMOSPHERE_HILLAIRE,    /* Hillaire 2020's tables (transmittance,
+                                   multiple scattering, sky-view) of
+                                   sky_config.atmosphere_params             */
+    SKY_ATMOSPHERE_BLEND        /* RAYLEIGH and HILLAIRE mixed by a weight
+                                   (sky_config.blend_manual, blend_weight)  */
 } sky_atmosphere_path;
 
 typedef enum sky_gl_profile {
@@ -261,7 +264,8 @@ typedef struct sky_config {
      * own. */
     int check_gl_errors;
     /* Optional directory whose PNG files replace the embedded textures of the
-     * same name (clouds.png, flicker.png, galaxy.png, gradient.png). NULL =
+     * same name (clouds.png, flicker.png, galaxy.png, gradient.png,
+     * moon.png, starmap.png). NULL =
      * embedded only. */
     const char *texture_dir;
     /* Non-zero: sky_draw waits for the GPU around each layer so sky_get_stats
@@ -273,10 +277,12 @@ typedef struct sky_config {
     float horizon_to_world[9];
     /* Mueller's control magnitude m_a for catalogue stars: stars are drawn
      * 2.512^(m_a - 4) times their physical brightness, and those brighter
-     * than m_a get a glare. 0 = 4 (physical). Range 1..10. */
+     * than m_a get a glare. 0 = 4 (physical); else 1..10 (sky_create rejects
+     * anything else, NaN included). */
     float star_control_magnitude;
     /* Mueller's artificial moon scale c_d (eq. 1): the disc is drawn c_d
-     * times its true size. 0 = 2.5; range 0.5..50. */
+     * times its true size. 0 = 2.5; else 0.5..50 (sky_create rejects
+     * anything else). */
     float moon_scale;
     /* PREETHAM's turbidity: 0 = 2.5 (a clear day). Accepted 1..64; the
      * model clamps it into its fitted range, 2..10. */
@@ -369,12 +375,15 @@ typedef struct sky_observer {
     int time_from_params;
 } sky_observer;
 
-/* Julian day of a proleptic Gregorian UTC date and time (any year;
- * second may carry a fraction). */
+/* Julian day of a proleptic Gregorian UTC date and time: years within a
+ * million of year 0, month 1..12, day 1..31, hour 0..24, minute 0..60,
+ * second 0..61 (with a fraction); NaN for anything else (which
+ * sky_set_observer rejects). */
 SKY_API double sky_julian_day(int year, int month, int day, int hour, int minute, double second);
 /* The calendar date (proleptic Gregorian) of a Julian day, with the
- * fraction of the day since 0h. */
-SKY_API void sky_calendar(double julian_day, int *year, int *month, int *day, double *day_fraction);
+ * fraction of the day since 0h. SKY_ERR_INVALID_ARGUMENT (and zeros) for a
+ * day that is not finite or more than a million years from year 0. */
+SKY_API sky_result sky_calendar(double julian_day, int *year, int *month, int *day, double *day_fraction);
 SKY_API sky_result sky_set_observer(sky *s, const sky_observer *obs);
 SKY_API sky_result sky_get_observer(const sky *s, sky_observer *obs);
 

@@ -35,6 +35,10 @@ int test_skipped;
     X(header_compiles_pedantic)                  \
     X(conventions_left_handed_host)              \
     X(conventions_version_everywhere)            \
+    X(validation_dates)                          \
+    X(validation_config_fields_named)            \
+    X(validation_extreme_aspect_ratio)           \
+    X(validation_ldr_in_float_target_stays_in_range) \
     X(render_cover_zero_has_no_clouds)           \
     X(render_full_cover_hides_sky)               \
     X(render_density_darkens_clouds)             \

@@ -140,8 +140,9 @@ float sky_hash(vec2 p)
     return fract((q.x + q.y) * q.z);
 }
 
-/* One 8-bit step of dither, so smooth gradients do not band. */
-vec3 sky_dither(vec3 display) { return display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0; }
+/* One 8-bit step of dither, so smooth gradients do not band; kept within
+ * 0..1, which a float target would otherwise receive as it is. */
+vec3 sky_dither(vec3 display) { return clamp(display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0, 0.0, 1.0); }
 
 /* Linear luminance (kcd/m^2) to the output: linear for HDR hosts; else
  * tone mapped and dithered. */
