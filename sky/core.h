@@ -152,6 +152,7 @@ typedef struct sky_frame {
     float view_proj[16];     /* horizon direction (w = 0) -> clip                */
     float pixel_angle;       /* radians per pixel at the view centre             */
     float viewport[4];       /* window x, y, width, height of the host's viewport */
+    float far_z;             /* clip z / w of the far plane (sky.c, cfg.depth)    */
     /* the dome's image (dome.c) */
     float dome_texel[2];     /* 1 / its texture's width, height                  */
     float dome_scale[2];     /* the share of the texture it uses, per axis       */

@@ -150,6 +150,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         sky_format(err, err_len, "sky_create: tone_map %d is out of range (hue, filmic or neutral)", (int)cfg->tone_map);
         return NULL;
     }
+    if ((unsigned)cfg->depth > SKY_DEPTH_FAR_ZERO_CLIP01) {
+        sky_format(err, err_len, "sky_create: depth %d is out of range (a sky_depth)", (int)cfg->depth);
+        return NULL;
+    }
     if (cfg->dome_divisor < 0 || cfg->dome_divisor > 8) {
         sky_format(err, err_len, "sky_create: dome_divisor %d is out of range (0 = default, 1..8)", cfg->dome_divisor);
         return NULL;
@@ -221,6 +225,8 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                  m[2] * ((double)m[3] * m[7] - (double)m[4] * m[6]);
     c->horizon_handedness = det < 0.0 ? -1 : 1;
     c->params = sky_default_params();
+    /* the far plane's clip z / w in the host's depth convention */
+    c->frame.far_z = cfg->depth == SKY_DEPTH_FAR_ZERO ? -1.0f : cfg->depth == SKY_DEPTH_FAR_ZERO_CLIP01 ? 0.0f : 1.0f;
     c->observer = sky_default_observer();
     c->dome_snippets = &s->dome_snippets;
     for (int i = 0; i < LAYER_COUNT; i++) {

@@ -38,9 +38,15 @@
  *   a right-handed one with a reflection), sky_draw draws a mirror image and
  *   returns SKY_WARN_MIRRORED. Only the rotation of the view is used (the sky
  *   is centred on the viewer); any near and far planes, an infinite far plane
- *   and reversed-Z projections work, because the sky neither tests nor
- *   writes depth: it is drawn first, right after glClear, and the scene over
- *   it. sky_draw_fisheye needs no matrices.
+ *   and reversed-Z projections work.
+ *   Drawing order: by default the sky is drawn first, right after glClear,
+ *   and neither tests nor writes depth. An engine that draws its sky after
+ *   its opaque scene (so the pixels the scene covers cost nothing) sets
+ *   sky_config.depth to its convention: SKY_DEPTH_FAR_ONE (depth cleared
+ *   to 1), SKY_DEPTH_FAR_ZERO (reversed-Z, cleared to 0) or
+ *   SKY_DEPTH_FAR_ZERO_CLIP01 (reversed-Z with a 0..1 clip range); the sky
+ *   then sits on the far plane with the depth test on and writes none.
+ *   sky_draw_fisheye needs no matrices.
  *
  * Versions: SKY_VERSION_MAJOR, _MINOR, _PATCH below, sky_version() at run
  * time, and the same in sky.pc. Before 1.0 every minor version may change
@@ -153,6 +159,21 @@ typedef enum sky_tone_map {
                              shoulder with slight desaturation; flatter   */
 } sky_tone_map;
 
+/* Where the sky is drawn in the host's frame (Conventions). */
+typedef enum sky_depth {
+    SKY_DEPTH_NONE = 0,    /* first, right after glClear: it neither tests
+                              nor writes depth and covers every pixel     */
+    SKY_DEPTH_FAR_ONE,     /* after the opaque scene, on the far plane at
+                              depth 1 (glClearDepth(1), LESS or LEQUAL): the
+                              depth test keeps it behind the scene, whose
+                              pixels then cost it nothing; no depth write  */
+    SKY_DEPTH_FAR_ZERO,    /* the same for reversed-Z, far at depth 0
+                              (glClearDepth(0), GREATER) with OpenGL's
+                              -1..1 clip range                             */
+    SKY_DEPTH_FAR_ZERO_CLIP01 /* reversed-Z with glClipControl(GL_LOWER_LEFT,
+                              GL_ZERO_TO_ONE), far at depth 0              */
+} sky_depth;
+
 typedef enum sky_output {
     SKY_OUTPUT_LDR = 0, /* exposure, tone map, sRGB encode and dither built in */
     SKY_OUTPUT_HDR      /* linear RGB, luminance in kcd/m^2 (sRGB primaries), for
@@ -252,6 +273,9 @@ typedef struct sky_config {
     int dome_divisor;
     /* LDR: the tone map (above); 0 = SKY_TONE_MAP_HUE. */
     sky_tone_map tone_map;
+    /* Drawn first (0) or after the opaque scene against its depth buffer
+     * in the host's depth convention (above). */
+    sky_depth depth;
     /* Non-zero: sky_draw asks GL for errors (glGetError, a pipeline stall on
      * some drivers): one the host left pending before the call is reported
      * as the host's, one of the sky's own as SKY_ERR_GL. Zero (the default):

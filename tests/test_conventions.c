@@ -5,13 +5,19 @@
  */
 #include "test.h"
 #include "sky_internal.h"
+#include "cli.h"
 
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 void test_conventions_left_handed_host(void);
 void test_conventions_version_everywhere(void);
+void test_conventions_sky_after_the_scene(void);
 
 /* One LDR frame of a default sky (cover 0.4, mid-morning, the sun in view)
  * drawn with view and proj into a 96x64 buffer; its bytes into out. */
@@ -108,4 +114,94 @@ void test_conventions_version_everywhere(void)
     rc = run_command(cmd, out, sizeof out);
     NOTE("installed sky.pc says %s", out);
     CHECK(rc == 0 && strstr(out, version), "sky.pc's version is %s", version);
+}
+
+/* A host's opaque white quad over the left half of the frame at clip z 0.5
+ * (between near and far in every convention), writing depth. */
+static void host_quad(void)
+{
+    static const char *vs = "#version 330 core\nin vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n";
+    static const char *fs = "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n";
+    GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER), prog = glCreateProgram();
+    glShaderSource(v, 1, &vs, NULL);
+    glShaderSource(f, 1, &fs, NULL);
+    glCompileShader(v);
+    glCompileShader(f);
+    glAttachShader(prog, v);
+    glAttachShader(prog, f);
+    glBindAttribLocation(prog, 0, "p");
+    glLinkProgram(prog);
+    static const float quad[8] = {-1, -1, 0, -1, -1, 1, 0, 1};
+    GLuint vao, buf;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &buf);
+    glBindBuffer(GL_ARRAY_BUFFER, buf);
+    glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    glEnableVertexAttribArray(0);
+    glUseProgram(prog);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glUseProgram(0);
+    glDeleteProgram(prog);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    glDeleteBuffers(1, &buf);
+    glDeleteVertexArrays(1, &vao);
+}
+
+/* Drawn after the opaque scene in each depth convention, the sky keeps
+ * the scene's pixels and fills the rest: depth cleared to 1 with LESS,
+ * reversed-Z cleared to 0 with GREATER, and reversed-Z with a 0..1 clip
+ * range where the context has glClipControl. */
+void test_conventions_sky_after_the_scene(void)
+{
+    enum { W = 64, H = 48 };
+    static const sky_depth modes[3] = {SKY_DEPTH_FAR_ONE, SKY_DEPTH_FAR_ZERO, SKY_DEPTH_FAR_ZERO_CLIP01};
+    static const char *const names[3] = {"far at 1", "reversed-Z", "reversed-Z, 0..1 clip"};
+    for (int k = 0; k < 3; k++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.depth = modes[k];
+        fixture f;
+        if (fixture_open_sized(&f, W, H, 0, SKY_GL_CORE33, &cfg)) {
+            CHECK(0, "fixture");
+            return;
+        }
+        void (*clip_control)(GLenum, GLenum) = (void (*)(GLenum, GLenum))OSMesaGetProcAddress("glClipControl");
+        if (k == 2 && !clip_control) {
+            NOTE("no glClipControl here: %s skipped", names[k]);
+            fixture_close(&f);
+            continue;
+        }
+        if (k == 2) clip_control(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glViewport(0, 0, W, H);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClearDepth(k == 0 ? 1.0 : 0.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(k == 0 ? GL_LESS : GL_GREATER);
+        host_quad();
+        float view[16], proj[16];
+        sky_cli_camera_at(180.0, 20.0, 60.0, W, H, view, proj);
+        sky_result rc = sky_draw(f.s, view, proj);
+        CHECK(rc == SKY_OK, "%s: %s", names[k], sky_last_error(f.s));
+        sky_osmesa_finish(&f.ctx);
+        const unsigned char *px = f.ctx.pixels;
+        int scene_kept = 0, sky_drawn = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                const unsigned char *p = px + 4 * (y * W + x);
+                int white = p[0] == 255 && p[1] == 255 && p[2] == 255;
+                if (x < W / 2) scene_kept += white;
+                else sky_drawn += !white && (p[0] | p[1] | p[2]) != 0;
+            }
+        NOTE("%s: %d of %d scene pixels kept, %d of %d others the sky's", names[k], scene_kept, W * H / 2, sky_drawn,
+             W * H / 2);
+        CHECK(scene_kept == W * H / 2 && sky_drawn == W * H / 2, "%s: the sky behind the scene, everywhere else",
+              names[k]);
+        if (k == 2) clip_control(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glDisable(GL_DEPTH_TEST);
+        fixture_close(&f);
+    }
 }

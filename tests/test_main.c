@@ -35,6 +35,7 @@ int test_skipped;
     X(header_compiles_pedantic)                  \
     X(conventions_left_handed_host)              \
     X(conventions_version_everywhere)            \
+    X(conventions_sky_after_the_scene)           \
     X(validation_dates)                          \
     X(validation_config_fields_named)            \
     X(validation_extreme_aspect_ratio)           \

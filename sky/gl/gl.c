@@ -149,6 +149,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
     SKY_UF("u_view_proj", SKY_U_M4, view_proj),
     SKY_UF("u_viewport", SKY_U_F4, viewport),
+    SKY_UF("u_far_z", SKY_U_F1, far_z),
     SKY_UF("u_night_shift", SKY_U_F1, night_shift),
     SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
@@ -635,6 +636,7 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
     gl->glGetIntegerv(GL_BLEND_DST_ALPHA, &st->blend_dst_alpha);
     gl->glGetIntegerv(GL_BLEND_EQUATION_RGB, &st->blend_eq_rgb);
     gl->glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &st->blend_eq_alpha);
+    gl->glGetIntegerv(GL_DEPTH_FUNC, &st->depth_func);
     if (s->profile == SKY_GL_COMPAT20) {
         /* No VAO: the attribute arrays we use are global state. */
         gl->glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &st->element_buffer);
@@ -707,6 +709,7 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
         gl->glPolygonMode(GL_BACK, (GLenum)st->polygon_mode[1]);
     }
     gl->glDepthMask(st->depth_mask);
+    gl->glDepthFunc((GLenum)st->depth_func);
     gl->glColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
     gl->glBlendFuncSeparate((GLenum)st->blend_src_rgb, (GLenum)st->blend_dst_rgb, (GLenum)st->blend_src_alpha,
                             (GLenum)st->blend_dst_alpha);
@@ -733,7 +736,12 @@ void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao) { s->gl.glDeleteVertex
 void sky_gl_frame_begin(sky_core *s, GLuint vao)
 {
     const sky_gl *gl = &s->gl;
-    gl->glDisable(GL_DEPTH_TEST);
+    if (s->cfg.depth == SKY_DEPTH_NONE) {
+        gl->glDisable(GL_DEPTH_TEST);
+    } else {
+        gl->glEnable(GL_DEPTH_TEST);
+        gl->glDepthFunc(s->cfg.depth == SKY_DEPTH_FAR_ONE ? GL_LEQUAL : GL_GEQUAL);
+    }
     gl->glDisable(GL_CULL_FACE);
     gl->glDisable(GL_STENCIL_TEST);
     gl->glDepthMask(GL_FALSE);
@@ -821,6 +829,7 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
     if (s->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
     gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
     t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
+    t->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
     t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
@@ -845,6 +854,7 @@ void sky_gl_target_end(sky_core *s, const sky_gl_target *t)
     }
     gl->glViewport(t->viewport[0], t->viewport[1], t->viewport[2], t->viewport[3]);
     if (t->scissor) gl->glEnable(GL_SCISSOR_TEST);
+    if (t->depth_test) gl->glEnable(GL_DEPTH_TEST); /* the sky drawn after the scene */
     if (t->discard) gl->glEnable(GL_RASTERIZER_DISCARD);
 }
 

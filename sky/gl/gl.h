@@ -117,7 +117,7 @@ typedef struct sky_gl_state {
     GLfloat clear_color[4];
     GLint textures[4], cube_textures[4]; /* units 0..3: 2D and cube map bindings */
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
-    GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
+    GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha, depth_func;
     GLboolean program_point_size, framebuffer_srgb;
     GLint polygon_mode[2];                /* front, back                        */
     GLint attrib_enabled[SKY_ATTRIBS], attrib_size[SKY_ATTRIBS], attrib_type[SKY_ATTRIBS], attrib_norm[SKY_ATTRIBS],
@@ -132,8 +132,9 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st);
 GLuint sky_gl_vertex_array_create(sky_core *s);
 void sky_gl_vertex_array_bind(sky_core *s, GLuint vao);
 void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao);
-/* The sky's own state for drawing: no depth test or write, no culling or
- * stencil, all colour channels, no blending, filled polygons, no sRGB
+/* The sky's own state for drawing: no depth write, and a depth test only
+ * when it is drawn after the scene (cfg.depth: LEQUAL against a far plane
+ * at 1, GEQUAL at 0), no culling or stencil, all colour channels, no blending, filled polygons, no sRGB
  * conversion by the framebuffer (LDR output is sRGB-encoded by the sky
  * itself, HDR output is linear), its vertex array (vao: CORE33's, 0 in
  * COMPAT20). */
@@ -164,13 +165,13 @@ int sky_gl_is_program(sky_core *s, GLuint program);
 
 /* ---- render targets (the lookup tables) ------------------------------------ */
 /* Rendering into a texture: the framebuffer bindings (draw and read),
- * viewport, scissor and rasterizer-discard state the host had, put back by
- * sky_gl_target_end. Blending, depth, stencil, culling and the colour mask
+ * viewport, scissor, depth-test and rasterizer-discard state before it,
+ * put back by sky_gl_target_end. Blending, depth, stencil, culling and the colour mask
  * are set here too; sky_draw and sky_create restore those with the rest
  * of the host's state. */
 typedef struct sky_gl_target {
     GLint draw, read, viewport[4];
-    GLboolean scissor, discard;
+    GLboolean scissor, discard, depth_test;
 } sky_gl_target;
 /* The framebuffer the tables are rendered through, checked against one
  * of them (probe); 0 with a message when the context cannot render into

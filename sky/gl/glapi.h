@@ -49,6 +49,9 @@ typedef ptrdiff_t GLintptr;
 #define GL_BLEND_SRC_ALPHA 0x80CB
 #define GL_CULL_FACE 0x0B44
 #define GL_DEPTH_TEST 0x0B71
+#define GL_DEPTH_FUNC 0x0B74
+#define GL_LEQUAL 0x0203
+#define GL_GEQUAL 0x0206
 #define GL_DEPTH_WRITEMASK 0x0B72
 #define GL_STENCIL_TEST 0x0B90
 #define GL_VIEWPORT 0x0BA2
@@ -160,6 +163,7 @@ typedef ptrdiff_t GLintptr;
     X(void, glBlendEquation, (GLenum mode))                                                   \
     X(void, glBlendEquationSeparate, (GLenum rgb, GLenum alpha))                              \
     X(void, glDepthMask, (GLboolean flag))                                                    \
+    X(void, glDepthFunc, (GLenum func))                                                       \
     X(void, glColorMask, (GLboolean r, GLboolean g, GLboolean b, GLboolean a))                \
     X(void, glViewport, (GLint x, GLint y, GLsizei w, GLsizei h))                             \
     X(void, glClearColor, (GLfloat r, GLfloat g, GLfloat b, GLfloat a))                       \

@@ -9,9 +9,16 @@ uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south         
 uniform float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
 uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 uniform vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
+uniform float u_far_z;       /* clip z / w of the host's far plane: 1, or for
+                                reversed-Z -1 (or 0 with a 0..1 clip range) */
 uniform float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
 
 const float SKY_PI = 3.14159265;
+
+/* A position on the host's far plane (sky_config.depth): the sky is
+ * farther than anything, so drawn after the scene with the depth test on
+ * it shows only where the scene left the far plane. */
+vec4 sky_at_far(vec4 clip) { return vec4(clip.xy, u_far_z * clip.w, clip.w); }
 
 /* Equidistant fisheye: zenith at the centre, horizon at radius 1, north up,
  * east on the left (looking up). p is the aspect-corrected ndc, |p| <= 1. */

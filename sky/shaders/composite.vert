@@ -7,5 +7,5 @@ SKY_OUT vec2 v_image;
 void main()
 {
     v_image = (a_pos * 0.5 + 0.5) * u_dome_scale;
-    gl_Position = vec4(a_pos, 0.0, 1.0);
+    gl_Position = sky_at_far(vec4(a_pos, 0.0, 1.0));
 }

@@ -34,9 +34,9 @@ void main()
     sky_clouds_vertex(a_dir, v_cloud_layers, v_cloud_upper, v_cloud_shade);
 #endif
     if (u_fisheye > 0.5) {
-        gl_Position = vec4(sky_fisheye_ndc(a_dir) / u_aspect, 0.0, 1.0);
+        gl_Position = sky_at_far(vec4(sky_fisheye_ndc(a_dir) / u_aspect, 0.0, 1.0));
     } else {
         vec4 p = u_view_proj * vec4(a_dir, 0.0);
-        gl_Position = p.xyww;
+        gl_Position = sky_at_far(p);
     }
 }

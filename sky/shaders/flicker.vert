@@ -39,7 +39,7 @@ void main()
      * step: outside the clip volume */
     bool faint = u_output_hdr < 0.5 && v_light * u_exposure < 1.0 / 1024.0;
     if (clip.w <= 0.0 || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
-    gl_Position = clip;
+    gl_Position = sky_at_far(clip);
     /* two pixels of margin: GL 2.0's points without sprites cover the
      * pixels from floor(x) - floor(size / 2), sprites those whose centres
      * lie within size / 2; flicker.frag weighs what is covered */

@@ -96,7 +96,7 @@ void main()
     /* below the horizon, behind the camera or the moon, or too faint:
      * outside the clip volume */
     if (d.y < 0.0 || clip.w <= 0.0 || occulted || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
-    gl_Position = clip;
+    gl_Position = sky_at_far(clip);
     gl_PointSize = 2.0 * k + 1.0;
     v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_viewport.zw + u_viewport.xy;
 }

@@ -12,9 +12,9 @@ void main()
     v_dir = a_dir;
     v_true_dir = sky_unrefract(normalize(a_dir));
     if (u_fisheye > 0.5) {
-        gl_Position = vec4(sky_fisheye_ndc(normalize(a_dir)) / u_aspect, 0.0, 1.0);
+        gl_Position = sky_at_far(vec4(sky_fisheye_ndc(normalize(a_dir)) / u_aspect, 0.0, 1.0));
     } else {
         vec4 p = u_view_proj * vec4(a_dir, 0.0);
-        gl_Position = p.xyww;
+        gl_Position = sky_at_far(p);
     }
 }
