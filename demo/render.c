@@ -74,10 +74,13 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         if (out) {
             char path[4096];
             frame_path(path, sizeof path, out, f + 1, cli->frames);
-            int w = hdr ? sky_osmesa_write_pfm(&ctx, path) : sky_osmesa_write_png(&ctx, path);
+            char werr[4200];
+            int w = hdr ? sky_osmesa_write_pfm(&ctx, path, werr, sizeof werr)
+                        : sky_osmesa_write_png(&ctx, path, werr, sizeof werr);
             if (w) {
-                fprintf(stderr, "sky-render: cannot write %s\n", path);
+                fprintf(stderr, "sky-render: cannot write %s\n", werr);
                 rc = 1;
+                break; /* the next frames would fail alike */
             }
         }
         if (cli->frames > 1) fprintf(stderr, "\rsky-render: frame %d/%d", f + 1, cli->frames);
