@@ -2,7 +2,7 @@
  * sky-render's outputs (README, sky-render): an image reaches its path
  * whole or not at all, a failed write leaves the path as it was, a path
  * that is not a regular file is refused untouched, and any byte of an
- * image not written is exit status 1.
+ * image or of stdout not written is exit status 1.
  */
 #include "test.h"
 
@@ -20,6 +20,7 @@ void test_output_device_node_survives_failed_write(void);
 void test_output_directory_target_untouched(void);
 void test_output_full_disk_keeps_old_file(void);
 void test_output_png_writer_checks_every_write(void);
+void test_output_stdout_errors_exit_1(void);
 
 static const char *tmp_path(const char *name, char *buf, size_t len)
 {
@@ -197,4 +198,25 @@ void test_output_png_writer_checks_every_write(void)
         CHECK(n > 100 && fread(sig, 1, 8, f) == 8 && !memcmp(sig, "\x89PNG\r\n\x1a\n", 8), "a PNG (%ld bytes)", n);
         fclose(f);
     }
+}
+
+void test_output_stdout_errors_exit_1(void)
+{
+    char render[512], dev[512], cmd[2048], out[4096];
+    bin_path("sky-render", render, sizeof render);
+    tmp_path("stdout-full", dev, sizeof dev);
+    if (make_full_device(dev)) {
+        SKIP("mknod not permitted here");
+        return;
+    }
+    const char *args[] = {"--size 16x8 --stats", "--query", "--help"};
+    for (size_t k = 0; k < sizeof args / sizeof args[0]; k++) {
+        snprintf(cmd, sizeof cmd, "%s %s 2>&1 >%s", render, args[k], dev);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 1, "%s with stdout full exits 1 (%d): %s", args[k], rc, out);
+        CHECK(strstr(out, "standard output") != NULL, "%s: the message says what failed: %s", args[k], out);
+    }
+    snprintf(cmd, sizeof cmd, "%s --query >/dev/null 2>&1", render);
+    CHECK(run_command(cmd, out, sizeof out) == 0, "and exits 0 when stdout takes it");
+    unlink(dev);
 }
