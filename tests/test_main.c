@@ -69,6 +69,7 @@ int test_skipped;
     X(output_full_disk_keeps_old_file)           \
     X(output_png_writer_checks_every_write)      \
     X(output_stdout_errors_exit_1)               \
+    X(output_same_file_twice_rejected)           \
     X(docs_no_paths_outside_the_repository)      \
     X(docs_readme_figures_agree)                 \
     X(astro_time_scales)                         \

@@ -21,6 +21,7 @@ void test_output_directory_target_untouched(void);
 void test_output_full_disk_keeps_old_file(void);
 void test_output_png_writer_checks_every_write(void);
 void test_output_stdout_errors_exit_1(void);
+void test_output_same_file_twice_rejected(void);
 
 static const char *tmp_path(const char *name, char *buf, size_t len)
 {
@@ -219,4 +220,26 @@ void test_output_stdout_errors_exit_1(void)
     snprintf(cmd, sizeof cmd, "%s --query >/dev/null 2>&1", render);
     CHECK(run_command(cmd, out, sizeof out) == 0, "and exits 0 when stdout takes it");
     unlink(dev);
+}
+
+void test_output_same_file_twice_rejected(void)
+{
+    char render[512], png[512], pfm[512], cmd[2048], out[4096], buf[64];
+    bin_path("sky-render", render, sizeof render);
+    tmp_path("same.png", png, sizeof png);
+    tmp_path("same.pfm", pfm, sizeof pfm);
+    for (int symbolic = 0; symbolic < 2; symbolic++) {
+        unlink(png);
+        unlink(pfm);
+        CHECK(write_file(png, "untouched") == 0, "write %s", png);
+        CHECK((symbolic ? symlink(png, pfm) : link(png, pfm)) == 0, "%s link", symbolic ? "symbolic" : "hard");
+        snprintf(cmd, sizeof cmd, "%s --size 16x8 --out %s --out-pfm %s 2>&1", render, png, pfm);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 2, "%s link: exit 2 (%d): %s", symbolic ? "symbolic" : "hard", rc, out);
+        CHECK(strstr(out, "--out ") && strstr(out, "--out-pfm") && strstr(out, "same file"),
+              "the message names both options: %s", out);
+        CHECK(read_file(png, buf, sizeof buf) >= 0 && !strcmp(buf, "untouched"), "nothing written");
+    }
+    unlink(png);
+    unlink(pfm);
 }
