@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #define PI 3.14159265358979323846
@@ -64,6 +65,14 @@ static int parse_date(const char *s, double *jd)
 /* Whether name ends in ext (".png"), in any case. The writers take the
  * format from the option, not the name, so a name promising another format
  * (a.jpg holding PNG data) is refused rather than written. */
+/* Identical names, or two names of one existing file. */
+static int same_file(const char *a, const char *b)
+{
+    if (!strcmp(a, b)) return 1;
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
 static int has_extension(const char *name, const char *ext)
 {
     size_t n = strlen(name), e = strlen(ext);
@@ -467,6 +476,15 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
         }
     }
     if (cli->hip_count && !cli->query) return fail(err, len, "--hip: only meaningful with --query");
+    /* Both outputs naming one file (a hard link, or a symbolic link, from
+     * x.pfm to x.png) would keep only the image written last, silently.
+     * The names themselves cannot be equal (.png against .pfm), but the
+     * comparison stays should that rule ever loosen. With --frames the
+     * names written are FILE_0001.png ..., not these, so the check is for
+     * a single frame. */
+    if (cli->out_png && cli->out_pfm && cli->frames == 1 && same_file(cli->out_png, cli->out_pfm))
+        return fail(err, len, "--out '%s' and --out-pfm '%s' are the same file: one would overwrite the other",
+                    cli->out_png, cli->out_pfm);
     /* --date alone: the instant as given; with --time: the time slider
      * sets the local solar time on that date; neither: sky.h's default
      * date, the time slider setting the time of day */

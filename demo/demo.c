@@ -51,7 +51,7 @@ static int headless(const sky_cli *cli, const char *out)
         }
     }
     sky_osmesa_finish(&ctx);
-    if (!rc && sky_osmesa_write_png(&ctx, out)) {
+    if (!rc && sky_osmesa_write_png(&ctx, out, NULL, 0)) {
         fprintf(stderr, "sky-demo: cannot write %s\n", out);
         rc = 1;
     }
@@ -345,7 +345,7 @@ static int save_screenshot(int width, int height, const char *path)
     if (shot.pixels) {
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
-        rc = sky_osmesa_write_png(&shot, path);
+        rc = sky_osmesa_write_png(&shot, path, NULL, 0);
     }
     if (rc)
         fprintf(stderr, "sky-demo: cannot write %s\n", path);

@@ -290,7 +290,7 @@ static int save_frame(const world *w, int width, int height, const char *path)
     if (shot.pixels) {
         w->gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
         w->gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels);
-        rc = sky_osmesa_write_png(&shot, path);
+        rc = sky_osmesa_write_png(&shot, path, NULL, 0);
     }
     free(shot.pixels);
     if (rc) fprintf(stderr, "sky-game: cannot write %s\n", path);

@@ -9,6 +9,7 @@
 #include "sky.h"
 
 #include <stddef.h>
+#include <stdio.h>
 
 typedef struct sky_osmesa {
     void *ctx;       /* OSMesaContext */
@@ -28,12 +29,20 @@ sky_get_proc_address_fn sky_osmesa_loader(void);
 /* Waits for rendering to finish. */
 void sky_osmesa_finish(sky_osmesa *o);
 
-/* Writes the buffer as an 8-bit PNG (top row first). Returns 0 or -1. */
-int sky_osmesa_write_png(const sky_osmesa *o, const char *path);
+/* The writers below put the image in a temporary file beside path and
+ * rename it over path only when every byte was written: a failure leaves
+ * path as it was. A path that exists and is not a regular file (a
+ * directory, a device) is refused and left untouched. */
+/* Writes the buffer as an 8-bit PNG (top row first). Returns 0, or -1 with
+ * err (which may be NULL). */
+int sky_osmesa_write_png(const sky_osmesa *o, const char *path, char *err, size_t err_len);
 /* Writes a float buffer as a PFM (RGB, little-endian, bottom row first as
- * the format wants). Returns 0 or -1. */
-int sky_osmesa_write_pfm(const sky_osmesa *o, const char *path);
+ * the format wants). Returns 0, or -1 with err (which may be NULL). */
+int sky_osmesa_write_pfm(const sky_osmesa *o, const char *path, char *err, size_t err_len);
 /* Writes an 8-bit RGB image (top row first) as a PNG. Returns 0 or -1. */
 int sky_write_png_rgb(const char *path, int width, int height, const unsigned char *rgb);
+/* Encodes a PNG of comp 8-bit channels into f, checking every write and a
+ * final fflush. Returns 0, or -1 with errno. f stays open. */
+int sky_write_png_file(FILE *f, int width, int height, int comp, const unsigned char *px, int stride);
 
 #endif

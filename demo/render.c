@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "osmesa_ctx.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,10 +75,13 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         if (out) {
             char path[4096];
             frame_path(path, sizeof path, out, f + 1, cli->frames);
-            int w = hdr ? sky_osmesa_write_pfm(&ctx, path) : sky_osmesa_write_png(&ctx, path);
+            char werr[4200];
+            int w = hdr ? sky_osmesa_write_pfm(&ctx, path, werr, sizeof werr)
+                        : sky_osmesa_write_png(&ctx, path, werr, sizeof werr);
             if (w) {
-                fprintf(stderr, "sky-render: cannot write %s\n", path);
+                fprintf(stderr, "sky-render: cannot write %s\n", werr);
                 rc = 1;
+                break; /* the next frames would fail alike */
             }
         }
         if (cli->frames > 1) fprintf(stderr, "\rsky-render: frame %d/%d", f + 1, cli->frames);
@@ -94,7 +98,22 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     return rc;
 }
 
-int main(int argc, char **argv)
+/* What --help, --query and --stats print is output like the images: if a
+ * byte of it was not written (a full disk, a closed pipe, >/dev/full) the
+ * run failed. stdout is fully buffered when redirected, so the error often
+ * shows only at this final flush and close. */
+static int finish(int rc)
+{
+    int bad = ferror(stdout);
+    if (fclose(stdout) != 0) bad = 1;
+    if (bad) {
+        fprintf(stderr, "sky-render: cannot write standard output: %s\n", errno ? strerror(errno) : "write error");
+        return rc ? rc : 1;
+    }
+    return rc;
+}
+
+static int run(int argc, char **argv)
 {
     sky_cli cli;
     char err[512];
@@ -131,3 +150,5 @@ int main(int argc, char **argv)
     if (png_pass && (rc = render_pass(&cli, 0, cli.out_png, cli.stats))) return rc;
     return 0;
 }
+
+int main(int argc, char **argv) { return finish(run(argc, argv)); }

@@ -69,6 +69,12 @@ int test_skipped;
     X(cli_no_output_says_so)                     \
     X(cli_help_exits_0)                          \
     X(cli_demo_help_lists_every_key)             \
+    X(output_device_node_survives_failed_write)  \
+    X(output_directory_target_untouched)         \
+    X(output_full_disk_keeps_old_file)           \
+    X(output_png_writer_checks_every_write)      \
+    X(output_stdout_errors_exit_1)               \
+    X(output_same_file_twice_rejected)           \
     X(docs_no_paths_outside_the_repository)      \
     X(docs_readme_figures_agree)                 \
     X(astro_time_scales)                         \
