@@ -70,7 +70,9 @@ void test_bench_preset_table_in_rounds(void)
         CHECK(us > 0.0, "a preset's sky_update us is measured (%.3f): %.80s", us, r);
         presets++;
     }
-    CHECK(presets == 24, "8 presets, noon over hillaire and preetham and at two dome divisors, in 2 profiles (%d rows)",
+    CHECK(presets == 28,
+          "8 presets, noon over hillaire and preetham, at two dome divisors and before and after a scene, in 2 "
+          "profiles (%d rows)",
           presets);
 
     /* Roden & Parberry's shader, as printed and packed, in both profiles */

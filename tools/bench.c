@@ -47,7 +47,7 @@
 #include <time.h>
 #include <unistd.h>
 
-enum { MAX_ROUNDS = 50, MAX_SUBJECTS = 16 };
+enum { MAX_ROUNDS = 50, MAX_SUBJECTS = 24 };
 
 /* ---- full-screen draws of our own: the baseline and Roden & Parberry's shader ---------------- */
 
@@ -427,8 +427,49 @@ static void make_current(const sky_osmesa *o)
 /* A sky described by command-line style options, in a new context. With
  * extras, also the per-layer GPU times and a table rebuild, measured on a
  * profiling sky that is gone before the measured one is made. */
+/* A host's opaque scene over the left half of the frame: depth 0.75
+ * (clip z 0.5), written once; the sky never writes depth, so it stays for
+ * every frame timed after it. */
+static void cover_left_half(int core)
+{
+    static const char *const vs[2] = {"#version 110\nattribute vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n",
+                                      "#version 330 core\nin vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n"};
+    static const char *const fs[2] = {"#version 110\nvoid main(){gl_FragColor=vec4(0.2);}\n",
+                                      "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(0.2);}\n"};
+    static const char *const attribs[1] = {"p"};
+    quad q;
+    memset(&q, 0, sizeof q);
+    q.core = core;
+    q.prog = program(&vs[core], 1, &fs[core], 1, attribs, 1);
+    if (!q.prog) return;
+    static const float v[8] = {-1, -1, 0, -1, -1, 1, 0, 1};
+    static const int sizes[1] = {2};
+    quad_vertices(&q, v, 2, sizes, 1);
+    glUseProgram(q.prog);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_DEPTH_TEST);
+    glFinish();
+    quad_destroy(&q);
+}
+
+/* Rows named "PRESET [OPTIONS] | scene over half, sky first|after": the
+ * scene drawn first, then the sky without (first) or with (after) the
+ * depth test. Returns the depth mode and cuts the name at the bar. */
+static sky_depth scene_row(char *words, int *covered)
+{
+    char *bar = strchr(words, '|');
+    *covered = bar != NULL;
+    if (!bar) return SKY_DEPTH_NONE;
+    *bar = '\0';
+    return strstr(bar + 1, "after") ? SKY_DEPTH_FAR_ONE : SKY_DEPTH_NONE;
+}
+
 static int subject_sky(subject *sub, int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h,
-                       int frames, int extras)
+                       int frames, int extras, sky_depth depth, int covered)
 {
     char err[512];
     memset(sub, 0, sizeof *sub);
@@ -447,6 +488,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     cli->height = h;
     sky_cli_camera(cli, sub->view, sub->proj);
     sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    cfg.depth = depth;
     for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
     out->update_us = -1.0;
     double *lt = extras ? malloc(sizeof(double) * (size_t)frames * SKY_LAYER_COUNT) : NULL;
@@ -494,6 +536,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     }
     sky_set_params(sub->s, &cli->params);
     sky_set_observer(sub->s, &cli->observer);
+    if (covered) cover_left_half(gl == SKY_GL_CORE33);
     sky_draw(sub->s, sub->view, sub->proj); /* shader JIT */
     glFinish();
     /* lookup tables: what creation built (reported by the first draw) */
@@ -606,7 +649,10 @@ typedef struct rounds_info {
  * rounds of its figures. */
 static int run_rounds(subject *subs, int n, int rounds, int frames, rounds_info *info)
 {
-    if (n < 2 || n > MAX_SUBJECTS) return -1;
+    if (n < 2 || n > MAX_SUBJECTS) {
+        fprintf(stderr, "sky-bench: %d rows in one round; at most %d\n", n, MAX_SUBJECTS);
+        return -1;
+    }
     info->n = rounds;
     for (int k = 0; k < rounds; k++) {
         double wall0 = sky_cli_now_ms(), busy0 = machine_busy_s(), own0 = own_busy_s();
@@ -644,7 +690,7 @@ static int run_rounds(subject *subs, int n, int rounds, int frames, rounds_info 
 static int bench_args(int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h, int frames, row *out)
 {
     subject sub;
-    int rc = subject_sky(&sub, argc, argv, name, gl, w, h, frames, 1);
+    int rc = subject_sky(&sub, argc, argv, name, gl, w, h, frames, 1, SKY_DEPTH_NONE, 0);
     if (!rc) {
         sub.r.frame_ms = subject_time(&sub, frames);
         *out = sub.r;
@@ -715,11 +761,12 @@ static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, 
             /* a row is a preset, perhaps with options after it
              * ("noon --atmosphere hillaire"): split at the spaces */
             char words[128], *argv[8] = {"sky-bench", "--preset"};
-            int argc = 2;
+            int argc = 2, covered = 0;
             snprintf(words, sizeof words, "%s", presets[i - 3]);
+            sky_depth depth = scene_row(words, &covered);
             for (char *t = strtok(words, " "); t && argc < 7; t = strtok(NULL, " ")) argv[argc++] = t;
             argv[argc] = NULL;
-            rc = subject_sky(&subs[i], argc, argv, presets[i - 3], gl, w, h, frames, 0);
+            rc = subject_sky(&subs[i], argc, argv, presets[i - 3], gl, w, h, frames, 0, depth, covered);
         }
     if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
     if (!rc) {
@@ -809,7 +856,7 @@ static int bench_atmosphere(sky_gl_profile gl, int w, int h, int frames, int rou
     for (int a = 0; a < ATMO_SETTINGS && !rc; a++) {
         char *argv[12] = {"sky-bench", "--features", "sun", "--time", "0.35"};
         int argc = setting_argv(&atmo_settings[a], argv, 5);
-        rc = subject_sky(&subs[1 + a], argc, argv, atmo_settings[a].path, gl, w, h, frames, 1);
+        rc = subject_sky(&subs[1 + a], argc, argv, atmo_settings[a].path, gl, w, h, frames, 1, SKY_DEPTH_NONE, 0);
     }
     if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
     for (int a = 0; a < ATMO_SETTINGS && !rc; a++) {
@@ -1216,13 +1263,15 @@ int main(int argc, char **argv)
     atmo_row atmo[2 * ATMO_SETTINGS];
     int natmo = 0;
     /* the presets; noon's clouds over the physical paths; noon's dome at
-     * every pixel and at half the resolution (the cost of sharper clouds) */
+     * every pixel and at half the resolution (the cost of sharper clouds);
+     * noon drawn before and after a scene covering half the frame */
     static const char *const presets[] = {"minimal", "noon",    "overcast", "sunset",
                                           "starry",  "moonlit", "eclipse",  "solar-eclipse",
                                           "noon --atmosphere hillaire", "noon --atmosphere preetham",
-                                          "noon --dome-divisor 1", "noon --dome-divisor 2"};
+                                          "noon --dome-divisor 1", "noon --dome-divisor 2",
+                                          "noon | scene over half, sky first", "noon | scene over half, sky after"};
     enum { NP = sizeof presets / sizeof presets[0] };
-    row rows[2 * (NP + 2)];
+    static row rows[2 * (NP + 2)]; /* (static: gcc cannot see the loops fill it) */
     /* the baseline's medians over the rounds of the preset table and of
      * the atmosphere table, and its per-round figures in the first */
     double base[2] = {0, 0}, base_atmo[2] = {0, 0}, night[2][NIGHT_COUNT];
