@@ -1,0 +1,63 @@
+/*
+ * Hostile hosts (issue "Reliability II", items 4, 5, 6, 8): a GL loader
+ * missing an entry point, a context whose glGetError never drains, texture
+ * overrides that are a FIFO or a directory, and a paletted PNG indexing
+ * past its palette.
+ */
+#include "test.h"
+#include "sky_internal.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+void test_hostile_missing_gl_entry_point(void);
+
+/* The wrapping loaders' settings: a loader is a bare function pointer, so
+ * what it drops or fakes lives here (test program state, not library). */
+static const char *hidden_name;
+
+static sky_gl_proc loader_hiding_one(const char *name)
+{
+    if (hidden_name && !strcmp(name, hidden_name)) return NULL;
+    return sky_osmesa_loader()(name);
+}
+
+void test_hostile_missing_gl_entry_point(void)
+{
+    /* every name sky_gl_init requires, in its loading order */
+#define NAME_OF(ret, name, params) #name,
+    static const char *const required[] = {SKY_GL_FUNCS_20(NAME_OF)};
+#undef NAME_OF
+    static const sky_gl_profile kinds[2] = {SKY_GL_CORE33, SKY_GL_COMPAT20};
+    char err[512];
+    for (int k = 0; k < 2; k++) {
+        sky_osmesa ctx;
+        if (sky_osmesa_create(&ctx, 16, 16, kinds[k], 0, err, sizeof err)) {
+            CHECK(0, "%s", err);
+            return;
+        }
+        int bad = 0;
+        for (size_t i = 0; i < sizeof required / sizeof required[0]; i++) {
+            hidden_name = required[i];
+            sky_config cfg;
+            memset(&cfg, 0, sizeof cfg);
+            cfg.get_proc_address = loader_hiding_one;
+            err[0] = '\0';
+            sky *s = sky_create(&cfg, err, sizeof err);
+            if (s || !strstr(err, required[i])) bad++;
+            CHECK(s == NULL && strstr(err, required[i]), "%s context without %s: %s", k ? "compat" : "core",
+                  required[i], s ? "created" : err);
+            sky_destroy(s);
+        }
+        hidden_name = NULL;
+        NOTE("%s context: %zu loaders each missing one entry point: %d wrong", k ? "compat" : "core",
+             sizeof required / sizeof required[0], bad);
+        sky_osmesa_destroy(&ctx);
+    }
+}
