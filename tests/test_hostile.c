@@ -17,14 +17,30 @@
 #include <unistd.h>
 
 void test_hostile_missing_gl_entry_point(void);
+void test_hostile_context_lost(void);
 
 /* The wrapping loaders' settings: a loader is a bare function pointer, so
  * what it drops or fakes lives here (test program state, not library). */
 static const char *hidden_name;
+static long lost_calls;
 
 static sky_gl_proc loader_hiding_one(const char *name)
 {
     if (hidden_name && !strcmp(name, hidden_name)) return NULL;
+    return sky_osmesa_loader()(name);
+}
+
+/* GL_CONTEXT_LOST forever, as a lost context reports it; after a million
+ * calls it gives in, so that a library looping on it fails the test
+ * instead of hanging the suite. */
+static GLenum fake_get_error_lost(void)
+{
+    return ++lost_calls > 1000000 ? GL_NO_ERROR : 0x0507;
+}
+
+static sky_gl_proc loader_context_lost(const char *name)
+{
+    if (!strcmp(name, "glGetError")) return (sky_gl_proc)fake_get_error_lost;
     return sky_osmesa_loader()(name);
 }
 
@@ -60,4 +76,26 @@ void test_hostile_missing_gl_entry_point(void)
              sizeof required / sizeof required[0], bad);
         sky_osmesa_destroy(&ctx);
     }
+}
+
+void test_hostile_context_lost(void)
+{
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_AUTO, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.get_proc_address = loader_context_lost;
+    lost_calls = 0;
+    err[0] = '\0';
+    sky *s = sky_create(&cfg, err, sizeof err);
+    NOTE("glGetError called %ld times -> %s", lost_calls, s ? "created?!" : err);
+    CHECK(s == NULL, "a context whose errors never drain is refused");
+    CHECK(strstr(err, "0x0507") != NULL, "the message names the error: %s", err);
+    CHECK(lost_calls <= 1000, "glGetError is asked a bounded number of times, not %ld", lost_calls);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
 }

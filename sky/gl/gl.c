@@ -21,6 +21,27 @@ static int parse_version(const char *v)
     return major * 10 + minor;
 }
 
+/* Reads and so clears the pending GL errors. GL keeps a few error flags,
+ * each cleared when read, so a handful of calls drain them; but a lost
+ * context (GL_CONTEXT_LOST, GL 4.5 / KHR_robustness) may report on every
+ * call and never GL_NO_ERROR, so the reading stops after a bound. Returns
+ * GL_NO_ERROR, or the error still reported after it. */
+static GLenum drain_errors(const sky_gl *gl)
+{
+    enum { MAX_READS = 64 };
+    GLenum e = GL_NO_ERROR;
+    for (int i = 0; i < MAX_READS; i++)
+        if ((e = gl->glGetError()) == GL_NO_ERROR) break;
+    return e;
+}
+
+/* The message for errors that drain_errors could not clear. */
+static int undrained(GLenum e, char *err, size_t err_len)
+{
+    sky_format(err, err_len, "glGetError keeps returning 0x%04x (a lost GL context?)", e);
+    return -1;
+}
+
 /* Whether a compatibility context's extension string names ext (a whole
  * word of it). */
 static int has_extension(const sky_gl *gl, const char *ext)
@@ -36,7 +57,7 @@ static int has_extension(const sky_gl *gl, const char *ext)
  * through EXT_framebuffer_object, whose entry points may carry the EXT
  * suffix, and binds one framebuffer for drawing and reading alike; NPOT
  * textures need ARB_texture_non_power_of_two there. */
-static void detect_caps(sky_core *s, int gl_ver)
+static GLenum detect_caps(sky_core *s, int gl_ver)
 {
     sky_gl *gl = &s->gl;
     sky_gl_caps *caps = &s->caps;
@@ -44,7 +65,7 @@ static void detect_caps(sky_core *s, int gl_ver)
     if (s->profile == SKY_GL_CORE33) {
         caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = caps->pixel_buffers = 1;
         caps->framebuffer_srgb = 1;
-        return;
+        return GL_NO_ERROR;
     }
     caps->pixel_buffers = gl_ver >= 21 || has_extension(gl, "GL_ARB_pixel_buffer_object");
     caps->framebuffer_srgb = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_sRGB") ||
@@ -65,7 +86,7 @@ static void detect_caps(sky_core *s, int gl_ver)
                             gl->glBindFramebuffer && gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus;
     caps->separate_framebuffers = arb_fbo || has_extension(gl, "GL_EXT_framebuffer_blit");
     caps->npot = gl_ver >= 30 || has_extension(gl, "GL_ARB_texture_non_power_of_two");
-    while (gl->glGetError() != GL_NO_ERROR) {}
+    return drain_errors(gl);
 }
 
 int sky_gl_init(sky_core *s, char *err, size_t err_len)
@@ -86,7 +107,8 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
 #undef SKY_GL_LOAD_OPT
 
     const sky_gl *gl = &s->gl;
-    while (gl->glGetError() != GL_NO_ERROR) {} /* the host's old errors are not ours */
+    GLenum e = drain_errors(gl); /* the host's old errors are not ours */
+    if (e != GL_NO_ERROR) return undrained(e, err, err_len);
     const char *version = (const char *)gl->glGetString(GL_VERSION);
     int gl_ver = parse_version(version);
     if (gl_ver == 0) {
@@ -102,14 +124,14 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
      * asked for (Mesa under version overrides complains on stderr when it
      * is). Some drivers without GLSL return NULL: treated as GLSL 1.10. */
     int glsl_ver = gl_ver >= 33 ? parse_version((const char *)gl->glGetString(GL_SHADING_LANGUAGE_VERSION)) : 11;
-    while (gl->glGetError() != GL_NO_ERROR) {}
+    if ((e = drain_errors(gl)) != GL_NO_ERROR) return undrained(e, err, err_len);
 
     int is_core_context = 0;
     if (gl_ver >= 32) {
         GLint mask = 0;
         gl->glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
         is_core_context = (mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
-        while (gl->glGetError() != GL_NO_ERROR) {}
+        if ((e = drain_errors(gl)) != GL_NO_ERROR) return undrained(e, err, err_len);
     }
     int can_core = gl_ver >= 33 && glsl_ver >= 33 && gl->glGenVertexArrays && gl->glBindVertexArray &&
                    gl->glDeleteVertexArrays && gl->glGenFramebuffers && gl->glBindFramebuffer &&
@@ -135,7 +157,7 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
         }
     }
     s->profile = want;
-    detect_caps(s, gl_ver);
+    if ((e = detect_caps(s, gl_ver)) != GL_NO_ERROR) return undrained(e, err, err_len);
     return 0;
 }
 
@@ -863,12 +885,14 @@ int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h
     for (int i = 0; i < 3; i++) gl->glPixelStorei(pack_names[i], 0);
     gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
     gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    while (gl->glGetError() != GL_NO_ERROR) {}
-    sky_gl_target t;
-    sky_gl_target_begin(s, fbo, source, w, h, &t);
-    gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
-    GLenum e = gl->glGetError();
-    sky_gl_target_end(s, &t);
+    GLenum e = drain_errors(gl); /* an error that never clears: no read-back to trust */
+    if (e == GL_NO_ERROR) {
+        sky_gl_target t;
+        sky_gl_target_begin(s, fbo, source, w, h, &t);
+        gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+        e = gl->glGetError();
+        sky_gl_target_end(s, &t);
+    }
     for (int i = 0; i < 4; i++) gl->glPixelStorei(pack_names[i], pack[i]);
     gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
     if (e == GL_NO_ERROR)
