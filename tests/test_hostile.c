@@ -18,6 +18,8 @@
 
 void test_hostile_missing_gl_entry_point(void);
 void test_hostile_context_lost(void);
+void test_hostile_fifo_override(void);
+void test_hostile_directory_override(void);
 
 /* The wrapping loaders' settings: a loader is a bare function pointer, so
  * what it drops or fakes lives here (test program state, not library). */
@@ -98,4 +100,97 @@ void test_hostile_context_lost(void)
     CHECK(lost_calls <= 1000, "glGetError is asked a bounded number of times, not %ld", lost_calls);
     sky_destroy(s);
     sky_osmesa_destroy(&ctx);
+}
+
+/* sky_create with texture_dir = dir; returns the sky (NULL on failure,
+ * err set) and the time it took. */
+static sky *create_with_dir(const char *dir, char *err, size_t err_len, sky_osmesa *ctx, double *seconds)
+{
+    if (sky_osmesa_create(ctx, 16, 16, SKY_GL_AUTO, 0, err, err_len)) {
+        CHECK(0, "%s", err);
+        ctx->ctx = NULL;
+        return NULL;
+    }
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.texture_dir = dir;
+    cfg.get_proc_address = sky_osmesa_loader();
+    err[0] = '\0';
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    sky *s = sky_create(&cfg, err, err_len);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    *seconds = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    return s;
+}
+
+void test_hostile_fifo_override(void)
+{
+    char dir[] = "/tmp/sky-fifo-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp");
+        return;
+    }
+    char path[128];
+    snprintf(path, sizeof path, "%s/clouds.png", dir);
+    if (mkfifo(path, 0600)) {
+        CHECK(0, "mkfifo %s", path);
+        rmdir(dir);
+        return;
+    }
+    /* A library that blocks opening the FIFO would hang the suite: a
+     * child (no GL in it) opens the write end after 5 s, which releases
+     * such an open, and the time taken then fails the test. */
+    pid_t writer = fork();
+    if (writer == 0) {
+        sleep(5);
+        int fd = open(path, O_WRONLY | O_NONBLOCK);
+        if (fd >= 0) close(fd);
+        _exit(0);
+    }
+    char err[512];
+    sky_osmesa ctx;
+    double seconds = 0.0;
+    sky *s = create_with_dir(dir, err, sizeof err, &ctx, &seconds);
+    NOTE("FIFO override: %.2f s -> %s", seconds, s ? "created?!" : err);
+    CHECK(s == NULL && strstr(err, "clouds.png"), "a FIFO override is refused, naming it: %s", err);
+    CHECK(seconds < 2.0, "sky_create returns promptly, not after %.1f s", seconds);
+    sky_destroy(s);
+    if (ctx.ctx) sky_osmesa_destroy(&ctx);
+    if (writer > 0) {
+        kill(writer, SIGKILL);
+        waitpid(writer, NULL, 0);
+    }
+    remove(path);
+    rmdir(dir);
+}
+
+void test_hostile_directory_override(void)
+{
+    char dir[] = "/tmp/sky-dir-XXXXXX";
+    if (!mkdtemp(dir)) {
+        CHECK(0, "mkdtemp");
+        return;
+    }
+    char path[128];
+    snprintf(path, sizeof path, "%s/clouds.png", dir);
+    CHECK(mkdir(path, 0700) == 0, "mkdir %s", path);
+    char err[512];
+    sky_osmesa ctx;
+    double seconds = 0.0;
+    sky *s = create_with_dir(dir, err, sizeof err, &ctx, &seconds);
+    NOTE("directory override -> %s", s ? "created?!" : err);
+    CHECK(s == NULL && strstr(err, "clouds.png") && strstr(err, "directory"),
+          "a directory named clouds.png is reported as one: %s", err);
+    sky_destroy(s);
+    if (ctx.ctx) sky_osmesa_destroy(&ctx);
+    /* a dangling symlink is an absent override: the embedded one is used */
+    rmdir(path);
+    CHECK(symlink("/nonexistent/sky-no-such-file.png", path) == 0, "symlink");
+    s = create_with_dir(dir, err, sizeof err, &ctx, &seconds);
+    CHECK(s != NULL, "a dangling symlink falls back to the embedded texture: %s", err);
+    sky_destroy(s);
+    if (ctx.ctx) sky_osmesa_destroy(&ctx);
+    remove(path);
+    rmdir(dir);
 }

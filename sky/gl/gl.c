@@ -3,11 +3,21 @@
  * detection, program building with a version prologue, texture and buffer
  * helpers, and saving/restoring the host's GL state around sky_draw.
  */
+/* open, fstat, O_NONBLOCK for the texture overrides (POSIX.1-2008) */
+#if !defined(_WIN32) && !defined(_POSIX_C_SOURCE)
+#define _POSIX_C_SOURCE 200809L
+#endif
 #include "gl.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#if !defined(_WIN32)
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
 
 /* Parses "M.m..." after any leading non-digits ("OpenGL ES 3.0", "4.5 (Core
  * Profile) Mesa"). Returns major*10+minor, or 0 when the string is unusable. */
@@ -477,7 +487,9 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
 }
 
 /* Reads an override file with a hard size cap: hostile files never cause a
- * large allocation. Returns NULL if absent. */
+ * large allocation. Returns NULL if absent (no such name, or a dangling
+ * symlink: both mean "no override"), or NULL with *failed set and a
+ * message naming the file. */
 static unsigned char *read_override(const char *dir, const char *name, size_t *size, char *err, size_t err_len,
                                     int *failed)
 {
@@ -491,14 +503,56 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
         *failed = 1;
         return NULL;
     }
+#if defined(_WIN32)
     FILE *f = fopen(path, "rb");
     if (!f) return NULL; /* no override for this one */
     unsigned char *buf = malloc(MAX_FILE);
     size_t got = buf ? fread(buf, 1, MAX_FILE, f) : 0;
     int too_big = buf && got == MAX_FILE && fgetc(f) != EOF;
+    int read_error = ferror(f);
     fclose(f);
-    if (!buf || too_big || got == 0) {
-        sky_format(err, err_len, "%s: %s", path, !buf ? "out of memory" : too_big ? "larger than 16 MiB" : "empty file");
+#else
+    /* Non-blocking: opening a FIFO for reading otherwise waits for a
+     * writer, which may never come (sky_create hung on one). Whatever is
+     * not a regular file (FIFO, directory, device) is refused by fstat
+     * before a byte is read. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == ENOENT || errno == ENOTDIR) return NULL; /* no override for this one */
+        sky_format(err, err_len, "%s: cannot open: %s", path, strerror(errno));
+        *failed = 1;
+        return NULL;
+    }
+    struct stat st;
+    int stat_failed = fstat(fd, &st) != 0;
+    if (stat_failed || !S_ISREG(st.st_mode)) {
+        sky_format(err, err_len, "%s: %s, not a PNG file", path,
+                   stat_failed            ? "cannot be examined (fstat failed)"
+                   : S_ISDIR(st.st_mode)  ? "a directory"
+                   : S_ISFIFO(st.st_mode) ? "a FIFO"
+                                          : "not a regular file");
+        close(fd);
+        *failed = 1;
+        return NULL;
+    }
+    unsigned char *buf = st.st_size <= MAX_FILE ? malloc(MAX_FILE) : NULL;
+    size_t got = 0;
+    int too_big = st.st_size > MAX_FILE, read_error = 0;
+    while (buf && got < MAX_FILE) {
+        ssize_t r = read(fd, buf + got, MAX_FILE - got);
+        if (r < 0 && errno == EINTR) continue;
+        if (r < 0) read_error = 1;
+        if (r <= 0) break;
+        got += (size_t)r;
+    }
+    /* a file grown past the cap since fstat */
+    unsigned char extra;
+    if (buf && got == MAX_FILE && read(fd, &extra, 1) == 1) too_big = 1;
+    close(fd);
+#endif
+    if (!buf || too_big || read_error || got == 0) {
+        sky_format(err, err_len, "%s: %s", path,
+                   too_big ? "larger than 16 MiB" : !buf ? "out of memory" : read_error ? "read error" : "empty file");
         free(buf);
         *failed = 1;
         return NULL;
