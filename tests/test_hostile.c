@@ -20,6 +20,7 @@ void test_hostile_missing_gl_entry_point(void);
 void test_hostile_context_lost(void);
 void test_hostile_fifo_override(void);
 void test_hostile_directory_override(void);
+void test_hostile_palette_overrun(void);
 
 /* The wrapping loaders' settings: a loader is a bare function pointer, so
  * what it drops or fakes lives here (test program state, not library). */
@@ -193,4 +194,106 @@ void test_hostile_directory_override(void)
     if (ctx.ctx) sky_osmesa_destroy(&ctx);
     remove(path);
     rmdir(dir);
+}
+
+/* ---- a paletted PNG written by hand ------------------------------------- */
+
+static unsigned long crc32_of(const unsigned char *p, size_t n)
+{
+    unsigned long c = 0xffffffffUL;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xedb88320UL & (0UL - (c & 1UL)));
+    }
+    return c ^ 0xffffffffUL;
+}
+
+static size_t put32(unsigned char *p, unsigned long v)
+{
+    p[0] = (unsigned char)(v >> 24);
+    p[1] = (unsigned char)(v >> 16);
+    p[2] = (unsigned char)(v >> 8);
+    p[3] = (unsigned char)v;
+    return 4;
+}
+
+static size_t put_chunk(unsigned char *out, const char *type, const unsigned char *data, size_t len)
+{
+    size_t n = put32(out, (unsigned long)len);
+    memcpy(out + n, type, 4);
+    if (len) memcpy(out + n + 4, data, len);
+    n += 4 + len;
+    n += put32(out + n, crc32_of(out + 4, 4 + len));
+    return n;
+}
+
+/* A 256x1 8-bit paletted PNG whose pixels are the indices 0..255 and
+ * whose PLTE has one entry (red): 255 of its pixels index past it. The
+ * image data is a stored (uncompressed) deflate block. Returns its size;
+ * out holds at least 512 bytes. */
+static size_t palette_overrun_png(unsigned char *out)
+{
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    size_t n = 0;
+    memcpy(out, sig, 8);
+    n += 8;
+    unsigned char ihdr[13] = {0, 0, 1, 0, 0, 0, 0, 1, 8, 3, 0, 0, 0};
+    n += put_chunk(out + n, "IHDR", ihdr, sizeof ihdr);
+    static const unsigned char plte[3] = {255, 0, 0};
+    n += put_chunk(out + n, "PLTE", plte, sizeof plte);
+    unsigned char raw[257];
+    raw[0] = 0; /* filter: none */
+    for (int i = 0; i < 256; i++) raw[1 + i] = (unsigned char)i;
+    unsigned char z[2 + 5 + sizeof raw + 4];
+    size_t zn = 0;
+    z[zn++] = 0x78;
+    z[zn++] = 0x01;
+    z[zn++] = 0x01; /* final stored block */
+    z[zn++] = (unsigned char)(sizeof raw & 0xff);
+    z[zn++] = (unsigned char)(sizeof raw >> 8);
+    z[zn++] = (unsigned char)(~sizeof raw & 0xff);
+    z[zn++] = (unsigned char)((~sizeof raw >> 8) & 0xff);
+    memcpy(z + zn, raw, sizeof raw);
+    zn += sizeof raw;
+    unsigned long a = 1, b = 0;
+    for (size_t i = 0; i < sizeof raw; i++) {
+        a = (a + raw[i]) % 65521UL;
+        b = (b + a) % 65521UL;
+    }
+    zn += put32(z + zn, b << 16 | a);
+    n += put_chunk(out + n, "IDAT", z, zn);
+    n += put_chunk(out + n, "IEND", NULL, 0);
+    return n;
+}
+
+/* Fills a stretch of stack with a pattern, so that a decoder reading a
+ * palette it never wrote finds that pattern rather than chance zeros. */
+static void dirty_stack(void)
+{
+    volatile unsigned char junk[64 * 1024];
+    for (size_t i = 0; i < sizeof junk; i++) junk[i] = 0xa5;
+}
+
+void test_hostile_palette_overrun(void)
+{
+    unsigned char png[512];
+    size_t size = palette_overrun_png(png);
+    dirty_stack();
+    unsigned char *rgba = NULL;
+    char err[256] = "";
+    int rc = sky_image_decode(png, size, 256, 1, &rgba, "palette overrun", err, sizeof err);
+    if (rc != 0) {
+        /* refusing the file is also an answer the issue accepts */
+        CHECK(rgba == NULL && err[0], "a refused file returns no pixels and a reason");
+        NOTE("refused: %s", err);
+        return;
+    }
+    CHECK(rgba[0] == 255 && rgba[1] == 0 && rgba[2] == 0 && rgba[3] == 255, "index 0 is the palette's red: %d %d %d %d",
+          rgba[0], rgba[1], rgba[2], rgba[3]);
+    int wrong = 0;
+    for (int i = 1; i < 256; i++)
+        if (rgba[4 * i] || rgba[4 * i + 1] || rgba[4 * i + 2] || rgba[4 * i + 3] != 255) wrong++;
+    CHECK(wrong == 0, "%d of the 255 indices past the palette decode to something other than opaque black "
+          "(pixel 1: %d %d %d %d)", wrong, rgba[4], rgba[5], rgba[6], rgba[7]);
+    sky_png_free(rgba);
 }

@@ -115,6 +115,7 @@ int test_skipped;
     X(hostile_context_lost)                      \
     X(hostile_fifo_override)                     \
     X(hostile_directory_override)                \
+    X(hostile_palette_overrun)                   \
     X(atmosphere_paths_finite_for_every_sun_position) \
     X(atmosphere_clear_sky_colours)              \
     X(atmosphere_shaders_match_cpu_twins)        \
