@@ -122,6 +122,11 @@ int test_skipped;
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
     X(reliability_soak_10000_frames)             \
+    X(hostile_missing_gl_entry_point)            \
+    X(hostile_context_lost)                      \
+    X(hostile_fifo_override)                     \
+    X(hostile_directory_override)                \
+    X(hostile_palette_overrun)                   \
     X(atmosphere_paths_finite_for_every_sun_position) \
     X(atmosphere_clear_sky_colours)              \
     X(atmosphere_shaders_match_cpu_twins)        \

@@ -3,11 +3,21 @@
  * detection, program building with a version prologue, texture and buffer
  * helpers, and saving/restoring the host's GL state around sky_draw.
  */
+/* open, fstat, O_NONBLOCK for the texture overrides (POSIX.1-2008) */
+#if !defined(_WIN32) && !defined(_POSIX_C_SOURCE)
+#define _POSIX_C_SOURCE 200809L
+#endif
 #include "gl.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#if !defined(_WIN32)
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
 
 /* Parses "M.m..." after any leading non-digits ("OpenGL ES 3.0", "4.5 (Core
  * Profile) Mesa"). Returns major*10+minor, or 0 when the string is unusable. */
@@ -19,6 +29,27 @@ static int parse_version(const char *v)
     if (sscanf(v, "%d.%d", &major, &minor) != 2 || major < 1 || minor < 0) return 0;
     if (minor > 9) minor = 9;
     return major * 10 + minor;
+}
+
+/* Reads and so clears the pending GL errors. GL keeps a few error flags,
+ * each cleared when read, so a handful of calls drain them; but a lost
+ * context (GL_CONTEXT_LOST, GL 4.5 / KHR_robustness) may report on every
+ * call and never GL_NO_ERROR, so the reading stops after a bound. Returns
+ * GL_NO_ERROR, or the error still reported after it. */
+static GLenum drain_errors(const sky_gl *gl)
+{
+    enum { MAX_READS = 64 };
+    GLenum e = GL_NO_ERROR;
+    for (int i = 0; i < MAX_READS; i++)
+        if ((e = gl->glGetError()) == GL_NO_ERROR) break;
+    return e;
+}
+
+/* The message for errors that drain_errors could not clear. */
+static int undrained(GLenum e, char *err, size_t err_len)
+{
+    sky_format(err, err_len, "glGetError keeps returning 0x%04x (a lost GL context?)", e);
+    return -1;
 }
 
 /* Whether a compatibility context's extension string names ext (a whole
@@ -36,7 +67,7 @@ static int has_extension(const sky_gl *gl, const char *ext)
  * through EXT_framebuffer_object, whose entry points may carry the EXT
  * suffix, and binds one framebuffer for drawing and reading alike; NPOT
  * textures need ARB_texture_non_power_of_two there. */
-static void detect_caps(sky_core *s, int gl_ver)
+static GLenum detect_caps(sky_core *s, int gl_ver)
 {
     sky_gl *gl = &s->gl;
     sky_gl_caps *caps = &s->caps;
@@ -44,7 +75,7 @@ static void detect_caps(sky_core *s, int gl_ver)
     if (s->profile == SKY_GL_CORE33) {
         caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = caps->pixel_buffers = 1;
         caps->framebuffer_srgb = 1;
-        return;
+        return GL_NO_ERROR;
     }
     caps->pixel_buffers = gl_ver >= 21 || has_extension(gl, "GL_ARB_pixel_buffer_object");
     caps->framebuffer_srgb = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_sRGB") ||
@@ -65,7 +96,7 @@ static void detect_caps(sky_core *s, int gl_ver)
                             gl->glBindFramebuffer && gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus;
     caps->separate_framebuffers = arb_fbo || has_extension(gl, "GL_EXT_framebuffer_blit");
     caps->npot = gl_ver >= 30 || has_extension(gl, "GL_ARB_texture_non_power_of_two");
-    while (gl->glGetError() != GL_NO_ERROR) {}
+    return drain_errors(gl);
 }
 
 int sky_gl_init(sky_core *s, char *err, size_t err_len)
@@ -86,7 +117,8 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
 #undef SKY_GL_LOAD_OPT
 
     const sky_gl *gl = &s->gl;
-    while (gl->glGetError() != GL_NO_ERROR) {} /* the host's old errors are not ours */
+    GLenum e = drain_errors(gl); /* the host's old errors are not ours */
+    if (e != GL_NO_ERROR) return undrained(e, err, err_len);
     const char *version = (const char *)gl->glGetString(GL_VERSION);
     int gl_ver = parse_version(version);
     if (gl_ver == 0) {
@@ -102,14 +134,14 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
      * asked for (Mesa under version overrides complains on stderr when it
      * is). Some drivers without GLSL return NULL: treated as GLSL 1.10. */
     int glsl_ver = gl_ver >= 33 ? parse_version((const char *)gl->glGetString(GL_SHADING_LANGUAGE_VERSION)) : 11;
-    while (gl->glGetError() != GL_NO_ERROR) {}
+    if ((e = drain_errors(gl)) != GL_NO_ERROR) return undrained(e, err, err_len);
 
     int is_core_context = 0;
     if (gl_ver >= 32) {
         GLint mask = 0;
         gl->glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
         is_core_context = (mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
-        while (gl->glGetError() != GL_NO_ERROR) {}
+        if ((e = drain_errors(gl)) != GL_NO_ERROR) return undrained(e, err, err_len);
     }
     int can_core = gl_ver >= 33 && glsl_ver >= 33 && gl->glGenVertexArrays && gl->glBindVertexArray &&
                    gl->glDeleteVertexArrays && gl->glGenFramebuffers && gl->glBindFramebuffer &&
@@ -135,7 +167,7 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
         }
     }
     s->profile = want;
-    detect_caps(s, gl_ver);
+    if ((e = detect_caps(s, gl_ver)) != GL_NO_ERROR) return undrained(e, err, err_len);
     return 0;
 }
 
@@ -456,7 +488,9 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
 }
 
 /* Reads an override file with a hard size cap: hostile files never cause a
- * large allocation. Returns NULL if absent. */
+ * large allocation. Returns NULL if absent (no such name, or a dangling
+ * symlink: both mean "no override"), or NULL with *failed set and a
+ * message naming the file. */
 static unsigned char *read_override(const char *dir, const char *name, size_t *size, char *err, size_t err_len,
                                     int *failed)
 {
@@ -470,14 +504,56 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
         *failed = 1;
         return NULL;
     }
+#if defined(_WIN32)
     FILE *f = fopen(path, "rb");
     if (!f) return NULL; /* no override for this one */
     unsigned char *buf = malloc(MAX_FILE);
     size_t got = buf ? fread(buf, 1, MAX_FILE, f) : 0;
     int too_big = buf && got == MAX_FILE && fgetc(f) != EOF;
+    int read_error = ferror(f);
     fclose(f);
-    if (!buf || too_big || got == 0) {
-        sky_format(err, err_len, "%s: %s", path, !buf ? "out of memory" : too_big ? "larger than 16 MiB" : "empty file");
+#else
+    /* Non-blocking: opening a FIFO for reading otherwise waits for a
+     * writer, which may never come (sky_create hung on one). Whatever is
+     * not a regular file (FIFO, directory, device) is refused by fstat
+     * before a byte is read. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == ENOENT || errno == ENOTDIR) return NULL; /* no override for this one */
+        sky_format(err, err_len, "%s: cannot open: %s", path, strerror(errno));
+        *failed = 1;
+        return NULL;
+    }
+    struct stat st;
+    int stat_failed = fstat(fd, &st) != 0;
+    if (stat_failed || !S_ISREG(st.st_mode)) {
+        sky_format(err, err_len, "%s: %s, not a PNG file", path,
+                   stat_failed            ? "cannot be examined (fstat failed)"
+                   : S_ISDIR(st.st_mode)  ? "a directory"
+                   : S_ISFIFO(st.st_mode) ? "a FIFO"
+                                          : "not a regular file");
+        close(fd);
+        *failed = 1;
+        return NULL;
+    }
+    unsigned char *buf = st.st_size <= MAX_FILE ? malloc(MAX_FILE) : NULL;
+    size_t got = 0;
+    int too_big = st.st_size > MAX_FILE, read_error = 0;
+    while (buf && got < MAX_FILE) {
+        ssize_t r = read(fd, buf + got, MAX_FILE - got);
+        if (r < 0 && errno == EINTR) continue;
+        if (r < 0) read_error = 1;
+        if (r <= 0) break;
+        got += (size_t)r;
+    }
+    /* a file grown past the cap since fstat */
+    unsigned char extra;
+    if (buf && got == MAX_FILE && read(fd, &extra, 1) == 1) too_big = 1;
+    close(fd);
+#endif
+    if (!buf || too_big || read_error || got == 0) {
+        sky_format(err, err_len, "%s: %s", path,
+                   too_big ? "larger than 16 MiB" : !buf ? "out of memory" : read_error ? "read error" : "empty file");
         free(buf);
         *failed = 1;
         return NULL;
@@ -873,12 +949,14 @@ int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h
     for (int i = 0; i < 3; i++) gl->glPixelStorei(pack_names[i], 0);
     gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
     gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    while (gl->glGetError() != GL_NO_ERROR) {}
-    sky_gl_target t;
-    sky_gl_target_begin(s, fbo, source, w, h, &t);
-    gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
-    GLenum e = gl->glGetError();
-    sky_gl_target_end(s, &t);
+    GLenum e = drain_errors(gl); /* an error that never clears: no read-back to trust */
+    if (e == GL_NO_ERROR) {
+        sky_gl_target t;
+        sky_gl_target_begin(s, fbo, source, w, h, &t);
+        gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+        e = gl->glGetError();
+        sky_gl_target_end(s, &t);
+    }
     for (int i = 0; i < 4; i++) gl->glPixelStorei(pack_names[i], pack[i]);
     gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
     if (e == GL_NO_ERROR)

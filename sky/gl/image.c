@@ -5,6 +5,7 @@
  */
 #include "../core.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #define STB_IMAGE_STATIC
@@ -46,10 +47,74 @@ static int png_chunks_fit(const unsigned char *data, size_t size)
     return 0;
 }
 
+static size_t be32(const unsigned char *p)
+{
+    return (size_t)p[0] << 24 | (size_t)p[1] << 16 | (size_t)p[2] << 8 | p[3];
+}
+
+static unsigned long crc32_png(const unsigned char *p, size_t n)
+{
+    unsigned long c = 0xffffffffUL;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xedb88320UL & (0UL - (c & 1UL)));
+    }
+    return c ^ 0xffffffffUL;
+}
+
+/* A paletted image may hold indices past the end of its PLTE (an error in
+ * the PNG spec that decoders must survive). stb_image decodes those from
+ * the unwritten rest of its palette array on the stack, so such a file
+ * gave uninitialised bytes (valgrind, at stbi__parse_png_file). A short
+ * palette is legal and common (optimisers trim unused entries), so it is
+ * not refused: the file is copied with its PLTE padded to 2^bit-depth
+ * entries of black, as libpng does for out-of-range indices. Returns the
+ * copy (free it), NULL when the file needs none, and NULL with *bad set
+ * when it has more than one PLTE (1: the spec forbids it, and stb would
+ * take the last) or the copy cannot be allocated (2). Call after
+ * png_chunks_fit. */
+static unsigned char *png_pad_palette(const unsigned char *data, size_t size, size_t *padded_size, int *bad)
+{
+    *bad = 0;
+    /* IHDR first, 13 bytes: width, height, bit depth, colour type 3 */
+    if (size < 33 || be32(data + 8) != 13 || memcmp(data + 12, "IHDR", 4) || data[25] != 3) return NULL;
+    int depth = data[24];
+    if (depth != 1 && depth != 2 && depth != 4 && depth != 8) return NULL; /* stb refuses it */
+    size_t full = (size_t)1 << depth, plte_at = 0, plte_count = 0;
+    for (size_t at = 8; at + 12 <= size; at += 12 + be32(data + at)) {
+        if (!memcmp(data + at + 4, "PLTE", 4)) {
+            plte_at = at;
+            plte_count++;
+        }
+        if (!memcmp(data + at + 4, "IEND", 4)) break;
+    }
+    if (plte_count > 1) {
+        *bad = 1;
+        return NULL;
+    }
+    size_t len = plte_count ? be32(data + plte_at) : 0;
+    if (!plte_count || len % 3 || len / 3 >= full) return NULL; /* none (stb refuses), malformed (stb refuses), full */
+    size_t grow = full * 3 - len, body = plte_at + 8 + len; /* the old palette's end */
+    unsigned char *out = malloc(size + grow);
+    if (!out) {
+        *bad = 2; /* decoding the unpadded file is what this is here to avoid */
+        return NULL;
+    }
+    memcpy(out, data, body);
+    memset(out + body, 0, grow);
+    size_t new_len = full * 3;
+    for (int i = 0; i < 4; i++) out[plte_at + (size_t)i] = (unsigned char)(new_len >> (24 - 8 * i));
+    unsigned long crc = crc32_png(out + plte_at + 4, 4 + new_len);
+    for (int i = 0; i < 4; i++) out[body + grow + (size_t)i] = (unsigned char)(crc >> (24 - 8 * i));
+    memcpy(out + body + grow + 4, data + body + 4, size - body - 4); /* after the old CRC */
+    *padded_size = size + grow;
+    return out;
+}
+
 unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why)
 {
     int comp = 0;
-    if (size == 0 || size > (size_t)0x7fffffff) {
+    if (size == 0 || size > (size_t)0x7fffffff - 768) { /* room for a padded palette */
         *why = "bad size";
         return NULL;
     }
@@ -57,8 +122,17 @@ unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *
         *why = "a chunk runs past the end of the data";
         return NULL;
     }
-    unsigned char *rgba = stbi_load_from_memory(data, (int)size, w, h, &comp, 4);
+    int bad = 0;
+    size_t padded_size = 0;
+    unsigned char *padded = png_pad_palette(data, size, &padded_size, &bad);
+    if (bad) {
+        *why = bad == 1 ? "more than one PLTE chunk" : "out of memory";
+        return NULL;
+    }
+    unsigned char *rgba = padded ? stbi_load_from_memory(padded, (int)padded_size, w, h, &comp, 4)
+                                 : stbi_load_from_memory(data, (int)size, w, h, &comp, 4);
     if (!rgba) *why = stbi_failure_reason();
+    free(padded);
     return rgba;
 }
 
