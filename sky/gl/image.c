@@ -15,6 +15,20 @@
 #define STBI_NO_LINEAR
 #define STBI_NO_HDR
 #define STBI_MAX_DIMENSIONS 4096 /* refuse absurd headers before allocating */
+/* Every byte stb hands back is one it wrote or a zero: a truncated or
+ * corrupt stream can leave part of a buffer unwritten, which must not
+ * reach a texture as whatever the heap held (fuzz_png decodes twice and
+ * compares). */
+static void *sky_stbi_realloc_sized(void *p, size_t old_size, size_t new_size)
+{
+    unsigned char *q = realloc(p, new_size);
+    if (q && new_size > old_size) memset(q + old_size, 0, new_size - old_size);
+    return q;
+}
+#define STBI_MALLOC(size) calloc(1, (size))
+#define STBI_REALLOC(p, size) realloc((p), (size))
+#define STBI_REALLOC_SIZED(p, old_size, new_size) sky_stbi_realloc_sized((p), (old_size), (new_size))
+#define STBI_FREE(p) free(p)
 /* stb declares static helpers this file does not call; the warning about
  * them is reported at the end of the file, so it is silenced file-wide in
  * this file, which holds nothing but the wrappers below. */
