@@ -456,16 +456,16 @@ static void cover_left_half(int core)
     quad_destroy(&q);
 }
 
-/* Rows named "PRESET [OPTIONS] | scene over half, sky first|after": the
+/* Rows named "PRESET [OPTIONS] + scene over half, sky first|after": the
  * scene drawn first, then the sky without (first) or with (after) the
- * depth test. Returns the depth mode and cuts the name at the bar. */
+ * depth test. Returns the depth mode and cuts the name at the " + ". */
 static sky_depth scene_row(char *words, int *covered)
 {
-    char *bar = strchr(words, '|');
-    *covered = bar != NULL;
-    if (!bar) return SKY_DEPTH_NONE;
-    *bar = '\0';
-    return strstr(bar + 1, "after") ? SKY_DEPTH_FAR_ONE : SKY_DEPTH_NONE;
+    char *plus = strstr(words, " + ");
+    *covered = plus != NULL;
+    if (!plus) return SKY_DEPTH_NONE;
+    *plus = '\0';
+    return strstr(plus + 1, "after") ? SKY_DEPTH_FAR_ONE : SKY_DEPTH_NONE;
 }
 
 static int subject_sky(subject *sub, int argc, char **argv, const char *name, sky_gl_profile gl, int w, int h,
@@ -1269,7 +1269,7 @@ int main(int argc, char **argv)
                                           "starry",  "moonlit", "eclipse",  "solar-eclipse",
                                           "noon --atmosphere hillaire", "noon --atmosphere preetham",
                                           "noon --dome-divisor 1", "noon --dome-divisor 2",
-                                          "noon | scene over half, sky first", "noon | scene over half, sky after"};
+                                          "noon + scene over half, sky first", "noon + scene over half, sky after"};
     enum { NP = sizeof presets / sizeof presets[0] };
     static row rows[2 * (NP + 2)]; /* (static: gcc cannot see the loops fill it) */
     /* the baseline's medians over the rounds of the preset table and of
