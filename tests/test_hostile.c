@@ -21,6 +21,7 @@ void test_hostile_context_lost(void);
 void test_hostile_fifo_override(void);
 void test_hostile_directory_override(void);
 void test_hostile_palette_overrun(void);
+void test_hostile_core_context_names_what_it_lacks(void);
 
 /* The wrapping loaders' settings: a loader is a bare function pointer, so
  * what it drops or fakes lives here (test program state, not library). */
@@ -296,4 +297,30 @@ void test_hostile_palette_overrun(void)
     CHECK(wrong == 0, "%d of the 255 indices past the palette decode to something other than opaque black "
           "(pixel 1: %d %d %d %d)", wrong, rgba[4], rgba[5], rgba[6], rgba[7]);
     sky_png_free(rgba);
+}
+
+/* A core context whose loader lacks a 3.x entry point CORE33 needs cannot
+ * fall back to COMPAT20 (a core profile runs no GLSL 1.10): the message
+ * names the missing function, not only the profile. */
+void test_hostile_core_context_names_what_it_lacks(void)
+{
+    static const char *const names[2] = {"glGenVertexArrays", "glBindFramebuffer"};
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_CORE33, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    for (int i = 0; i < 2; i++) {
+        hidden_name = names[i];
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.get_proc_address = loader_hiding_one;
+        sky *s = sky_create(&cfg, err, sizeof err);
+        NOTE("core context without %s: %s", names[i], s ? "created" : err);
+        CHECK(s == NULL && strstr(err, names[i]), "the message names %s: %s", names[i], s ? "created" : err);
+        sky_destroy(s);
+    }
+    hidden_name = NULL;
+    sky_osmesa_destroy(&ctx);
 }

@@ -155,7 +155,19 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
         return -1;
     }
     if (want == SKY_GL_COMPAT20 && is_core_context) {
-        sky_format(err, err_len, "COMPAT20 needs a compatibility context; this one is a %s core profile", version);
+        /* a core context that could not run CORE33: say what it lacked */
+        const char *missing = NULL;
+#define SKY_GL_FIRST_MISSING(ret, name, params) \
+        if (!missing && !s->gl.name) missing = #name;
+        if (s->cfg.gl_profile == SKY_GL_AUTO) {
+            SKY_GL_FUNCS_30(SKY_GL_FIRST_MISSING)
+        }
+#undef SKY_GL_FIRST_MISSING
+        if (missing)
+            sky_format(err, err_len, "the %s core context lacks %s, which CORE33 needs (and COMPAT20 needs a "
+                       "compatibility context)", version, missing);
+        else
+            sky_format(err, err_len, "COMPAT20 needs a compatibility context; this one is a %s core profile", version);
         return -1;
     }
     if (want == SKY_GL_COMPAT20) {
