@@ -1088,6 +1088,77 @@ static void print_baseline_json(const char *key, const double base[2], const rou
     printf("}");
 }
 
+/* ---- soak: resident memory over a long run -------------------------------------------- */
+
+/* Resident memory of this process in KiB (Linux), or -1. */
+static long rss_kib(void)
+{
+    long pages = -1, resident = -1;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (!f) return -1;
+    if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = -1;
+    fclose(f);
+    return resident < 0 ? -1 : resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+/* The reliability issue's soak: 320x180, the gradient path and the default
+ * features, the time slider running a day per 1000 frames; resident memory
+ * at checkpoints, for the sky updated only (the library's own CPU side)
+ * and updated and drawn (with llvmpipe's caches), each in a fresh process
+ * image as far as one can be: the update-only run first. */
+static int soak_table(int frames, sky_gl_profile gl)
+{
+    static const int marks[] = {0, 1000, 2000, 5000, 10000, 20000, 50000};
+    enum { MARKS = sizeof marks / sizeof marks[0] };
+    long rss[2][MARKS];
+    for (int draw = 0; draw < 2; draw++) {
+        char err[256];
+        sky_osmesa ctx;
+        if (sky_osmesa_create(&ctx, 320, 180, gl, 0, err, sizeof err)) {
+            fprintf(stderr, "sky-bench: %s\n", err);
+            return 1;
+        }
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.get_proc_address = sky_osmesa_loader();
+        cfg.gl_profile = gl;
+        sky *s = sky_create(&cfg, err, sizeof err);
+        if (!s) {
+            fprintf(stderr, "sky-bench: %s\n", err);
+            return 1;
+        }
+        float view[16], proj[16];
+        sky_cli_camera_at(180.0, 20.0, 60.0, 320, 180, view, proj);
+        sky_params p = sky_default_params();
+        int m = 0;
+        for (int f = 0; f <= frames; f++) {
+            while (m < MARKS && marks[m] == f) rss[draw][m++] = rss_kib();
+            p.time = (float)fmod(f / 1000.0, 1.0);
+            sky_set_params(s, &p);
+            sky_update(s, 1.0 / 60.0);
+            if (draw) sky_draw(s, view, proj);
+        }
+        if (draw) glFinish();
+        for (; m < MARKS; m++) rss[draw][m] = -1;
+        sky_destroy(s);
+        sky_osmesa_destroy(&ctx);
+    }
+    printf("Soak: %d frames at 320x180, %s, gradient path, default features, the time slider a day per 1000\n"
+           "frames; resident memory of the process (MiB) at each frame count:\n\n| run |",
+           frames, gl == SKY_GL_CORE33 ? "CORE33" : "COMPAT20");
+    for (int m = 0; m < MARKS && marks[m] <= frames; m++) printf(" %d |", marks[m]);
+    printf("\n|---|");
+    for (int m = 0; m < MARKS && marks[m] <= frames; m++) printf("---|");
+    printf("\n");
+    static const char *const runs[2] = {"sky_set_params + sky_update", "the same + sky_draw"};
+    for (int draw = 0; draw < 2; draw++) {
+        printf("| %s |", runs[draw]);
+        for (int m = 0; m < MARKS && marks[m] <= frames; m++) printf(" %.1f |", rss[draw][m] / 1024.0);
+        printf("\n");
+    }
+    return 0;
+}
+
 /* ---- colour: the 8-bit output against the sky's own (tools/colour.c) ---------------- */
 
 #define COLOUR_PATHS 5
@@ -1176,6 +1247,7 @@ static void bench_usage(FILE *out)
             "[--only-atmosphere | --only-presets | --only-colour]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png]\n"
             "       sky-bench --stability [--json]\n"
+            "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
             "       sky-bench --make-reference FILE [--paths N]\n",
             MAX_ROUNDS);
 }
@@ -1183,7 +1255,7 @@ static void bench_usage(FILE *out)
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0, only_colour = 0;
+        only_presets = 0, only_colour = 0, soak = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
@@ -1199,6 +1271,8 @@ int main(int argc, char **argv)
             only_presets = 1;
         else if (!strcmp(argv[i], "--only-colour"))
             only_colour = 1;
+        else if (!strcmp(argv[i], "--soak") && i + 1 < argc && (soak = atoi(argv[i + 1])) >= 1000 && soak <= 50000)
+            i++;
         else if (!strcmp(argv[i], "--tone-map") && i + 1 < argc &&
                  (!strcmp(argv[i + 1], "hue") || !strcmp(argv[i + 1], "filmic") || !strcmp(argv[i + 1], "neutral")))
             tone_map = !strcmp(argv[++i], "hue") ? SKY_TONE_MAP_HUE
@@ -1229,6 +1303,7 @@ int main(int argc, char **argv)
         }
     }
     if (stability) return stability_table(json);
+    if (soak) return soak_table(soak, SKY_GL_CORE33);
     static sky_colour_row colour[COLOUR_ROWS];
     if (only_colour) {
         if (colour_rows(tone_map, colour)) return 1;
