@@ -289,8 +289,10 @@ typedef struct sky_config {
     int check_gl_errors;
     /* Optional directory whose PNG files replace the embedded textures of the
      * same name (clouds.png, flicker.png, galaxy.png, gradient.png,
-     * moon.png, starmap.png). NULL =
-     * embedded only. */
+     * moon.png, starmap.png). A name not there keeps the embedded copy; one
+     * that is there but is not a regular file (a directory, a FIFO, a
+     * device), a symbolic link to nothing, or a broken PNG makes sky_create
+     * fail, naming it. NULL = embedded only. */
     const char *texture_dir;
     /* Non-zero: sky_draw waits for the GPU around each layer so sky_get_stats
      * can report per-layer milliseconds. Costs a pipeline stall; for tools. */

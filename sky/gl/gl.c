@@ -531,7 +531,16 @@ static unsigned char *read_override(const char *dir, const char *name, size_t *s
      * before a byte is read. */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-        if (errno == ENOENT || errno == ENOTDIR) return NULL; /* no override for this one */
+        /* no file of that name: no override for this one; but a name that
+         * is there and leads nowhere (a dangling symbolic link) was meant
+         * as one, and is reported */
+        struct stat link;
+        if (errno == ENOENT && lstat(path, &link) == 0 && S_ISLNK(link.st_mode)) {
+            sky_format(err, err_len, "%s: a symbolic link to a file that is missing", path);
+            *failed = 1;
+            return NULL;
+        }
+        if (errno == ENOENT || errno == ENOTDIR) return NULL;
         sky_format(err, err_len, "%s: cannot open: %s", path, strerror(errno));
         *failed = 1;
         return NULL;
