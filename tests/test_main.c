@@ -128,7 +128,6 @@ int test_skipped;
     X(hostile_directory_override)                \
     X(hostile_palette_overrun)                   \
     X(hostile_core_context_names_what_it_lacks)  \
-    X(hostile_dangling_symlink_override)         \
     X(atmosphere_paths_finite_for_every_sun_position) \
     X(atmosphere_clear_sky_colours)              \
     X(atmosphere_shaders_match_cpu_twins)        \
