@@ -62,9 +62,6 @@ static int parse_date(const char *s, double *jd)
     return 1;
 }
 
-/* Whether name ends in ext (".png"), in any case. The writers take the
- * format from the option, not the name, so a name promising another format
- * (a.jpg holding PNG data) is refused rather than written. */
 /* Identical names, or two names of one existing file. */
 static int same_file(const char *a, const char *b)
 {
@@ -73,6 +70,9 @@ static int same_file(const char *a, const char *b)
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
+/* Whether name ends in ext (".png"), in any case. The writers take the
+ * format from the option, not the name, so a name promising another format
+ * (a.jpg holding PNG data) is refused rather than written. */
 static int has_extension(const char *name, const char *ext)
 {
     size_t n = strlen(name), e = strlen(ext);
@@ -638,4 +638,17 @@ void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
         first = 0;
     }
     fprintf(out, "}}\n");
+}
+
+int sky_cli_take_out(int *i, int argc, char **argv, const char *prog, const char **out)
+{
+    if (strcmp(argv[*i], "--out")) return 0;
+    const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (!val || !has_extension(val, ".png")) {
+        fprintf(stderr, "%s: --out: expected a file name ending in .png, got '%s'\n", prog, val ? val : "(nothing)");
+        return -1;
+    }
+    *out = val;
+    (*i)++;
+    return 1;
 }

@@ -60,6 +60,10 @@ double sky_cli_median(double *v, int n);
 void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
 /* The same camera from its parts: yaw and pitch in degrees (yaw from
  * north through east), fov vertical in degrees, for a width x height view. */
+/* sky-demo's and sky-game's --out FILE.png (the headless image) at
+ * argv[*i]: 1 taken (*out set, *i past its value), 0 not --out, -1 a name
+ * that does not end in .png (message on stderr, prog named). */
+int sky_cli_take_out(int *i, int argc, char **argv, const char *prog, const char **out);
 void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int height, float view[16], float proj[16]);
 
 /* Prints the --query JSON object (its fields: README's "Where and when";

@@ -17,7 +17,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 /* out: the PNG to write (relative to the current directory, so an
  * installed sky-demo works anywhere). */
@@ -445,17 +444,9 @@ int main(int argc, char **argv)
             }
             continue;
         }
-        if (!strcmp(argv[i], "--out")) {
-            /* the image is a PNG whatever its name, so the name must say so (as --screenshot's) */
-            size_t len = i + 1 < argc ? strlen(argv[i + 1]) : 0;
-            if (len < 4 || strcasecmp(argv[i + 1] + len - 4, ".png")) {
-                fprintf(stderr, "sky-demo: --out: expected a file name ending in .png, got '%s'\n",
-                        i + 1 < argc ? argv[i + 1] : "(nothing)");
-                return 2;
-            }
-            out = argv[++i];
-            continue;
-        }
+        int took = sky_cli_take_out(&i, argc, argv, "sky-demo", &out);
+        if (took < 0) return 2;
+        if (took) continue;
         args[n++] = argv[i];
     }
     char err[512];

@@ -18,7 +18,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 /* Every GL call of the game goes through these pointers, loaded from the
  * context's own loader: a program linked with both -lGL and OSMesa would
@@ -392,17 +391,9 @@ int main(int argc, char **argv)
     char *args[64];
     int n = 0;
     for (int i = 0; i < argc && n < 64; i++) {
-        if (!strcmp(argv[i], "--out")) {
-            /* the image is a PNG whatever its name, so the name must say so (as --screenshot's) */
-            size_t len = i + 1 < argc ? strlen(argv[i + 1]) : 0;
-            if (len < 4 || strcasecmp(argv[i + 1] + len - 4, ".png")) {
-                fprintf(stderr, "sky-game: --out: expected a file name ending in .png, got '%s'\n",
-                        i + 1 < argc ? argv[i + 1] : "(nothing)");
-                return 2;
-            }
-            out = argv[++i];
-            continue;
-        }
+        int took = sky_cli_take_out(&i, argc, argv, "sky-game", &out);
+        if (took < 0) return 2;
+        if (took) continue;
         args[n++] = argv[i];
     }
     sky_cli cli;

@@ -3,6 +3,7 @@
  * long soak with sliders swept and time running for days.
  */
 #include "test.h"
+#include "stability.h"
 #include "sky_internal.h"
 
 #include <math.h>
@@ -13,17 +14,6 @@
 void test_reliability_hostile_override_textures(void);
 void test_reliability_two_skies_are_independent(void);
 void test_reliability_soak_10000_frames(void);
-
-/* Resident memory of this process in KiB (Linux), or -1. */
-static long rss_kib(void)
-{
-    long pages = -1, resident = -1;
-    FILE *f = fopen("/proc/self/statm", "r");
-    if (!f) return -1;
-    if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = -1;
-    fclose(f);
-    return resident < 0 ? -1 : resident * (sysconf(_SC_PAGESIZE) / 1024);
-}
 
 static void write_file(const char *path, const void *data, size_t n)
 {
@@ -214,9 +204,9 @@ void test_reliability_soak_10000_frames(void)
          * of each program for each state the sweep meets, which took it
          * about 230 MB by frame 1000 and 5 MB more by frame 2000 in the
          * whole test run, flat after that */
-        if (f == 2000) rss_start = rss_kib();
+        if (f == 2000) rss_start = sky_rss_kib();
     }
-    long rss_end = rss_kib();
+    long rss_end = sky_rss_kib();
     sky_get_stats(s, &st);
     NOTE("10000 frames: %d failed draws, %d bad pixels in 100 checked frames; GPU bytes %zu -> %zu, "
          "textures %d -> %d, programs %d -> %d",

@@ -1090,17 +1090,6 @@ static void print_baseline_json(const char *key, const double base[2], const rou
 
 /* ---- soak: resident memory over a long run -------------------------------------------- */
 
-/* Resident memory of this process in KiB (Linux), or -1. */
-static long rss_kib(void)
-{
-    long pages = -1, resident = -1;
-    FILE *f = fopen("/proc/self/statm", "r");
-    if (!f) return -1;
-    if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = -1;
-    fclose(f);
-    return resident < 0 ? -1 : resident * (sysconf(_SC_PAGESIZE) / 1024);
-}
-
 /* The reliability issue's soak: 320x180, the gradient path and the default
  * features, the time slider running a day per 1000 frames; resident memory
  * at checkpoints, for the sky updated only (the library's own CPU side)
@@ -1132,7 +1121,7 @@ static int soak_table(int frames, sky_gl_profile gl)
         sky_params p = sky_default_params();
         int m = 0;
         for (int f = 0; f <= frames; f++) {
-            while (m < MARKS && marks[m] == f) rss[draw][m++] = rss_kib();
+            while (m < MARKS && marks[m] == f) rss[draw][m++] = sky_rss_kib();
             p.time = (float)fmod(f / 1000.0, 1.0);
             sky_set_params(s, &p);
             sky_update(s, 1.0 / 60.0);

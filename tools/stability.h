@@ -26,4 +26,8 @@ enum { SKY_STABILITY_MAX_ROWS = 24 };
  * when a context cannot be made; err says why). */
 int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err, size_t err_len);
 
+/* Resident memory of this process in KiB (Linux /proc), or -1: the soaks'
+ * measure (sky-bench --soak, the tests' soak). */
+long sky_rss_kib(void);
+
 #endif
