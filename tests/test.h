@@ -94,6 +94,10 @@ int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profil
 sky_observer equator_equinox(void);
 void fixture_close(fixture *f);
 
+/* A host's own program (test_api.c): white, its attribute 0 "p" the clip
+ * position (a vec4: give it x, y, z and GL supplies w = 1). */
+unsigned test_host_program(int core);
+
 /* Path of a built program (SKY_BIN or build/bin). */
 const char *bin_path(const char *name, char *buf, size_t len);
 /* Runs a shell command, returns its exit status; output into buf. */

@@ -398,7 +398,7 @@ static void snapshot(gl_snapshot *g, int core)
     }
 }
 
-static GLuint host_program(int core)
+unsigned test_host_program(int core)
 {
     const char *vs = core ? "#version 330 core\nin vec4 p;\nvoid main(){gl_Position=p;}\n"
                           : "#version 110\nattribute vec4 p;\nvoid main(){gl_Position=p;}\n";
@@ -411,6 +411,7 @@ static GLuint host_program(int core)
     glCompileShader(f);
     glAttachShader(p, v);
     glAttachShader(p, f);
+    glBindAttribLocation(p, 0, "p");
     glLinkProgram(p);
     glDeleteShader(v);
     glDeleteShader(f);
@@ -456,7 +457,7 @@ static void state_restored(sky_gl_profile profile)
     }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_fbo[0]);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, host_fbo[1]);
-    GLuint prog = host_program(core), vao = 0, buf = 0, tex[4], pbo = 0;
+    GLuint prog = test_host_program(core), vao = 0, buf = 0, tex[4], pbo = 0;
     if (core) {
         glGenVertexArrays(1, &vao);
         glBindVertexArray(vao);

@@ -120,32 +120,20 @@ void test_conventions_version_everywhere(void)
  * (between near and far in every convention), writing depth. */
 static void host_quad(void)
 {
-    static const char *vs = "#version 330 core\nin vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n";
-    static const char *fs = "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n";
-    GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER), prog = glCreateProgram();
-    glShaderSource(v, 1, &vs, NULL);
-    glShaderSource(f, 1, &fs, NULL);
-    glCompileShader(v);
-    glCompileShader(f);
-    glAttachShader(prog, v);
-    glAttachShader(prog, f);
-    glBindAttribLocation(prog, 0, "p");
-    glLinkProgram(prog);
-    static const float quad[8] = {-1, -1, 0, -1, -1, 1, 0, 1};
+    GLuint prog = test_host_program(1);
+    static const float quad[12] = {-1, -1, 0.5f, 0, -1, 0.5f, -1, 1, 0.5f, 0, 1, 0.5f};
     GLuint vao, buf;
     glGenVertexArrays(1, &vao);
     glBindVertexArray(vao);
     glGenBuffers(1, &buf);
     glBindBuffer(GL_ARRAY_BUFFER, buf);
     glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, (const void *)0);
     glEnableVertexAttribArray(0);
     glUseProgram(prog);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     glUseProgram(0);
     glDeleteProgram(prog);
-    glDeleteShader(v);
-    glDeleteShader(f);
     glDeleteBuffers(1, &buf);
     glDeleteVertexArrays(1, &vao);
 }

@@ -1,7 +1,7 @@
 /*
  * The repository stands alone: no file a clone holds points to documents
- * outside it (a sibling ../shared directory, or the design and anchor notes
- * that lived there), which a reader of the clone cannot open.
+ * outside it (a sibling directory beside the clone, or the design and
+ * anchor notes that lived there), which a reader of the clone cannot open.
  */
 #include "test.h"
 
