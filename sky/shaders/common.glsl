@@ -67,12 +67,19 @@ vec3 sky_unrefract(vec3 d)
 }
 
 /* Hejl and Burgess-Dawson's filmic curve: a rational fit whose output
- * already carries an sRGB-like display gamma (no exp, no pow). */
-vec3 sky_filmic(vec3 e)
+ * already carries an sRGB-like display gamma (no exp, no pow). On four
+ * lanes, so one body serves a colour and a single value (the compiler
+ * drops the lanes a caller leaves unused). */
+vec4 sky_filmic(vec4 e)
 {
-    vec3 x = max(e - 0.004, vec3(0.0));
+    vec4 x = max(e - 0.004, vec4(0.0));
     return (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
 }
+
+/* r to the power 1 / 2.2 for r in 0..1, the curve's display gamma, as
+ * 1.109 sqrt(r) - 0.109 r (within 1.5 % from r = 0.2 to 1, 5 % at 0.05):
+ * a software rasteriser pays for every pow. */
+vec4 sky_display_power(vec4 r) { return 1.109 * sqrt(r) - 0.109 * r; }
 
 /* IEC 61966-2-1: linear to sRGB. */
 vec3 sky_srgb_encode(vec3 c)
@@ -92,9 +99,7 @@ vec3 sky_srgb_encode(vec3 c)
  *    curve's output carries its display gamma of about 2.2, so the other
  *    channels are the largest one's value times their ratio to it to the
  *    power 1 / 2.2 (and the largest the grey's over the luminance's ratio
- *    to it to that power), each power taken as 1.109 sqrt(r) - 0.109 r
- *    (within 1.5 % from r = 0.2 to 1, 5 % at 0.05): a software rasteriser
- *    pays for every pow;
+ *    to it to that power: sky_display_power);
  *  filmic: the curve on each channel apart (bright colours drift toward
  *    white and yellow, the classic shoulder);
  *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
@@ -109,7 +114,7 @@ vec3 sky_tonemap(vec3 L)
     float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
     e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.05, y)));
 #if defined(SKY_TONE_MAP_FILMIC)
-    return sky_filmic(e);
+    return sky_filmic(vec4(e, 0.0)).rgb;
 #elif defined(SKY_TONE_MAP_NEUTRAL)
     /* the toe: a small offset taken off dark colours (Khronos' 0.04) */
     float lo = min(e.r, min(e.g, e.b));
@@ -126,14 +131,13 @@ vec3 sky_tonemap(vec3 L)
     /* the display value of a grey of the colour's luminance, and what the
      * largest channel then needs to keep the colour (display values carry
      * the curve's gamma of 2.2) */
-    float m = max(max(e.r, max(e.g, e.b)), 1e-8), x = max(y - 0.004, 0.0), s = max(y, 1e-8) / m;
-    float top = (x * (6.2 * x + 0.5)) / ((x * (6.2 * x + 1.7) + 0.06) * (1.109 * sqrt(s) - 0.109 * s));
+    float m = max(max(e.r, max(e.g, e.b)), 1e-8);
+    vec4 g = sky_display_power(vec4(e / m, max(y, 1e-8) / m)); /* the channels', the luminance's */
+    float top = sky_filmic(vec4(y)).x / g.w;
     /* a soft shoulder keeps that channel below white: the colour's hue and
      * saturation survive, only its brightness gives way */
     top = top <= 0.8 ? top : 0.8 + 0.2 * (top - 0.8) / (top - 0.6);
-    vec3 r = e / m;
-    vec3 c = top * (1.109 * sqrt(r) - 0.109 * r);
-    return mix(c, vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));
+    return mix(top * g.xyz, vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));
 #endif
 }
 
