@@ -70,15 +70,17 @@ void test_bench_preset_table_in_rounds(void)
         CHECK(us > 0.0, "a preset's sky_update us is measured (%.3f): %.80s", us, r);
         presets++;
     }
-    CHECK(presets == 28,
-          "8 presets, noon over hillaire and preetham, at two dome divisors and before and after a scene, in 2 "
-          "profiles (%d rows)",
+    CHECK(presets == 32,
+          "8 presets, noon over hillaire and preetham, at two dome divisors, before and after a scene at two "
+          "divisors, in 2 profiles (%d rows)",
           presets);
 
-    /* Roden & Parberry's shader, as printed and packed, in both profiles */
-    static const char *const names[2] = {"R-P 2005 as printed", "R-P packed (2 fetches)"};
-    static const int textures[2] = {4, 1}, fetches[2] = {4, 2};
-    for (int k = 0; k < 2; k++) {
+    /* Roden & Parberry's shader, as printed and packed, and the baseline
+     * drawn after a scene, in both profiles */
+    static const char *const names[3] = {"R-P 2005 as printed", "R-P packed (2 fetches)",
+                                         "baseline + scene over half, after"};
+    static const int textures[3] = {4, 1, 1}, fetches[3] = {4, 2, 1};
+    for (int k = 0; k < 3; k++) {
         char pat[96];
         snprintf(pat, sizeof pat, "{\"name\":\"%s\"", names[k]);
         int n = 0;

@@ -144,12 +144,14 @@ static void quad_destroy(quad *q)
 /* The baseline: one full-screen triangle strip, one RGBA8 512x512 texture
  * fetch per pixel, written straight out. What it draws is fixed: every
  * ratio that sky-bench has ever printed divides by it. */
-static int baseline_create(quad *q, int core)
+static int baseline_create(quad *q, int core, int at_far)
 {
-    const char *vs = core ? "#version 330 core\nin vec2 p;\nout vec2 uv;\n"
-                            "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,0.0,1.0);}\n"
-                          : "#version 110\nattribute vec2 p;\nvarying vec2 uv;\n"
-                            "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,0.0,1.0);}\n";
+    /* at_far: the same quad on the far plane (z = w), for drawing it after
+     * a scene with the depth test, as an engine draws its sky */
+    const char *vs[3] = {core ? "#version 330 core\nin vec2 p;\nout vec2 uv;\n"
+                              : "#version 110\nattribute vec2 p;\nvarying vec2 uv;\n",
+                         at_far ? "const float z = 1.0;\n" : "const float z = 0.0;\n",
+                         "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,z,1.0);}\n"};
     const char *fs = core ? "#version 330 core\nin vec2 uv;\nuniform sampler2D t;\nout vec4 c;\n"
                             "void main(){c=texture(t,uv*3.0);}\n"
                           : "#version 110\nvarying vec2 uv;\nuniform sampler2D t;\n"
@@ -157,7 +159,7 @@ static int baseline_create(quad *q, int core)
     static const char *const attribs[1] = {"p"};
     memset(q, 0, sizeof *q);
     q->core = core;
-    q->prog = program(&vs, 1, &fs, 1, attribs, 1);
+    q->prog = program(vs, 3, &fs, 1, attribs, 1);
     if (!q->prog) return -1;
     unsigned char *texels = malloc(512 * 512 * 4);
     if (!texels) return -1;
@@ -550,9 +552,16 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
 
 /* A quad of our own (0 the baseline, 1 R-P as printed, 2 R-P packed) in
  * a new context. */
+/* The quads of our own, timed in every preset round: the baseline, Roden
+ * & Parberry's shader as printed and packed, and the baseline drawn as an
+ * engine draws its sky, after a scene over half the frame on the far plane
+ * with the depth test: the least that drawing after can cost here. */
+enum { QUAD_BASELINE, QUAD_RP_PRINTED, QUAD_RP_PACKED, QUAD_BASELINE_AFTER, QUAD_KINDS };
+
 static int subject_quad(subject *sub, int kind, sky_gl_profile gl, int w, int h)
 {
-    static const char *const names[3] = {"baseline", "R-P 2005 as printed", "R-P packed (2 fetches)"};
+    static const char *const names[QUAD_KINDS] = {"baseline", "R-P 2005 as printed", "R-P packed (2 fetches)",
+                                                  "baseline + scene over half, after"};
     char err[512];
     memset(sub, 0, sizeof *sub);
     if (sky_osmesa_create(&sub->ctx, w, h, gl, 0, err, sizeof err)) {
@@ -560,7 +569,9 @@ static int subject_quad(subject *sub, int kind, sky_gl_profile gl, int w, int h)
         return -1;
     }
     int core = gl == SKY_GL_CORE33;
-    if (kind ? rp_create(&sub->q, core, kind == 2) : baseline_create(&sub->q, core)) {
+    if (kind == QUAD_BASELINE_AFTER) cover_left_half(core);
+    if (kind == QUAD_RP_PRINTED || kind == QUAD_RP_PACKED ? rp_create(&sub->q, core, kind == QUAD_RP_PACKED)
+                               : baseline_create(&sub->q, core, kind == QUAD_BASELINE_AFTER)) {
         fprintf(stderr, "sky-bench: the %s shader failed\n", names[kind]);
         return -1;
     }
@@ -568,7 +579,12 @@ static int subject_quad(subject *sub, int kind, sky_gl_profile gl, int w, int h)
     r->preset = names[kind];
     r->profile = core ? "core" : "compat";
     r->update_us = -1.0;
-    r->fetches = kind == 1 ? 4 : kind == 2 ? 2 : 1;
+    r->fetches = kind == QUAD_RP_PRINTED ? 4 : kind == QUAD_RP_PACKED ? 2 : 1;
+    if (kind == QUAD_BASELINE_AFTER) { /* the sky's way of drawing after a scene (sky_depth FAR_ONE) */
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
+    }
     r->st.gpu_bytes = sub->q.bytes;
     r->st.textures = sub->q.ntex;
     r->st.programs = 1;
@@ -751,26 +767,26 @@ static double update_us(sky *s, const sky_params *start, int n)
 static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, int w, int h, int frames, int rounds,
                          row *rows, double *base_ms, rounds_info *info)
 {
-    int n = 3 + np, rc = 0;
+    int n = QUAD_KINDS + np, rc = 0;
     subject *subs = calloc((size_t)n, sizeof *subs);
     if (!subs) return -1;
     for (int i = 0; i < n && !rc; i++)
-        if (i < 3)
+        if (i < QUAD_KINDS)
             rc = subject_quad(&subs[i], i, gl, w, h);
         else {
             /* a row is a preset, perhaps with options after it
              * ("noon --atmosphere hillaire"): split at the spaces */
             char words[128], *argv[8] = {"sky-bench", "--preset"};
             int argc = 2, covered = 0;
-            snprintf(words, sizeof words, "%s", presets[i - 3]);
+            snprintf(words, sizeof words, "%s", presets[i - QUAD_KINDS]);
             sky_depth depth = scene_row(words, &covered);
             for (char *t = strtok(words, " "); t && argc < 7; t = strtok(NULL, " ")) argv[argc++] = t;
             argv[argc] = NULL;
-            rc = subject_sky(&subs[i], argc, argv, presets[i - 3], gl, w, h, frames, 0, depth, covered);
+            rc = subject_sky(&subs[i], argc, argv, presets[i - QUAD_KINDS], gl, w, h, frames, 0, depth, covered);
         }
     if (!rc) rc = run_rounds(subs, n, rounds, frames, info);
     if (!rc) {
-        for (int i = 3; i < n; i++) {
+        for (int i = QUAD_KINDS; i < n; i++) {
             make_current(&subs[i].ctx);
             subs[i].r.update_us = update_us(subs[i].s, &subs[i].cli.params, UPDATE_CALLS);
         }
@@ -1015,7 +1031,9 @@ static void print_preset_table(const row *rows, int nrows)
            "their own (moonlit, eclipse, solar-eclipse) keep it: there the slider does not move the clock.\n"
            "R-P rows: Roden & Parberry's cloud shader (2005, section 3.1) over a per-vertex sky with a tone\n"
            "map, as printed (4 textures, 4 fetches) and packed into one texture (2 fetches, the sunset\n"
-           "gradient per vertex).\n",
+           "gradient per vertex). \"baseline + scene over half, after\": the baseline on the far plane, drawn\n"
+           "after a scene over the left half with the depth test as an engine draws its sky: what a pixel the\n"
+           "scene covers still costs this rasterizer (compare the \"sky after\" rows with it).\n",
            UPDATE_CALLS);
 }
 
@@ -1333,9 +1351,11 @@ int main(int argc, char **argv)
                                           "starry",  "moonlit", "eclipse",  "solar-eclipse",
                                           "noon --atmosphere hillaire", "noon --atmosphere preetham",
                                           "noon --dome-divisor 1", "noon --dome-divisor 2",
-                                          "noon + scene over half, sky first", "noon + scene over half, sky after"};
+                                          "noon + scene over half, sky first", "noon + scene over half, sky after",
+                                          "noon --dome-divisor 1 + scene over half, sky first",
+                                          "noon --dome-divisor 1 + scene over half, sky after"};
     enum { NP = sizeof presets / sizeof presets[0] };
-    static row rows[2 * (NP + 2)]; /* (static: gcc cannot see the loops fill it) */
+    static row rows[2 * (NP + QUAD_KINDS - 1)]; /* (static: gcc cannot see the loops fill it) */
     /* the baseline's medians over the rounds of the preset table and of
      * the atmosphere table, and its per-round figures in the first */
     double base[2] = {0, 0}, base_atmo[2] = {0, 0}, night[2][NIGHT_COUNT];
@@ -1346,7 +1366,7 @@ int main(int argc, char **argv)
         if (!only_atmosphere) {
             if (bench_presets(presets, NP, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
                 return 1;
-            nrows += NP + 2;
+            nrows += NP + QUAD_KINDS - 1;
         }
         if (only_presets) continue;
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
