@@ -26,7 +26,7 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run check test install textures screenshots bench fuzz clean
+.PHONY: all deps run check test install textures screenshots bench fuzz clean examples test-examples
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -186,6 +186,42 @@ check: deps all $(BIN)/sky-tests
 # check and the fuzzers.
 test: deps all $(BIN)/sky-tests $(BIN)/sky-leaks $(BUILD)/asan/sky-tests $(FUZZERS)
 	@SKY_BIN=$(BIN) SKY_LEAKS=$(BIN)/sky-leaks SKY_ASAN=$(BUILD)/asan SKY_FUZZ=$(if $(HAVE_FUZZ),$(BUILD)/fuzz) sh tests/run.sh
+
+# ---- the engine examples ------------------------------------------------------------
+# Not part of all, run or test: OpenSceneGraph alone brings about fifty
+# packages. make examples installs the engines' Debian packages and builds
+# the three programs; make test-examples runs their tests under Xvfb.
+EXAMPLE_PACKAGES := g++ libsdl2-dev libopenscenegraph-dev libirrlicht-dev
+EX := $(BUILD)/examples
+EXAMPLES := $(EX)/sky-sdl2 $(EX)/sky-osg $(EX)/sky-irrlicht
+EX_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -Isky
+EX_CXXFLAGS := -std=c++11 -Wall -Wextra -Werror $(CFLAGS) -Isky
+CXX ?= c++
+
+examples: all
+	@sh tools/deps.sh $(EXAMPLE_PACKAGES)
+	@$(MAKE) --no-print-directory $(EXAMPLES)
+
+$(EX)/sky-sdl2: examples/sdl2.c sky/sky.h $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(EX_CFLAGS) $$(pkg-config --cflags sdl2) -o $@ $< $(LIB)/libsky.a $$(pkg-config --libs sdl2) -lGL -lstb $(LDLIBS_M)
+
+$(EX)/sky-osg: examples/osg.cpp sky/sky.h $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CXX) $(EX_CXXFLAGS) -o $@ $< $(LIB)/libsky.a -losgViewer -losgGA -losgDB -losgUtil -losg -lOpenThreads -lGL $(LDLIBS_M)
+
+$(EX)/sky-irrlicht: examples/irrlicht.cpp sky/sky.h $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CXX) $(EX_CXXFLAGS) -isystem /usr/include/irrlicht -o $@ $< $(LIB)/libsky.a -lIrrlicht -lGL $(LDLIBS_M)
+
+# the test runner's harness (test_main.c) with the examples' tests in place
+# of the library's
+$(EX)/example-tests: tests/examples/test_examples.c tests/test_main.c tests/test.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -DSKY_EXAMPLE_TESTS -Itests -o $@ tests/examples/test_examples.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+
+test-examples: examples $(EX)/example-tests
+	@SKY_EXAMPLES=$(EX) xvfb-run -a -s '-screen 0 1280x720x24' $(EX)/example-tests
 
 # ---- install ----------------------------------------------------------------------
 install: all

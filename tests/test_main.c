@@ -19,6 +19,19 @@
 int test_failures;
 int test_skipped;
 
+#ifdef SKY_EXAMPLE_TESTS
+/* the engine examples' runner (make test-examples): the same harness, its
+ * own tests (tests/examples/) */
+#define TESTS(X)                                 \
+    X(examples_sdl2_sky_above_scene_below)       \
+    X(examples_osg_sky_above_scene_below)        \
+    X(examples_irrlicht_sky_above_scene_below)   \
+    X(examples_sdl2_sun_where_lighting_says)     \
+    X(examples_osg_sun_where_lighting_says)      \
+    X(examples_irrlicht_sun_where_lighting_says) \
+    X(examples_irrlicht_left_handed)             \
+    X(examples_sdl2_depth_conventions)
+#else
 #define TESTS(X)                                 \
     X(api_zero_config_renders)                   \
     X(api_rejects_null_and_bad_config)           \
@@ -157,6 +170,7 @@ int test_skipped;
     X(hillaire_timelapse_settles_on_exact_table) \
     X(hillaire_jump_builds_at_once)              \
     X(cli_outputs_png_pfm_stats)
+#endif
 
 #define DECLARE(name) void test_##name(void);
 TESTS(DECLARE)

@@ -1,9 +1,10 @@
 #!/bin/sh
 # Installs the Debian packages libsky's build, demo and tests need, when
 # they are missing: apt-get as root, sudo otherwise, a clear message if
-# neither is possible.
+# neither is possible. Packages given as arguments are wanted too (make
+# examples passes the engines').
 set -e
-PACKAGES="gcc make libc6-dev libgl-dev libosmesa6-dev libglfw3-dev libstb-dev liberfa-dev xvfb xauth pkgconf"
+PACKAGES="gcc make libc6-dev libgl-dev libosmesa6-dev libglfw3-dev libstb-dev liberfa-dev xvfb xauth pkgconf $*"
 missing=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
