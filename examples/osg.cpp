@@ -26,7 +26,6 @@
 
 #include "sky.h"
 
-static const double kPi = 3.14159265358979323846;
 static const osg::Vec3d kEye(0.0, 0.0, 1.7); /* +x east, +y north, +z up */
 
 /* libsky wants a function returning sky_gl_proc; OSG's loader returns
@@ -96,33 +95,24 @@ public:
         /* sky_draw puts back every GL binding and switch it touched, so
          * osg::State's cache still matches GL and needs no dirtying. */
     }
-    /* Never let the sky's (empty) box count in the near/far computation. */
+    /* An empty box: nothing to cull by, nothing to fit near and far to. */
     osg::BoundingBox computeBoundingBox() const override { return osg::BoundingBox(); }
-    const char *className() const override { return "SkyDrawable"; }
 
 private:
     SkyState *st_;
 };
 
-/* Saves the frame it is armed for, after the whole camera has drawn. The
- * PNG goes to a temporary name beside the target and is renamed only once
- * written, so a failure never leaves a truncated file at the user's path. */
+/* Reads back the frame it is armed for, once the whole camera has drawn.
+ * The rows come bottom-up, as GL gives them; osg::Image records that and
+ * its PNG writer turns them. */
 struct Screenshot : public osg::Camera::DrawCallback {
-    std::string path;
-    mutable bool armed = false, ok = false;
+    mutable bool armed = false;
+    osg::ref_ptr<osg::Image> image = new osg::Image;
     void operator()(osg::RenderInfo &ri) const override
     {
-        if (!armed) return;
-        armed = false;
         const osg::Viewport *vp = ri.getCurrentCamera()->getViewport();
-        osg::ref_ptr<osg::Image> img = new osg::Image;
-        /* bottom-up rows, as GL gives them: osg::Image says so and the PNG
-         * writer turns them */
-        img->readPixels((int)vp->x(), (int)vp->y(), (int)vp->width(), (int)vp->height(), GL_RGB,
-                        GL_UNSIGNED_BYTE);
-        std::string tmp = path + ".tmp.png"; /* the extension picks the plugin */
-        ok = osgDB::writeImageFile(*img, tmp) && rename(tmp.c_str(), path.c_str()) == 0;
-        if (!ok) remove(tmp.c_str());
+        if (armed) image->readPixels(vp->x(), vp->y(), vp->width(), vp->height(), GL_RGB, GL_UNSIGNED_BYTE);
+        armed = false;
     }
 };
 
@@ -152,7 +142,7 @@ static osg::Node *make_shape(osg::Shape *shape, const osg::Vec4 &srgb)
 /* Compass azimuth (0 north, 90 east) and altitude, degrees, to a direction. */
 static osg::Vec3d direction(double az_deg, double alt_deg)
 {
-    double az = az_deg * kPi / 180.0, alt = alt_deg * kPi / 180.0;
+    double az = osg::DegreesToRadians(az_deg), alt = osg::DegreesToRadians(alt_deg);
     return osg::Vec3d(sin(az) * cos(alt), cos(az) * cos(alt), sin(alt));
 }
 
@@ -188,13 +178,14 @@ int main(int argc, char **argv)
     }
     if (shot && !frames) return usage("--screenshot needs --frames");
 
-    /* The scene: ground and a few shapes south of the eye. */
+    /* The sky, drawn before everything else (bin -1) and never culled. */
     osg::ref_ptr<osg::Group> root = new osg::Group;
     osg::ref_ptr<osg::Geode> sky_geode = new osg::Geode;
     sky_geode->addDrawable(new SkyDrawable(&st));
     sky_geode->setCullingActive(false);
     sky_geode->getOrCreateStateSet()->setRenderBinDetails(-1, "RenderBin");
     root->addChild(sky_geode);
+    /* The scene: ground and a few shapes south of the eye, none white. */
     root->addChild(make_shape(new osg::Box(osg::Vec3(0, 0, -0.05f), 400, 400, 0.1f),
                               osg::Vec4(0.33f, 0.42f, 0.24f, 1)));
     root->addChild(make_shape(new osg::Box(osg::Vec3(-6, -20, 1.5f), 3), osg::Vec4(0.62f, 0.55f, 0.48f, 1)));
@@ -205,12 +196,11 @@ int main(int argc, char **argv)
     /* The sun (or, after dark, the sky alone) lights it: one directional
      * light, the sky's irradiance as the global ambient, its horizon as fog. */
     osg::ref_ptr<osg::LightSource> sun = new osg::LightSource;
-    osg::Light *light = sun->getLight();
-    light->setLightNum(0);
+    osg::Light *light = sun->getLight(); /* GL_LIGHT0 */
     root->addChild(sun);
-    osg::StateSet *ss = root->getOrCreateStateSet();
     osg::ref_ptr<osg::LightModel> lm = new osg::LightModel;
     osg::ref_ptr<osg::Fog> fog = new osg::Fog;
+    osg::StateSet *ss = root->getOrCreateStateSet();
     fog->setMode(osg::Fog::EXP);
     fog->setDensity(1.0f / 400.0f);
     ss->setAttributeAndModes(lm);
@@ -222,14 +212,13 @@ int main(int argc, char **argv)
     viewer.setSceneData(root);
     /* Single threaded: the frame loop reads what the draw left behind. */
     viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded);
-    if (frames) viewer.setUpViewInWindow(0, 0, 640, 360);
-    else viewer.setUpViewInWindow(50, 50, 1280, 720);
+    viewer.setUpViewInWindow(0, 0, frames ? 640 : 1280, frames ? 360 : 720);
     osg::Camera *cam = viewer.getCamera();
     cam->setClearColor(st.draw ? osg::Vec4(0.5f, 0.5f, 0.5f, 1) : osg::Vec4(0, 0, 0, 1));
     /* Fixed near and far: the sky has no depth worth fitting. */
     cam->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
     osg::ref_ptr<Screenshot> screenshot = new Screenshot;
-    if (shot) screenshot->path = shot, cam->setFinalDrawCallback(screenshot);
+    if (shot) cam->setFinalDrawCallback(screenshot);
     viewer.realize();
     if (!viewer.isRealized()) {
         fprintf(stderr, "sky-osg: no OpenGL window\n");
@@ -247,8 +236,8 @@ int main(int argc, char **argv)
             const sky_lighting &l = st.light;
             const float *d = l.sun_direction; /* its colour is 0 once it has set */
             light->setPosition(osg::Vec4(d[0], d[1], d[2], 0.0f));
-            light->setDiffuse(encode(l.sun_color, l.exposure / (float)kPi));
-            lm->setAmbientIntensity(encode(l.ambient_color, l.exposure / (float)kPi));
+            light->setDiffuse(encode(l.sun_color, l.exposure / osg::PIf));
+            lm->setAmbientIntensity(encode(l.ambient_color, l.exposure / osg::PIf));
             fog->setColor(encode(l.fog_color, l.exposure));
             if (face_sun) /* 15 degrees clockwise of the sun, 10 below it */
                 look = direction(osg::RadiansToDegrees(atan2(d[0], d[1])) + 15.0,
@@ -262,12 +251,16 @@ int main(int argc, char **argv)
         n += counted;
     }
 
-    int rc = 0;
-    if (st.failed) rc = 1;
-    else if (shot && !screenshot->ok) {
+    /* Written under a temporary name beside the target (its extension picks
+     * the plugin) and renamed when complete: a failed write never leaves a
+     * truncated file at the user's path. */
+    int rc = st.failed ? 1 : 0;
+    std::string tmp = std::string(shot ? shot : "") + ".tmp.png";
+    if (!rc && shot && !(osgDB::writeImageFile(*screenshot->image, tmp) && !rename(tmp.c_str(), shot))) {
         fprintf(stderr, "sky-osg: could not write %s\n", shot);
+        remove(tmp.c_str());
         rc = 1;
-    } else if (frames) {
+    } else if (!rc && frames) {
         const osg::Viewport *vp = cam->getViewport();
         printf("size %d %d\n", (int)vp->width(), (int)vp->height());
         /* Where this camera puts the sun: OSG multiplies row vectors,
