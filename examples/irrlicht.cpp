@@ -10,7 +10,6 @@
 #include <irrlicht.h>
 #include <GL/glx.h>
 #include <sky.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -55,15 +54,14 @@ struct sky_node : scene::ISceneNode {
         if (opt.no_sky)
             return;
         video::IVideoDriver *driver = SceneManager->getVideoDriver();
-        /* The camera has set both; Irrlicht's matrix4 is laid out as OpenGL
-         * reads it, and its left-handed projection (clip w = +z) goes to
-         * GL_PROJECTION unchanged (COpenGLDriver negates M[12], 0 here). */
+        /* The camera has just set both. matrix4 is laid out as OpenGL reads
+         * it, and GL_PROJECTION holds this very left-handed projection (clip
+         * w = +z): the driver's one change, negating M[12], touches a zero. */
         core::matrix4 view = driver->getTransform(video::ETS_VIEW);
         core::matrix4 proj = driver->getTransform(video::ETS_PROJECTION);
         if (opt.right_handed) {
-            /* S V S and P S with S = diag(1, 1, -1, 1): the same camera in a
-             * world whose z is flipped, where the horizon frame needs no
-             * reflection. */
+            /* S V S and P S, S = diag(1, 1, -1, 1): the same camera in a world
+             * with z flipped, where the horizon frame needs no reflection. */
             for (int i : {2, 6, 14, 8, 9, 11}) /* row 2 or column 2, not both */
                 view[i] = -view[i];
             for (int i = 8; i < 12; i++) /* column 2 */
