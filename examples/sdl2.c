@@ -46,21 +46,14 @@ static void projection(float p[16], float fovy, float aspect, float znear, int d
 }
 
 /* A camera at eye turned to compass yaw (0 north = -z, 90 east = +x) and
- * pitched up by pitch: its view matrix. */
+ * pitched up by pitch: its view matrix, whose rows are the camera's right,
+ * up and backward axes, column-major. */
 static void look(float v[16], const float eye[3], float yaw, float pitch)
 {
-    float f[3] = {sinf(yaw) * cosf(pitch), sinf(pitch), -cosf(yaw) * cosf(pitch)};
-    float r[3] = {cosf(yaw), 0.0f, sinf(yaw)}; /* f x up, normalised */
-    float u[3] = {r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]};
-    for (int i = 0; i < 3; i++) {
-        v[i * 4 + 0] = r[i];
-        v[i * 4 + 1] = u[i];
-        v[i * 4 + 2] = -f[i];
-        v[i * 4 + 3] = 0.0f;
-    }
-    for (int row = 0; row < 3; row++)
-        v[12 + row] = -(v[row] * eye[0] + v[4 + row] * eye[1] + v[8 + row] * eye[2]);
-    v[15] = 1.0f;
+    float sy = sinf(yaw), cy = cosf(yaw), sp = sinf(pitch), cp = cosf(pitch);
+    const float rotation[16] = {cy, -sy * sp, -sy * cp, 0, 0, cp, -sp, 0, sy, cy * sp, cy * cp, 0, 0, 0, 0, 1};
+    memcpy(v, rotation, sizeof rotation);
+    for (int row = 0; row < 3; row++) v[12 + row] = -(v[row] * eye[0] + v[4 + row] * eye[1] + v[8 + row] * eye[2]);
 }
 
 /* A box (the ground is a 400 m wide one): 6 floats a vertex, position and
@@ -175,11 +168,8 @@ int main(int argc, char **argv)
     SDL_GLContext gl = win ? SDL_GL_CreateContext(win) : NULL;
     if (!gl) return fprintf(stderr, "sky-sdl2: %s\n", SDL_GetError()), 1;
     SDL_GL_SetSwapInterval(headless ? 0 : 1);
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    if (depth == REVERSED_Z_CLIP01) { /* OpenGL 4.5, or the extension */
-        if (major * 10 + minor < 45 && !SDL_GL_ExtensionSupported("GL_ARB_clip_control"))
+    if (depth == REVERSED_Z_CLIP01) { /* OpenGL 4.5's, and the extension's */
+        if (!SDL_GL_ExtensionSupported("GL_ARB_clip_control"))
             return fprintf(stderr, "sky-sdl2: this context has no glClipControl\n"), 3;
         glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     }
