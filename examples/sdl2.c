@@ -188,8 +188,8 @@ int main(int argc, char **argv)
     sky_set_params(s, &params);
 
     static float world[6 * 6 * 4 * 6];
-    static const float boxes[4][6] = {{-200, -1, -200, 200, 0, 200}, {-6, 0, 22, 2, 5, 30},
-                                      {5, 0, 39, 11, 12, 45}, {-20, 0, 50, -12, 3, 60}};
+    static const float boxes[4][6] = {{-200, -1, -200, 200, 0, 200}, {-9, 0, 22, -3, 5, 30},
+                                      {4, 0, 39, 10, 12, 45}, {-22, 0, 50, -14, 3, 60}};
     int nverts = 0;
     for (int b = 0; b < 4; b++) nverts += box(world + nverts * 6, boxes[b], boxes[b] + 3);
     GLuint prog = program(), vao, vbo;

@@ -25,11 +25,12 @@
  *
  *   engine                    horizon_to_world           projection
  *   right-handed, Y up        all zero (identity)        OpenGL's (clip w = -z)
- *     (OpenGL, three.js, Godot, SDL + your own maths)
+ *     (OpenGL, three.js, Godot, SDL + your own maths; examples/sdl2.c)
  *   right-handed, Z up        {1,0,0, 0,0,1, 0,-1,0}     OpenGL's
- *     (OpenSceneGraph, Blender-like worlds: north +y, up +z)
+ *     (OpenSceneGraph, Blender-like worlds: north +y, up +z; examples/osg.cpp)
  *   left-handed, Y up         {1,0,0, 0,1,0, 0,0,-1}     the engine's own (clip
- *     (Irrlicht, Unity, DirectX-style maths)               w = +z): pass it as is
+ *     (Irrlicht, Unity, DirectX-style maths;               w = +z): pass it as is
+ *      examples/irrlicht.cpp)
  *
  *   A reflecting horizon_to_world is how a left-handed world states its
  *   handedness; any orthonormal matrix is accepted (determinant +1 or -1),
@@ -46,7 +47,9 @@
  *   to 1), SKY_DEPTH_FAR_ZERO (reversed-Z, cleared to 0) or
  *   SKY_DEPTH_FAR_ZERO_CLIP01 (reversed-Z with a 0..1 clip range); the sky
  *   then sits on the far plane with the depth test on and writes none.
- *   sky_draw_fisheye needs no matrices.
+ *   (examples/sdl2.c draws after its scene in each of the three; the
+ *   OpenSceneGraph and Irrlicht examples draw first, in render bin -1 and
+ *   the sky-box pass.) sky_draw_fisheye needs no matrices.
  *
  * Versions: SKY_VERSION_MAJOR, _MINOR, _PATCH below, sky_version() at run
  * time, and the same in sky.pc. Before 1.0 every minor version may change
