@@ -42,7 +42,7 @@
  *   and reversed-Z projections work.
  *   Drawing order: by default the sky is drawn first, right after glClear,
  *   and neither tests nor writes depth. An engine that draws its sky after
- *   its opaque scene (so the pixels the scene covers cost nothing) sets
+ *   its opaque scene (so the pixels the scene covers cost little) sets
  *   sky_config.depth to its convention: SKY_DEPTH_FAR_ONE (depth cleared
  *   to 1), SKY_DEPTH_FAR_ZERO (reversed-Z, cleared to 0) or
  *   SKY_DEPTH_FAR_ZERO_CLIP01 (reversed-Z with a 0..1 clip range); the sky
@@ -169,7 +169,7 @@ typedef enum sky_depth {
     SKY_DEPTH_FAR_ONE,     /* after the opaque scene, on the far plane at
                               depth 1 (glClearDepth(1), LESS or LEQUAL): the
                               depth test keeps it behind the scene, whose
-                              pixels then cost it nothing; no depth write  */
+                              pixels then cost it little; no depth write   */
     SKY_DEPTH_FAR_ZERO,    /* the same for reversed-Z, far at depth 0
                               (glClearDepth(0), GREATER) with OpenGL's
                               -1..1 clip range                             */
