@@ -169,7 +169,9 @@ int test_skipped;
     X(hillaire_timelapse_shows_whole_tables)     \
     X(hillaire_timelapse_settles_on_exact_table) \
     X(hillaire_jump_builds_at_once)              \
-    X(cli_outputs_png_pfm_stats)
+    X(cli_outputs_png_pfm_stats)                 \
+    X(photometry_published_formulas)             \
+    X(photometry_measures_every_path)
 #endif
 
 #define DECLARE(name) void test_##name(void);

@@ -251,9 +251,90 @@ typedef struct face {
     float *px; /* FACE_SIZE^2 RGBA, bottom row first */
 } face;
 
-/* Bilinear read of direction d from the face that sees it most squarely. */
-static void sample_cube(const face *faces, const double d[3], double rgb[3])
+struct sky_atmo_hemisphere {
+    sky_osmesa ctx;
+    sky *s;
+    sky_observer observer;
+    face faces[FACES];
+};
+
+sky_atmo_hemisphere *sky_atmo_hemisphere_create(const sky_config *base, char *err, size_t err_len)
 {
+    sky_atmo_hemisphere *h = calloc(1, sizeof *h);
+    if (!h) {
+        snprintf(err, err_len, "out of memory");
+        return NULL;
+    }
+    if (sky_osmesa_create(&h->ctx, FACE_SIZE, FACE_SIZE, base->gl_profile, 1, err, err_len)) {
+        free(h);
+        return NULL;
+    }
+    sky_config cfg = *base;
+    cfg.output = SKY_OUTPUT_HDR;
+    cfg.features = SKY_FEATURES_NONE;
+    cfg.get_proc_address = sky_osmesa_loader();
+    h->s = sky_create(&cfg, err, err_len);
+    int ok = h->s != NULL;
+    for (int f = 0; f < FACES; f++) {
+        sky_cli_camera_at(face_yaw[f], face_pitch[f], 90.0, FACE_SIZE, FACE_SIZE, h->faces[f].view, h->faces[f].proj);
+        h->faces[f].px = malloc(sizeof(float) * 4 * FACE_SIZE * FACE_SIZE);
+        if (!h->faces[f].px && ok) {
+            snprintf(err, err_len, "out of memory");
+            ok = 0;
+        }
+    }
+    /* The equator's noon sun passes the zenith when the latitude is the
+     * sun's declination: find it at the 2026 March equinox. */
+    h->observer.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
+    h->observer.time_from_params = 1;
+    sky_astronomy a;
+    if (sky_compute_astronomy(&h->observer, 0.5f, NULL, 0, NULL, &a, NULL, 0) == SKY_OK)
+        h->observer.latitude_deg = a.sun.dec_deg;
+    if (!ok) {
+        sky_atmo_hemisphere_destroy(h);
+        return NULL;
+    }
+    return h;
+}
+
+void sky_atmo_hemisphere_destroy(sky_atmo_hemisphere *h)
+{
+    if (!h) return;
+    for (int f = 0; f < FACES; f++) free(h->faces[f].px);
+    sky_destroy(h->s);
+    sky_osmesa_destroy(&h->ctx);
+    free(h);
+}
+
+sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h) { return h->s; }
+
+int sky_atmo_hemisphere_render(sky_atmo_hemisphere *h, double sun_alt_deg, double *elevation_deg,
+                               double *azimuth_deg, char *err, size_t err_len)
+{
+    sky_params p = sky_default_params();
+    p.cover = 0.0f;
+    p.time = (float)sky_atmo_time_for_altitude(&h->observer, sun_alt_deg);
+    sky_set_observer(h->s, &h->observer);
+    sky_set_params(h->s, &p);
+    sky_lighting l;
+    sky_get_lighting(h->s, &l);
+    *elevation_deg = asin(l.sun_direction[1] > 1.0f ? 1.0 : l.sun_direction[1]) * 180.0 / PI;
+    *azimuth_deg = atan2(l.sun_direction[0], -l.sun_direction[2]) * 180.0 / PI;
+    for (int f = 0; f < FACES; f++) {
+        if (sky_draw(h->s, h->faces[f].view, h->faces[f].proj) != SKY_OK) {
+            snprintf(err, err_len, "sky_draw: %s", sky_last_error(h->s));
+            return -1;
+        }
+        sky_osmesa_finish(&h->ctx);
+        memcpy(h->faces[f].px, h->ctx.pixels, sizeof(float) * 4 * FACE_SIZE * FACE_SIZE);
+    }
+    return 0;
+}
+
+/* Bilinear read of direction d from the face that sees it most squarely. */
+void sky_atmo_hemisphere_read(const sky_atmo_hemisphere *h, const double d[3], double rgb[3])
+{
+    const face *faces = h->faces;
     int best = 0;
     double best_z = -2.0;
     for (int f = 0; f < FACES; f++) {
@@ -278,63 +359,17 @@ static void sample_cube(const face *faces, const double d[3], double rgb[3])
     }
 }
 
-/* The sky's own sun direction for a time slider value. */
-static void sun_of(sky *s, const sky_observer *o, double t, double *elevation_deg, double *azimuth_deg)
-{
-    sky_params p = sky_default_params();
-    p.cover = 0.0f;
-    p.time = (float)t;
-    sky_set_observer(s, o);
-    sky_set_params(s, &p);
-    sky_lighting l;
-    sky_get_lighting(s, &l);
-    *elevation_deg = asin(l.sun_direction[1] > 1.0f ? 1.0 : l.sun_direction[1]) * 180.0 / PI;
-    *azimuth_deg = atan2(l.sun_direction[0], -l.sun_direction[2]) * 180.0 / PI;
-}
-
 int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *base, sky_atmo_errors *out, char *err,
                      size_t err_len)
 {
     memset(out, 0, sizeof *out);
-    sky_osmesa ctx;
-    if (sky_osmesa_create(&ctx, FACE_SIZE, FACE_SIZE, base->gl_profile, 1, err, err_len)) return -1;
-    sky_config cfg = *base;
-    cfg.output = SKY_OUTPUT_HDR;
-    cfg.features = SKY_FEATURES_NONE;
-    cfg.get_proc_address = sky_osmesa_loader();
-    sky *s = sky_create(&cfg, err, err_len);
-    if (!s) {
-        sky_osmesa_destroy(&ctx);
-        return -1;
-    }
-    face faces[FACES];
+    sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(base, err, err_len);
+    if (!h) return -1;
     int rc = 0;
-    for (int f = 0; f < FACES; f++) {
-        sky_cli_camera_at(face_yaw[f], face_pitch[f], 90.0, FACE_SIZE, FACE_SIZE, faces[f].view, faces[f].proj);
-        faces[f].px = malloc(sizeof(float) * 4 * FACE_SIZE * FACE_SIZE);
-        if (!faces[f].px) rc = -1;
-    }
-    /* The equator's noon sun passes the zenith when the latitude is the
-     * sun's declination: find it at the 2026 March equinox. */
-    sky_observer o;
-    memset(&o, 0, sizeof o);
-    o.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
-    o.time_from_params = 1;
-    sky_astronomy a;
-    if (sky_compute_astronomy(&o, 0.5f, NULL, 0, NULL, &a, NULL, 0) == SKY_OK) o.latitude_deg = a.sun.dec_deg;
     double day_weight = 0.0, tw_weight = 0.0;
     for (int si = 0; si < SKY_ATMO_SUNS && !rc; si++) {
         double el = 0.0, az = 0.0, target = sky_atmo_sun_elevations[si];
-        sun_of(s, &o, sky_atmo_time_for_altitude(&o, target), &el, &az);
-        for (int f = 0; f < FACES && !rc; f++) {
-            if (sky_draw(s, faces[f].view, faces[f].proj) != SKY_OK) {
-                snprintf(err, err_len, "sky_draw: %s", sky_last_error(s));
-                rc = -1;
-                break;
-            }
-            sky_osmesa_finish(&ctx);
-            memcpy(faces[f].px, ctx.pixels, sizeof(float) * 4 * FACE_SIZE * FACE_SIZE);
-        }
+        rc = sky_atmo_hemisphere_render(h, target, &el, &az, err, err_len);
         if (rc) break;
         /* fixed exposure: the reference sky's mean luminance at half the
          * white (L* 76) */
@@ -350,7 +385,7 @@ int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *base, sky_
             double de, da, w, d[3], rgb[3], lab_ref[3], lab[3];
             sky_atmo_direction(k, az, &de, &da, &w);
             horizon_dir(de, da, d);
-            sample_cube(faces, d, rgb);
+            sky_atmo_hemisphere_read(h, d, rgb);
             double y_ref = luminance(ref->rgb[si][k]), y = luminance(rgb);
             /* relative to the reference, which may be all but black in
              * deep twilight (the planet's shadow): floored at 1 % of the
@@ -378,9 +413,6 @@ int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *base, sky_
     }
     if (day_weight > 0.0) out->mean_rel_day /= day_weight, out->mean_de2000_day /= day_weight;
     if (tw_weight > 0.0) out->mean_rel_twilight /= tw_weight, out->mean_de2000_twilight /= tw_weight;
-    for (int f = 0; f < FACES; f++) free(faces[f].px);
-    sky_destroy(s);
-    sky_osmesa_destroy(&ctx);
-    if (rc && err && !err[0]) snprintf(err, err_len, "out of memory");
+    sky_atmo_hemisphere_destroy(h);
     return rc;
 }

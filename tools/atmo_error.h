@@ -52,6 +52,24 @@ typedef struct sky_atmo_errors {
 int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *cfg, sky_atmo_errors *out, char *err,
                      size_t err_len);
 
+/* An HDR sky of a config (features none, every pixel) rendered into the
+ * five upper faces of a cube in a context of its own, so that any
+ * direction of the upper hemisphere can be read: what the error table and
+ * the photometry measure. The observer stands on the 2026 March equinox
+ * where the noon sun reaches the zenith. */
+typedef struct sky_atmo_hemisphere sky_atmo_hemisphere;
+sky_atmo_hemisphere *sky_atmo_hemisphere_create(const sky_config *cfg, char *err, size_t err_len);
+void sky_atmo_hemisphere_destroy(sky_atmo_hemisphere *h);
+/* Renders the sky with the sun's apparent centre at sun_alt_deg (the
+ * morning sun), giving the sun's elevation and azimuth as the sky has
+ * them. Returns 0 or -1 with err. */
+int sky_atmo_hemisphere_render(sky_atmo_hemisphere *h, double sun_alt_deg, double *elevation_deg,
+                               double *azimuth_deg, char *err, size_t err_len);
+/* Linear sRGB (kcd/m^2) in direction d of the horizon frame (y up). */
+void sky_atmo_hemisphere_read(const sky_atmo_hemisphere *h, const double d[3], double rgb[3]);
+/* The sky, for its lighting (sky_get_lighting after a render). */
+sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h);
+
 /* The morning time-slider value (0..0.5) that puts the sun's apparent
  * centre at alt_deg for the observer (bisection; at the highest the sun
  * gets, noon). */

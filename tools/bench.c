@@ -34,6 +34,7 @@
 #include "cli.h"
 #include "colour.h"
 #include "osmesa_ctx.h"
+#include "photometry.h"
 #include "plot.h"
 #include "stability.h"
 
@@ -1247,11 +1248,101 @@ static void print_colour_json(sky_tone_map tm, const sky_colour_row *rows, int n
     printf(" ]}");
 }
 
+/* ---- photometry ------------------------------------------------------------------------------ */
+
+/* The atmosphere paths whose photometry sky-bench prints (core profile). */
+#define PHOT_PATHS 5
+static const sky_atmosphere_path phot_paths[PHOT_PATHS] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
+                                                           SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
+                                                           SKY_ATMOSPHERE_BLEND};
+static const char *const phot_names[PHOT_PATHS] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
+
+static int photometry_rows(sky_photometry out[PHOT_PATHS])
+{
+    for (int p = 0; p < PHOT_PATHS; p++) {
+        char err[512];
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.gl_profile = SKY_GL_CORE33;
+        cfg.atmosphere = phot_paths[p];
+        if (sky_photometry_measure(&cfg, &out[p], err, sizeof err)) {
+            fprintf(stderr, "sky-bench: photometry of %s: %s\n", phot_names[p], err);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* One row of the photometry table: a quantity, the published figure, and
+ * each path's, printed with fmt. */
+static void phot_row(const char *quantity, const char *published, const char *fmt, const sky_photometry *m,
+                     size_t offset)
+{
+    printf("| %s | %s |", quantity, published);
+    for (int p = 0; p < PHOT_PATHS; p++) {
+        printf(" ");
+        printf(fmt, *(const double *)((const char *)&m[p] + offset));
+        printf(" |");
+    }
+    printf("\n");
+}
+
+static void print_photometry_table(const sky_photometry m[PHOT_PATHS])
+{
+    sky_photometry pub;
+    sky_photometry_published(&pub);
+    char buf[64];
+    printf("| quantity | published |");
+    for (int p = 0; p < PHOT_PATHS; p++) printf(" %s |", phot_names[p]);
+    printf("\n|---|---|");
+    for (int p = 0; p < PHOT_PATHS; p++) printf("---|");
+    printf("\n| sky shape vs CIE clear sky (closest of types 11-13; median deviation, sun 10/30/50/70 deg) | - |");
+    for (int p = 0; p < PHOT_PATHS; p++)
+        printf(" %.0f / %.0f / %.0f / %.0f %% |", 100.0 * m[p].cie_median[0], 100.0 * m[p].cie_median[1],
+               100.0 * m[p].cie_median[2], 100.0 * m[p].cie_median[3]);
+    printf("\n");
+    snprintf(buf, sizeof buf, "CIE 12: %.1f", pub.glow_ratio_30);
+    phot_row("glow 5-8 deg around the sun, L/Lz, sun 30 deg", buf, "%.2f", m, offsetof(sky_photometry, glow_ratio_30));
+    snprintf(buf, sizeof buf, "CIE 12: %.2f", pub.horizon_ratio_70);
+    phot_row("horizon 80-85 deg opposite the sun, L/Lz, sun 70 deg", buf, "%.2f", m,
+             offsetof(sky_photometry, horizon_ratio_70));
+    snprintf(buf, sizeof buf, "gensky T 2.75: %.1f", pub.zenith_kcd_70);
+    phot_row("zenith luminance, sun 70 deg, kcd/m^2", buf, "%.2f", m, offsetof(sky_photometry, zenith_kcd_70));
+    snprintf(buf, sizeof buf, "IES: %.1f", pub.diffuse_klx_30);
+    phot_row("diffuse horizontal illuminance, sun 30 deg, klx", buf, "%.1f", m, offsetof(sky_photometry, diffuse_klx_30));
+    snprintf(buf, sizeof buf, "IES: %.0f", pub.direct_klx_10);
+    phot_row("direct normal illuminance, sun 10 deg, klx", buf, "%.0f", m, offsetof(sky_photometry, direct_klx_10));
+    phot_row("sky illuminance, sun -6 deg (civil twilight), lx", "Bond & Henderson: 3.4", "%.3g", m,
+             offsetof(sky_photometry, civil_lx));
+    phot_row("sky illuminance, sun -12 deg (nautical), lx", "Bond & Henderson: 0.008", "%.3g", m,
+             offsetof(sky_photometry, nautical_lx));
+    phot_row("night zenith, sun -30 deg, no moon, mag/arcsec^2", "Garstang; Benn & Ellison: 21.5-22", "%.1f", m,
+             offsetof(sky_photometry, night_zenith_mag));
+}
+
+static void print_photometry_json(const sky_photometry m[PHOT_PATHS])
+{
+    sky_photometry pub;
+    sky_photometry_published(&pub);
+    printf(" \"photometry\": [\n");
+    for (int p = 0; p <= PHOT_PATHS; p++) {
+        const sky_photometry *r = p < PHOT_PATHS ? &m[p] : &pub;
+        printf("  {\"path\":\"%s\", \"cie_median\":[%.4f,%.4f,%.4f,%.4f], \"cie_type\":[%d,%d,%d,%d], "
+               "\"glow_ratio_30\":%.4f, \"horizon_ratio_70\":%.4f, \"zenith_kcd_70\":%.4f, \"diffuse_klx_30\":%.4f, "
+               "\"direct_klx_10\":%.4f, \"civil_lx\":%.5g, \"nautical_lx\":%.5g, \"night_zenith_mag\":%.3f}%s\n",
+               p < PHOT_PATHS ? phot_names[p] : "published", r->cie_median[0], r->cie_median[1], r->cie_median[2],
+               r->cie_median[3], r->cie_type[0], r->cie_type[1], r->cie_type[2], r->cie_type[3], r->glow_ratio_30,
+               r->horizon_ratio_70, r->zenith_kcd_70, r->diffuse_klx_30, r->direct_klx_10, r->civil_lx, r->nautical_lx,
+               r->night_zenith_mag, p < PHOT_PATHS ? "," : "");
+    }
+    printf(" ]");
+}
+
 static void bench_usage(FILE *out)
 {
     fprintf(out,
             "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
-            "[--only-atmosphere | --only-presets | --only-colour]\n"
+            "[--only-atmosphere | --only-presets | --only-colour | --only-photometry]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png]\n"
             "       sky-bench --stability [--json]\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
@@ -1262,7 +1353,7 @@ static void bench_usage(FILE *out)
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0, only_colour = 0, soak = 0;
+        only_presets = 0, only_colour = 0, only_photometry = 0, soak = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
     for (int i = 1; i < argc; i++) {
@@ -1278,6 +1369,8 @@ int main(int argc, char **argv)
             only_presets = 1;
         else if (!strcmp(argv[i], "--only-colour"))
             only_colour = 1;
+        else if (!strcmp(argv[i], "--only-photometry"))
+            only_photometry = 1;
         else if (!strcmp(argv[i], "--soak") && i + 1 < argc && (soak = atoi(argv[i + 1])) >= 1000 && soak <= 50000)
             i++;
         else if (!strcmp(argv[i], "--tone-map") && i + 1 < argc &&
@@ -1312,6 +1405,19 @@ int main(int argc, char **argv)
     if (stability) return stability_table(json);
     if (soak) return soak_table(soak, SKY_GL_CORE33);
     static sky_colour_row colour[COLOUR_ROWS];
+    sky_photometry phot[PHOT_PATHS];
+    if (only_photometry) {
+        if (photometry_rows(phot)) return 1;
+        if (json) {
+            printf("{\n");
+            print_photometry_json(phot);
+            printf("\n}\n");
+        } else {
+            printf("Photometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
+            print_photometry_table(phot);
+        }
+        return 0;
+    }
     if (only_colour) {
         if (colour_rows(tone_map, colour)) return 1;
         if (json) {
@@ -1399,6 +1505,7 @@ int main(int argc, char **argv)
     if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
     double astro = astro_us(2000);
     if (colour_rows(tone_map, colour)) return 1;
+    if (photometry_rows(phot)) return 1;
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
                rounds, astro);
@@ -1430,7 +1537,9 @@ int main(int argc, char **argv)
         }
         printf(" ],\n");
         print_colour_json(tone_map, colour, COLOUR_ROWS);
-        printf("}\n");
+        printf(",\n");
+        print_photometry_json(phot);
+        printf("\n}\n");
         return 0;
     }
     printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then each\n"
@@ -1458,5 +1567,7 @@ int main(int argc, char **argv)
            "frame (the atmosphere and the sun):\n\n",
            tone_map_names[tone_map]);
     print_colour_table(colour, COLOUR_ROWS);
+    printf("\nPhotometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
+    print_photometry_table(phot);
     return 0;
 }

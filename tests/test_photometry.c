@@ -1,0 +1,77 @@
+/*
+ * The photometry yardstick (tools/photometry.c): its published figures
+ * come out of the formulas they are published as, and its measurement
+ * reads a sky the way the formulas describe one. The paths' own figures
+ * against their targets are held by the tests of the issue that meets
+ * them.
+ */
+#include "test.h"
+
+#include "photometry.h"
+
+#include <math.h>
+#include <string.h>
+
+void test_photometry_published_formulas(void);
+void test_photometry_measures_every_path(void);
+
+#define PI 3.14159265358979323846
+
+void test_photometry_published_formulas(void)
+{
+    sky_photometry pub;
+    sky_photometry_published(&pub);
+    /* the figures the issue quotes from the CIE, gensky and IES */
+    CHECK(fabs(pub.glow_ratio_30 - 10.2) < 0.05, "CIE 12 glow 5-8 deg around a sun at 30 deg: %.3f (10.2)",
+          pub.glow_ratio_30);
+    CHECK(fabs(pub.horizon_ratio_70 - 0.68) < 0.01, "CIE 12 horizon opposite a sun at 70 deg: %.3f (0.68)",
+          pub.horizon_ratio_70);
+    CHECK(fabs(pub.zenith_kcd_70 - 5.8) < 0.05, "gensky's clear zenith, T 2.75, sun 70 deg: %.3f kcd/m^2 (5.8)",
+          pub.zenith_kcd_70);
+    CHECK(fabs(pub.diffuse_klx_30 - 11.8) < 0.05, "IES diffuse horizontal, sun 30 deg: %.3f klx (11.8)",
+          pub.diffuse_klx_30);
+    CHECK(fabs(pub.direct_klx_10 - 38.0) < 0.5, "IES direct normal, sun 10 deg: %.2f klx (38)", pub.direct_klx_10);
+    /* 1 cd/m^2 is 12.58 mag/arcsec^2; ten times brighter is 2.5 less */
+    CHECK(fabs(sky_mag_arcsec2(1e-3) - 12.58) < 0.01 && fabs(sky_mag_arcsec2(1e-2) - 10.08) < 0.01,
+          "mag/arcsec^2 of 1 and 10 cd/m^2: %.3f, %.3f", sky_mag_arcsec2(1e-3), sky_mag_arcsec2(1e-2));
+    /* every CIE type is 1 at the zenith, brightest toward the sun, and its
+     * clear types darken from the zenith to 75 degrees opposite a high sun */
+    for (int t = 11; t <= 13; t++) {
+        double zs = 40.0 * PI / 180.0;
+        CHECK(fabs(sky_cie_ratio(t, 0.0, zs, zs) - 1.0) < 1e-12, "type %d: L/Lz at the zenith %.6f", t,
+              sky_cie_ratio(t, 0.0, zs, zs));
+        CHECK(sky_cie_ratio(t, zs, 0.1, zs) > 3.0 * sky_cie_ratio(t, zs, PI / 2.0, zs),
+              "type %d: brighter 6 degrees from the sun than 90 degrees away", t);
+    }
+}
+
+/* Every path measured: finite, positive, and in the ranges that any sky
+ * lit by a sun must be in (a closest CIE type among 11-13; brighter glow
+ * than zenith; twilight darker at -12 than at -6). */
+void test_photometry_measures_every_path(void)
+{
+    static const sky_atmosphere_path paths[5] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
+                                                 SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
+                                                 SKY_ATMOSPHERE_BLEND};
+    for (int p = 0; p < 5; p++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.gl_profile = SKY_GL_CORE33;
+        cfg.atmosphere = paths[p];
+        sky_photometry m;
+        char err[256] = "";
+        int rc = sky_photometry_measure(&cfg, &m, err, sizeof err);
+        CHECK(rc == 0, "path %d measured: %s", (int)paths[p], err);
+        if (rc) continue;
+        for (int i = 0; i < SKY_PHOT_SHAPES; i++)
+            CHECK(isfinite(m.cie_median[i]) && m.cie_median[i] >= 0.0 && m.cie_type[i] >= 11 && m.cie_type[i] <= 13,
+                  "path %d, sun %.0f: shape deviation %.3f against type %d", (int)paths[p], sky_phot_shape_suns[i],
+                  m.cie_median[i], m.cie_type[i]);
+        CHECK(m.glow_ratio_30 > 1.0 && m.zenith_kcd_70 > 0.0 && m.diffuse_klx_30 > 0.0 && m.direct_klx_10 > 0.0,
+              "path %d: glow %.2f, zenith %.3f kcd/m^2, diffuse %.2f klx, direct %.1f klx", (int)paths[p],
+              m.glow_ratio_30, m.zenith_kcd_70, m.diffuse_klx_30, m.direct_klx_10);
+        CHECK(m.civil_lx > m.nautical_lx && m.nautical_lx > 0.0 && isfinite(m.night_zenith_mag),
+              "path %d: %.4g lx at -6, %.4g lx at -12, night zenith %.2f mag/arcsec^2", (int)paths[p], m.civil_lx,
+              m.nautical_lx, m.night_zenith_mag);
+    }
+}
