@@ -190,13 +190,16 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         sky_format(err, err_len, "sky_create: SKY_LUNAR_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
         return NULL;
     }
-    sky_atmosphere_params atm = cfg->atmosphere_params;
-    if (sky_atmosphere_is_zero(&atm)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &atm);
+    sky_atmosphere_params described = cfg->atmosphere_params, atm;
+    if (sky_atmosphere_is_zero(&described)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &described);
     char atm_err[160];
-    if (sky_atmosphere_check(&atm, atm_err, sizeof atm_err) != SKY_OK) {
+    if (sky_atmosphere_check(&described, atm_err, sizeof atm_err) != SKY_OK) {
         sky_format(err, err_len, "sky_create: %s", atm_err);
         return NULL;
     }
+    /* the haze knob: the description's aerosol at cfg->turbidity (turbidity
+     * was checked above: 0 or 1..64) */
+    sky_atmosphere_with_turbidity(&described, cfg->turbidity, &atm);
     float horizon_to_world[9];
     if (sky_camera_horizon_to_world(cfg->horizon_to_world, horizon_to_world)) {
         sky_format(err, err_len,

@@ -205,11 +205,22 @@ typedef struct sky_atmosphere_params {
     float ground_albedo[3];         /* Lambertian, 0..1                        */
 } sky_atmosphere_params;
 
+/* The Earth presets differ in their aerosol: its optical depth at 550 nm
+ * (AOD; real clear skies 0.05-0.2), falling with wavelength as lambda^-1.3
+ * (Angstrom), and its turbidity, the ratio of the whole vertical optical
+ * depth at 550 nm to the molecules' alone (sky_config.turbidity). */
 typedef enum sky_atmosphere_preset {
-    SKY_ATMOSPHERE_EARTH = 0, /* clear Earth: Hillaire 2020's constants        */
-    SKY_ATMOSPHERE_HAZY,      /* a polluted summer afternoon: 4x the aerosols,
-                                 thicker and less forward-scattering        */
-    SKY_ATMOSPHERE_MARS       /* thin CO2 and a tall layer of red dust       */
+    SKY_ATMOSPHERE_EARTH = 0,      /* clear (the default): AOD 0.085, turbidity
+                                      1.8; matched to the CIE clear sky, gensky's
+                                      clear zenith and the IES illuminances    */
+    SKY_ATMOSPHERE_HAZY,           /* AOD 0.3 in a 2 km layer (turbidity 3.8)  */
+    SKY_ATMOSPHERE_MARS,           /* thin CO2 and a tall layer of red dust    */
+    SKY_ATMOSPHERE_VERY_CLEAN,     /* mountains, open ocean: AOD 0.04 (1.4)    */
+    SKY_ATMOSPHERE_POLLUTED,       /* summer smog: AOD 0.6 of absorbing
+                                      particles (turbidity 6.5)               */
+    SKY_ATMOSPHERE_HILLAIRE_2020   /* Hillaire 2020's published constants (AOD
+                                      0.0053, turbidity 1.05): for comparison
+                                      with other implementations of his paper */
 } sky_atmosphere_preset;
 
 /* Fills *out with a preset; SKY_ERR_INVALID_ARGUMENT for an unknown one. */
@@ -313,8 +324,15 @@ typedef struct sky_config {
      * times its true size. 0 = 2.5; else 0.5..50 (sky_create rejects
      * anything else). */
     float moon_scale;
-    /* PREETHAM's turbidity: 0 = 2.5 (a clear day). Accepted 1..64; the
-     * model clamps it into its fitted range, 2..10. */
+    /* Haze, on every path in one unit: turbidity, the ratio of the
+     * atmosphere's vertical optical depth at 550 nm to its molecules' alone
+     * (Linke; Preetham et al. 1999). 0 = each path's own: PREETHAM 2.5, the
+     * physical paths (RAYLEIGH, HILLAIRE, BLEND) their description's
+     * aerosol (SKY_ATMOSPHERE_EARTH: 1.8). Else 1..64: PREETHAM clamps it
+     * into its fitted range, 2..10; the physical paths scale their
+     * description's aerosol to an optical depth of (T - 1) times the
+     * molecules' (at most 10/km of extinction), keeping its colour,
+     * albedo, asymmetry and height. */
     float turbidity;
     /* The atmosphere's composition; all zero = Earth (see above). */
     sky_atmosphere_params atmosphere_params;

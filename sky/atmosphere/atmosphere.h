@@ -48,6 +48,12 @@ void sky_atmosphere_skyview_at(const sky_core *s, double *sun_mu, double *altitu
 /* ---- the description (params.c) ---------------------------------------------- */
 /* 1 when every field is zero (= the Earth preset). */
 int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
+/* The description with its aerosol scaled to a turbidity (sky.h,
+ * sky_config.turbidity); turbidity <= 0 copies it unchanged. */
+void sky_atmosphere_with_turbidity(const sky_atmosphere_params *in, double turbidity, sky_atmosphere_params *out);
+/* A description's turbidity: 1 + its aerosol's optical depth at 550 nm
+ * over its molecules'. */
+double sky_atmosphere_turbidity(const sky_atmosphere_params *atm);
 /* The description's coefficients re-sampled at the wavelengths the sRGB
  * channels of scattered sunlight come from
  * (sky_spectrum_effective_wavelengths): what the real-time physical paths
