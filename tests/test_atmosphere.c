@@ -362,7 +362,8 @@ void test_atmosphere_shaders_match_cpu_twins(void)
 
 /* A sun 0.1 degree above, at and 0.1 below the horizon gives three
  * nearly identical skies in every path: no step at the horizon. The
- * twilight sky darkens by a decade in 3 degrees, 8 % per 0.1 degree;
+ * twilight sky darkens by a decade in 2.7 to 3 degrees, 8 to 9 % per 0.1
+ * degree;
  * anything past 12 % is a step. (0.1 degree: more than the sun movement
  * that rebuilds Hillaire's sky-view table, 0.05.) */
 void test_atmosphere_continuous_across_horizon(void)

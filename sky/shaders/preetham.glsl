@@ -3,7 +3,8 @@
  * with coefficients fitted to turbidity (appendix A.2), computed per frame
  * on the CPU (preetham.c). Pure arithmetic: no texture. */
 uniform vec3 u_perez_a, u_perez_b, u_perez_c, u_perez_d, u_perez_e; /* for (Y, x, y) */
-uniform vec3 u_perez_zenith; /* (Y_z, x_z, y_z) / F(0, theta_s), Y in kcd/m^2, times the twilight fade */
+uniform vec3 u_perez_zenith; /* (Y_z, x_z, y_z) / F(0, theta_s), Y in kcd/m^2, Y times
+                              the twilight scale (preetham.c: measured twilight) */
 
 vec3 sky_atmosphere(vec3 view, vec3 day)
 {
