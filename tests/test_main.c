@@ -152,6 +152,7 @@ int test_skipped;
     X(atmosphere_extinction_follows_the_description) \
     X(atmosphere_observer_altitudes)             \
     X(atmosphere_setting_sun_flattened)          \
+    X(atmosphere_blend_partner_preetham)         \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
     X(reference_spectrum_and_units)              \
