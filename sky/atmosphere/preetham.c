@@ -156,13 +156,19 @@ void sky_preetham_frame(sky_core *s)
     /* The twilight scale needs the fit's horizon-sun illuminance: only
      * while the sun is within a few degrees of the horizon or below it
      * (the ease above ends at h1 = 2 |log10(0.8 klx / E0)| / m: 6.9
-     * degrees at T 2, the brightest horizon sky, 15 klx). */
+     * degrees at T 2, the brightest horizon sky, 15 klx). It depends on
+     * T alone, which a sky keeps: the 384-point quadrature (some 30 us)
+     * runs once, not every frame. */
     double scale = 1.0;
     if (altitude < 10.0 * SKY_PI / 180.0) {
-        double chi0 = 0.0; /* theta_s = 90 degrees */
-        double Yz0 = (4.0453 * T - 4.9710) * tan(chi0) - 0.2155 * T + 2.4192;
-        double F00 = (1.0 + coef[0][0] * exp(coef[0][1])) * (1.0 + coef[0][2] * exp(coef[0][3] * 0.5 * SKY_PI));
-        scale = twilight_scale(altitude, horizon_sun_illuminance(coef[0], Yz0 / F00));
+        if (f->perez_horizon_t != T) {
+            /* eq. A.2 at theta_s = 90 degrees: chi = 0, tan chi = 0 */
+            double Yz0 = -0.2155 * T + 2.4192;
+            double F00 = (1.0 + coef[0][0] * exp(coef[0][1])) * (1.0 + coef[0][2] * exp(coef[0][3] * 0.5 * SKY_PI));
+            f->perez_horizon_klx = horizon_sun_illuminance(coef[0], Yz0 / F00);
+            f->perez_horizon_t = T;
+        }
+        scale = twilight_scale(altitude, f->perez_horizon_klx);
     }
     zenith[0] *= scale;
     for (int c = 0; c < 3; c++) f->perez_zenith[c] = (float)(zenith[c] / F0[c]);
