@@ -149,9 +149,10 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --atmosphere gradient|preetham|rayleigh|hillaire|blend   atmosphere path\n"
             "  --luts small|default|large   hillaire/blend: table sizes and samples (x0.5, Hillaire's, x2)\n"
             "  --blend W                blend: fixed weight 0 (analytic) .. 1 (Hillaire); default follows the sun\n"
-"  --turbidity T            haze on every path: the optical depth's ratio to the molecules' alone,\n"
-"                           1..64 (preetham clamps to 2..10, default 2.5; the others scale the\n"
-"                           description's aerosol, default its own: earth 1.8)\n"
+            "  --blend-partner rayleigh|preetham   blend: the analytic path mixed with Hillaire's (default rayleigh)\n"
+            "  --turbidity T            haze on every path: the optical depth's ratio to the molecules' alone,\n"
+            "                           1..64 (preetham clamps to 2..10, default 2.5; the others scale the\n"
+            "                           description's aerosol, default its own: earth 1.8)\n"
             "  --dome-divisor N         8-bit output: the sky and clouds at 1/N of the pixels per axis,\n"
             "                           filtered up (1..8; default 4; 1 = every pixel, the sharpest)\n"
             "  --tone-map hue|filmic|neutral   8-bit output's curve: hue keeps each colour's hue and\n"
@@ -361,6 +362,13 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                             val ? val : "(nothing)");
             cli->blend_manual = 1;
             cli->blend_weight = (float)v;
+        } else if (!strcmp(opt, "--blend-partner")) {
+            if (val && !strcmp(val, "rayleigh"))
+                cli->blend_partner = SKY_ATMOSPHERE_RAYLEIGH;
+            else if (val && !strcmp(val, "preetham"))
+                cli->blend_partner = SKY_ATMOSPHERE_PREETHAM;
+            else
+                return fail(err, len, "--blend-partner: expected rayleigh|preetham, got '%s'", val ? val : "(nothing)");
         } else if (!strcmp(opt, "--turbidity")) {
             if (!parse_number(val, 1.0, 64.0, &v))
                 return fail(err, len, "--turbidity: expected a turbidity in 1..64, got '%s'", val ? val : "(nothing)");
@@ -516,6 +524,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.luts = cli->luts;
     cfg.blend_manual = cli->blend_manual;
     cfg.blend_weight = cli->blend_weight;
+    cfg.blend_partner = cli->blend_partner;
     sky_atmosphere_get_preset(cli->planet, &cfg.atmosphere_params);
     cfg.get_proc_address = loader;
     return cfg;

@@ -123,6 +123,14 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
         return NULL;
     }
+    if (cfg->blend_partner != SKY_ATMOSPHERE_DEFAULT && cfg->blend_partner != SKY_ATMOSPHERE_RAYLEIGH &&
+        cfg->blend_partner != SKY_ATMOSPHERE_PREETHAM) {
+        sky_format(err, err_len,
+                   "sky_create: blend_partner %d is not an analytic path the blend can mix (0 = RAYLEIGH, "
+                   "SKY_ATMOSPHERE_RAYLEIGH or SKY_ATMOSPHERE_PREETHAM)",
+                   (int)cfg->blend_partner);
+        return NULL;
+    }
     if (cfg->blend_manual && !(cfg->blend_weight >= 0.0f && cfg->blend_weight <= 1.0f)) {
         sky_format(err, err_len, "sky_create: blend_weight %g is out of range (0..1)", (double)cfg->blend_weight);
         return NULL;

@@ -135,8 +135,10 @@ typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_HILLAIRE,    /* Hillaire 2020's tables (transmittance,
                                    multiple scattering, sky-view) of
                                    sky_config.atmosphere_params             */
-    SKY_ATMOSPHERE_BLEND        /* RAYLEIGH and HILLAIRE mixed by a weight
-                                   (sky_config.blend_manual, blend_weight)  */
+    SKY_ATMOSPHERE_BLEND        /* an analytic path (RAYLEIGH, or PREETHAM:
+                                   sky_config.blend_partner) and HILLAIRE
+                                   mixed by a weight (sky_config.blend_manual,
+                                   blend_weight)                            */
 } sky_atmosphere_path;
 
 typedef enum sky_gl_profile {
@@ -343,6 +345,11 @@ typedef struct sky_config {
      * path above 60); 1 = use blend_weight, 0 (analytic) .. 1 (Hillaire). */
     int blend_manual;
     float blend_weight;
+    /* BLEND: the analytic path mixed with Hillaire's tables (weight 0):
+     * SKY_ATMOSPHERE_DEFAULT (0) = SKY_ATMOSPHERE_RAYLEIGH, or
+     * SKY_ATMOSPHERE_PREETHAM (its turbidity is cfg.turbidity). sky_create
+     * rejects any other path. Ignored by the other paths. */
+    sky_atmosphere_path blend_partner;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,

@@ -27,6 +27,7 @@ void test_atmosphere_extinction_follows_the_description(void);
 void test_atmosphere_observer_altitudes(void);
 void test_atmosphere_setting_sun_flattened(void);
 void test_atmosphere_turbidity_and_presets(void);
+void test_atmosphere_blend_partner_preetham(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
@@ -55,23 +56,29 @@ static int hdr_open(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profi
     return hdr_open_luts(h, size, path, profile, turbidity, NULL);
 }
 
-static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
-                         const sky_lut_settings *luts)
+/* The same from a whole config (HDR output and the sun set here). */
+static int hdr_open_config(hdr_sky *h, int size, sky_gl_profile profile, sky_config cfg)
 {
     memset(h, 0, sizeof *h);
     h->size = size;
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
     cfg.output = SKY_OUTPUT_HDR;
     cfg.features = SKY_SUN; /* the sun quad too: its glare must stay finite */
-    cfg.atmosphere = path;
-    cfg.turbidity = turbidity;
-    if (luts) cfg.luts = *luts;
     fixture f;
     if (fixture_open_sized(&f, size, size, 1, profile, &cfg)) return -1;
     h->ctx = f.ctx;
     h->s = f.s;
     return 0;
+}
+
+static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
+                         const sky_lut_settings *luts)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = path;
+    cfg.turbidity = turbidity;
+    if (luts) cfg.luts = *luts;
+    return hdr_open_config(h, size, profile, cfg);
 }
 
 static void hdr_close(hdr_sky *h)
@@ -257,7 +264,10 @@ static void twin_eval(const sky *s, const double d[3], double rgb[3])
     case SKY_ATMOSPHERE_RAYLEIGH: sky_rayleigh_eval(&s->core.frame, d, rgb); return;
     case SKY_ATMOSPHERE_HILLAIRE: table_eval(s, d, rgb); return;
     default:
-        sky_rayleigh_eval(&s->core.frame, d, a);
+        if (s->core.cfg.blend_partner == SKY_ATMOSPHERE_PREETHAM)
+            sky_preetham_eval(&s->core.frame, d, a);
+        else
+            sky_rayleigh_eval(&s->core.frame, d, a);
         table_eval(s, d, b);
         for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * s->core.frame.blend_weight;
         return;
@@ -364,7 +374,8 @@ void test_atmosphere_shaders_match_cpu_twins(void)
 
 /* A sun 0.1 degree above, at and 0.1 below the horizon gives three
  * nearly identical skies in every path: no step at the horizon. The
- * twilight sky darkens by a decade in 3 degrees, 8 % per 0.1 degree;
+ * twilight sky darkens by a decade in 2.7 to 3 degrees, 8 to 9 % per 0.1
+ * degree;
  * anything past 12 % is a step. (0.1 degree: more than the sun movement
  * that rebuilds Hillaire's sky-view table, 0.05.) */
 void test_atmosphere_continuous_across_horizon(void)
@@ -821,4 +832,91 @@ void test_atmosphere_turbidity_and_presets(void)
     }
     CHECK(direct[0] > direct[1] && direct[1] > direct[2] && direct[2] > 0.0,
           "the low sun's green light at turbidity 1.5 / 3 / 8: %.2f / %.2f / %.2f klx", direct[0], direct[1], direct[2]);
+}
+
+/* The blend's analytic partner (sky_config.blend_partner): with PREETHAM
+ * at a manual weight 0 the blend renders Preetham's sky, at weight 1
+ * Hillaire's, for a high sun, a low one and one just set. Sky pixels
+ * above the horizon and more than 8 degrees from the sun: the sun's disc
+ * and the ground below the horizon take the beam through the physical
+ * description in the blend and through the sun model in PREETHAM (what the
+ * partner is not asked to change). Both sides run the same shader code on
+ * the same uniforms: float rounding apart, identical. */
+#define PARTNER_SUNS 3
+static int render_suns(sky_config cfg, int size, float *out[PARTNER_SUNS], float sun_dir[PARTNER_SUNS][3])
+{
+    static const double altitudes[PARTNER_SUNS] = {30.0, 3.0, -3.0};
+    sky_observer o = equator_equinox();
+    hdr_sky h;
+    if (hdr_open_config(&h, size, SKY_GL_AUTO, cfg)) return -1;
+    size_t n = (size_t)size * (size_t)size * 4u;
+    int rc = 0;
+    for (int k = 0; k < PARTNER_SUNS && !rc; k++) {
+        sky_params clear = sky_default_params();
+        clear.cover = 0.0f;
+        rc = hdr_draw(&h, &o, sky_atmo_time_for_altitude(&o, altitudes[k]), &clear);
+        if (!rc) memcpy(out[k], h.ctx.pixels, n * sizeof(float));
+        for (int i = 0; i < 3; i++) sun_dir[k][i] = h.s->core.frame.sun_dir[i];
+    }
+    hdr_close(&h);
+    return rc;
+}
+
+void test_atmosphere_blend_partner_preetham(void)
+{
+    static const double altitudes[PARTNER_SUNS] = {30.0, 3.0, -3.0};
+    static const struct {
+        float weight;
+        sky_atmosphere_path alone;
+        const char *name;
+    } cases[] = {{0.0f, SKY_ATMOSPHERE_PREETHAM, "preetham"}, {1.0f, SKY_ATMOSPHERE_HILLAIRE, "hillaire"}};
+    enum { SIZE = 48 };
+    size_t n = (size_t)SIZE * SIZE * 4u;
+    float *img[2][PARTNER_SUNS], sun_dir[2][PARTNER_SUNS][3];
+    int ok = 1;
+    for (int j = 0; j < 2; j++)
+        for (int k = 0; k < PARTNER_SUNS; k++) ok &= (img[j][k] = malloc(n * sizeof(float))) != NULL;
+    for (size_t q = 0; q < sizeof cases / sizeof cases[0] && ok; q++) {
+        sky_config blend_cfg, alone_cfg;
+        memset(&blend_cfg, 0, sizeof blend_cfg);
+        memset(&alone_cfg, 0, sizeof alone_cfg);
+        blend_cfg.atmosphere = SKY_ATMOSPHERE_BLEND;
+        blend_cfg.blend_partner = SKY_ATMOSPHERE_PREETHAM;
+        blend_cfg.blend_manual = 1;
+        blend_cfg.blend_weight = cases[q].weight;
+        alone_cfg.atmosphere = cases[q].alone;
+        if (render_suns(blend_cfg, SIZE, img[0], sun_dir[0]) || render_suns(alone_cfg, SIZE, img[1], sun_dir[1])) {
+            CHECK(0, "blend with the preetham partner or %s: no sky", cases[q].name);
+            continue;
+        }
+        hdr_sky geometry = {.size = SIZE}; /* pixel_dir reads the size alone */
+        for (int k = 0; k < PARTNER_SUNS; k++) {
+            const float *a = img[0][k], *b = img[1][k], *sd = sun_dir[0][k];
+            double worst = 0.0, brightest = 0.0;
+            int compared = 0;
+            for (int y = 0; y < SIZE; y++)
+                for (int x = 0; x < SIZE; x++) {
+                    double d[3];
+                    if (!pixel_dir(&geometry, x, y, d) || d[1] < 0.01 ||
+                        d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2] > cos(8.0 * SKY_PI / 180.0))
+                        continue;
+                    size_t i = ((size_t)(SIZE - 1 - y) * (size_t)SIZE + (size_t)x) * 4u;
+                    for (int c = 0; c < 3; c++) {
+                        double rel = fabs(a[i + c] - b[i + c]) / (fabs(b[i + c]) + 1e-9);
+                        if (rel > worst) worst = rel;
+                        if (b[i + c] > brightest) brightest = b[i + c];
+                    }
+                    compared++;
+                }
+            NOTE("blend (preetham partner, weight %.0f) vs %s, sun %+.0f: %d pixels, worst relative difference %.2g",
+                 (double)cases[q].weight, cases[q].name, altitudes[k], compared, worst);
+            CHECK(compared > 500 && brightest > 0.0 && worst < 2e-3,
+                  "blend (preetham partner, weight %.0f) differs from %s at sun %+.0f by %.3g (%d pixels)",
+                  (double)cases[q].weight, cases[q].name, altitudes[k], worst, compared);
+            CHECK(fabs(sun_dir[0][k][1] - sun_dir[1][k][1]) < 1e-6, "the two skies' suns differ");
+        }
+    }
+    CHECK(ok, "out of memory");
+    for (int j = 0; j < 2; j++)
+        for (int k = 0; k < PARTNER_SUNS; k++) free(img[j][k]);
 }

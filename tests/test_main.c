@@ -153,6 +153,7 @@ int test_skipped;
     X(atmosphere_observer_altitudes)             \
     X(atmosphere_setting_sun_flattened)          \
     X(atmosphere_turbidity_and_presets)          \
+    X(atmosphere_blend_partner_preetham)         \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
     X(reference_spectrum_and_units)              \
@@ -172,7 +173,8 @@ int test_skipped;
     X(hillaire_jump_builds_at_once)              \
     X(cli_outputs_png_pfm_stats)                 \
     X(photometry_published_formulas)             \
-    X(photometry_measures_every_path)
+    X(photometry_measures_every_path)            \
+    X(photometry_preetham_twilight)
 #endif
 
 #define DECLARE(name) void test_##name(void);

@@ -24,7 +24,10 @@ void sky_atmosphere_frame(sky_core *s);
 void sky_atmosphere_upload(sky_core *s);
 /* The snippets of the selected path (up to 5, in order; encoded_tables:
  * COMPAT20's 8-bit sky-view table). */
-int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out);
+int sky_atmosphere_snippets(sky_atmosphere_path path, sky_atmosphere_path blend_partner, int encoded_tables,
+                            const sky_snippet **out);
+/* BLEND's analytic path: cfg.blend_partner with 0 resolved (RAYLEIGH) */
+sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested);
 /* Vertical optical depth above the observer per channel: the atmosphere
  * description's for the physical paths, the sun model's otherwise; what
  * dims the stars and the moon (Mueller sec. 5). */
