@@ -116,6 +116,8 @@ int test_skipped;
     X(moon_left_out_when_not_needed)             \
     X(moon_rising_is_flattened)                  \
     X(moon_hides_the_stars_behind_it)            \
+    X(moon_disc_sums_to_moonlight)               \
+    X(moon_scale_keeps_luminance)                \
     X(demo_window_shows_sky_and_sliders)         \
     X(demo_drag_on_cover_slider)                 \
     X(demo_readout_is_gpu_frame_time)            \
