@@ -103,6 +103,10 @@ void sky_stars_reload(void *stars_state);
  * moon's magnitude share. */
 #define SKY_V0_ILLUMINANCE_KLX 2.54e-9
 
+/* sun.c: the sunlight above the atmosphere that the drawn disc sums to,
+ * klx (1 / r^2 with the sun's distance). */
+double sky_sun_illuminance_klx(const sky_core *s);
+
 /* moon.c: the factor the moon is drawn larger than its true size
  * (cfg.moon_scale, back to 1 near the sun, where it eclipses); the
  * moonlight a host's scene receives (sky_get_lighting). */

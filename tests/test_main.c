@@ -64,6 +64,7 @@ int test_skipped;
     X(render_height_changes_cloud_scale)         \
     X(render_sun_where_direction_projects)       \
     X(render_sun_in_fisheye)                     \
+    X(render_sun_disc_sums_to_sunlight)          \
     X(render_hdr_finite_everywhere)              \
     X(render_dome_image_agrees_with_every_pixel) \
     X(colour_hue_and_saturation_kept)            \
