@@ -553,12 +553,14 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     memset(out, 0, sizeof *out);
     sky_camera_to_world(c, f->sun_dir, out->sun_direction);
     out->sun_altitude_deg = (float)(f->sun_altitude * 180.0 / SKY_PI);
-    /* Solar illuminance above the atmosphere, 128 klx, through the
-     * atmosphere, times the part of the disc not yet set */
+    /* Solar illuminance above the atmosphere (sun.c: 128 klx at 1 au, what
+     * the drawn disc sums to), through the atmosphere, times the part of
+     * the disc not yet set */
     float above = (float)sky_disc_above_horizon(f->sun_altitude, c->astro.sun_semidiameter);
     /* and the share of its light a solar eclipse leaves */
     above *= (float)sky_solar_eclipse_light_left(c);
-    for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
+    float e0 = (float)sky_sun_illuminance_klx(c);
+    for (int i = 0; i < 3; i++) out->sun_color[i] = e0 * f->sun_transmittance[i] * above;
     /* sky irradiance and horizon: the atmosphere path's (atmosphere.c) */
     for (int i = 0; i < 3; i++) {
         out->ambient_color[i] = f->ambient_rgb[i];

@@ -324,7 +324,10 @@ typedef struct sky_config {
     float star_control_magnitude;
     /* Mueller's artificial moon scale c_d (eq. 1): the disc is drawn c_d
      * times its true size. 0 = 2.5; else 0.5..50 (sky_create rejects
-     * anything else). */
+     * anything else). The enlarged disc keeps the moon's surface brightness
+     * (as a telephoto view shows it), so in HDR it carries c_d^2 times the
+     * moonlight; sky_lighting.moon_color stays the true moon's, which the
+     * disc at c_d = 1 sums to. */
     float moon_scale;
     /* Haze, on every path in one unit: turbidity, the ratio of the
      * atmosphere's vertical optical depth at 550 nm to its molecules' alone
@@ -537,7 +540,11 @@ typedef struct sky_lighting {
     float sun_altitude_deg;    /* apparent (refracted) altitude of its centre  */
     float moon_direction[3];
     float moon_color[3];       /* moonlight on a surface facing the moon, klx
-                                  (0 when the scene has no moon or it is down) */
+                                  (0 when the scene has no moon or it is down):
+                                  the full moon's -12.73 mag at its mean
+                                  distance, 1 / r^2, the published phase law,
+                                  the same extinction as the drawn disc, which
+                                  sums to it in HDR at moon_scale 1 */
     float ambient_color[3];    /* sky irradiance on an upward surface, klx     */
     float fog_color[3];        /* horizon sky luminance, kcd/m^2               */
     float daylight;            /* 0 (night) .. 1 (full day): Roden-Parberry's
