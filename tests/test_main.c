@@ -178,7 +178,8 @@ int test_skipped;
     X(cli_outputs_png_pfm_stats)                 \
     X(photometry_published_formulas)             \
     X(photometry_measures_every_path)            \
-    X(photometry_preetham_twilight)
+    X(photometry_preetham_twilight)              \
+    X(photometry_physical_paths_targets)
 #endif
 
 #define DECLARE(name) void test_##name(void);

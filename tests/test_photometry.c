@@ -15,6 +15,7 @@
 void test_photometry_published_formulas(void);
 void test_photometry_measures_every_path(void);
 void test_photometry_preetham_twilight(void);
+void test_photometry_physical_paths_targets(void);
 
 #define PI 3.14159265358979323846
 
@@ -109,4 +110,47 @@ void test_photometry_preetham_twilight(void)
     for (int i = 0; i < SKY_PHOT_SHAPES; i++)
         CHECK(m.cie_median[i] <= shape_limit[i], "preetham, sun %.0f deg: shape %.1f %% from CIE type %d (<= %.0f %%)",
               sky_phot_shape_suns[i], 100.0 * m.cie_median[i], m.cie_type[i], 100.0 * shape_limit[i]);
+}
+
+/* Issue Real skies' targets for HILLAIRE and BLEND with the default
+ * Earth: the CIE clear-sky shape within 20 % at sun 10-70 deg; gensky's
+ * clear zenith and the IES diffuse illuminance within 25 %; civil and
+ * nautical twilight within x2 of Bond & Henderson; the night zenith
+ * 21.5-22.3 mag/arcsec^2. */
+void test_photometry_physical_paths_targets(void)
+{
+    static const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
+    static const char *const names[2] = {"hillaire", "blend"};
+    sky_photometry pub;
+    sky_photometry_published(&pub);
+    for (int p = 0; p < 2; p++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.gl_profile = SKY_GL_CORE33;
+        cfg.atmosphere = paths[p];
+        sky_photometry m;
+        char err[256] = "";
+        int rc = sky_photometry_measure(&cfg, &m, err, sizeof err);
+        CHECK(rc == 0, "%s measured: %s", names[p], err);
+        if (rc) continue;
+        NOTE("%s: shape %.0f/%.0f/%.0f/%.0f %%, zenith %.2f kcd/m^2, diffuse %.1f klx, twilight %.3g / %.3g lx, night "
+             "%.2f mag/arcsec^2",
+             names[p], 100.0 * m.cie_median[0], 100.0 * m.cie_median[1], 100.0 * m.cie_median[2],
+             100.0 * m.cie_median[3], m.zenith_kcd_70, m.diffuse_klx_30, m.civil_lx, m.nautical_lx,
+             m.night_zenith_mag);
+        for (int i = 0; i < SKY_PHOT_SHAPES; i++)
+            CHECK(m.cie_median[i] <= 0.20, "%s, sun %.0f deg: shape %.1f %% from CIE type %d (<= 20 %%)", names[p],
+                  sky_phot_shape_suns[i], 100.0 * m.cie_median[i], m.cie_type[i]);
+        CHECK(fabs(m.zenith_kcd_70 / pub.zenith_kcd_70 - 1.0) <= 0.25,
+              "%s: zenith at sun 70 %.2f kcd/m^2, gensky %.2f (within 25 %%)", names[p], m.zenith_kcd_70,
+              pub.zenith_kcd_70);
+        CHECK(fabs(m.diffuse_klx_30 / pub.diffuse_klx_30 - 1.0) <= 0.25,
+              "%s: diffuse at sun 30 %.2f klx, IES %.2f (within 25 %%)", names[p], m.diffuse_klx_30, pub.diffuse_klx_30);
+        CHECK(m.civil_lx > pub.civil_lx / 2.0 && m.civil_lx < pub.civil_lx * 2.0,
+              "%s: civil twilight %.3g lx, published %.3g (within x2)", names[p], m.civil_lx, pub.civil_lx);
+        CHECK(m.nautical_lx > pub.nautical_lx / 2.0 && m.nautical_lx < pub.nautical_lx * 2.0,
+              "%s: nautical twilight %.3g lx, published %.3g (within x2)", names[p], m.nautical_lx, pub.nautical_lx);
+        CHECK(m.night_zenith_mag >= 21.5 && m.night_zenith_mag <= 22.3,
+              "%s: night zenith %.2f mag/arcsec^2 (21.5-22.3)", names[p], m.night_zenith_mag);
+    }
 }
