@@ -56,10 +56,7 @@ void test_photometry_measures_every_path(void)
                                                  SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
                                                  SKY_ATMOSPHERE_BLEND};
     for (int p = 0; p < 5; p++) {
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.gl_profile = SKY_GL_CORE33;
-        cfg.atmosphere = paths[p];
+        sky_config cfg = sky_photometry_config(paths[p]);
         sky_photometry m;
         char err[256] = "";
         int rc = sky_photometry_measure(&cfg, &m, err, sizeof err);
@@ -88,10 +85,7 @@ void test_photometry_measures_every_path(void)
  * scale is one factor per frame, which leaves L/Lz alone. */
 void test_photometry_preetham_twilight(void)
 {
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.gl_profile = SKY_GL_CORE33;
-    cfg.atmosphere = SKY_ATMOSPHERE_PREETHAM;
+    sky_config cfg = sky_photometry_config(SKY_ATMOSPHERE_PREETHAM);
     sky_photometry m, pub;
     char err[256] = "";
     int rc = sky_photometry_measure(&cfg, &m, err, sizeof err);
@@ -124,10 +118,7 @@ void test_photometry_physical_paths_targets(void)
     sky_photometry pub;
     sky_photometry_published(&pub);
     for (int p = 0; p < 2; p++) {
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.gl_profile = SKY_GL_CORE33;
-        cfg.atmosphere = paths[p];
+        sky_config cfg = sky_photometry_config(paths[p]);
         sky_photometry m;
         char err[256] = "";
         int rc = sky_photometry_measure(&cfg, &m, err, sizeof err);

@@ -1261,10 +1261,7 @@ static int photometry_rows(sky_photometry out[PHOT_PATHS])
 {
     for (int p = 0; p < PHOT_PATHS; p++) {
         char err[512];
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.gl_profile = SKY_GL_CORE33;
-        cfg.atmosphere = phot_paths[p];
+        sky_config cfg = sky_photometry_config(phot_paths[p]);
         if (sky_photometry_measure(&cfg, &out[p], err, sizeof err)) {
             fprintf(stderr, "sky-bench: photometry of %s: %s\n", phot_names[p], err);
             return -1;
@@ -1349,10 +1346,7 @@ static int plot_photometry(const char *path)
     plot_curve cv[PHOT_PATHS + 2];
     for (int p = 0; p < PHOT_PATHS; p++) {
         char err[512];
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.gl_profile = SKY_GL_CORE33;
-        cfg.atmosphere = phot_paths[p];
+        sky_config cfg = sky_photometry_config(phot_paths[p]);
         if (sky_photometry_sky_lux(&cfg, alts, ALTS, lux[p], err, sizeof err)) {
             fprintf(stderr, "sky-bench: photometry of %s: %s\n", phot_names[p], err);
             return -1;

@@ -166,6 +166,15 @@ static double cie_shape(const sky_atmo_hemisphere *h, double sun_el, double sun_
     return best;
 }
 
+sky_config sky_photometry_config(sky_atmosphere_path path)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.gl_profile = SKY_GL_CORE33;
+    cfg.atmosphere = path;
+    return cfg;
+}
+
 int sky_photometry_measure(const sky_config *cfg, sky_photometry *out, char *err, size_t err_len)
 {
     memset(out, 0, sizeof *out);

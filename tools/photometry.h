@@ -56,6 +56,10 @@ double sky_ies_direct_normal_klx(double sun_alt_deg);
 /* Luminance in kcd/m^2 as mag/arcsec^2 (1 cd/m^2 = 12.58). */
 double sky_mag_arcsec2(double kcd);
 
+/* The config the photometry measures a path with: the defaults, the
+ * core profile. */
+sky_config sky_photometry_config(sky_atmosphere_path path);
+
 /* Measures a config's sky (its atmosphere path and description; output,
  * features and the rest are set here). Needs no current context. Returns
  * 0 or -1 with err. */

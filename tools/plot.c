@@ -89,6 +89,28 @@ static const unsigned char palette[][3] = {
 };
 #define PALETTE ((int)(sizeof palette / sizeof palette[0]))
 
+/* The frame both charts share: a logarithmic y axis over the decades
+ * d0..d1 (gridlines and labels, as percentages or as plain values), the
+ * axes and the three labels. */
+static void log_axes(canvas *c, double d0, double d1, int percent, const char *x_label, const char *y_label,
+                     const char *title)
+{
+    static const unsigned char ink[3] = {30, 30, 30}, grid[3] = {225, 225, 225};
+    int pw = W - LEFT - RIGHT, ph = H - TOP - BOTTOM;
+    for (double d = d0; d <= d1; d += 1.0) {
+        double y = TOP + ph - (d - d0) / (d1 - d0) * ph;
+        line(c, LEFT, y, LEFT + pw, y, grid);
+        char buf[24];
+        snprintf(buf, sizeof buf, percent ? "%g%%" : "%g", (percent ? 100.0 : 1.0) * pow(10.0, d));
+        text(c, LEFT - 8 - 8 * (int)strlen(buf), (int)y - 5, buf, ink);
+    }
+    line(c, LEFT, TOP + ph, LEFT + pw, TOP + ph, ink);
+    line(c, LEFT, TOP, LEFT, TOP + ph, ink);
+    text(c, LEFT + pw / 2 - 4 * (int)strlen(x_label), H - 22, x_label, ink);
+    text(c, LEFT + pw / 2 - 4 * (int)strlen(title), 4, title, ink);
+    text(c, 8, 22, y_label, ink);
+}
+
 int plot_pareto(const char *path, const plot_point *pt, int n, const char *const *legend, int series,
                 const char *x_label, const char *y_label, const char *title)
 {
@@ -116,18 +138,7 @@ int plot_pareto(const char *path, const plot_point *pt, int n, const char *const
         snprintf(buf, sizeof buf, "%d", k);
         text(c, (int)x - 4, TOP + ph + 6, buf, ink);
     }
-    for (double d = d0; d <= d1; d += 1.0) {
-        double y = PY(pow(10.0, d));
-        line(c, LEFT, y, LEFT + pw, y, grid);
-        char buf[16];
-        snprintf(buf, sizeof buf, "%g%%", 100.0 * pow(10.0, d));
-        text(c, LEFT - 8 - 8 * (int)strlen(buf), (int)y - 5, buf, ink);
-    }
-    line(c, LEFT, TOP + ph, LEFT + pw, TOP + ph, ink);
-    line(c, LEFT, TOP, LEFT, TOP + ph, ink);
-    text(c, LEFT + pw / 2 - 4 * (int)strlen(x_label), H - 22, x_label, ink);
-    text(c, LEFT + pw / 2 - 4 * (int)strlen(title), 4, title, ink);
-    text(c, 8, 22, y_label, ink);
+    log_axes(c, d0, d1, 1, x_label, y_label, title);
     /* the Pareto front: the points no other point beats in both cost and
      * error, joined in order of cost */
     int *on = calloc((size_t)n, sizeof *on), m = 0;
@@ -197,18 +208,7 @@ int plot_curves(const char *path, const plot_curve *cv, int n, const char *const
         snprintf(buf, sizeof buf, "%g", x);
         text(c, (int)PX(x) - 4 * (int)strlen(buf), TOP + ph + 6, buf, ink);
     }
-    for (double d = d0; d <= d1; d += 1.0) {
-        double y = PY(pow(10.0, d));
-        line(c, LEFT, y, LEFT + pw, y, grid);
-        char buf[24];
-        snprintf(buf, sizeof buf, "%g", pow(10.0, d));
-        text(c, LEFT - 8 - 8 * (int)strlen(buf), (int)y - 5, buf, ink);
-    }
-    line(c, LEFT, TOP + ph, LEFT + pw, TOP + ph, ink);
-    line(c, LEFT, TOP, LEFT, TOP + ph, ink);
-    text(c, LEFT + pw / 2 - 4 * (int)strlen(x_label), H - 22, x_label, ink);
-    text(c, LEFT + pw / 2 - 4 * (int)strlen(title), 4, title, ink);
-    text(c, 8, 22, y_label, ink);
+    log_axes(c, d0, d1, 0, x_label, y_label, title);
     for (int i = 0; i < n; i++) {
         const unsigned char *rgb = palette[cv[i].series % PALETTE];
         for (int k = 0; k < cv[i].n; k++) {
