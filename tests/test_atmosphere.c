@@ -522,12 +522,13 @@ void test_atmosphere_error_against_reference(void)
         CHECK(0, "%s", err);
         return;
     }
-    /* Hillaire's default tables: issue 6's target, 5 %. The others are
-     * guards: the errors measured when each path landed (gradient 45 %,
-     * Preetham at T 2.5 330 %: a hazier sky than the reference's clear
-     * Earth, Rayleigh single scattering 28 %, the blend 7 %) plus a margin
-     * for Mesa versions; sky-bench prints the current figures */
-    static const double day_limit[PATH_COUNT] = {0.52, 3.6, 0.33, 0.05, 0.09};
+    /* Hillaire's default tables: issue 6's target, 5 %; the analytic
+     * path's with multiple scattering: issue Real skies' 15 % (5.4 %
+     * measured). The others are guards: the errors measured when each
+     * path landed (gradient 45 %, Preetham at T 2.5 330 %: a hazier sky
+     * than the reference's clear Earth, the blend 7 %) plus a margin for
+     * Mesa versions; sky-bench prints the current figures */
+    static const double day_limit[PATH_COUNT] = {0.52, 3.6, 0.15, 0.05, 0.09};
     for (int p = 0; p < PATH_COUNT; p++) {
         sky_atmo_errors e[2];
         for (int q = 0; q < 2; q++) {

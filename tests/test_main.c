@@ -171,7 +171,8 @@ int test_skipped;
     X(hillaire_jump_builds_at_once)              \
     X(cli_outputs_png_pfm_stats)                 \
     X(photometry_published_formulas)             \
-    X(photometry_measures_every_path)
+    X(photometry_measures_every_path)            \
+    X(photometry_rayleigh_goes_dark)
 #endif
 
 #define DECLARE(name) void test_##name(void);
