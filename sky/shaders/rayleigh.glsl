@@ -21,12 +21,12 @@ vec3 sky_seg_mean(vec3 ta, vec3 tb, vec3 a, vec3 b)
 
 /* Column toward the sun from a point, per unit of the observer's vertical
  * depth (rayleigh.c's sun_column). */
-float sky_sun_column(float H, float r, float mu, float z, float r0_minus_rt, float rt)
+float sky_sun_column(float H, float r, float mu, float point, float r0_minus_rt, float rt)
 {
-    float point = exp(min(-z / H, 0.0));
     float up = point * sky_chapman(r / H, abs(mu));
+    if (mu >= 0.0) return up; /* by day, every pixel: the branch is coherent */
     float grazing = 2.0 * sqrt(1.5707963 * rt / H) * exp(min(r0_minus_rt / H, 80.0));
-    return mu >= 0.0 ? up : max(grazing - up, 0.0);
+    return max(grazing - up, 0.0);
 }
 
 /* The ozone tent's column above height h, km of peak density. */
@@ -61,18 +61,28 @@ void sky_rl_node(float t, float mu, float c, float m_r, float m_m, out float u_r
     float re = r + raise, ze = z + raise, ae = a * re / r, rte = raise > 0.0 ? R : rt;
     float mu_s = clamp(ae / re, -1.0, 1.0);
     float r0_minus_rt = raise > 0.0 ? r0 - R : (a * a - w) / (r0 + rt);
-    float col_r = sky_sun_column(HR, re, mu_s, ze, r0_minus_rt, rte);
-    float col_m = sky_sun_column(HM, re, mu_s, ze, r0_minus_rt, rte);
+    /* the point's own columns (e^-z/H), shared by the view's share below;
+     * a raised point's are its own */
+    float er = exp(-z / HR), em = exp(-z / HM);
+    float pr = er, pm = em;
+    if (raise > 0.0) {
+        pr = exp(-ze / HR);
+        pm = exp(-ze / HM);
+    }
+    float col_r = sky_sun_column(HR, re, mu_s, pr, r0_minus_rt, rte);
+    float col_m = sky_sun_column(HM, re, mu_s, pm, r0_minus_rt, rte);
     float oz_r = R + u_rl_ozone.x, h_t = min(rte, re) - R;
     float oz_above = sky_ozone_above(ze + r0 - R);
     float oz_dip = mu_s < 0.0 ? sky_ozone_above(h_t) - oz_above : 0.0;
     float oz_k = rte / max(oz_r, re);
     float col_o = (oz_above + 2.0 * oz_dip) * u_rl_ozone.z * inversesqrt(max(1.0 - oz_k * oz_k, 1e-3));
     float mu_v = clamp((r0 * mu + t) / r, 0.0, 1.0);
-    u_r = exp(-z / HR) * sky_chapman(r / HR, mu_v) / m_r;
-    u_m = exp(-z / HM) * sky_chapman(r / HM, mu_v) / m_m;
+    u_r = er * sky_chapman(r / HR, mu_v) / m_r;
+    u_m = em * sky_chapman(r / HM, mu_v) / m_m;
     sun = min(u_tau_rayleigh * col_r + u_tau_mie_ext * col_m + u_tau_ozone * col_o, vec3(1e4));
-    ms = mix(sun, 2.0 + 2.0 * log(max(0.5 * sun, vec3(1.0))), step(vec3(2.0), sun)) + raise / HR;
+    ms = sun;
+    if (any(greaterThan(sun, vec3(2.0)))) ms = mix(sun, 2.0 + 2.0 * log(max(0.5 * sun, vec3(1.0))), step(vec3(2.0), sun));
+    ms += raise / HR;
 }
 
 vec3 sky_rayleigh_radiance(vec3 view)
