@@ -282,10 +282,17 @@ static void node_at(const sky_frame *f, double t, double mu, double c, double m_
     double mu_v = sky_clampd((r0 * mu + t) / r, 0.0, 1.0);
     n->u_r = exp(-z / HR) * sky_chapman(r / HR, mu_v) / m_r;
     n->u_m = exp(-z / HM) * sky_chapman(r / HM, mu_v) / m_m;
+    for (int i = 0; i < 3; i++)
+        n->sun[i] = fmin(f->tau_rayleigh[i] * col_r + f->tau_mie_ext[i] * col_m + f->tau_ozone[i] * col_o,
+                         SLANT_DEPTH_MAX);
+    /* Deep in the shadow the light comes down from the lit air, which
+     * scatters blue as the day sky does; the grazing reddening is the
+     * edge's, not the shadow's: there every channel takes the green
+     * channel's depth, blended in with the climb, 1 - e^-climb/H_R
+     * (nothing at the edge, so no seam). */
+    double neutral = -expm1(-raise / HR);
     for (int i = 0; i < 3; i++) {
-        double s = fmin(f->tau_rayleigh[i] * col_r + f->tau_mie_ext[i] * col_m + f->tau_ozone[i] * col_o,
-                        SLANT_DEPTH_MAX);
-        n->sun[i] = s;
+        double s = n->sun[i] + (n->sun[1] - n->sun[i]) * neutral;
         /* Multiple scattering at a point comes from the sunlit air around
          * it. Where the sun's own depth s there is small that is its
          * transmittance e^-s; where it is large (a low sun, the shadow's

@@ -81,7 +81,8 @@ void sky_rl_node(float t, float mu, float c, float m_r, float m_m, out float u_r
     u_m = em * sky_chapman(r / HM, mu_v) / m_m;
     sun = min(u_tau_rayleigh * col_r + u_tau_mie_ext * col_m + u_tau_ozone * col_o, vec3(1e4));
     ms = sun;
-    if (any(greaterThan(sun, vec3(2.0)))) ms = mix(sun, 2.0 + 2.0 * log(max(0.5 * sun, vec3(1.0))), step(vec3(2.0), sun));
+    if (raise > 0.0) ms = mix(sun, vec3(sun.g), 1.0 - exp(-raise / HR)); /* neutral in the shadow (rayleigh.c) */
+    if (any(greaterThan(ms, vec3(2.0)))) ms = mix(ms, 2.0 + 2.0 * log(max(0.5 * ms, vec3(1.0))), step(vec3(2.0), ms));
     ms += raise / HR;
 }
 
