@@ -101,7 +101,7 @@ void test_photometry_rayleigh_goes_dark(void)
         CHECK(0, "rayleigh measured: %s", err);
         return;
     }
-    NOTE("rayleigh: %.3g lx at -6, %.3g lx at -12, night zenith %.2f mag/arcsec^2; shape %.0f / %.0f / %.0f / %.0f %%",
+    NOTE("rayleigh: %.3g lx at -6, %.3g lx at -12, night zenith %.2f mag/arcsec^2; shape %.1f / %.1f / %.1f / %.1f %%",
          m.civil_lx, m.nautical_lx, m.night_zenith_mag, 100.0 * m.cie_median[0], 100.0 * m.cie_median[1],
          100.0 * m.cie_median[2], 100.0 * m.cie_median[3]);
     /* the night: the sky of a sun 30 deg down is the airglow's alone
