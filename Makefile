@@ -93,7 +93,7 @@ $(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) 
 	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a -lOSMesa -lpthread $(LDLIBS_M)
 
 bench: all
-	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png
+	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png
 
 $(BIN)/catgen: tools/catgen.c
 	@mkdir -p $(@D)

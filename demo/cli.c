@@ -149,13 +149,18 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --atmosphere gradient|preetham|rayleigh|hillaire|blend   atmosphere path\n"
             "  --luts small|default|large   hillaire/blend: table sizes and samples (x0.5, Hillaire's, x2)\n"
             "  --blend W                blend: fixed weight 0 (analytic) .. 1 (Hillaire); default follows the sun\n"
-"  --turbidity T            preetham's haze, 1..64 (the model clamps to 2..10; default 2.5)\n"
+            "  --blend-partner rayleigh|preetham   blend: the analytic path mixed with Hillaire's (default rayleigh)\n"
+            "  --turbidity T            haze on every path: the optical depth's ratio to the molecules' alone,\n"
+            "                           1..64 (preetham clamps to 2..10, default 2.5; the others scale the\n"
+            "                           description's aerosol, default its own: earth 1.8)\n"
             "  --dome-divisor N         8-bit output: the sky and clouds at 1/N of the pixels per axis,\n"
             "                           filtered up (1..8; default 4; 1 = every pixel, the sharpest)\n"
             "  --tone-map hue|filmic|neutral   8-bit output's curve: hue keeps each colour's hue and\n"
             "                           saturation (default), filmic is libsky's old per-channel curve,\n"
             "                           neutral is Khronos PBR Neutral\n"
-            "  --planet earth|hazy|mars the atmosphere's composition (rayleigh, hillaire, blend)\n"
+            "  --planet NAME            the atmosphere's composition (rayleigh, hillaire, blend): earth (clear,\n"
+            "                           the default), very-clean, hazy, polluted, hillaire-2020 (his paper's\n"
+            "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
             "                           solar-eclipse (or none); eclipse = the lunar one\n"
             "  --gl auto|core|compat    GL profile\n"
@@ -357,19 +362,30 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                             val ? val : "(nothing)");
             cli->blend_manual = 1;
             cli->blend_weight = (float)v;
+        } else if (!strcmp(opt, "--blend-partner")) {
+            if (val && !strcmp(val, "rayleigh"))
+                cli->blend_partner = SKY_ATMOSPHERE_RAYLEIGH;
+            else if (val && !strcmp(val, "preetham"))
+                cli->blend_partner = SKY_ATMOSPHERE_PREETHAM;
+            else
+                return fail(err, len, "--blend-partner: expected rayleigh|preetham, got '%s'", val ? val : "(nothing)");
         } else if (!strcmp(opt, "--turbidity")) {
             if (!parse_number(val, 1.0, 64.0, &v))
                 return fail(err, len, "--turbidity: expected a turbidity in 1..64, got '%s'", val ? val : "(nothing)");
             cli->turbidity = (float)v;
         } else if (!strcmp(opt, "--planet")) {
-            if (val && !strcmp(val, "earth"))
-                cli->planet = SKY_ATMOSPHERE_EARTH;
-            else if (val && !strcmp(val, "hazy"))
-                cli->planet = SKY_ATMOSPHERE_HAZY;
-            else if (val && !strcmp(val, "mars"))
-                cli->planet = SKY_ATMOSPHERE_MARS;
-            else
-                return fail(err, len, "--planet: expected earth, hazy or mars, got '%s'", val ? val : "(nothing)");
+            static const char *const names[] = {"earth", "hazy", "mars", "very-clean", "polluted", "hillaire-2020"};
+            static const sky_atmosphere_preset planets[] = {SKY_ATMOSPHERE_EARTH,      SKY_ATMOSPHERE_HAZY,
+                                                            SKY_ATMOSPHERE_MARS,       SKY_ATMOSPHERE_VERY_CLEAN,
+                                                            SKY_ATMOSPHERE_POLLUTED,   SKY_ATMOSPHERE_HILLAIRE_2020};
+            int found = -1;
+            for (int k = 0; val && k < (int)(sizeof names / sizeof names[0]); k++)
+                if (!strcmp(val, names[k])) found = k;
+            if (found < 0)
+                return fail(err, len,
+                            "--planet: expected earth, very-clean, hazy, polluted, hillaire-2020 or mars, got '%s'",
+                            val ? val : "(nothing)");
+            cli->planet = planets[found];
         } else if (!strcmp(opt, "--frames")) {
             if (!parse_number(val, 1.0, 1e6, &v) || v != floor(v))
                 return fail(err, len, "--frames: expected a whole number in 1..1000000, got '%s'",
@@ -508,6 +524,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.luts = cli->luts;
     cfg.blend_manual = cli->blend_manual;
     cfg.blend_weight = cli->blend_weight;
+    cfg.blend_partner = cli->blend_partner;
     sky_atmosphere_get_preset(cli->planet, &cfg.atmosphere_params);
     cfg.get_proc_address = loader;
     return cfg;

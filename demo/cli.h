@@ -31,6 +31,7 @@ typedef struct sky_cli {
     sky_lut_settings luts;  /* --luts small|default|large              */
     int blend_manual;       /* --blend W                               */
     float blend_weight;
+    sky_atmosphere_path blend_partner; /* --blend-partner rayleigh|preetham  */
     const char *preset;
     const char *out_png, *out_pfm;
     int frames;

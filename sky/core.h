@@ -118,6 +118,8 @@ typedef struct sky_frame {
     float ground_rgb[3];     /* the ground below the horizon, kcd/m^2            */
     /* Preetham (preetham.c): Perez A..E and zenith values for (Y, x, y) */
     float perez[5][3], perez_zenith[3];
+    double perez_horizon_klx, perez_horizon_t; /* the fit's horizon-sun illuminance
+                                                  for turbidity t (0: none yet) */
     /* analytic Rayleigh + Mie (rayleigh.c) */
     float tau_rayleigh[3], tau_mie_sca[3], tau_mie_ext[3], tau_ozone[3];
     float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];

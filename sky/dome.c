@@ -235,7 +235,7 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     if (create_mesh(s, st, err, err_len)) return -1;
     if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
     const sky_snippet *list[SKY_MAX_SNIPPETS];
-    int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->profile != SKY_GL_CORE33, list), n = atmosphere;
+    int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list), n = atmosphere;
     if (n + d->front_count + d->night_count > SKY_MAX_SNIPPETS) {
         sky_format(err, err_len, "too many shader snippets for the dome");
         return -1;

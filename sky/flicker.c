@@ -109,7 +109,7 @@ static int flicker_create(sky_core *s, void *state, char *err, size_t err_len)
     s->frame.flicker_point_max = sky_gl_point_size_max(s);
     /* the atmosphere's transmittance in front of each star, then its own */
     const sky_snippet *own[SKY_MAX_SNIPPETS];
-    int n = sky_atmosphere_snippets(s->atmosphere, s->profile != SKY_GL_CORE33, own);
+    int n = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, own);
     own[n++] = &glow_snippet;
     own[n++] = &point_snippet;
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "flicker.vert", "flicker.frag", own, n, err,

@@ -98,6 +98,15 @@ void sky_star_color(double bv, float rgb[3]);
 double sky_stars_clock(const void *stars_state);
 struct sky_catalog *sky_stars_catalog(void *stars_state);
 void sky_stars_reload(void *stars_state);
+/* Illuminance of a V = 0 source above the atmosphere, 2.54e-6 lux (Allen's
+ * Astrophysical Quantities), in klx: the one zero point the stars and the
+ * moon's magnitude share. */
+#define SKY_V0_ILLUMINANCE_KLX 2.54e-9
+
+/* sun.c: the sunlight above the atmosphere that the drawn disc sums to,
+ * klx (1 / r^2 with the sun's distance). */
+double sky_sun_illuminance_klx(const sky_core *s);
+
 /* moon.c: the factor the moon is drawn larger than its true size
  * (cfg.moon_scale, back to 1 near the sun, where it eclipses); the
  * moonlight a host's scene receives (sky_get_lighting). */

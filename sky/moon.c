@@ -2,7 +2,8 @@
  * The moon after Mueller et al. 2012, sec. 2-3: a billboard sphere at the
  * topocentric moon, sized from its true distance times an artificial
  * scale c_d (eq. 1), oriented by libration, axis and parallactic angles
- * (eq. 2), shaded Hapke-Lommel-Seeliger with earthshine (eq. 3-4), dimmed
+ * (eq. 2), shaded Lommel-Seeliger (eq. 3) scaled to the published phase
+ * law (Krisciunas & Schaefer 1991), with earthshine (eq. 4), dimmed
  * by extinction, and, with SKY_LUNAR_ECLIPSE, darkened and reddened per fragment
  * by the Earth's shadow (sec. 3). Shaders: moon.vert/.frag.
  */
@@ -11,17 +12,83 @@
 #include "atmosphere/atmosphere.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define MOON_RADIUS_KM 1737.4
-/* The full moon's mean luminance, about 2.5 kcd/m^2 (e.g. 2500 cd/m^2 in
- * lighting handbooks), for an albedo texel at the map's mean. */
-#define MOON_FULL_LUMINANCE 2.5
+/* The moon's photometry, one scale for the drawn disc and the host's
+ * moonlight (sky_get_lighting): the full moon's visual magnitude at its
+ * mean distance, -12.73 (Krisciunas & Schaefer 1991, eq. 8 at phase angle
+ * 0), through the V = 0 illuminance the stars use (layer.h): 0.314 lx
+ * above the atmosphere, 0.255 lx at the zenith after this library's
+ * extinction (published: about 0.24-0.27 lx). Spread over the true disc at
+ * that distance it is a mean luminance of 4.9 kcd/m^2 (lighting handbooks'
+ * round 2.5 kcd/m^2 gives only half the published illuminance). */
+#define MOON_FULL_V (-12.73)
+#define MOON_MEAN_DISTANCE_KM 384400.0 /* K&S's normalising distance */
 /* Earthshine at new moon relative to the full moon's surface brightness:
  * about 1.5e-4 (the ashen light of a young crescent, near magnitude -3
  * spread over the disc, against the full moon's -12.7). */
 #define MOON_EARTHSHINE 1.5e-4
 #define MOON_QUAD_RADII 4.0 /* the quad reaches 4 disc radii: the halo */
+/* The halo's profile over the quad (moon.frag), ((4 - r) / 3)^2 / r^2 for
+ * r = 1..4 disc radii, integrated over the plane: 2 pi (16 ln 4 - 16.5) / 9 */
+#define MOON_HALO_INTEGRAL (2.0 * SKY_PI * (16.0 * 1.3862943611198906 - 16.5) / 9.0)
+/* The full moon's mean luminance above the atmosphere, kcd/m^2: its
+ * illuminance at the mean distance over the solid angle of its disc there
+ * (a cap of angular radius asin(R / d): 2 pi (1 - cos)). Luminance does not
+ * change with distance; the disc's solid angle carries the 1 / r^2. */
+static double moon_full_luminance(void)
+{
+    double e = SKY_V0_ILLUMINANCE_KLX * pow(10.0, -0.4 * MOON_FULL_V);
+    double sd = asin(MOON_RADIUS_KM / MOON_MEAN_DISTANCE_KM);
+    return e / (2.0 * SKY_PI * (1.0 - cos(sd)));
+}
+
+/* The moon's phase law relative to full, Krisciunas & Schaefer (1991)
+ * eq. 8 (after Allen's Astrophysical Quantities): the magnitude grows by
+ * 0.026 |a| + 4e-9 a^4, a the phase angle in degrees. */
+static double moon_phase_law(double phase)
+{
+    double a = sky_clampd(fabs(phase), 0.0, SKY_PI) * 180.0 / SKY_PI;
+    return pow(10.0, -0.4 * (0.026 * a + 4e-9 * a * a * a * a));
+}
+
+/* Mueller's k_lambda (sec. 2.2.2), scaled to unit luminance: the moon's
+ * reddish colour, in the disc and in its light alike. */
+static const double k_lambda[3] = {0.92 / 0.807, 0.79 / 0.807, 0.64 / 0.807};
+
+/* The direction to the sun seen from the moon (both topocentric,
+ * geometric: the exact phase geometry for this observer), and its angle
+ * from the direction back to the observer: the phase angle. */
+static double moon_sun_from_moon(const sky_astro *a, double l[3])
+{
+    const double *mt = a->moon.dir_geometric;
+    double n = 0.0;
+    for (int i = 0; i < 3; i++) {
+        l[i] = a->sun.dir_geometric[i] * a->sun.topo_distance_km - mt[i] * a->moon.topo_distance_km;
+        n += l[i] * l[i];
+    }
+    n = sqrt(n);
+    double c = 0.0;
+    for (int i = 0; i < 3; i++) l[i] /= n > 0.0 ? n : 1.0, c -= l[i] * mt[i];
+    return acos(sky_clampd(c, -1.0, 1.0));
+}
+
+/* Extinction over the moon's air mass, per channel, as for the stars
+ * (the spherical shell of stars.vert over the atmosphere's zenith optical
+ * depth): the disc and the moonlight dim alike. */
+static void moon_extinction(const sky_core *s, double ext[3])
+{
+    double depth[3];
+    sky_atmosphere_zenith_depth(s, depth);
+    double cos_t = sky_clampd(s->astro.moon.dir[1], -1.0, 1.0), re = 6371.0, te = 8.0;
+    double hkm = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
+    double ash = re + hkm, bsh = re + te;
+    double airmass = (sqrt(fmax(bsh * bsh - ash * ash * (1.0 - cos_t * cos_t), 0.0)) - ash * cos_t) / (te - hkm);
+    for (int i = 0; i < 3; i++) ext[i] = exp(-depth[i] * airmass);
+}
+
 /* Mueller's c_i: how much a total eclipse is brightened in LDR output, as
  * a photographer would lengthen the exposure */
 #define ECLIPSE_BOOST 30.0
@@ -51,6 +118,9 @@ typedef struct moon_state {
     sky_program program;
     sky_disc_grid grid;       /* the moon's quad, tessellated               */
     float albedo_mean;        /* the albedo map's near-side mean            */
+    unsigned char *albedo;    /* the map's red channel, 256x128, for lit_sum */
+    double lit_key[12];       /* light and body the sum below was taken for */
+    double lit_sum;           /* mean over the disc of albedo x the LS law  */
     double axes[3][3];        /* billboard x (right), y (up), moon direction */
     double radius_tan;        /* drawn disc radius on the tangent plane     */
 } moon_state;
@@ -79,14 +149,28 @@ static int moon_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     moon_state *st = state;
     if (sky_texture_load(s, SKY_TEX_MOON, SKY_LAYER_MOON, "moon.png", 256, 128, 1, err, err_len)) return -1;
-    /* the albedo map's mean, so MOON_FULL_LUMINANCE is the disc's mean */
+    /* the albedo map's mean over the full moon as seen, so the full disc's
+     * mean luminance is moon_full_luminance: near-side texels weighted by
+     * their area on the sphere (cos lat) times their foreshortening toward
+     * the observer (cos lat cos lon, the sub-earth point at the map's
+     * centre; libration moves it by a few degrees only) */
     unsigned char *albedo = NULL;
     if (sky_asset_load_rgba(s, "moon.png", 256, 128, &albedo, err, err_len)) return -1;
     double sum = 0.0, wsum = 0.0;
     for (int y = 0; y < 128; y++) {
-        double w = cos(((y + 0.5) / 128.0 - 0.5) * SKY_PI); /* texel area on the sphere */
-        for (int x = 64; x < 192; x++) sum += w * albedo[4 * (y * 256 + x)] / 255.0, wsum += w; /* near side */
+        double cl = cos(((y + 0.5) / 128.0 - 0.5) * SKY_PI);
+        for (int x = 64; x < 192; x++) {
+            double w = cl * cl * cos(((x + 0.5) / 256.0 - 0.5) * 2.0 * SKY_PI);
+            sum += w * albedo[4 * (y * 256 + x)] / 255.0, wsum += w;
+        }
     }
+    st->albedo = malloc(256 * 128);
+    if (!st->albedo) {
+        sky_png_free(albedo);
+        sky_format(err, err_len, "out of memory for the moon's albedo");
+        return -1;
+    }
+    for (int i = 0; i < 256 * 128; i++) st->albedo[i] = albedo[4 * i];
     sky_png_free(albedo);
     st->albedo_mean = (float)(sum / wsum);
     if (sky_disc_grid_create(s, &st->grid, "moon", err, err_len)) return -1;
@@ -113,23 +197,49 @@ static void moon_destroy(sky_core *s, void *state)
     moon_state *st = state;
     sky_program_destroy(s, &st->program);
     sky_disc_grid_destroy(s, &st->grid);
+    free(st->albedo);
+    st->albedo = NULL;
 }
 
-/* Hapke's (1966) retrodirective function B(phi) with compaction g = 0.6,
- * times the Lommel-Seeliger phase law S(phi): the HLS phase factor of
- * Mueller eq. 3. */
-static double hls_phase(double phi)
+/* What moon.frag draws, summed over the disc on the CPU: the mean over the
+ * disc (its projected area, a 48 x 48 grid) of albedo x cos i / (cos i +
+ * cos r) for the sun direction l and the orientation body (both in the
+ * billboard frame, as in the shader; the albedo texel nearest to the
+ * shader's lookup). Dividing the phase law by it makes the drawn disc sum
+ * to the moonlight whatever part of the map is lit: a crescent lights the
+ * bright highlands at the limb, and a uniform-albedo law would leave it
+ * 18 % too bright. Retaken only when the geometry moves. */
+static double lit_sum(moon_state *st, const double l[3], const double body[9])
 {
-    const double g = 0.6;
-    phi = sky_clampd(fabs(phi), 0.0, SKY_PI);
-    double b = 1.0;
-    if (phi < SKY_PI / 2) {
-        double tp = tan(phi);
-        double e = tp > 1e-9 ? exp(-g / tp) : 0.0;
-        b = 2.0 - (tp / (2.0 * g)) * (1.0 - e) * (3.0 - e);
-    }
-    double sp = (sin(phi) + (SKY_PI - phi) * cos(phi)) / SKY_PI;
-    return b * sp;
+    double key[12] = {l[0], l[1], l[2]};
+    for (int i = 0; i < 9; i++) key[3 + i] = body[i];
+    int same = st->lit_sum > 0.0;
+    for (int i = 0; i < 12 && same; i++) same = fabs(key[i] - st->lit_key[i]) < 1e-6;
+    if (same) return st->lit_sum;
+    const int n = 48;
+    double sum = 0.0;
+    int count = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double u = (i + 0.5) / n * 2.0 - 1.0, v = (j + 0.5) / n * 2.0 - 1.0, r2 = u * u + v * v;
+            if (r2 >= 1.0) continue;
+            count++;
+            double nz = sqrt(1.0 - r2);
+            double cos_i = fmax(u * l[0] + v * l[1] + nz * l[2], 0.0);
+            if (cos_i <= 0.0) continue;
+            double bx = body[0] * u + body[1] * v + body[2] * nz;
+            double by = body[3] * u + body[4] * v + body[5] * nz;
+            double bz = body[6] * u + body[7] * v + body[8] * nz;
+            double sx = 0.5 + atan2(bx, bz) / (2.0 * SKY_PI), sy = 0.5 - asin(sky_clampd(by, -1.0, 1.0)) / SKY_PI;
+            int tx = (int)(sx * 256.0), ty = (int)(sy * 128.0);
+            tx = tx < 0 ? 0 : tx > 255 ? 255 : tx;
+            ty = ty < 0 ? 0 : ty > 127 ? 127 : ty;
+            double albedo = st->albedo ? st->albedo[ty * 256 + tx] / 255.0 : 1.0;
+            sum += albedo * cos_i / (cos_i + fmax(nz, 1e-4));
+        }
+    memcpy(st->lit_key, key, sizeof key);
+    st->lit_sum = count ? sum / count : 0.0;
+    return st->lit_sum;
 }
 
 static void cross3(const double a[3], const double b[3], double o[3])
@@ -190,16 +300,12 @@ static void moon_frame(sky_core *s, void *state)
     for (int i = 0; i < 3; i++) f->moon_view[0 * 4 + i] = (float)x[i], f->moon_view[1 * 4 + i] = (float)y[i],
                                 f->moon_view[2 * 4 + i] = (float)z[i];
     f->moon_view[15] = 1.0f;
-    /* sun seen from the moon (both topocentric, geometric): the exact
-     * phase geometry */
+    /* sun seen from the moon: the exact phase geometry */
     double l[3];
-    for (int i = 0; i < 3; i++)
-        l[i] = a->sun.dir_geometric[i] * a->sun.distance_km - a->moon.dir_geometric[i] * a->moon.distance_km;
-    normalize3(l);
-    f->moon_light[0] = (float)(l[0] * x[0] + l[1] * x[1] + l[2] * x[2]);
-    f->moon_light[1] = (float)(l[0] * y[0] + l[1] * y[1] + l[2] * y[2]);
-    f->moon_light[2] = (float)(l[0] * z[0] + l[1] * z[1] + l[2] * z[2]);
-    double phase = acos(sky_clampd(f->moon_light[2], -1.0, 1.0));
+    double phase = moon_sun_from_moon(a, l);
+    double l_view[3] = {l[0] * x[0] + l[1] * x[1] + l[2] * x[2], l[0] * y[0] + l[1] * y[1] + l[2] * y[2],
+                        l[0] * z[0] + l[1] * z[1] + l[2] * z[2]};
+    for (int i = 0; i < 3; i++) f->moon_light[i] = (float)l_view[i];
     /* orientation (eq. 2): body = Ry(l) Rx(-b) Rz(-(P - q)) view */
     double alpha = a->moon_axis_angle - a->moon_parallactic, lb = a->moon_libration_lat, ll = a->moon_libration_lon;
     double ca = cos(-alpha), sa = sin(-alpha), cb = cos(-lb), sb = sin(-lb), cl = cos(ll), sl = sin(ll);
@@ -213,32 +319,48 @@ static void moon_frame(sky_core *s, void *state)
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) f->moon_body[j * 4 + i] = (float)body[i * 3 + j];
     f->moon_body[15] = 1.0f;
-    /* brightness: the HLS phase factor relative to full moon, where
-     * cos i = cos r makes Lommel-Seeliger 1/2 */
-    double phase_factor = hls_phase(phase) / hls_phase(0.0) * 2.0;
+    /* brightness: moon.frag shapes the lit part with Lommel-Seeliger
+     * (Mueller eq. 3); the factor scales it so the disc sums to the
+     * published phase law, the one sky_moon_lighting uses (Mueller's
+     * Hapke B(phi) S(phi) on top of the per-point law counts the phase
+     * twice: a quarter moon came out 34 % too faint, a 30 degree crescent
+     * 13 times). moon_color carries full / albedo_mean, so the factor is
+     * law x albedo_mean / lit_sum; at full, where cos i = cos r makes the
+     * law 1/2, it is 2. Capped there: no lit point outshines the full
+     * moon's. For a uniform disc the cap binds past about 170 degrees
+     * (the Lommel-Seeliger disc integral, 1 - sin(a/2) tan(a/2) ln cot(a/4)
+     * (Hapke, Theory of Reflectance and Emittance Spectroscopy), falls
+     * faster than the published law there), where the earthshine takes
+     * over. */
+    double lsum = lit_sum(st, l_view, body);
+    double law = moon_phase_law(phase) * st->albedo_mean;
+    double phase_factor = fmin(law / fmax(lsum, 1e-9), 2.0);
+    /* halo (moon.frag): at night, light the air scatters just off the
+     * disc, 2e-3 of the full moon's moon_color at the limb falling off as
+     * 1 / r^2 (windowed to the quad's edge), following the phase law like
+     * the disc. Its flux, moon_color x halo x HALO_INTEGRAL, is taken out
+     * of the disc (moon_color x pi x law x albedo_mean): the layer's total
+     * stays the moonlight. */
+    double halo = 2e-3 * moon_phase_law(phase) * a->star_visibility;
+    double halo_share = halo * MOON_HALO_INTEGRAL / (SKY_PI * fmax(law, 1e-12));
+    phase_factor *= 1.0 - sky_clampd(halo_share, 0.0, 0.5);
     /* earthshine (eq. 4), normalised to its new-moon value */
     double es = (-0.0061 * pow(SKY_PI, 3) + 0.0289 * SKY_PI * SKY_PI);
     double e = (-0.0061 * pow(phase, 3) + 0.0289 * phase * phase - 0.0105 * sin(phase)) / es;
     e = sky_clampd(e, 0.0, 1.0) * MOON_EARTHSHINE;
-    /* extinction over the moon's air mass, as for the stars */
-    double depth[3];
-    sky_atmosphere_zenith_depth(s, depth);
-    double cos_t = sky_clampd(m[1], -1.0, 1.0), re = 6371.0, te = 8.0;
-    double hkm = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
-    double ash = re + hkm, bsh = re + te;
-    double airmass = (sqrt(fmax(bsh * bsh - ash * ash * (1.0 - cos_t * cos_t), 0.0)) - ash * cos_t) / (te - hkm);
-    static const double k_lambda[3] = {0.92 / 0.807, 0.79 / 0.807, 0.64 / 0.807}; /* Mueller sec. 2.2.2, unit luminance */
-    static const double beta_e[3] = {0.88, 0.96, 1.00};                            /* earthshine colour */
-    double fade = a->moon_visibility;
-    double scale = MOON_FULL_LUMINANCE / (st->albedo_mean > 0.01f ? st->albedo_mean : 0.01f);
-    for (int i = 0; i < 3; i++) {
-        double ext = exp(-depth[i] * airmass);
-        f->moon_color[i] = (float)(scale * k_lambda[i] * ext * fade);
-    }
+    static const double beta_e[3] = {0.88, 0.96, 1.00}; /* earthshine colour */
+    double ext[3];
+    moon_extinction(s, ext);
+    /* Mueller's day-night factor (sec. 5) is the eye's, not the moon's:
+     * LDR only, so HDR output is the moon's own luminance and sums to the
+     * moonlight sky_get_lighting reports */
+    double fade = f->output_hdr > 0.5f ? 1.0 : a->moon_visibility;
+    double full = moon_full_luminance();
+    double scale = full / (st->albedo_mean > 0.01f ? st->albedo_mean : 0.01f);
+    for (int i = 0; i < 3; i++) f->moon_color[i] = (float)(scale * k_lambda[i] * ext[i] * fade);
     f->moon_terms.phase_factor = (float)phase_factor;
     for (int i = 0; i < 3; i++) f->moon_earthshine[i] = (float)(e * beta_e[i]); /* bluish */
-    /* halo: a small part of the disc's light, only at night */
-    f->moon_terms.halo = (float)(2e-3 * a->moon_illuminated * a->star_visibility);
+    f->moon_terms.halo = (float)halo;
     /* In a dark sky the disc hides what is behind it (stars). While the
      * sky is brighter than about 1e-6 kcd/m^2 (the sun above -15 degrees)
      * the air in front of the moon shines too: the disc only adds, so its
@@ -250,12 +372,12 @@ static void moon_frame(sky_core *s, void *state)
      * light still stands out from the twilight. HDR output stays physical. */
     double k = 1.0;
     if (f->output_hdr < 0.5f) {
-        double lit = MOON_FULL_LUMINANCE * fmax(phase_factor * 0.5, 1e-6) * fade;
+        double lit = full * fmax(phase_factor * 0.5, 1e-6) * fade;
         k = fmin(1.0, 2.5 / (f->exposure * lit));
         /* the eye compresses the ashen light too: it adds at most about
          * a quarter of the sky's brightness around the moon, so the dark side reads
          * as a glow slightly above the sky, not as a second moon */
-        double es_mean = MOON_FULL_LUMINANCE * fade * e;
+        double es_mean = full * fade * e;
         double cap = 0.25 * (0.5 * f->sky_luminance + f->night_luminance);
         if (es_mean > cap)
             for (int i = 0; i < 3; i++) f->moon_earthshine[i] *= (float)(cap / es_mean);
@@ -314,16 +436,19 @@ static size_t moon_buffer_bytes(const sky_core *s, const void *state)
 void sky_moon_lighting(const sky_core *s, float moon_color[3])
 {
     const sky_astro *a = &s->astro;
-    /* the full moon gives about 0.27 lux at the zenith; the phase law
-     * of Allen's Astrophysical Quantities (magnitude grows as
-     * 0.026 |phi| + 4e-9 phi^4, phi in degrees) for other phases;
-     * extinction as for the sun's beam */
-    double phi = a->moon_phase_angle * 180.0 / SKY_PI;
-    double phase = pow(10.0, -0.4 * (0.026 * fabs(phi) + 4e-9 * phi * phi * phi * phi));
-    float t[3];
-    sky_sun_transmittance(a->moon.alt, t);
-    float up = (float)sky_disc_above_horizon(a->moon.alt, a->moon_semidiameter);
-    for (int i = 0; i < 3; i++) moon_color[i] = (float)(2.7e-4 * phase) * t[i] * up;
+    /* what the true-size disc sums to (moon.c's frame): the full moon's
+     * mean luminance over the disc's solid angle at its distance from the
+     * observer (1 / r^2: +-14 % between perigee and apogee), times the
+     * phase law, the moon's colour and the same extinction; times the part
+     * of the disc not yet set */
+    double l[3];
+    double phase = moon_sun_from_moon(a, l);
+    double omega = 2.0 * SKY_PI * (1.0 - cos(a->moon_topo_semidiameter));
+    double e = moon_full_luminance() * omega * moon_phase_law(phase);
+    double ext[3];
+    moon_extinction(s, ext);
+    double up = sky_disc_above_horizon(a->moon.alt, a->moon_topo_semidiameter);
+    for (int i = 0; i < 3; i++) moon_color[i] = (float)(e * k_lambda[i] * ext[i] * up);
 }
 
 /* The moon: added by day; at night it also hides the stars behind it

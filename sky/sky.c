@@ -123,6 +123,14 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
         return NULL;
     }
+    if (cfg->blend_partner != SKY_ATMOSPHERE_DEFAULT && cfg->blend_partner != SKY_ATMOSPHERE_RAYLEIGH &&
+        cfg->blend_partner != SKY_ATMOSPHERE_PREETHAM) {
+        sky_format(err, err_len,
+                   "sky_create: blend_partner %d is not an analytic path the blend can mix (0 = RAYLEIGH, "
+                   "SKY_ATMOSPHERE_RAYLEIGH or SKY_ATMOSPHERE_PREETHAM)",
+                   (int)cfg->blend_partner);
+        return NULL;
+    }
     if (cfg->blend_manual && !(cfg->blend_weight >= 0.0f && cfg->blend_weight <= 1.0f)) {
         sky_format(err, err_len, "sky_create: blend_weight %g is out of range (0..1)", (double)cfg->blend_weight);
         return NULL;
@@ -190,13 +198,16 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         sky_format(err, err_len, "sky_create: SKY_LUNAR_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
         return NULL;
     }
-    sky_atmosphere_params atm = cfg->atmosphere_params;
-    if (sky_atmosphere_is_zero(&atm)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &atm);
+    sky_atmosphere_params described = cfg->atmosphere_params, atm;
+    if (sky_atmosphere_is_zero(&described)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &described);
     char atm_err[160];
-    if (sky_atmosphere_check(&atm, atm_err, sizeof atm_err) != SKY_OK) {
+    if (sky_atmosphere_check(&described, atm_err, sizeof atm_err) != SKY_OK) {
         sky_format(err, err_len, "sky_create: %s", atm_err);
         return NULL;
     }
+    /* the haze knob: the description's aerosol at cfg->turbidity (turbidity
+     * was checked above: 0 or 1..64) */
+    sky_atmosphere_with_turbidity(&described, cfg->turbidity, &atm);
     float horizon_to_world[9];
     if (sky_camera_horizon_to_world(cfg->horizon_to_world, horizon_to_world)) {
         sky_format(err, err_len,
@@ -542,12 +553,14 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     memset(out, 0, sizeof *out);
     sky_camera_to_world(c, f->sun_dir, out->sun_direction);
     out->sun_altitude_deg = (float)(f->sun_altitude * 180.0 / SKY_PI);
-    /* Solar illuminance above the atmosphere, 128 klx, through the
-     * atmosphere, times the part of the disc not yet set */
+    /* Solar illuminance above the atmosphere (sun.c: 128 klx at 1 au, what
+     * the drawn disc sums to), through the atmosphere, times the part of
+     * the disc not yet set */
     float above = (float)sky_disc_above_horizon(f->sun_altitude, c->astro.sun_semidiameter);
     /* and the share of its light a solar eclipse leaves */
     above *= (float)sky_solar_eclipse_light_left(c);
-    for (int i = 0; i < 3; i++) out->sun_color[i] = 128.0f * f->sun_transmittance[i] * above;
+    float e0 = (float)sky_sun_illuminance_klx(c);
+    for (int i = 0; i < 3; i++) out->sun_color[i] = e0 * f->sun_transmittance[i] * above;
     /* sky irradiance and horizon: the atmosphere path's (atmosphere.c) */
     for (int i = 0; i < 3; i++) {
         out->ambient_color[i] = f->ambient_rgb[i];

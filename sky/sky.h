@@ -135,8 +135,10 @@ typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_HILLAIRE,    /* Hillaire 2020's tables (transmittance,
                                    multiple scattering, sky-view) of
                                    sky_config.atmosphere_params             */
-    SKY_ATMOSPHERE_BLEND        /* RAYLEIGH and HILLAIRE mixed by a weight
-                                   (sky_config.blend_manual, blend_weight)  */
+    SKY_ATMOSPHERE_BLEND        /* an analytic path (RAYLEIGH, or PREETHAM:
+                                   sky_config.blend_partner) and HILLAIRE
+                                   mixed by a weight (sky_config.blend_manual,
+                                   blend_weight)                            */
 } sky_atmosphere_path;
 
 typedef enum sky_gl_profile {
@@ -205,11 +207,22 @@ typedef struct sky_atmosphere_params {
     float ground_albedo[3];         /* Lambertian, 0..1                        */
 } sky_atmosphere_params;
 
+/* The Earth presets differ in their aerosol: its optical depth at 550 nm
+ * (AOD; real clear skies 0.05-0.2), falling with wavelength as lambda^-1.3
+ * (Angstrom), and its turbidity, the ratio of the whole vertical optical
+ * depth at 550 nm to the molecules' alone (sky_config.turbidity). */
 typedef enum sky_atmosphere_preset {
-    SKY_ATMOSPHERE_EARTH = 0, /* clear Earth: Hillaire 2020's constants        */
-    SKY_ATMOSPHERE_HAZY,      /* a polluted summer afternoon: 4x the aerosols,
-                                 thicker and less forward-scattering        */
-    SKY_ATMOSPHERE_MARS       /* thin CO2 and a tall layer of red dust       */
+    SKY_ATMOSPHERE_EARTH = 0,      /* clear (the default): AOD 0.085, turbidity
+                                      1.8; matched to the CIE clear sky, gensky's
+                                      clear zenith and the IES illuminances    */
+    SKY_ATMOSPHERE_HAZY,           /* AOD 0.3 in a 2 km layer (turbidity 3.8)  */
+    SKY_ATMOSPHERE_MARS,           /* thin CO2 and a tall layer of red dust    */
+    SKY_ATMOSPHERE_VERY_CLEAN,     /* mountains, open ocean: AOD 0.04 (1.4)    */
+    SKY_ATMOSPHERE_POLLUTED,       /* summer smog: AOD 0.6 of absorbing
+                                      particles (turbidity 6.5)               */
+    SKY_ATMOSPHERE_HILLAIRE_2020   /* Hillaire 2020's published constants (AOD
+                                      0.0053, turbidity 1.05): for comparison
+                                      with other implementations of his paper */
 } sky_atmosphere_preset;
 
 /* Fills *out with a preset; SKY_ERR_INVALID_ARGUMENT for an unknown one. */
@@ -311,10 +324,20 @@ typedef struct sky_config {
     float star_control_magnitude;
     /* Mueller's artificial moon scale c_d (eq. 1): the disc is drawn c_d
      * times its true size. 0 = 2.5; else 0.5..50 (sky_create rejects
-     * anything else). */
+     * anything else). The enlarged disc keeps the moon's surface brightness
+     * (as a telephoto view shows it), so in HDR it carries c_d^2 times the
+     * moonlight; sky_lighting.moon_color stays the true moon's, which the
+     * disc at c_d = 1 sums to. */
     float moon_scale;
-    /* PREETHAM's turbidity: 0 = 2.5 (a clear day). Accepted 1..64; the
-     * model clamps it into its fitted range, 2..10. */
+    /* Haze, on every path in one unit: turbidity, the ratio of the
+     * atmosphere's vertical optical depth at 550 nm to its molecules' alone
+     * (Linke; Preetham et al. 1999). 0 = each path's own: PREETHAM 2.5, the
+     * physical paths (RAYLEIGH, HILLAIRE, BLEND) their description's
+     * aerosol (SKY_ATMOSPHERE_EARTH: 1.8). Else 1..64: PREETHAM clamps it
+     * into its fitted range, 2..10; the physical paths scale their
+     * description's aerosol to an optical depth of (T - 1) times the
+     * molecules' (at most 10/km of extinction), keeping its colour,
+     * albedo, asymmetry and height. */
     float turbidity;
     /* The atmosphere's composition; all zero = Earth (see above). */
     sky_atmosphere_params atmosphere_params;
@@ -325,6 +348,11 @@ typedef struct sky_config {
      * path above 60); 1 = use blend_weight, 0 (analytic) .. 1 (Hillaire). */
     int blend_manual;
     float blend_weight;
+    /* BLEND: the analytic path mixed with Hillaire's tables (weight 0):
+     * SKY_ATMOSPHERE_DEFAULT (0) = SKY_ATMOSPHERE_RAYLEIGH, or
+     * SKY_ATMOSPHERE_PREETHAM (its turbidity is cfg.turbidity). sky_create
+     * rejects any other path. Ignored by the other paths. */
+    sky_atmosphere_path blend_partner;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,
@@ -512,7 +540,11 @@ typedef struct sky_lighting {
     float sun_altitude_deg;    /* apparent (refracted) altitude of its centre  */
     float moon_direction[3];
     float moon_color[3];       /* moonlight on a surface facing the moon, klx
-                                  (0 when the scene has no moon or it is down) */
+                                  (0 when the scene has no moon or it is down):
+                                  the full moon's -12.73 mag at its mean
+                                  distance, 1 / r^2, the published phase law,
+                                  the same extinction as the drawn disc, which
+                                  sums to it in HDR at moon_scale 1 */
     float ambient_color[3];    /* sky irradiance on an upward surface, klx     */
     float fog_color[3];        /* horizon sky luminance, kcd/m^2               */
     float daylight;            /* 0 (night) .. 1 (full day): Roden-Parberry's

@@ -13,9 +13,9 @@
 #include <stdlib.h>
 
 #define STAR_FLOATS 9 /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
-/* Illuminance of a V = 0 star: 2.54e-6 lux (e.g. Allen's Astrophysical
- * Quantities), in klx so that luminance comes out in kcd/m^2. */
-#define STAR_E0_KLX 2.54e-9
+/* Illuminance of a V = 0 star (layer.h), in klx so that luminance comes
+ * out in kcd/m^2. */
+#define STAR_E0_KLX SKY_V0_ILLUMINANCE_KLX
 /* Mueller's minimum billboard radius, sqrt(2) pixels (eq. 9). */
 #define STAR_Q_PX 1.41421356
 /* Glare radius coefficient c_k in pixels: Sirius at m_a = 4 gets ~17 px. */

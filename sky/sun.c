@@ -8,12 +8,44 @@
 
 #include <math.h>
 
-/* Disc-centre luminance of the sun above the atmosphere, about 2.0e9 cd/m^2
- * (mean disc luminance 1.6e9 cd/m^2 divided by the mean of the u = 0.6
- * limb-darkening profile, 0.8). In kcd/m^2. */
-#define SKY_SUN_LUMINANCE 2.0e6
+/* The sun's photometry, one scale for the drawn disc and the host's
+ * sunlight (sky_get_lighting): the solar illuminance above the atmosphere
+ * at 1 au, 128 klx (the IES's solar illuminance constant, 127.5 klx,
+ * rounded; IES Lighting Handbook), spread over the disc's solid angle at
+ * 1 au (radius 696000 km, astro.c). Mean disc luminance 1.88e9 cd/m^2
+ * (1.6e9, the old figure, is a sea-level one: extinction is applied on
+ * top). */
+#define SKY_SUN_E0_KLX 128.0
+#define SKY_SUN_RADIUS_KM 696000.0
+#define SKY_AU_KM 149597870.7
+/* The mean of the u = 0.6 limb-darkening profile (sun.frag) over the disc:
+ * 1 - u / 3. */
+#define SKY_SUN_LIMB_MEAN 0.8
 /* The quad reaches 16 radii: the glare is windowed to zero there. */
 #define SKY_SUN_QUAD_RADII 16.0
+
+/* The solid angle of a cap of angular radius sd, 2 pi (1 - cos sd), in the
+ * form that keeps its digits for the sun's small radius. */
+static double cap_solid_angle(double sd)
+{
+    double h = sin(0.5 * sd);
+    return 4.0 * SKY_PI * h * h;
+}
+
+/* Disc-centre luminance above the atmosphere, kcd/m^2: the mean over the
+ * disc at 1 au (E0 over its solid angle) divided by the limb darkening's
+ * mean. Luminance does not change with distance. */
+static double sun_centre_luminance(void)
+{
+    return SKY_SUN_E0_KLX / (cap_solid_angle(atan(SKY_SUN_RADIUS_KM / SKY_AU_KM)) * SKY_SUN_LIMB_MEAN);
+}
+
+double sky_sun_illuminance_klx(const sky_core *s)
+{
+    /* what the disc drawn at the topocentric semidiameter sums to: 128 klx
+     * times (1 au / r)^2, +-3.4 % over the year */
+    return sun_centre_luminance() * SKY_SUN_LIMB_MEAN * cap_solid_angle(s->astro.sun_topo_semidiameter);
+}
 
 static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
@@ -51,11 +83,12 @@ static void sun_frame(sky_core *s, void *state)
     sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
     f->sun_radius = (float)a->sun_topo_semidiameter;
-    f->sun_luminance = (float)SKY_SUN_LUMINANCE;
+    double centre = sun_centre_luminance();
+    f->sun_luminance = (float)centre;
     /* the disc is drawn where refraction puts each of its points
      * (sun.frag): it needs the centre's true direction */
     for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)a->sun.dir_geometric[i];
-    sky_solar_eclipse_sun(s, SKY_SUN_LUMINANCE); /* the moon in front */
+    sky_solar_eclipse_sun(s, centre); /* the moon in front */
 }
 
 static int sun_visible(const sky_core *s, const void *state)

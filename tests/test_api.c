@@ -80,6 +80,16 @@ void test_api_rejects_null_and_bad_config(void)
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "blend_weight"), "NaN blend: %s", err);
     cfg.blend_manual = 0;
     cfg.blend_weight = 0.0f;
+    /* the blend mixes an analytic path: RAYLEIGH (0) or PREETHAM, nothing else */
+    static const sky_atmosphere_path bad_partners[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE,
+                                                       SKY_ATMOSPHERE_BLEND, (sky_atmosphere_path)-1,
+                                                       (sky_atmosphere_path)99};
+    for (size_t i = 0; i < sizeof bad_partners / sizeof bad_partners[0]; i++) {
+        cfg.blend_partner = bad_partners[i];
+        CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "blend_partner"), "bad partner %d: %s",
+              (int)bad_partners[i], err);
+    }
+    cfg.blend_partner = SKY_ATMOSPHERE_DEFAULT;
     cfg.atmosphere = SKY_ATMOSPHERE_DEFAULT;
     cfg.dome_divisor = 9; /* 0 (default) or 1..8 */
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "dome_divisor"), "bad divisor: %s", err);

@@ -6,6 +6,7 @@
  */
 #include "test.h"
 #include "sky_internal.h"
+#include "atmosphere/atmosphere.h"
 #include "atmosphere/hillaire.h"
 #include "atmo_error.h"
 #include "cli.h"
@@ -25,6 +26,8 @@ void test_atmosphere_gpu_tables_match_cpu(void);
 void test_atmosphere_extinction_follows_the_description(void);
 void test_atmosphere_observer_altitudes(void);
 void test_atmosphere_setting_sun_flattened(void);
+void test_atmosphere_turbidity_and_presets(void);
+void test_atmosphere_blend_partner_preetham(void);
 
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
@@ -53,23 +56,29 @@ static int hdr_open(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profi
     return hdr_open_luts(h, size, path, profile, turbidity, NULL);
 }
 
-static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
-                         const sky_lut_settings *luts)
+/* The same from a whole config (HDR output and the sun set here). */
+static int hdr_open_config(hdr_sky *h, int size, sky_gl_profile profile, sky_config cfg)
 {
     memset(h, 0, sizeof *h);
     h->size = size;
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
     cfg.output = SKY_OUTPUT_HDR;
     cfg.features = SKY_SUN; /* the sun quad too: its glare must stay finite */
-    cfg.atmosphere = path;
-    cfg.turbidity = turbidity;
-    if (luts) cfg.luts = *luts;
     fixture f;
     if (fixture_open_sized(&f, size, size, 1, profile, &cfg)) return -1;
     h->ctx = f.ctx;
     h->s = f.s;
     return 0;
+}
+
+static int hdr_open_luts(hdr_sky *h, int size, sky_atmosphere_path path, sky_gl_profile profile, float turbidity,
+                         const sky_lut_settings *luts)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = path;
+    cfg.turbidity = turbidity;
+    if (luts) cfg.luts = *luts;
+    return hdr_open_config(h, size, profile, cfg);
 }
 
 static void hdr_close(hdr_sky *h)
@@ -255,7 +264,10 @@ static void twin_eval(const sky *s, const double d[3], double rgb[3])
     case SKY_ATMOSPHERE_RAYLEIGH: sky_rayleigh_eval(&s->core.frame, d, rgb); return;
     case SKY_ATMOSPHERE_HILLAIRE: table_eval(s, d, rgb); return;
     default:
-        sky_rayleigh_eval(&s->core.frame, d, a);
+        if (s->core.cfg.blend_partner == SKY_ATMOSPHERE_PREETHAM)
+            sky_preetham_eval(&s->core.frame, d, a);
+        else
+            sky_rayleigh_eval(&s->core.frame, d, a);
         table_eval(s, d, b);
         for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * s->core.frame.blend_weight;
         return;
@@ -362,7 +374,8 @@ void test_atmosphere_shaders_match_cpu_twins(void)
 
 /* A sun 0.1 degree above, at and 0.1 below the horizon gives three
  * nearly identical skies in every path: no step at the horizon. The
- * twilight sky darkens by a decade in 3 degrees, 8 % per 0.1 degree;
+ * twilight sky darkens by a decade in 2.7 to 3 degrees, 8 to 9 % per 0.1
+ * degree;
  * anything past 12 % is a step. (0.1 degree: more than the sun movement
  * that rebuilds Hillaire's sky-view table, 0.05.) */
 void test_atmosphere_continuous_across_horizon(void)
@@ -522,13 +535,16 @@ void test_atmosphere_error_against_reference(void)
         CHECK(0, "%s", err);
         return;
     }
-    /* Hillaire's default tables: issue 6's target, 5 %; the analytic
-     * path's with multiple scattering: issue Real skies' 15 % (5.4 %
-     * measured). The others are guards: the errors measured when each
-     * path landed (gradient 45 %, Preetham at T 2.5 330 %: a hazier sky
-     * than the reference's clear Earth, the blend 7 %) plus a margin for
-     * Mesa versions; sky-bench prints the current figures */
-    static const double day_limit[PATH_COUNT] = {0.52, 3.6, 0.15, 0.05, 0.09};
+    /* Guards: the errors measured against the reference of the default
+     * Earth (its realistic aerosol, optical depth 0.085) plus a margin for
+     * Mesa versions: gradient 53 %, Preetham at T 2.5 92.9 %, Hillaire's
+     * default tables 7.6 % (issue 6 held 5 % against the cleaner Hillaire
+     * 2020 constants, and test_hillaire still does; issue Real skies asks
+     * 5 % of the realistic Earth), the blend 7.6 %. The analytic path's
+     * limit is issue Real skies' target, 15 % (12.2 % measured with its
+     * Earth shadow and multiple scattering; 42 % as single scattering);
+     * sky-bench prints the current figures */
+    static const double day_limit[PATH_COUNT] = {0.58, 1.1, 0.15, 0.08, 0.09};
     for (int p = 0; p < PATH_COUNT; p++) {
         sky_atmo_errors e[2];
         for (int q = 0; q < 2; q++) {
@@ -731,4 +747,178 @@ void test_atmosphere_setting_sun_flattened(void)
               expected);
         hdr_close(&h);
     }
+}
+
+/* The Earth presets differ in their aerosol as sky.h says: their
+ * turbidities, in order from very clean to polluted; the turbidity knob
+ * gives a description the turbidity asked for, keeping its aerosol's
+ * colour, albedo, asymmetry and height; it is bounded by the
+ * description's limits; and through sky_create it changes the sky (more
+ * haze: a dimmer low sun). */
+void test_atmosphere_turbidity_and_presets(void)
+{
+    static const sky_atmosphere_preset order[4] = {SKY_ATMOSPHERE_VERY_CLEAN, SKY_ATMOSPHERE_EARTH,
+                                                   SKY_ATMOSPHERE_HAZY, SKY_ATMOSPHERE_POLLUTED};
+    static const double documented[4] = {1.4, 1.8, 3.8, 6.5};
+    double last = 1.0;
+    for (int i = 0; i < 4; i++) {
+        sky_atmosphere_params a;
+        char err[160];
+        CHECK(sky_atmosphere_get_preset(order[i], &a) == SKY_OK && sky_atmosphere_check(&a, err, sizeof err) == SKY_OK,
+              "preset %d valid", (int)order[i]);
+        double t = sky_atmosphere_turbidity(&a);
+        CHECK(fabs(t - documented[i]) < 0.05 && t > last, "preset %d: turbidity %.3f (sky.h says %.1f), above %.3f",
+              (int)order[i], t, documented[i], last);
+        last = t;
+    }
+    sky_atmosphere_params h;
+    CHECK(sky_atmosphere_get_preset(SKY_ATMOSPHERE_HILLAIRE_2020, &h) == SKY_OK &&
+              fabs(sky_atmosphere_turbidity(&h) - 1.05) < 0.01,
+          "Hillaire 2020's constants: turbidity %.4f (1.05)", sky_atmosphere_turbidity(&h));
+
+    sky_atmosphere_params earth, out;
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
+    static const double wanted[4] = {1.0, 2.5, 10.0, 40.0};
+    for (int i = 0; i < 4; i++) {
+        sky_atmosphere_with_turbidity(&earth, wanted[i], &out);
+        CHECK(fabs(sky_atmosphere_turbidity(&out) - wanted[i]) < 1e-3 * wanted[i],
+              "turbidity %.1f asked, %.4f given", wanted[i], sky_atmosphere_turbidity(&out));
+        CHECK(out.mie_g == earth.mie_g && out.mie_scale_height_km == earth.mie_scale_height_km &&
+                  sky_atmosphere_check(&out, NULL, 0) == SKY_OK,
+              "turbidity %.1f keeps g and the height, and a valid description", wanted[i]);
+        if (wanted[i] > 1.0)
+            for (int c = 0; c < 3; c++)
+                CHECK(fabs(out.mie_scattering[c] / out.mie_extinction[c] -
+                           earth.mie_scattering[c] / earth.mie_extinction[c]) < 1e-5 &&
+                          fabs(out.mie_extinction[c] / out.mie_extinction[1] -
+                               earth.mie_extinction[c] / earth.mie_extinction[1]) < 1e-5,
+                      "turbidity %.1f keeps channel %d's albedo and colour", wanted[i], c);
+    }
+    sky_atmosphere_with_turbidity(&earth, 64.0, &out);
+    CHECK(sky_atmosphere_check(&out, NULL, 0) == SKY_OK, "turbidity 64 stays within 10/km of extinction (%.2f)",
+          out.mie_extinction[2]);
+    sky_atmosphere_params clean = earth;
+    for (int c = 0; c < 3; c++) clean.mie_scattering[c] = clean.mie_extinction[c] = 0.0f;
+    sky_atmosphere_with_turbidity(&clean, 3.0, &out);
+    CHECK(fabs(sky_atmosphere_turbidity(&out) - 3.0) < 3e-3, "an aerosol-free description takes Earth's at 3: %.4f",
+          sky_atmosphere_turbidity(&out));
+
+    /* through sky_create: the low sun's light dims as the haze grows */
+    double direct[3];
+    static const float knob[3] = {1.5f, 3.0f, 8.0f};
+    for (int i = 0; i < 3; i++) {
+        sky_osmesa ctx;
+        char err[256];
+        direct[i] = -1.0;
+        if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_CORE33, 0, err, sizeof err)) {
+            CHECK(0, "context: %s", err);
+            return;
+        }
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.get_proc_address = sky_osmesa_loader();
+        cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+        cfg.turbidity = knob[i];
+        sky *s = sky_create(&cfg, err, sizeof err);
+        CHECK(s != NULL, "sky_create at turbidity %.1f: %s", knob[i], err);
+        if (s) {
+            sky_params p = sky_default_params();
+            p.time = 0.28f; /* a low morning sun */
+            sky_set_params(s, &p);
+            sky_lighting l;
+            sky_get_lighting(s, &l);
+            direct[i] = l.sun_color[1];
+            sky_destroy(s);
+        }
+        sky_osmesa_destroy(&ctx);
+    }
+    CHECK(direct[0] > direct[1] && direct[1] > direct[2] && direct[2] > 0.0,
+          "the low sun's green light at turbidity 1.5 / 3 / 8: %.2f / %.2f / %.2f klx", direct[0], direct[1], direct[2]);
+}
+
+/* The blend's analytic partner (sky_config.blend_partner): with PREETHAM
+ * at a manual weight 0 the blend renders Preetham's sky, at weight 1
+ * Hillaire's, for a high sun, a low one and one just set. Sky pixels
+ * above the horizon and more than 8 degrees from the sun: the sun's disc
+ * and the ground below the horizon take the beam through the physical
+ * description in the blend and through the sun model in PREETHAM (what the
+ * partner is not asked to change). Both sides run the same shader code on
+ * the same uniforms: float rounding apart, identical. */
+#define PARTNER_SUNS 3
+static int render_suns(sky_config cfg, int size, float *out[PARTNER_SUNS], float sun_dir[PARTNER_SUNS][3])
+{
+    static const double altitudes[PARTNER_SUNS] = {30.0, 3.0, -3.0};
+    sky_observer o = equator_equinox();
+    hdr_sky h;
+    if (hdr_open_config(&h, size, SKY_GL_AUTO, cfg)) return -1;
+    size_t n = (size_t)size * (size_t)size * 4u;
+    int rc = 0;
+    for (int k = 0; k < PARTNER_SUNS && !rc; k++) {
+        sky_params clear = sky_default_params();
+        clear.cover = 0.0f;
+        rc = hdr_draw(&h, &o, sky_atmo_time_for_altitude(&o, altitudes[k]), &clear);
+        if (!rc) memcpy(out[k], h.ctx.pixels, n * sizeof(float));
+        for (int i = 0; i < 3; i++) sun_dir[k][i] = h.s->core.frame.sun_dir[i];
+    }
+    hdr_close(&h);
+    return rc;
+}
+
+void test_atmosphere_blend_partner_preetham(void)
+{
+    static const double altitudes[PARTNER_SUNS] = {30.0, 3.0, -3.0};
+    static const struct {
+        float weight;
+        sky_atmosphere_path alone;
+        const char *name;
+    } cases[] = {{0.0f, SKY_ATMOSPHERE_PREETHAM, "preetham"}, {1.0f, SKY_ATMOSPHERE_HILLAIRE, "hillaire"}};
+    enum { SIZE = 48 };
+    size_t n = (size_t)SIZE * SIZE * 4u;
+    float *img[2][PARTNER_SUNS], sun_dir[2][PARTNER_SUNS][3];
+    int ok = 1;
+    for (int j = 0; j < 2; j++)
+        for (int k = 0; k < PARTNER_SUNS; k++) ok &= (img[j][k] = malloc(n * sizeof(float))) != NULL;
+    for (size_t q = 0; q < sizeof cases / sizeof cases[0] && ok; q++) {
+        sky_config blend_cfg, alone_cfg;
+        memset(&blend_cfg, 0, sizeof blend_cfg);
+        memset(&alone_cfg, 0, sizeof alone_cfg);
+        blend_cfg.atmosphere = SKY_ATMOSPHERE_BLEND;
+        blend_cfg.blend_partner = SKY_ATMOSPHERE_PREETHAM;
+        blend_cfg.blend_manual = 1;
+        blend_cfg.blend_weight = cases[q].weight;
+        alone_cfg.atmosphere = cases[q].alone;
+        if (render_suns(blend_cfg, SIZE, img[0], sun_dir[0]) || render_suns(alone_cfg, SIZE, img[1], sun_dir[1])) {
+            CHECK(0, "blend with the preetham partner or %s: no sky", cases[q].name);
+            continue;
+        }
+        hdr_sky geometry = {.size = SIZE}; /* pixel_dir reads the size alone */
+        for (int k = 0; k < PARTNER_SUNS; k++) {
+            const float *a = img[0][k], *b = img[1][k], *sd = sun_dir[0][k];
+            double worst = 0.0, brightest = 0.0;
+            int compared = 0;
+            for (int y = 0; y < SIZE; y++)
+                for (int x = 0; x < SIZE; x++) {
+                    double d[3];
+                    if (!pixel_dir(&geometry, x, y, d) || d[1] < 0.01 ||
+                        d[0] * sd[0] + d[1] * sd[1] + d[2] * sd[2] > cos(8.0 * SKY_PI / 180.0))
+                        continue;
+                    size_t i = ((size_t)(SIZE - 1 - y) * (size_t)SIZE + (size_t)x) * 4u;
+                    for (int c = 0; c < 3; c++) {
+                        double rel = fabs(a[i + c] - b[i + c]) / (fabs(b[i + c]) + 1e-9);
+                        if (rel > worst) worst = rel;
+                        if (b[i + c] > brightest) brightest = b[i + c];
+                    }
+                    compared++;
+                }
+            NOTE("blend (preetham partner, weight %.0f) vs %s, sun %+.0f: %d pixels, worst relative difference %.2g",
+                 (double)cases[q].weight, cases[q].name, altitudes[k], compared, worst);
+            CHECK(compared > 500 && brightest > 0.0 && worst < 2e-3,
+                  "blend (preetham partner, weight %.0f) differs from %s at sun %+.0f by %.3g (%d pixels)",
+                  (double)cases[q].weight, cases[q].name, altitudes[k], worst, compared);
+            CHECK(fabs(sun_dir[0][k][1] - sun_dir[1][k][1]) < 1e-6, "the two skies' suns differ");
+        }
+    }
+    CHECK(ok, "out of memory");
+    for (int j = 0; j < 2; j++)
+        for (int k = 0; k < PARTNER_SUNS; k++) free(img[j][k]);
 }

@@ -199,6 +199,8 @@ void test_cli_exit_codes_and_messages(void)
         {"--atmosphere fog", 2, "--atmosphere"},
         {"--luts huge", 2, "--luts"},
         {"--blend 1.5", 2, "--blend"},
+        {"--blend-partner hillaire", 2, "--blend-partner"},
+        {"--blend-partner", 2, "--blend-partner"},
         {"--preset beach", 2, "--preset"},
         {"--date 2011-06-15", 2, "--date"},
         /* the supported years' calendar edges: the option is named with

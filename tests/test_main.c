@@ -64,6 +64,7 @@ int test_skipped;
     X(render_height_changes_cloud_scale)         \
     X(render_sun_where_direction_projects)       \
     X(render_sun_in_fisheye)                     \
+    X(render_sun_disc_sums_to_sunlight)          \
     X(render_hdr_finite_everywhere)              \
     X(render_dome_image_agrees_with_every_pixel) \
     X(colour_hue_and_saturation_kept)            \
@@ -108,6 +109,7 @@ int test_skipped;
     X(stars_colour_follows_bv)                   \
     X(stars_scintillate_more_near_horizon)       \
     X(stars_skipped_at_noon)                     \
+    X(stars_flux_with_and_without_glare)         \
     X(starmap_shows_the_milky_way)               \
     X(moon_phase_and_bright_limb)                \
     X(moon_earthshine_on_a_crescent)             \
@@ -116,6 +118,8 @@ int test_skipped;
     X(moon_left_out_when_not_needed)             \
     X(moon_rising_is_flattened)                  \
     X(moon_hides_the_stars_behind_it)            \
+    X(moon_disc_sums_to_moonlight)               \
+    X(moon_scale_keeps_luminance)                \
     X(demo_window_shows_sky_and_sliders)         \
     X(demo_drag_on_cover_slider)                 \
     X(demo_readout_is_gpu_frame_time)            \
@@ -152,6 +156,8 @@ int test_skipped;
     X(atmosphere_extinction_follows_the_description) \
     X(atmosphere_observer_altitudes)             \
     X(atmosphere_setting_sun_flattened)          \
+    X(atmosphere_turbidity_and_presets)          \
+    X(atmosphere_blend_partner_preetham)         \
     X(stability_suite)                           \
     X(stability_clocks_survive_any_step)         \
     X(reference_spectrum_and_units)              \
@@ -172,6 +178,8 @@ int test_skipped;
     X(cli_outputs_png_pfm_stats)                 \
     X(photometry_published_formulas)             \
     X(photometry_measures_every_path)            \
+    X(photometry_preetham_twilight)              \
+    X(photometry_physical_paths_targets)         \
     X(photometry_rayleigh_goes_dark)
 #endif
 

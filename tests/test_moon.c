@@ -18,6 +18,8 @@ void test_moon_penumbral_eclipse_is_slightly_darker(void);
 void test_moon_left_out_when_not_needed(void);
 void test_moon_rising_is_flattened(void);
 void test_moon_hides_the_stars_behind_it(void);
+void test_moon_disc_sums_to_moonlight(void);
+void test_moon_scale_keeps_luminance(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -331,4 +333,129 @@ void test_moon_hides_the_stars_behind_it(void)
     CHECK(outside > 1e-6, "no star around the moon either (%.3g): the test sees nothing", outside);
     image_free(&with.im);
     image_free(&without.im);
+}
+
+/* ---- photometry: the drawn disc against the moonlight ---------------------- */
+
+/* Illuminance, klx (luminance-weighted), a closeup's layer adds: each
+ * pixel's luminance minus the same view's without the moon (clouds at
+ * cover 0: the same dome), times the pixel's solid angle. On a perspective
+ * image plane at distance 1 a pixel is s = 2 tan(fov / 2) / h wide and
+ * subtends s^2 cos^3 of its angle off the axis. */
+static double closeup_flux(const closeup *with, const closeup *without, double fov_deg)
+{
+    int w = with->im.w, h = with->im.h;
+    double s = 2.0 * tan(fov_deg * DEG / 2.0) / h, sum = 0.0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double u = (x + 0.5 - w / 2.0) * s, v = (y + 0.5 - h / 2.0) * s;
+            double omega = s * s / pow(1.0 + u * u + v * v, 1.5);
+            sum += (image_luminance(&with->im, x, y) - image_luminance(&without->im, x, y)) * omega;
+        }
+    return sum;
+}
+
+/* The moonlight sky_get_lighting reports for the closeup's sky, klx of
+ * luminance (0.2126 R + 0.7152 G + 0.0722 B). */
+static double moonlight(const sky_observer *o, float moon_scale)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_MOON;
+    cfg.moon_scale = moon_scale;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) return -1.0;
+    sky_params p = sky_default_params();
+    p.cover = 0.0f;
+    sky_lighting l;
+    memset(&l, 0, sizeof l);
+    if (sky_set_params(f.s, &p) < 0 || sky_set_observer(f.s, o) != SKY_OK || sky_get_lighting(f.s, &l) != SKY_OK)
+        l.moon_color[0] = l.moon_color[1] = l.moon_color[2] = -1.0f;
+    fixture_close(&f);
+    return 0.2126 * l.moon_color[0] + 0.7152 * l.moon_color[1] + 0.0722 * l.moon_color[2];
+}
+
+/* The drawn disc's flux and the moonlight for one observer and scale. */
+static int disc_and_light(const sky_observer *o, float moon_scale, double *disc, double *light, sky_astronomy *a)
+{
+    closeup with, without;
+    if (moon_closeup(o, SKY_MOON, moon_scale, 1, &with)) return -1;
+    if (moon_closeup(o, SKY_CLOUDS, moon_scale, 1, &without)) {
+        image_free(&with.im);
+        return -1;
+    }
+    /* the closeup's field: three drawn disc radii either side */
+    double r = tan(moon_scale * asin(1737.4 / with.a.moon.distance_km));
+    *disc = closeup_flux(&with, &without, 2.0 * atan(3.0 * r) / DEG);
+    *light = moonlight(o, moon_scale);
+    *a = with.a;
+    image_free(&with.im);
+    image_free(&without.im);
+    return 0;
+}
+
+/* Krisciunas & Schaefer (1991) eq. 8: the moon's brightness relative to
+ * full at phase angle a (degrees). */
+static double ks_phase(double a) { return pow(10.0, -0.4 * (0.026 * fabs(a) + 4e-9 * a * a * a * a)); }
+
+void test_moon_disc_sums_to_moonlight(void)
+{
+    /* the perigee and apogee full moons of 2024-10-17 and 2025-04-13 high
+     * in a dark sky, then the phases of test_moon_phase_and_bright_limb */
+    const struct {
+        const char *name;
+        sky_observer o;
+    } cases[] = {
+        {"full at perigee 2024-10-17", {sky_julian_day(2024, 10, 17, 0, 0, 0.0), 10.0, 0.0, 0.0, 0}},
+        {"full at apogee 2025-04-13", {sky_julian_day(2025, 4, 13, 0, 0, 0.0), -10.0, 0.0, 0.0, 0}},
+        {"waning gibbous 2024-06-25", {sky_julian_day(2024, 6, 25, 2, 0, 0.0), 45.0, 10.0, 0.0, 0}},
+        {"first quarter 2024-06-14", {sky_julian_day(2024, 6, 14, 20, 0, 0.0), 45.0, 10.0, 0.0, 0}},
+        {"crescent 2024-06-10", {sky_julian_day(2024, 6, 10, 21, 0, 0.0), 40.0, 0.0, 0.0, 0}},
+    };
+    double per_ks[2] = {0, 0}, dist[2] = {0, 0};
+    for (int i = 0; i < (int)(sizeof cases / sizeof cases[0]); i++) {
+        double disc, light;
+        sky_astronomy a;
+        if (disc_and_light(&cases[i].o, 1.0f, &disc, &light, &a)) {
+            CHECK(0, "%s: render failed", cases[i].name);
+            continue;
+        }
+        NOTE("%s: phase %.1f deg, %.0f km, alt %.1f: disc %.4g lx, moonlight %.4g lx (%+.1f %%)", cases[i].name,
+             a.moon_phase_angle_deg, a.moon.distance_km, a.moon.alt_deg, disc * 1e3, light * 1e3,
+             100.0 * (disc / light - 1.0));
+        CHECK(light > 0.0 && fabs(disc / light - 1.0) <= 0.05, "%s: the true-size disc sums to %.4g lx, moonlight %.4g lx",
+              cases[i].name, disc * 1e3, light * 1e3);
+        if (i < 2) per_ks[i] = light / ks_phase(a.moon_phase_angle_deg), dist[i] = a.moon.distance_km;
+    }
+    /* both high (79 and 89 degrees: extinction within 0.5 %), the phase
+     * law divided out: what is left is 1 / r^2, +29 % from apogee to
+     * perigee (topocentric and geocentric phase angles differ by up to a
+     * degree near full: 2.4 % in the law) */
+    double expect = (dist[1] / dist[0]) * (dist[1] / dist[0]);
+    NOTE("perigee / apogee moonlight, phase law divided out: %.3f (1 / r^2: %.3f)", per_ks[0] / per_ks[1], expect);
+    CHECK(per_ks[1] > 0.0 && fabs(per_ks[0] / per_ks[1] / expect - 1.0) <= 0.04, "perigee / apogee %.3f vs %.3f",
+          per_ks[0] / per_ks[1], expect);
+    /* the published full moon: about 0.24-0.27 lx at the zenith, 0.32 lx
+     * above the air (K&S's -12.73 mag); the apogee moon stands at 89 deg */
+    CHECK(per_ks[1] * 1e3 > 0.21 && per_ks[1] * 1e3 < 0.29, "the high apogee full moon gives %.3f lx",
+          per_ks[1] * 1e3);
+}
+
+void test_moon_scale_keeps_luminance(void)
+{
+    /* moon_scale draws a bigger moon of the same surface brightness (a
+     * telephoto view), so its disc carries scale^2 times the flux, while
+     * the host's moonlight stays the true moon's */
+    sky_observer o = {sky_julian_day(2024, 10, 17, 0, 0, 0.0), 10.0, 0.0, 0.0, 0};
+    double disc1, light1, disc25, light25;
+    sky_astronomy a;
+    if (disc_and_light(&o, 1.0f, &disc1, &light1, &a) || disc_and_light(&o, 2.5f, &disc25, &light25, &a)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    NOTE("moon_scale 2.5: disc %.4g lx (%.3f x the true-size disc), moonlight %.4g lx (scale 1: %.4g)", disc25 * 1e3,
+         disc25 / disc1, light25 * 1e3, light1 * 1e3);
+    CHECK(light25 == light1, "the moonlight does not depend on moon_scale (%.5g vs %.5g lx)", light25 * 1e3, light1 * 1e3);
+    CHECK(fabs(disc25 / disc1 / 6.25 - 1.0) <= 0.05, "the 2.5x disc carries %.3f x the flux (6.25 expected)",
+          disc25 / disc1);
 }

@@ -5,6 +5,7 @@
  */
 #include "test.h"
 #include "sky_internal.h"
+#include "cli.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -16,6 +17,7 @@ void test_stars_colour_follows_bv(void);
 void test_stars_scintillate_more_near_horizon(void);
 void test_stars_skipped_at_noon(void);
 void test_starmap_shows_the_milky_way(void);
+void test_stars_flux_with_and_without_glare(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -429,5 +431,94 @@ void test_starmap_shows_the_milky_way(void)
         sky_get_stats(f.s, &st);
         CHECK(st.layers[SKY_LAYER_STARMAP].drawn, "the star map at midnight");
         fixture_close(&f);
+    }
+}
+
+/* One star's light in an HDR render centred on it, klx (luminance-weighted):
+ * the pixels within `radius` px of the centre, each less the median of a
+ * ring just outside (the dome and the faint stars), times the pixel's solid
+ * angle (the centre's, pixel_angle^2: the star sits on the axis). expect:
+ * its physical illuminance, E0 2.512^-V scaled by the control magnitude
+ * (2.512^(m_a - 4)), the night fade and the extinction the shader applies
+ * (eq. 11-12 over the frame's optical depths, the star's colour weighted). */
+static double star_flux(const sky_observer *o, const sky_star_place *p, float m_a, int radius, double *expect)
+{
+    const int n = 256;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_STARS;
+    cfg.output = SKY_OUTPUT_HDR;
+    cfg.star_control_magnitude = m_a;
+    fixture f;
+    if (fixture_open_sized(&f, n, n, 1, SKY_GL_AUTO, &cfg)) return -1.0;
+    sky_params prm = sky_default_params();
+    prm.cover = 0.0f;
+    float view[16], proj[16];
+    sky_cli_camera_at(p->az_deg, p->alt_deg, 20.0, n, n, view, proj);
+    if (sky_set_params(f.s, &prm) < 0 || sky_set_observer(f.s, o) != SKY_OK || sky_draw(f.s, view, proj) < 0) {
+        fixture_close(&f);
+        return -1.0;
+    }
+    sky_osmesa_finish(&f.ctx);
+    const float *px = f.ctx.pixels;
+    double ring[2048];
+    int nr = 0;
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) {
+            double r = hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0);
+            if (r > radius + 2 && r <= radius + 6 && nr < 2048) {
+                const float *q = px + 4 * (y * n + x);
+                ring[nr++] = 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
+            }
+        }
+    for (int i = 1; i < nr; i++) /* insertion sort: a few hundred values */
+        for (int j = i; j > 0 && ring[j] < ring[j - 1]; j--) {
+            double t = ring[j];
+            ring[j] = ring[j - 1], ring[j - 1] = t;
+        }
+    double bg = nr ? ring[nr / 2] : 0.0, sum = 0.0;
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++)
+            if (hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0) <= radius) {
+                const float *q = px + 4 * (y * n + x);
+                sum += 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2] - bg;
+            }
+    const sky_frame *fr = &f.s->core.frame;
+    double pa = fr->pixel_angle;
+    float rgb[3];
+    sky_star_color(p->bv, rgb);
+    double cos_t = sin(p->alt_deg * DEG), a = fr->star_shell[0], b = fr->star_shell[1];
+    double airmass = (sqrt(b * b - a * a * (1.0 - cos_t * cos_t)) - a * cos_t) / fr->star_shell[2];
+    static const double w[3] = {0.2126, 0.7152, 0.0722};
+    double ext = 0.0;
+    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr->star_extinction[c] * airmass);
+    *expect = 2.54e-9 * pow(2.512, m_a - 4.0 - p->vmag) * f.s->core.astro.star_visibility * ext;
+    fixture_close(&f);
+    return sum * pa * pa;
+}
+
+void test_stars_flux_with_and_without_glare(void)
+{
+    /* Capella (V 0.08) near the zenith of the winter evening (scintillation
+     * there under 1 %): without glare at m_a 1 would need m_a < 0.25, so
+     * m_a 1 gives it a 1.5 px glare barely past the PSF's q, 4 an 8 px one,
+     * 6.5 a 25 px one; each must carry the star's light, no more */
+    sky_observer o = winter_evening();
+    int hip = 24608;
+    sky_star_place p;
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, 0.0f, &hip, 1, &p, &a, NULL, 0) != SKY_OK || !p.found) {
+        CHECK(0, "Capella's place");
+        return;
+    }
+    CHECK(p.alt_deg > 60.0, "Capella high (%.1f deg)", p.alt_deg);
+    const float ma[3] = {1.0f, 4.0f, 6.5f};
+    const int radius[3] = {4, 12, 30};
+    for (int i = 0; i < 3; i++) {
+        double expect = 0.0, got = star_flux(&o, &p, ma[i], radius[i], &expect);
+        NOTE("m_a %.1f: Capella at %.1f deg sums to %.4g lx, physical %.4g lx (%+.1f %%)", ma[i], p.alt_deg, got * 1e3,
+             expect * 1e3, 100.0 * (got / expect - 1.0));
+        CHECK(expect > 0.0 && fabs(got / expect - 1.0) <= 0.03, "m_a %.1f: %.4g lx vs %.4g lx", ma[i], got * 1e3,
+              expect * 1e3);
     }
 }

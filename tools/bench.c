@@ -1338,12 +1338,49 @@ static void print_photometry_json(const sky_photometry m[PHOT_PATHS])
     printf(" ]");
 }
 
+/* The chart of the sky's horizontal illuminance by sun altitude, every
+ * path against the published: the IES clear sky by day, Bond & Henderson
+ * in twilight. */
+static int plot_photometry(const char *path)
+{
+    enum { ALTS = 37 };
+    double alts[ALTS], lux[PHOT_PATHS][ALTS];
+    for (int i = 0; i < ALTS; i++) alts[i] = -18.0 + 3.0 * i;
+    plot_curve cv[PHOT_PATHS + 2];
+    for (int p = 0; p < PHOT_PATHS; p++) {
+        char err[512];
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.gl_profile = SKY_GL_CORE33;
+        cfg.atmosphere = phot_paths[p];
+        if (sky_photometry_sky_lux(&cfg, alts, ALTS, lux[p], err, sizeof err)) {
+            fprintf(stderr, "sky-bench: photometry of %s: %s\n", phot_names[p], err);
+            return -1;
+        }
+        cv[p] = (plot_curve){alts, lux[p], ALTS, p, 0};
+    }
+    enum { DAY = 31 };
+    double day_alt[DAY], day_lux[DAY];
+    for (int i = 0; i < DAY; i++) day_alt[i] = 3.0 * i, day_lux[i] = 1000.0 * sky_ies_diffuse_klx(day_alt[i]);
+    static const double tw_alt[2] = {-6.0, -12.0}, tw_lux[2] = {3.4, 0.008};
+    cv[PHOT_PATHS] = (plot_curve){day_alt, day_lux, DAY, PHOT_PATHS, 0};
+    cv[PHOT_PATHS + 1] = (plot_curve){tw_alt, tw_lux, 2, PHOT_PATHS, 1};
+    static const char *const legend[PHOT_PATHS + 1] = {"gradient", "preetham", "rayleigh", "hillaire", "blend",
+                                                       "IES, B.+H."};
+    if (plot_curves(path, cv, PHOT_PATHS + 2, legend, PHOT_PATHS + 1, -18.0, 90.0, 18.0, "sun altitude, degrees",
+                    "lx", "sky illuminance on a horizontal surface")) {
+        fprintf(stderr, "sky-bench: cannot write %s\n", path);
+        return -1;
+    }
+    return 0;
+}
+
 static void bench_usage(FILE *out)
 {
     fprintf(out,
             "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
             "[--only-atmosphere | --only-presets | --only-colour | --only-photometry]\n"
-            "       [--tone-map hue|filmic|neutral] [--plot FILE.png]\n"
+            "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
             "       sky-bench --stability [--json]\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
             "       sky-bench --make-reference FILE [--paths N]\n",
@@ -1355,7 +1392,8 @@ int main(int argc, char **argv)
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
         only_presets = 0, only_colour = 0, only_photometry = 0, soak = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
-    const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL;
+    const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL,
+               *plot_phot = NULL;
     for (int i = 1; i < argc; i++) {
         /* asking for the usage is not a mistake: stdout, exit 0 */
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -1384,6 +1422,8 @@ int main(int argc, char **argv)
             reference = argv[++i];
         else if (!strcmp(argv[i], "--plot") && i + 1 < argc)
             plot = argv[++i];
+        else if (!strcmp(argv[i], "--plot-photometry") && i + 1 < argc)
+            plot_phot = argv[++i];
         else if (!strcmp(argv[i], "--paths") && i + 1 < argc && (paths = atoi(argv[i + 1])) >= 1 && paths <= 1000000)
             i++;
         else if (!strcmp(argv[i], "--stability"))
@@ -1408,6 +1448,7 @@ int main(int argc, char **argv)
     sky_photometry phot[PHOT_PATHS];
     if (only_photometry) {
         if (photometry_rows(phot)) return 1;
+        if (plot_phot && plot_photometry(plot_phot)) return 1;
         if (json) {
             printf("{\n");
             print_photometry_json(phot);
@@ -1506,6 +1547,7 @@ int main(int argc, char **argv)
     double astro = astro_us(2000);
     if (colour_rows(tone_map, colour)) return 1;
     if (photometry_rows(phot)) return 1;
+    if (plot_phot && plot_photometry(plot_phot)) return 1;
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
                rounds, astro);

@@ -213,3 +213,17 @@ int sky_photometry_measure(const sky_config *cfg, sky_photometry *out, char *err
     sky_atmo_hemisphere_destroy(h);
     return rc;
 }
+
+int sky_photometry_sky_lux(const sky_config *cfg, const double *alts, int n, double *lux, char *err, size_t err_len)
+{
+    sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(cfg, err, err_len);
+    if (!h) return -1;
+    int rc = 0;
+    for (int i = 0; i < n && !rc; i++) {
+        double el, az;
+        rc = sky_atmo_hemisphere_render(h, alts[i], &el, &az, err, err_len);
+        if (!rc) lux[i] = 1000.0 * horizontal_klx(h);
+    }
+    sky_atmo_hemisphere_destroy(h);
+    return rc;
+}

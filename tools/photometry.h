@@ -61,4 +61,8 @@ double sky_mag_arcsec2(double kcd);
  * 0 or -1 with err. */
 int sky_photometry_measure(const sky_config *cfg, sky_photometry *out, char *err, size_t err_len);
 
+/* The sky's illuminance on a horizontal surface, lx, for the sun at each
+ * of alts (degrees, apparent), as sky_photometry_measure takes it. */
+int sky_photometry_sky_lux(const sky_config *cfg, const double *alts, int n, double *lux, char *err, size_t err_len);
+
 #endif

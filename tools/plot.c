@@ -174,3 +174,62 @@ int plot_pareto(const char *path, const plot_point *pt, int n, const char *const
     free(c);
     return rc;
 }
+
+int plot_curves(const char *path, const plot_curve *cv, int n, const char *const *legend, int series, double xmin,
+                double xmax, double xstep, const char *x_label, const char *y_label, const char *title)
+{
+    canvas *c = malloc(sizeof *c);
+    if (!c) return -1;
+    memset(c->px, 255, sizeof c->px);
+    static const unsigned char ink[3] = {30, 30, 30}, grid[3] = {225, 225, 225};
+    double ymin = 1e300, ymax = 0.0;
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < cv[i].n; k++)
+            if (cv[i].y[k] > 0.0) ymin = fmin(ymin, cv[i].y[k]), ymax = fmax(ymax, cv[i].y[k]);
+    double d0 = floor(log10(ymin < 1e300 ? ymin : 0.01)), d1 = ceil(log10(ymax > 0.0 ? ymax : 1.0));
+    if (d1 <= d0) d1 = d0 + 1.0;
+    int pw = W - LEFT - RIGHT, ph = H - TOP - BOTTOM;
+#define PX(v) (LEFT + ((v) - xmin) / (xmax - xmin) * pw)
+#define PY(e) (TOP + ph - (log10(e) - d0) / (d1 - d0) * ph)
+    for (double x = xmin; x <= xmax + 1e-9; x += xstep) {
+        line(c, PX(x), TOP, PX(x), TOP + ph, grid);
+        char buf[16];
+        snprintf(buf, sizeof buf, "%g", x);
+        text(c, (int)PX(x) - 4 * (int)strlen(buf), TOP + ph + 6, buf, ink);
+    }
+    for (double d = d0; d <= d1; d += 1.0) {
+        double y = PY(pow(10.0, d));
+        line(c, LEFT, y, LEFT + pw, y, grid);
+        char buf[24];
+        snprintf(buf, sizeof buf, "%g", pow(10.0, d));
+        text(c, LEFT - 8 - 8 * (int)strlen(buf), (int)y - 5, buf, ink);
+    }
+    line(c, LEFT, TOP + ph, LEFT + pw, TOP + ph, ink);
+    line(c, LEFT, TOP, LEFT, TOP + ph, ink);
+    text(c, LEFT + pw / 2 - 4 * (int)strlen(x_label), H - 22, x_label, ink);
+    text(c, LEFT + pw / 2 - 4 * (int)strlen(title), 4, title, ink);
+    text(c, 8, 22, y_label, ink);
+    for (int i = 0; i < n; i++) {
+        const unsigned char *rgb = palette[cv[i].series % PALETTE];
+        for (int k = 0; k < cv[i].n; k++) {
+            if (!(cv[i].y[k] > 0.0)) continue;
+            if (cv[i].points_only) {
+                disc(c, PX(cv[i].x[k]), PY(cv[i].y[k]), 6.0, 0, rgb);
+            } else if (k + 1 < cv[i].n && cv[i].y[k + 1] > 0.0) {
+                /* two pixels wide, so overlapping curves stay apart */
+                for (int w = 0; w < 2; w++)
+                    line(c, PX(cv[i].x[k]), PY(cv[i].y[k]) + w, PX(cv[i].x[k + 1]), PY(cv[i].y[k + 1]) + w, rgb);
+            }
+        }
+    }
+    int lx = W - RIGHT + 20, ly = TOP + 10;
+    for (int s = 0; s < series; s++, ly += 22) {
+        disc(c, lx, ly + 4, 6.0, 0, palette[s % PALETTE]);
+        text(c, lx + 14, ly, legend[s], ink);
+    }
+#undef PX
+#undef PY
+    int rc = sky_write_png_rgb(path, W, H, c->px);
+    free(c);
+    return rc;
+}

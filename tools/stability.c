@@ -673,13 +673,15 @@ static void case_stiff_tables(suite *st)
 /* Preetham outside its fit: turbidity 1..64 (clamped into 2..10) and the
  * sun 0.01 degree above and below the horizon: the CPU twin of the shader
  * finite, >= 0, and changing by no more than the fit's own slope there
- * plus the twilight fade: at T 10 the zenith luminance of eq. A.2 starts
+ * plus the twilight scale: at T 10 the zenith luminance of eq. A.2 starts
  * from 0.26 kcd/m^2 at a horizon sun and grows 1.7 % in the first 0.01
- * degree; the fade below is a decade in 3 degrees, 0.8 % per 0.01. */
+ * degree; the measured twilight below falls a decade per 2.7 degrees at
+ * the horizon, 0.86 % per 0.01, and the ease above it (preetham.c) climbs
+ * at the same rate: 3.4 % in all, held at 4 %. */
 static void case_preetham_fit(suite *st)
 {
     sky_stability_row *r = add_row(st, "Preetham: turbidity 1..64, sun +-0.01 deg at the horizon",
-                                   "finite, >= 0; largest relative change of luminance per 0.01 deg", "", 0.03);
+                                   "finite, >= 0; largest relative change of luminance per 0.01 deg", "", 0.04);
     static const float turbidities[] = {1.0f, 2.0f, 10.0f, 64.0f};
     static sky_core fake; /* the frame fields preetham.c reads, without GL */
     for (size_t i = 0; i < sizeof turbidities / sizeof turbidities[0]; i++) {

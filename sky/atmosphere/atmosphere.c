@@ -74,7 +74,13 @@ static const sky_uniform_desc blend_uniforms[] = {
 const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
                                        SKY_UNIFORM_COUNT(blend_uniforms), NULL};
 
-int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out)
+sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested)
+{
+    return requested == SKY_ATMOSPHERE_PREETHAM ? SKY_ATMOSPHERE_PREETHAM : SKY_ATMOSPHERE_RAYLEIGH;
+}
+
+int sky_atmosphere_snippets(sky_atmosphere_path path, sky_atmosphere_path blend_partner, int encoded_tables,
+                            const sky_snippet **out)
 {
     const sky_snippet *tables = encoded_tables ? &sky_hillaire_encoded_snippet : &sky_hillaire_snippet;
     int n = 0;
@@ -90,8 +96,11 @@ int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const 
         out[n++] = tables;
         break;
     case SKY_ATMOSPHERE_BLEND:
+        /* the extinction serves Hillaire's night layers and the sun's beam
+         * whichever analytic path is mixed in (blend.glsl picks it) */
         out[n++] = &sky_extinction_snippet;
-        out[n++] = &sky_rayleigh_snippet;
+        out[n++] = sky_blend_partner(blend_partner) == SKY_ATMOSPHERE_PREETHAM ? &sky_preetham_snippet
+                                                                                : &sky_rayleigh_snippet;
         out[n++] = tables;
         out[n++] = &sky_blend_snippet;
         break;
@@ -118,9 +127,10 @@ static void night_frame(sky_core *s)
 }
 
 /* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
- * floor. The blend weighs the analytic sky by day (where it is cheapest)
- * and hands the horizon band and twilight, where single scattering from
- * one column falls short, to Hillaire's tables. */
+ * floor. The blend weighs the analytic sky (RAYLEIGH or PREETHAM,
+ * cfg.blend_partner) by day (where it is cheapest) and hands the horizon
+ * band and twilight, where single scattering from one column falls short,
+ * to Hillaire's tables. */
 static void eval_preetham(const sky_core *s, const double d[3], double rgb[3]) { sky_preetham_eval(&s->frame, d, rgb); }
 static void eval_rayleigh(const sky_core *s, const double d[3], double rgb[3]) { sky_rayleigh_eval(&s->frame, d, rgb); }
 static void eval_hillaire(const sky_core *s, const double d[3], double rgb[3])
@@ -130,7 +140,10 @@ static void eval_hillaire(const sky_core *s, const double d[3], double rgb[3])
 static void eval_blend(const sky_core *s, const double d[3], double rgb[3])
 {
     double a[3], b[3], w = s->frame.blend_weight;
-    sky_rayleigh_eval(&s->frame, d, a);
+    if (sky_blend_partner(s->cfg.blend_partner) == SKY_ATMOSPHERE_PREETHAM)
+        sky_preetham_eval(&s->frame, d, a);
+    else
+        sky_rayleigh_eval(&s->frame, d, a);
     eval_hillaire(s, d, b);
     for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * w;
 }
@@ -243,6 +256,10 @@ void sky_atmosphere_frame(sky_core *s)
         break;
     case SKY_ATMOSPHERE_BLEND:
         if (sky_hillaire_frame(s, st->hillaire)) st->summary_valid = 0;
+        /* Preetham's coefficients follow the sun every frame (closed form);
+         * the summary mixing them is kept with the table's, as the
+         * Rayleigh partner's is: both change slowly with the sun */
+        if (sky_blend_partner(s->cfg.blend_partner) == SKY_ATMOSPHERE_PREETHAM) sky_preetham_frame(s);
         f->blend_weight = blend_weight(s);
         summarise_path(s, eval_blend, 1);
         break;

@@ -24,7 +24,10 @@ void sky_atmosphere_frame(sky_core *s);
 void sky_atmosphere_upload(sky_core *s);
 /* The snippets of the selected path (up to 5, in order; encoded_tables:
  * COMPAT20's 8-bit sky-view table). */
-int sky_atmosphere_snippets(sky_atmosphere_path path, int encoded_tables, const sky_snippet **out);
+int sky_atmosphere_snippets(sky_atmosphere_path path, sky_atmosphere_path blend_partner, int encoded_tables,
+                            const sky_snippet **out);
+/* BLEND's analytic path: cfg.blend_partner with 0 resolved (RAYLEIGH) */
+sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested);
 /* Vertical optical depth above the observer per channel: the atmosphere
  * description's for the physical paths, the sun model's otherwise; what
  * dims the stars and the moon (Mueller sec. 5). */
@@ -48,6 +51,12 @@ void sky_atmosphere_skyview_at(const sky_core *s, double *sun_mu, double *altitu
 /* ---- the description (params.c) ---------------------------------------------- */
 /* 1 when every field is zero (= the Earth preset). */
 int sky_atmosphere_is_zero(const sky_atmosphere_params *atm);
+/* The description with its aerosol scaled to a turbidity (sky.h,
+ * sky_config.turbidity); turbidity <= 0 copies it unchanged. */
+void sky_atmosphere_with_turbidity(const sky_atmosphere_params *in, double turbidity, sky_atmosphere_params *out);
+/* A description's turbidity: 1 + its aerosol's optical depth at 550 nm
+ * over its molecules'. */
+double sky_atmosphere_turbidity(const sky_atmosphere_params *atm);
 /* The description's coefficients re-sampled at the wavelengths the sRGB
  * channels of scattered sunlight come from
  * (sky_spectrum_effective_wavelengths): what the real-time physical paths

@@ -11,9 +11,15 @@
  * darkening factor 1 + A e^B approaches zero; above 10 the zenith
  * luminance at a horizon sun turns negative). For a sun below the horizon
  * the distribution keeps the horizon sun's shape (theta_s held at 90
- * degrees, so Y_z stays positive) and the luminance FADES by a decade
- * every 3 degrees of depression, the measured twilight decline the
- * gradient path uses too: continuous at 0 degrees, positive everywhere.
+ * degrees, so Y_z stays positive) and its luminance is scaled so that the
+ * sky's illuminance on a horizontal surface follows MEASURED twilight
+ * (twilight_log10_klx below): 0.8 klx at sunset, 3.4 lx at -6 and 0.008 lx at
+ * -12 degrees, then into the night floor (atmosphere.c). The fit's own
+ * horizon sky is far brighter (10.7 klx at turbidity 2.5), so over the
+ * sun's last few degrees above the horizon the scale eases from 1 (the
+ * published model, untouched by day) down to the measured value, with the
+ * twilight's slope at the horizon: continuous, and with a continuous
+ * slope, through sunset, positive everywhere.
  */
 #include "atmosphere.h"
 
@@ -56,11 +62,81 @@ double sky_preetham_turbidity(float requested)
     return sky_clampd(t, PREETHAM_TURBIDITY_MIN, PREETHAM_TURBIDITY_MAX);
 }
 
+/* The sky's illuminance on a horizontal surface in twilight, klx, for the
+ * sun h_deg <= 0 degrees high: log10 E quadratic in h through three
+ * measured clear-sky values: the IES clear sky's diffuse illuminance with
+ * the sun on the horizon, 0.8 klx (IES RP-21, E = 0.8 + 15.5 sqrt(sin h)
+ * klx), and Bond & Henderson's (1963) 3.4 lx at -6 (civil) and 0.008 lx at
+ * -12 degrees (nautical). It falls a decade per 2.7 degrees at the horizon,
+ * steepening to one per 2.1 at -12 (about 2.3 between -6 and -12, as the
+ * measurements do); below about -15 it is under the night floor, which
+ * takes over. Also returns d log10 E / dh at the horizon (decades per
+ * degree), which the ease above the horizon continues. */
+static double twilight_log10_klx(double h_deg, double *slope_at_horizon)
+{
+    const double L0 = log10(0.8), d6 = log10(3.4e-3) - L0, d12 = log10(8.0e-6) - L0;
+    /* L = L0 + b h + c h^2 with L(-6) - L0 = d6, L(-12) - L0 = d12 */
+    const double c = (d12 - 2.0 * d6) / 72.0, b = (36.0 * c - d6) / 6.0;
+    if (slope_at_horizon) *slope_at_horizon = b;
+    /* beyond -30 degrees the term is 1e-9 of the night floor: hold it there */
+    double h = sky_clampd(h_deg, -30.0, 0.0);
+    return L0 + b * h + c * h * h;
+}
+
+/* The illuminance (klx) on a horizontal surface of the distribution with
+ * the sun on the horizon (theta_s = 90 degrees), for the Perez
+ * coefficients of Y and Y_z / F(0, theta_s) (eq. 3, 4): E = int Y cos theta
+ * domega. Gauss-Legendre in cos theta (8 nodes on 0..1) times 48 azimuths
+ * over the half of the sky on one side of the sun's vertical (the other is
+ * its mirror image). Within 0.3 % of a fine midpoint sum for T in 2..10. */
+static double horizon_sun_illuminance(const double coef[5], double Y_over_F0)
+{
+    static const double x[8] = {0.0198550718, 0.1016667613, 0.2372337950, 0.4082826788,
+                                0.5917173212, 0.7627662050, 0.8983332387, 0.9801449282};
+    static const double w[8] = {0.0506142681, 0.1111905172, 0.1568533229, 0.1813418917,
+                                0.1813418917, 0.1568533229, 0.1111905172, 0.0506142681};
+    enum { AZIMUTHS = 48 };
+    double e = 0.0;
+    for (int k = 0; k < 8; k++) {
+        double mu = x[k], sin_theta = sqrt(1.0 - mu * mu), ring = 0.0;
+        for (int a = 0; a < AZIMUTHS; a++) {
+            /* the sun at azimuth 0 on the horizon: cos gamma = sin theta cos phi */
+            double phi = SKY_PI * (a + 0.5) / AZIMUTHS;
+            double cos_gamma = sky_clampd(sin_theta * cos(phi), -1.0, 1.0), gamma = acos(cos_gamma);
+            ring += (1.0 + coef[0] * exp(coef[1] / mu)) *
+                    (1.0 + coef[2] * exp(coef[3] * gamma) + coef[4] * cos_gamma * cos_gamma);
+        }
+        e += w[k] * mu * ring * (2.0 * SKY_PI / AZIMUTHS);
+    }
+    return Y_over_F0 * e;
+}
+
+/* The scale of Preetham's luminance for a sun at altitude h (radians):
+ * 1 by day; at and below the horizon the measured twilight over the fit's
+ * own horizon-sun illuminance E0 (T's). In between, over the sun's last
+ * h1 degrees, log10 of the scale is the parabola L (1 - h / h1)^2 from its
+ * horizon value L = log10(0.8 klx / E0) to 0: it arrives flat, and with
+ * h1 = 2 |L| / m it leaves the horizon with the twilight's own slope m, so
+ * the time-lapse has no kink at sunset, and it is monotonic. h1 is 6
+ * degrees at T 2.5 and a fraction of one at T 10, whose horizon sky is
+ * already near 0.8 klx. A fit darker than measured is left alone (L held
+ * <= 0): no brightening. */
+static double twilight_scale(double altitude, double horizon_klx)
+{
+    double h_deg = altitude * 180.0 / SKY_PI, m;
+    double L = fmin(twilight_log10_klx(0.0, &m) - log10(fmax(horizon_klx, 1e-30)), 0.0);
+    if (h_deg <= 0.0) return pow(10.0, L + twilight_log10_klx(h_deg, NULL) - twilight_log10_klx(0.0, NULL));
+    double h1 = 2.0 * -L / m;
+    if (h_deg >= h1) return 1.0;
+    double t = 1.0 - h_deg / h1;
+    return pow(10.0, L * t * t);
+}
+
 void sky_preetham_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
     double T = sky_preetham_turbidity(s->cfg.turbidity);
-    double altitude = f->sun_altitude;
+    double altitude = isfinite(f->sun_altitude) ? f->sun_altitude : 0.0;
     double theta_s = 0.5 * SKY_PI - sky_clampd(altitude, 0.0, 0.5 * SKY_PI);
     double coef[3][5];
     for (int c = 0; c < 3; c++)
@@ -72,14 +148,30 @@ void sky_preetham_frame(sky_core *s)
     double chi = (4.0 / 9.0 - T / 120.0) * (SKY_PI - 2.0 * theta_s);
     double zenith[3] = {(4.0453 * T - 4.9710) * tan(chi) - 0.2155 * T + 2.4192,
                         zenith_chromaticity(zenith_x, T, theta_s), zenith_chromaticity(zenith_y, T, theta_s)};
-    double fade = altitude >= 0.0 ? 1.0 : pow(10.0, sky_clampd(altitude * 180.0 / SKY_PI, -90.0, 0.0) / 3.0);
-    zenith[0] *= fade;
-    for (int c = 0; c < 3; c++) {
+    double F0[3];
+    for (int c = 0; c < 3; c++)
         /* F(0, theta_s): the zenith itself, gamma = theta_s */
-        double F0 = (1.0 + coef[c][0] * exp(coef[c][1])) *
-                    (1.0 + coef[c][2] * exp(coef[c][3] * theta_s) + coef[c][4] * cos(theta_s) * cos(theta_s));
-        f->perez_zenith[c] = (float)(zenith[c] / F0);
+        F0[c] = (1.0 + coef[c][0] * exp(coef[c][1])) *
+                (1.0 + coef[c][2] * exp(coef[c][3] * theta_s) + coef[c][4] * cos(theta_s) * cos(theta_s));
+    /* The twilight scale needs the fit's horizon-sun illuminance: only
+     * while the sun is within a few degrees of the horizon or below it
+     * (the ease above ends at h1 = 2 |log10(0.8 klx / E0)| / m: 6.9
+     * degrees at T 2, the brightest horizon sky, 15 klx). It depends on
+     * T alone, which a sky keeps: the 384-point quadrature (some 30 us)
+     * runs once, not every frame. */
+    double scale = 1.0;
+    if (altitude < 10.0 * SKY_PI / 180.0) {
+        if (f->perez_horizon_t != T) {
+            /* eq. A.2 at theta_s = 90 degrees: chi = 0, tan chi = 0 */
+            double Yz0 = -0.2155 * T + 2.4192;
+            double F00 = (1.0 + coef[0][0] * exp(coef[0][1])) * (1.0 + coef[0][2] * exp(coef[0][3] * 0.5 * SKY_PI));
+            f->perez_horizon_klx = horizon_sun_illuminance(coef[0], Yz0 / F00);
+            f->perez_horizon_t = T;
+        }
+        scale = twilight_scale(altitude, f->perez_horizon_klx);
     }
+    zenith[0] *= scale;
+    for (int c = 0; c < 3; c++) f->perez_zenith[c] = (float)(zenith[c] / F0[c]);
 }
 
 void sky_preetham_eval(const sky_frame *f, const double d[3], double rgb[3])

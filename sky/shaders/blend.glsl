@@ -1,10 +1,16 @@
-/* blend.glsl: the analytic sky and Hillaire's table mixed by one weight
- * per frame (atmosphere.c): automatic from the sun's elevation, or the
- * host's. */
+/* blend.glsl: the analytic sky (Rayleigh's, or Preetham's when
+ * sky_config.blend_partner asks for it: atmosphere.c includes that one's
+ * snippet) and Hillaire's table mixed by one weight per frame
+ * (atmosphere.c): automatic from the sun's elevation, or the host's. */
 uniform float u_blend_weight; /* 0 analytic .. 1 Hillaire */
 
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {
-    vec3 sky = mix(sky_rayleigh_radiance(d), sky_hillaire_radiance(d), u_blend_weight);
+#ifdef SKY_HAS_PREETHAM
+    vec3 analytic = sky_preetham_radiance(d);
+#else
+    vec3 analytic = sky_rayleigh_radiance(d);
+#endif
+    vec3 sky = mix(analytic, sky_hillaire_radiance(d), u_blend_weight);
     return sky_or_ground(d, sky * sky_eclipse_dim(d) + sky_night_floor(d));
 }

@@ -1,8 +1,9 @@
 /* stars.frag: a star's point spread (Mueller sec. 4.2): the intensity PSF
  * T(l) = 2l^3 - 3l^2 + 1 over radius q, normalised so that it integrates
  * to the star's illuminance (eq. 10 in physical units), plus the glare
- * PSF G(l) = 1 - l^(1/6) over the enlarged radius k; then extinction over
- * the optical path (eq. 11-12), scintillation growing toward the horizon,
+ * PSF G(l) = 1 - l^(1/6) over the enlarged radius k, its light taken
+ * from the star's (stars.vert), so the two sum to the illuminance; then
+ * extinction over the optical path (eq. 11-12), scintillation growing toward the horizon,
  * the day-night fade (sec. 5) and the clouds in front. Added to the dome.
  * What is the same across the point comes from stars.vert. */
 SKY_IN vec3 v_dir;
