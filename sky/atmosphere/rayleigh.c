@@ -49,8 +49,9 @@ static const sky_uniform_desc extinction_uniforms[] = {
     SKY_UF("u_chapman_x", SKY_U_F3, chapman_x),
     SKY_UF("u_sun_irradiance", SKY_U_F3, sun_irradiance),
 };
+/* both stages: the dome evaluates the analytic sky's integrals per vertex */
 const sky_snippet sky_extinction_snippet = {"SKY_HAS_EXTINCTION", "extinction.glsl", extinction_uniforms,
-                                            SKY_UNIFORM_COUNT(extinction_uniforms), NULL};
+                                            SKY_UNIFORM_COUNT(extinction_uniforms), "extinction.glsl"};
 static const sky_uniform_desc rayleigh_uniforms[] = {
     SKY_UF("u_sun_depth", SKY_U_F3, sun_depth),
     SKY_UF("u_mie_phase", SKY_U_F3, mie_phase),
@@ -59,7 +60,7 @@ static const sky_uniform_desc rayleigh_uniforms[] = {
     SKY_UF("u_rl_ozone", SKY_U_F3, rl_ozone),
 };
 const sky_snippet sky_rayleigh_snippet = {"SKY_HAS_RAYLEIGH", "rayleigh.glsl", rayleigh_uniforms,
-                                          SKY_UNIFORM_COUNT(rayleigh_uniforms), NULL};
+                                          SKY_UNIFORM_COUNT(rayleigh_uniforms), "rayleigh.glsl"};
 
 #define SLANT_DEPTH_MAX 1e4
 

@@ -3,7 +3,8 @@
  * the Earth's shadow, and an isotropic multiple-scattering term that also
  * lights the shadow, on extinction.glsl's closed-form optical depths. No
  * texture, no ray march: six nodes along the view ray and a closed-form
- * integral over each segment between them. */
+ * integral over each segment between them. Compiled into both stages: the
+ * dome's vertices evaluate the integrals (dome.vert). */
 uniform vec3 u_sun_depth;       /* optical depth toward the sun from the observer */
 uniform vec3 u_mie_phase;       /* Cornette-Shanks: k, 1 + g^2, 2 g (rayleigh.c) */
 uniform vec4 u_rl_geometry;     /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
@@ -86,7 +87,15 @@ void sky_rl_node(float t, float mu, float c, float m_r, float m_m, out float u_r
     ms += raise / HR;
 }
 
-vec3 sky_rayleigh_radiance(vec3 view)
+/* The view ray's integrals, everything but the phase functions: what the
+ * Rayleigh phase multiplies (single_r), what the Mie phase multiplies
+ * (single_m), and the multiple-scattering light (multiple, its isotropic
+ * phase in), all times the sun's irradiance. They vary slowly with the
+ * view direction, so the dome evaluates them per vertex (dome.vert) and
+ * its pixels only the phases (sky_rayleigh_phases), which vary fast near
+ * the sun (the Mie aureole): the ARCHITECTURE's "per vertex what varies
+ * slowly". Every other program evaluates both per pixel. */
+void sky_rayleigh_integrals(vec3 view, out vec3 single_r, out vec3 single_m, out vec3 multiple)
 {
     vec3 d = sky_horizon_clamp(view);
     float mu = max(d.y, 0.0);
@@ -95,8 +104,6 @@ vec3 sky_rayleigh_radiance(vec3 view)
     float c = dot(d, u_sun_dir);
     float sy = u_sun_dir.y;
     float r0 = u_rl_geometry.x, R = u_rl_geometry.y, HR = u_rl_geometry.z;
-    float rayleigh_phase = 0.0596831 * (1.0 + c * c); /* 3 / (16 pi) (1 + c^2) */
-    float mie_phase = u_mie_phase.x * (1.0 + c * c) / pow(max(u_mie_phase.y - u_mie_phase.z * c, 1e-4), 1.5);
 
     /* the Earth's shadow along the view ray: [0, t_lit) (rayleigh.c) */
     float t_lit = 0.0, sunlit = 1.0;
@@ -114,7 +121,9 @@ vec3 sky_rayleigh_radiance(vec3 view)
 
     vec3 a_r = u_tau_rayleigh * m_rayleigh, a_m = u_tau_mie_ext * m_mie, a_o = u_tau_ozone * m_ozone;
     vec3 s_m = u_tau_mie_sca * m_mie;
-    vec3 single = vec3(0.0), multiple = vec3(0.0);
+    single_r = vec3(0.0);
+    single_m = vec3(0.0);
+    multiple = vec3(0.0);
     float lo_r = 0.0, lo_m = 0.0;
     vec3 lo_ess = vec3(0.0), lo_ems = vec3(0.0), lo_tss = vec3(0.0), lo_tms = vec3(0.0);
     bool first = true;
@@ -147,8 +156,9 @@ vec3 sky_rayleigh_radiance(vec3 view)
             } else {
                 vec3 w_r = a_r * (lo_r - hi_r), w_m = s_m * (lo_m - hi_m);
                 multiple += (w_r + w_m) * sky_seg_mean(lo_tms, hi_tms, lo_ems, hi_ems);
-                single += (w_r * rayleigh_phase + w_m * mie_phase) * sunlit *
-                          sky_seg_mean(lo_tss, hi_tss, lo_ess, hi_ess);
+                vec3 lit = sunlit * sky_seg_mean(lo_tss, hi_tss, lo_ess, hi_ess);
+                single_r += w_r * lit;
+                single_m += w_m * lit;
             }
         }
         first = false;
@@ -159,12 +169,32 @@ vec3 sky_rayleigh_radiance(vec3 view)
         lo_tss = hi_tss;
         lo_tms = hi_tms;
     }
-    return u_sun_irradiance * (single + u_rl_multiple * multiple);
+    single_r *= u_sun_irradiance;
+    single_m *= u_sun_irradiance;
+    multiple *= u_sun_irradiance * u_rl_multiple;
+}
+
+/* The radiance from the integrals and the phases of the view direction. */
+vec3 sky_rayleigh_phases(vec3 view, vec3 single_r, vec3 single_m, vec3 multiple)
+{
+    float c = dot(sky_horizon_clamp(view), u_sun_dir);
+    float rayleigh_phase = 0.0596831 * (1.0 + c * c); /* 3 / (16 pi) (1 + c^2) */
+    float mie_phase = u_mie_phase.x * (1.0 + c * c) / pow(max(u_mie_phase.y - u_mie_phase.z * c, 1e-4), 1.5);
+    return single_r * rayleigh_phase + single_m * mie_phase + multiple;
+}
+
+vec3 sky_rayleigh_radiance(vec3 view)
+{
+    vec3 single_r, single_m, multiple;
+    sky_rayleigh_integrals(view, single_r, single_m, multiple);
+    return sky_rayleigh_phases(view, single_r, single_m, multiple);
 }
 
 #ifndef SKY_HAS_BLEND
-vec3 sky_atmosphere(vec3 d, vec3 day)
+/* the sky around an analytic radiance already evaluated (the dome's) */
+vec3 sky_atmosphere_over(vec3 d, vec3 analytic)
 {
-    return sky_or_ground(d, sky_rayleigh_radiance(d) * sky_eclipse_dim(d) + sky_night_floor(d));
+    return sky_or_ground(d, analytic * sky_eclipse_dim(d) + sky_night_floor(d));
 }
+vec3 sky_atmosphere(vec3 d, vec3 day) { return sky_atmosphere_over(d, sky_rayleigh_radiance(d)); }
 #endif
