@@ -83,8 +83,9 @@ void sky_rl_node(float t, float mu, float c, float m_r, float m_m, out float u_r
     sun = min(u_tau_rayleigh * col_r + u_tau_mie_ext * col_m + u_tau_ozone * col_o, vec3(1e4));
     ms = sun;
     if (raise > 0.0) ms = mix(sun, vec3(sun.g), 1.0 - exp(-raise / HR)); /* neutral in the shadow (rayleigh.c) */
-    if (any(greaterThan(ms, vec3(2.0)))) ms = mix(ms, 2.0 + 2.0 * log(max(0.5 * ms, vec3(1.0))), step(vec3(2.0), ms));
-    ms += raise / HR;
+    /* the knee s_0 = 3 and the climb's e-folding 4 H_R (rayleigh.c) */
+    if (any(greaterThan(ms, vec3(3.0)))) ms = mix(ms, 3.0 + 3.0 * log(max(ms / 3.0, vec3(1.0))), step(vec3(3.0), ms));
+    ms += 0.25 * raise / HR;
 }
 
 /* The view ray's integrals, everything but the phase functions: what the
