@@ -123,6 +123,10 @@ typedef struct sky_frame {
     /* analytic Rayleigh + Mie (rayleigh.c) */
     float tau_rayleigh[3], tau_mie_sca[3], tau_mie_ext[3], tau_ozone[3];
     float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
+    float rl_geometry[4];    /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
+    float rl_multiple[3];    /* isotropic phase of multiple scattering, per sr */
+    float rl_ozone[3];       /* the ozone tent: peak, half width (km), 1 / its
+                                column above the observer                     */
     /* Hillaire's sky-view table (hillaire.c) and the blend */
     float skyview_map[4], skyview_horizon[2], skyview_decode[3], blend_weight;
     /* the GPU build of the sky-view table (skyview_build.frag) */

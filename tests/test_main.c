@@ -179,7 +179,8 @@ int test_skipped;
     X(photometry_published_formulas)             \
     X(photometry_measures_every_path)            \
     X(photometry_preetham_twilight)              \
-    X(photometry_physical_paths_targets)
+    X(photometry_physical_paths_targets)         \
+    X(photometry_rayleigh_goes_dark)
 #endif
 
 #define DECLARE(name) void test_##name(void);

@@ -4,13 +4,19 @@
  * (atmosphere.c): automatic from the sun's elevation, or the host's. */
 uniform float u_blend_weight; /* 0 analytic .. 1 Hillaire */
 
+/* the sky around the analytic radiance already evaluated (the dome's
+ * Rayleigh integrals come per vertex: rayleigh.glsl) */
+vec3 sky_atmosphere_over(vec3 d, vec3 analytic)
+{
+    vec3 sky = mix(analytic, sky_hillaire_radiance(d), u_blend_weight);
+    return sky_or_ground(d, sky * sky_eclipse_dim(d) + sky_night_floor(d));
+}
+
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {
 #ifdef SKY_HAS_PREETHAM
-    vec3 analytic = sky_preetham_radiance(d);
+    return sky_atmosphere_over(d, sky_preetham_radiance(d));
 #else
-    vec3 analytic = sky_rayleigh_radiance(d);
+    return sky_atmosphere_over(d, sky_rayleigh_radiance(d));
 #endif
-    vec3 sky = mix(analytic, sky_hillaire_radiance(d), u_blend_weight);
-    return sky_or_ground(d, sky * sky_eclipse_dim(d) + sky_night_floor(d));
 }

@@ -9,6 +9,11 @@ SKY_IN vec3 v_sky;
 SKY_IN float v_night_transmittance;
 #endif
 #endif
+#ifdef SKY_HAS_RAYLEIGH
+SKY_IN vec4 v_rl_single_r; /* rayleigh.glsl's integrals (dome.vert) */
+SKY_IN vec4 v_rl_single_m;
+SKY_IN float v_rl_multiple_b;
+#endif
 #ifdef SKY_HAS_CLOUDS
 SKY_IN vec4 v_cloud_layers;
 SKY_IN vec3 v_cloud_upper;
@@ -25,6 +30,9 @@ void main()
     }
 #ifdef SKY_HAS_GRADIENT
     vec3 L = v_sky;
+#elif defined(SKY_HAS_RAYLEIGH)
+    vec3 L = sky_atmosphere_over(d, sky_rayleigh_phases(d, v_rl_single_r.rgb, v_rl_single_m.rgb,
+                                                        vec3(v_rl_single_r.a, v_rl_single_m.a, v_rl_multiple_b)));
 #else
     vec3 L = sky_atmosphere(d, v_color.rgb);
 #endif
