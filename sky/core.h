@@ -125,6 +125,8 @@ typedef struct sky_frame {
     float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
     float rl_geometry[4];    /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
     float rl_multiple[3];    /* isotropic phase of multiple scattering, per sr */
+    float rl_skylight[3];    /* the skylight's floor on multiple scattering's
+                                exponent in the Earth's shadow (rayleigh.c)   */
     float rl_ozone[3];       /* the ozone tent: peak, half width (km), 1 / its
                                 column above the observer                     */
     /* Hillaire's sky-view table (hillaire.c) and the blend */

@@ -10,6 +10,7 @@ uniform vec3 u_mie_phase;       /* Cornette-Shanks: k, 1 + g^2, 2 g (rayleigh.c)
 uniform vec4 u_rl_geometry;     /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
 uniform vec3 u_rl_multiple;     /* isotropic phase of multiple scattering         */
 uniform vec3 u_rl_ozone;        /* ozone tent: peak, half width (km), 1 / column  */
+uniform vec3 u_rl_skylight;     /* the skylight's floor under ms (rayleigh.c)     */
 
 /* The mean of e^-E over a segment whose exponent runs linearly from a
  * to b, from the nodes' exponentials ta, tb (rayleigh.c's seg_mean). */
@@ -75,8 +76,9 @@ void sky_rl_node(float t, float mu, float c, float m_r, float m_m, out float u_r
     float oz_r = R + u_rl_ozone.x, h_t = min(rte, re) - R;
     float oz_above = sky_ozone_above(ze + r0 - R);
     float oz_dip = mu_s < 0.0 ? sky_ozone_above(h_t) - oz_above : 0.0;
-    float oz_k = rte / max(oz_r, re);
-    float col_o = (oz_above + 2.0 * oz_dip) * u_rl_ozone.z * inversesqrt(max(1.0 - oz_k * oz_k, 1e-3));
+    float k_up = rte / max(oz_r, re), k_dip = min(rte / oz_r, 1.0); /* the dip at the peak's cosine (rayleigh.c) */
+    float col_o = (oz_above * inversesqrt(max(1.0 - k_up * k_up, 1e-3)) +
+                   2.0 * oz_dip * inversesqrt(max(1.0 - k_dip * k_dip, 1e-3))) * u_rl_ozone.z;
     float mu_v = clamp((r0 * mu + t) / r, 0.0, 1.0);
     u_r = er * sky_chapman(r / HR, mu_v) / m_r;
     u_m = em * sky_chapman(r / HM, mu_v) / m_m;
@@ -86,6 +88,8 @@ void sky_rl_node(float t, float mu, float c, float m_r, float m_m, out float u_r
     /* the knee s_0 = 3 and the climb's e-folding 4 H_R (rayleigh.c) */
     if (any(greaterThan(ms, vec3(3.0)))) ms = mix(ms, 3.0 + 3.0 * log(max(ms / 3.0, vec3(1.0))), step(vec3(3.0), ms));
     ms += 0.25 * raise / HR;
+    /* the skylight's floor, fading over H_R above the eye (rayleigh.c) */
+    ms -= exp(-z / HR) * max(ms - u_rl_skylight, vec3(0.0));
 }
 
 /* The view ray's integrals, everything but the phase functions: what the
