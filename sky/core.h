@@ -60,6 +60,9 @@ const sky_blob *sky_find_blob(const char *name); /* NULL if not embedded */
 int sky_png_info(const unsigned char *data, size_t size, int *w, int *h);
 unsigned char *sky_png_decode_rgba(const unsigned char *data, size_t size, int *w, int *h, const char **why);
 void sky_png_free(unsigned char *rgba);
+/* The CRC-32 of a PNG chunk's type and data (ISO 3309, as the PNG
+ * specification gives it). */
+unsigned long sky_png_crc32(const unsigned char *p, size_t n);
 /* Decodes a PNG of exactly expect_w x expect_h to RGBA8 (checked from the
  * header before decoding). Returns 0, or -1 with a message naming label. */
 int sky_image_decode(const unsigned char *data, size_t size, int expect_w, int expect_h, unsigned char **rgba,

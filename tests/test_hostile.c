@@ -202,16 +202,6 @@ void test_hostile_directory_override(void)
 
 /* ---- a paletted PNG written by hand ------------------------------------- */
 
-static unsigned long crc32_of(const unsigned char *p, size_t n)
-{
-    unsigned long c = 0xffffffffUL;
-    for (size_t i = 0; i < n; i++) {
-        c ^= p[i];
-        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xedb88320UL & (0UL - (c & 1UL)));
-    }
-    return c ^ 0xffffffffUL;
-}
-
 static size_t put32(unsigned char *p, unsigned long v)
 {
     p[0] = (unsigned char)(v >> 24);
@@ -227,7 +217,7 @@ static size_t put_chunk(unsigned char *out, const char *type, const unsigned cha
     memcpy(out + n, type, 4);
     if (len) memcpy(out + n + 4, data, len);
     n += 4 + len;
-    n += put32(out + n, crc32_of(out + 4, 4 + len));
+    n += put32(out + n, sky_png_crc32(out + 4, 4 + len));
     return n;
 }
 

@@ -66,7 +66,7 @@ static size_t be32(const unsigned char *p)
     return (size_t)p[0] << 24 | (size_t)p[1] << 16 | (size_t)p[2] << 8 | p[3];
 }
 
-static unsigned long crc32_png(const unsigned char *p, size_t n)
+unsigned long sky_png_crc32(const unsigned char *p, size_t n)
 {
     unsigned long c = 0xffffffffUL;
     for (size_t i = 0; i < n; i++) {
@@ -118,7 +118,7 @@ static unsigned char *png_pad_palette(const unsigned char *data, size_t size, si
     memset(out + body, 0, grow);
     size_t new_len = full * 3;
     for (int i = 0; i < 4; i++) out[plte_at + (size_t)i] = (unsigned char)(new_len >> (24 - 8 * i));
-    unsigned long crc = crc32_png(out + plte_at + 4, 4 + new_len);
+    unsigned long crc = sky_png_crc32(out + plte_at + 4, 4 + new_len);
     for (int i = 0; i < 4; i++) out[body + grow + (size_t)i] = (unsigned char)(crc >> (24 - 8 * i));
     memcpy(out + body + grow + 4, data + body + 4, size - body - 4); /* after the old CRC */
     *padded_size = size + grow;
