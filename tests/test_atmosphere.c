@@ -818,30 +818,21 @@ void test_atmosphere_turbidity_and_presets(void)
     double direct[3];
     static const float knob[3] = {1.5f, 3.0f, 8.0f};
     for (int i = 0; i < 3; i++) {
-        sky_osmesa ctx;
-        char err[256];
-        direct[i] = -1.0;
-        if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_CORE33, 0, err, sizeof err)) {
-            CHECK(0, "context: %s", err);
-            return;
-        }
         sky_config cfg;
         memset(&cfg, 0, sizeof cfg);
-        cfg.get_proc_address = sky_osmesa_loader();
         cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
         cfg.turbidity = knob[i];
-        sky *s = sky_create(&cfg, err, sizeof err);
-        CHECK(s != NULL, "sky_create at turbidity %.1f: %s", knob[i], err);
-        if (s) {
-            sky_params p = sky_default_params();
-            p.time = 0.28f; /* a low morning sun */
-            sky_set_params(s, &p);
-            sky_lighting l;
-            sky_get_lighting(s, &l);
-            direct[i] = l.sun_color[1];
-            sky_destroy(s);
-        }
-        sky_osmesa_destroy(&ctx);
+        fixture f;
+        direct[i] = -1.0;
+        CHECK(fixture_open_sized(&f, 16, 16, 0, SKY_GL_CORE33, &cfg) == 0, "sky_create at turbidity %.1f", knob[i]);
+        if (!f.s) continue;
+        sky_params p = sky_default_params();
+        p.time = 0.28f; /* a low morning sun */
+        sky_set_params(f.s, &p);
+        sky_lighting l;
+        sky_get_lighting(f.s, &l);
+        direct[i] = l.sun_color[1];
+        fixture_close(&f);
     }
     CHECK(direct[0] > direct[1] && direct[1] > direct[2] && direct[2] > 0.0,
           "the low sun's green light at turbidity 1.5 / 3 / 8: %.2f / %.2f / %.2f klx", direct[0], direct[1], direct[2]);
