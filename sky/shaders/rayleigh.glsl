@@ -5,7 +5,6 @@
  * texture, no ray march: six nodes along the view ray and a closed-form
  * integral over each segment between them. Compiled into both stages: the
  * dome's vertices evaluate the integrals (dome.vert). */
-uniform vec3 u_sun_depth;       /* optical depth toward the sun from the observer */
 uniform vec3 u_mie_phase;       /* Cornette-Shanks: k, 1 + g^2, 2 g (rayleigh.c) */
 uniform vec4 u_rl_geometry;     /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
 uniform vec3 u_rl_multiple;     /* isotropic phase of multiple scattering         */
