@@ -236,7 +236,7 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
     const sky_snippet *list[SKY_MAX_SNIPPETS];
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list), n = atmosphere;
-    if (n + d->front_count + d->night_count > SKY_MAX_SNIPPETS) {
+    if (n + d->front_count + d->night_count + (s->dome_divisor ? 1 : 0) > SKY_MAX_SNIPPETS) { /* build's image */
         sky_format(err, err_len, "too many shader snippets for the dome");
         return -1;
     }
@@ -367,7 +367,9 @@ int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_
 {
     const sky_snippet *list[SKY_MAX_SNIPPETS];
     int n = 0;
-    if (dome->front_count + own_count + 1 > SKY_MAX_SNIPPETS) {
+    /* the front layers' own snippets, or the image's cover (and corner) */
+    int fronts = s->dome_divisor && dome->front_count ? 1 + !s->caps.npot : dome->front_count;
+    if (fronts + own_count > SKY_MAX_SNIPPETS) {
         sky_format(err, err_len, "too many shader snippets for %s", frag_main);
         return -1;
     }

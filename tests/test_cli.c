@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 void test_profiles_compat_on_emulated_2004_gpu(void);
+void test_profiles_every_path_with_every_layer(void);
 void test_texture_budget_minimal_path(void);
 void test_profiles_too_old_context_is_an_error(void);
 void test_textures_tile_without_seams(void);
@@ -87,6 +88,32 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
     remove(core_png);
     remove(old_png);
     remove(soft_png);
+}
+
+/* Every atmosphere path (the blend with either partner) under every layer
+ * at once, in both profiles and on the emulated 2004 GPU (no NPOT: the
+ * dome's image needs its corner snippet too): each shader that carries
+ * the atmosphere and the clouds' cover stays within the program's
+ * snippets and builds. */
+void test_profiles_every_path_with_every_layer(void)
+{
+    static const char *const paths[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend",
+                                        "blend --blend-partner preetham"};
+    static const char *const gls[3] = {"--gl core", "--gl compat", "--gl auto"};
+    char render[512], png[512], cmd[2048], out[2048];
+    bin_path("sky-render", render, sizeof render);
+    tmp_path("layers.png", png, sizeof png);
+    for (size_t p = 0; p < sizeof paths / sizeof paths[0]; p++)
+        for (int g = 0; g < 3; g++) {
+            snprintf(cmd, sizeof cmd,
+                     "%s%s --size 64x36 --time 0.02 --atmosphere %s %s --features "
+                     "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse --out %s 2>&1",
+                     g == 2 ? OLD_GPU : "", render, paths[p], gls[g], png);
+            int rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 0, "--atmosphere %s, %s: exit %d: %s", paths[p], g == 2 ? "emulated 2004 GPU" : gls[g], rc,
+                  out);
+        }
+    remove(png);
 }
 
 /* A context older than OpenGL 2.0 gets a clear error, not a crash. */

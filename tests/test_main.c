@@ -73,6 +73,7 @@ int test_skipped;
     X(colour_noon_as_bright_as_before)           \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
+    X(profiles_every_path_with_every_layer)      \
     X(profiles_too_old_context_is_an_error)      \
     X(texture_budget_minimal_path)               \
     X(textures_tile_without_seams)               \

@@ -258,12 +258,16 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     const char *parts[3 + SKY_MAX_SNIPPETS + 2];
     /* the tone map (common.glsl), then the snippets' defines */
     static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
-    char defines[256];
+    char defines[64 + 48 * SKY_MAX_SNIPPETS];
     size_t used = (size_t)snprintf(defines, sizeof defines, "%s", tone_maps[s->cfg.tone_map]);
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define) {
             int n = snprintf(defines + used, sizeof defines - used, "#define %s 1\n", snippets[i]->define);
-            if (n > 0 && (size_t)n < sizeof defines - used) used += (size_t)n;
+            if (n < 0 || (size_t)n >= sizeof defines - used) { /* a define dropped would build another shader */
+                sky_format(err, err_len, "shader defines overflow at %s", snippets[i]->define);
+                return -1;
+            }
+            used += (size_t)n;
         }
     GLuint shaders[2] = {0, 0};
     for (int stage = 0; stage < 2; stage++) {

@@ -46,7 +46,9 @@ typedef struct sky_snippet {
     const char *vertex_source; /* NULL: fragment stage only                    */
 } sky_snippet;
 
-#define SKY_MAX_SNIPPETS 8
+/* a program's snippets: the dome's night with every layer and the blend
+ * takes 9 (the atmosphere's 5, the clouds, two night layers, the image) */
+#define SKY_MAX_SNIPPETS 12
 #define SKY_MAX_UNIFORMS 64
 typedef struct sky_program {
     GLuint id;
