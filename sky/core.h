@@ -237,7 +237,7 @@ typedef struct sky_core {
 
     sky_atmosphere_path atmosphere;  /* resolved: never DEFAULT                  */
     sky_atmosphere_params atm;       /* checked; the Earth preset when zero      */
-    sky_atmosphere_params atm_rgb;   /* atm at the channels' effective wavelengths */
+    sky_atmosphere_params atm_rgb;   /* atm averaged over the sRGB channels     */
     double sun_irradiance_klx[3];    /* sky_sun_irradiance_rgb, once            */
     struct sky_atmosphere_state *atmosphere_state; /* atmosphere.c's own      */
 

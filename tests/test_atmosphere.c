@@ -639,7 +639,7 @@ void test_atmosphere_extinction_follows_the_description(void)
         sky_set_observer(f.s, &o);
         double depth[3];
         sky_atmosphere_zenith_depth(&f.s->core, depth);
-        const sky_atmosphere_params *a = &f.s->core.atm_rgb; /* at the channels' effective wavelengths */
+        const sky_atmosphere_params *a = &f.s->core.atm_rgb; /* averaged over the sRGB channels */
         for (int c = 0; c < 3; c++) {
             double expect = a->rayleigh_scattering[c] * a->rayleigh_scale_height_km +
                             a->mie_extinction[c] * a->mie_scale_height_km + a->ozone_absorption[c] * a->ozone_half_width_km;

@@ -57,10 +57,9 @@ void sky_atmosphere_with_turbidity(const sky_atmosphere_params *in, double turbi
 /* A description's turbidity: 1 + its aerosol's optical depth at 550 nm
  * over its molecules'. */
 double sky_atmosphere_turbidity(const sky_atmosphere_params *atm);
-/* The description's coefficients re-sampled at the wavelengths the sRGB
- * channels of scattered sunlight come from
- * (sky_spectrum_effective_wavelengths): what the real-time physical paths
- * render with. */
+/* The description's coefficients as the sRGB channels see them: each
+ * component's spectrum averaged over the channel's share of sunlight
+ * (params.c). What the real-time physical paths render with. */
 void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out);
 
 /* ---- the paths ----------------------------------------------------------------- */

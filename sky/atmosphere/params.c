@@ -171,24 +171,45 @@ double sky_atmosphere_turbidity(const sky_atmosphere_params *a)
 
 void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_params *out)
 {
-    /* The description gives coefficients at 680/550/440 nm; the spectrum
-     * through them (spectrum.c's interpolation, the one the reference
-     * renders) is sampled where each sRGB channel of scattered sunlight
-     * actually comes from. Rendering at the primaries' own wavelengths
-     * left the red of a high-sun sky 11 % short of the reference. */
-    double lambda[3];
-    sky_spectrum_effective_wavelengths(lambda);
+    /* The description gives coefficients at 680/550/440 nm; the reference
+     * renders the spectrum through them (spectrum.c's interpolation). A
+     * channel's coefficient is that spectrum's mean over the channel's
+     * share of sunlight, rgb_c(E beta) / rgb_c(E): thin air then takes as
+     * much out of the sun's channel c as it does out of the whole spectrum.
+     * Each component keeps its own spectrum: the molecules' red is
+     * weighted toward 640 nm, and ozone's red takes in the Chappuis band
+     * around 600 nm (three times its 680 nm value), which is what
+     * reddens and dims the light that grazes the ozone layer at sunrise.
+     * One shared wavelength per channel (the lambda^-4 one, 642/548/442
+     * nm) left ozone's red at a third. Against the spectral reference
+     * (Hillaire path, Earth, sun 0-90 degrees): mean CIEDE2000 3.5 -> 2.3,
+     * luminance error unchanged (7.6 / 7.7 %). */
+    double e[SKY_SPECTRUM_SAMPLES], spectra[4][SKY_SPECTRUM_SAMPLES], xyz[3], sun[3], band[4][3];
+    for (int i = 0; i < SKY_SPECTRUM_SAMPLES; i++) {
+        double l = sky_spectrum_wavelength_nm(i), r, ms, me, oz;
+        e[i] = sky_spectrum_solar_irradiance(l);
+        sky_spectrum_coefficients(in, l, &r, &ms, &me, &oz);
+        spectra[0][i] = e[i] * r;
+        spectra[1][i] = e[i] * ms;
+        spectra[2][i] = e[i] * me;
+        spectra[3][i] = e[i] * oz;
+    }
+    sky_spectrum_to_xyz(e, xyz);
+    sky_xyz_to_linear_srgb(xyz, sun);
+    for (int k = 0; k < 4; k++) {
+        sky_spectrum_to_xyz(spectra[k], xyz);
+        sky_xyz_to_linear_srgb(xyz, band[k]);
+    }
     *out = *in;
     for (int c = 0; c < 3; c++) {
-        double r, ms, me, oz;
-        sky_spectrum_coefficients(in, lambda[c], &r, &ms, &me, &oz);
-        /* between the nodes the smooth spectrum may overshoot a node's
-         * value: held within the description's own limits (0..10/km,
-         * extinction >= scattering) so every valid description stays
-         * valid here */
-        out->rayleigh_scattering[c] = (float)sky_clampd(r, 0.0, 10.0);
-        out->mie_scattering[c] = (float)sky_clampd(ms, 0.0, 10.0);
-        out->mie_extinction[c] = (float)sky_clampd(fmax(me, ms), 0.0, 10.0);
-        out->ozone_absorption[c] = (float)sky_clampd(oz, 0.0, 10.0);
+        /* sRGB's colour matching has negative lobes: a channel's mean may
+         * leave the spectrum's range, so it is held within the
+         * description's own limits (0..10/km, extinction >= scattering)
+         * and every valid description stays valid here */
+        double ms = sky_clampd(band[1][c] / sun[c], 0.0, 10.0);
+        out->rayleigh_scattering[c] = (float)sky_clampd(band[0][c] / sun[c], 0.0, 10.0);
+        out->mie_scattering[c] = (float)ms;
+        out->mie_extinction[c] = (float)sky_clampd(fmax(band[2][c] / sun[c], ms), 0.0, 10.0);
+        out->ozone_absorption[c] = (float)sky_clampd(band[3][c] / sun[c], 0.0, 10.0);
     }
 }

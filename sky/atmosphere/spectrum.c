@@ -122,24 +122,6 @@ void sky_spectrum_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
     sky_xyz_to_linear_srgb(xyz, rgb);
 }
 
-void sky_spectrum_effective_wavelengths(double lambda_nm[3])
-{
-    /* sRGB channel c of sunlight scattered by a lambda^-4 medium, over
-     * the same channel of the sunlight itself: the wavelength whose
-     * Rayleigh coefficient scales sunlight's channel c alike. */
-    double sun[SKY_SPECTRUM_SAMPLES], scattered[SKY_SPECTRUM_SAMPLES], xyz_sun[3], xyz_sc[3], rgb_sun[3], rgb_sc[3];
-    for (int i = 0; i < SKY_SPECTRUM_SAMPLES; i++) {
-        double l = sky_spectrum_wavelength_nm(i);
-        sun[i] = sky_spectrum_solar_irradiance(l);
-        scattered[i] = sun[i] * pow(550.0 / l, 4.0);
-    }
-    sky_spectrum_to_xyz(sun, xyz_sun);
-    sky_spectrum_to_xyz(scattered, xyz_sc);
-    sky_xyz_to_linear_srgb(xyz_sun, rgb_sun);
-    sky_xyz_to_linear_srgb(xyz_sc, rgb_sc);
-    for (int c = 0; c < 3; c++) lambda_nm[c] = 550.0 * pow(rgb_sc[c] / rgb_sun[c], -0.25);
-}
-
 void sky_spectrum_sun_xyz(double xyz[3])
 {
     double e[SKY_SPECTRUM_SAMPLES];

@@ -33,11 +33,6 @@ double sky_spectrum_interpolate(const float v[3], double lambda_nm);
  * mie_scattering. Any output pointer may be NULL. */
 void sky_spectrum_coefficients(const sky_atmosphere_params *atm, double lambda_nm, double *rayleigh_scattering,
                                double *mie_scattering, double *mie_extinction, double *ozone_absorption);
-/* The wavelengths at which the real-time paths' R, G, B coefficients are
- * best taken: where a lambda^-4 scatterer changes the sun's sRGB channel by
- * the same factor as it does the whole spectrum (about 610, 549, 464 nm
- * rather than the primaries' 680/550/440). */
-void sky_spectrum_effective_wavelengths(double lambda_nm[3]);
 /* Solar spectral irradiance at the top of the atmosphere, W m^-2 nm^-1
  * (a 5778 K blackbody scaled to 1361 W/m^2); 0 for a non-positive or
  * non-finite wavelength. */
