@@ -194,8 +194,7 @@ void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_pa
         spectra[2][i] = e[i] * me;
         spectra[3][i] = e[i] * oz;
     }
-    sky_spectrum_to_xyz(e, xyz);
-    sky_xyz_to_linear_srgb(xyz, sun);
+    sky_sun_irradiance_rgb(sun); /* the same sun, its sRGB channels */
     for (int k = 0; k < 4; k++) {
         sky_spectrum_to_xyz(spectra[k], xyz);
         sky_xyz_to_linear_srgb(xyz, band[k]);
