@@ -213,13 +213,13 @@ typedef struct sky_atmosphere_params {
  * depth at 550 nm to the molecules' alone (sky_config.turbidity). */
 typedef enum sky_atmosphere_preset {
     SKY_ATMOSPHERE_EARTH = 0,      /* clear (the default): AOD 0.085, turbidity
-                                      1.8; matched to the CIE clear sky, gensky's
+                                      1.9; matched to the CIE clear sky, gensky's
                                       clear zenith and the IES illuminances    */
-    SKY_ATMOSPHERE_HAZY,           /* AOD 0.3 in a 2 km layer (turbidity 3.8)  */
+    SKY_ATMOSPHERE_HAZY,           /* AOD 0.3 in a 2 km layer (turbidity 4.1)  */
     SKY_ATMOSPHERE_MARS,           /* thin CO2 and a tall layer of red dust    */
     SKY_ATMOSPHERE_VERY_CLEAN,     /* mountains, open ocean: AOD 0.04 (1.4)    */
     SKY_ATMOSPHERE_POLLUTED,       /* summer smog: AOD 0.6 of absorbing
-                                      particles (turbidity 6.5)               */
+                                      particles (turbidity 7.2)               */
     SKY_ATMOSPHERE_HILLAIRE_2020   /* Hillaire 2020's published constants (AOD
                                       0.0053, turbidity 1.05): for comparison
                                       with other implementations of his paper */
@@ -333,7 +333,7 @@ typedef struct sky_config {
      * atmosphere's vertical optical depth at 550 nm to its molecules' alone
      * (Linke; Preetham et al. 1999). 0 = each path's own: PREETHAM 2.5, the
      * physical paths (RAYLEIGH, HILLAIRE, BLEND) their description's
-     * aerosol (SKY_ATMOSPHERE_EARTH: 1.8). Else 1..64: PREETHAM clamps it
+     * aerosol (SKY_ATMOSPHERE_EARTH: 1.9). Else 1..64: PREETHAM clamps it
      * into its fitted range, 2..10; the physical paths scale their
      * description's aerosol to an optical depth of (T - 1) times the
      * molecules' (at most 10/km of extinction), keeping its colour,

@@ -152,9 +152,9 @@ void test_photometry_physical_paths_targets(void)
  * own light (21.5-22.3 mag/arcsec^2), its civil and nautical twilight
  * within a factor 2 of Bond & Henderson's 3.4 and 0.008 lx, its clear sky
  * shaped like the CIE's within 30 % at suns of 10, 30, 50 and 70 deg
- * (measured 6.6 lx, 0.0069 lx, 22.2 mag/arcsec^2, shape 7 / 10 / 17 /
- * 18 %; the civil figure is near its bound, 6.8 lx, as Hillaire's 6.6 is:
- * the atmosphere's, not the path's). */
+ * (measured 4.5 lx, 0.0042 lx, 22.2 mag/arcsec^2, shape 7 / 9 / 12 / 5
+ * %; the nautical figure is near its bound, 0.004 lx: the path's twilight
+ * is darker than Hillaire's tables, 0.009 lx in the same atmosphere). */
 void test_photometry_rayleigh_goes_dark(void)
 {
     sky_config cfg;

@@ -9,10 +9,21 @@
 #include <string.h>
 
 /* The Earth's gases, common to its presets: Rayleigh exactly lambda^-4
- * through 680/550/440 nm over an 8 km scale height (Hillaire 2020's
- * constants), ozone in a tent 25 +- 15 km (about 300 Dobson units). */
-#define EARTH_GASES 6360.0f, 6460.0f, {5.802e-3f, 13.558e-3f, 33.1e-3f}, 8.0f
+ * through 680/550/440 nm, a vertical optical depth of 0.0973 at 550 nm
+ * (Bucholtz 1995, US Standard Atmosphere 1976), over a 7.5 km scale
+ * height: the e-folding of the air above the tropopause (26.2 % of the
+ * mass lies above 10 km in the US Standard Atmosphere). Hillaire's 8 km
+ * is the surface value and puts twice the real air at 40 km, which is
+ * what twilight lights: civil twilight came out at twice Bond &
+ * Henderson's 3.4 lx on every physical path and in the reference. Ozone
+ * in a tent 25 +- 15 km (about 300 Dobson units). */
+#define EARTH_GASES 6360.0f, 6460.0f, {5.552e-3f, 12.97e-3f, 31.67e-3f}, 7.5f
+/* Hillaire 2020's gases: 8 km, 0.108 at 550 nm */
+#define HILLAIRE_GASES 6360.0f, 6460.0f, {5.802e-3f, 13.558e-3f, 33.1e-3f}, 8.0f
 #define EARTH_OZONE {0.650e-3f, 1.881e-3f, 0.085e-3f}, 25.0f, 15.0f
+/* Mixed land in the visible, 0.2 (vegetation 0.05-0.15, dry grass and
+ * bare soil 0.2-0.35); 0.3 is the planet's albedo with its clouds. */
+#define EARTH_GROUND {0.2f, 0.2f, 0.2f}
 /* Aerosol extinction at 680/550/440 nm, 1/km at sea level, for an
  * optical depth aod at 550 nm over an exponential layer of scale height h
  * km, falling with wavelength as Angstrom's lambda^-1.3 (continental
@@ -24,35 +35,34 @@
 
 /* Clear Earth, the default: aerosol optical depth 0.085 at 550 nm
  * (real clear skies: 0.05-0.2, the global mean about 0.12), in a 1.5 km
- * layer, single-scattering albedo 0.9, asymmetry 0.65; the ground albedo
- * of mixed land and vegetation, 0.3. Chosen against published
+ * layer, single-scattering albedo 0.9, asymmetry 0.65. Chosen against published
  * photometry (sky-bench's photometry section): the CIE clear skies'
  * shape, gensky's clear zenith, the IES illuminances. */
 static const sky_atmosphere_params earth = {
-    EARTH_GASES, AEROSOL(0.085f, 1.5f, 0.9f), 0.65f, EARTH_OZONE, {0.3f, 0.3f, 0.3f},
+    EARTH_GASES, AEROSOL(0.085f, 1.5f, 0.9f), 0.65f, EARTH_OZONE, EARTH_GROUND,
 };
 
 /* Very clean air (high mountains, the open ocean): optical depth 0.04. */
 static const sky_atmosphere_params very_clean = {
-    EARTH_GASES, AEROSOL(0.04f, 1.2f, 0.95f), 0.7f, EARTH_OZONE, {0.3f, 0.3f, 0.3f},
+    EARTH_GASES, AEROSOL(0.04f, 1.2f, 0.95f), 0.7f, EARTH_OZONE, EARTH_GROUND,
 };
 
 /* Hazy: optical depth 0.3 in a deeper mixing layer (2 km), g 0.7. */
 static const sky_atmosphere_params hazy = {
-    EARTH_GASES, AEROSOL(0.3f, 2.0f, 0.9f), 0.7f, EARTH_OZONE, {0.3f, 0.3f, 0.3f},
+    EARTH_GASES, AEROSOL(0.3f, 2.0f, 0.9f), 0.7f, EARTH_OZONE, EARTH_GROUND,
 };
 
 /* Polluted (a city in summer smog): optical depth 0.6 in a 2 km layer of
  * absorbing particles (single-scattering albedo 0.85). */
 static const sky_atmosphere_params polluted = {
-    EARTH_GASES, AEROSOL(0.6f, 2.0f, 0.85f), 0.7f, EARTH_OZONE, {0.3f, 0.3f, 0.3f},
+    EARTH_GASES, AEROSOL(0.6f, 2.0f, 0.85f), 0.7f, EARTH_OZONE, EARTH_GROUND,
 };
 
 /* Hillaire 2020's reference constants, as his published implementation
  * sets them: aerosol optical depth 0.0053 (grey), g 0.8; for comparison
  * with other implementations of his paper. */
 static const sky_atmosphere_params hillaire_2020 = {
-    EARTH_GASES, {3.996e-3f, 3.996e-3f, 3.996e-3f}, {4.40e-3f, 4.40e-3f, 4.40e-3f}, 1.2f, 0.8f, EARTH_OZONE,
+    HILLAIRE_GASES, {3.996e-3f, 3.996e-3f, 3.996e-3f}, {4.40e-3f, 4.40e-3f, 4.40e-3f}, 1.2f, 0.8f, EARTH_OZONE,
     {0.3f, 0.3f, 0.3f},
 };
 

@@ -322,7 +322,9 @@ static void node_at(const sky_frame *f, double t, double mu, double c, double m_
          * s_0 3 and 4 H_R give 6.6 lx at sun -6 deg and 0.0069 lx at -12
          * (3.4 and 0.008 measured), twilight error 23 % (s_0 2 and H_R,
          * fitted against the clean Earth's reference: 6.66 lx and
-         * 0.0027 lx, x3 too dark, 25 %); day error 12.3 -> 12.8 %. */
+         * 0.0027 lx, x3 too dark, 25 %); day error 12.3 -> 12.8 %. With
+         * the Earth's gases at a 7.5 km scale height (params.c): 4.5 lx
+         * and 0.0042 lx, day error 8.3 %. */
         n->ms[i] = (s > 3.0 ? 3.0 + 3.0 * log(s / 3.0) : s) + 0.25 * raise / HR;
         /* The knee alone leaves the air near the ground, where the sun's
          * own column grazes (sunset, the shadow), far darker than the
