@@ -77,6 +77,7 @@ typedef enum sky_texture_id {
     SKY_TEX_SKYVIEW,    /* Hillaire's sky-view table (atmosphere/hillaire.c)       */
     SKY_TEX_TRANSMITTANCE, /* Hillaire's transmittance table (CORE33: GPU builds)  */
     SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
+    SKY_TEX_MS_MOMENTS,    /* its light's dipole and quadrupole, 4 layers (CORE33) */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT
@@ -137,6 +138,7 @@ typedef struct sky_frame {
     /* the GPU build of the sky-view table (skyview_build.frag) */
     float hl_geometry[4], hl_profile[4], hl_rayleigh[3], hl_mie_sca[3], hl_mie_ext[3], hl_ozone[3], hl_albedo[3];
     float hl_sizes[4], hl_steps[4];
+    float hl_chi[3];         /* u_hl_chi: Mie's chi_1, chi_2, Rayleigh's chi_2  */
     struct {                 /* u_hl_misc                                      */
         float multiscatter_size, sun_mu, skyview_steps, mie_g;
     } hl_misc;

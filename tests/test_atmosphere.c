@@ -546,16 +546,16 @@ void test_atmosphere_error_against_reference(void)
         CHECK(0, "%s", err);
         return;
     }
-    /* Guards: the errors measured against the reference of the default
-     * Earth (its realistic aerosol, optical depth 0.085) plus a margin for
-     * Mesa versions: gradient 47.6 %, Preetham at T 2.5 110.5 %, Hillaire's
-     * default tables 6.7 % (issue 6 held 5 % against the cleaner Hillaire
-     * 2020 constants, and test_hillaire still does; issue Real skies asks
-     * 5 % of the realistic Earth), the blend 6.6 %. The analytic path's
-     * limit is issue Real skies' target, 15 % (8.3 % measured with its
-     * Earth shadow and multiple scattering; 42 % as single scattering);
-     * sky-bench prints the current figures */
-    static const double day_limit[PATH_COUNT] = {0.55, 1.2, 0.15, 0.08, 0.08};
+    /* Against the reference of the default Earth (its realistic aerosol,
+     * optical depth 0.085): Hillaire's default tables within issue Real
+     * skies' 5 % (2.9 % measured; 6.7 % before the first bounce took the
+     * real phase functions and the observer their moments), the analytic
+     * path within its 15 % (8.3 % measured with its Earth shadow and
+     * multiple scattering; 42 % as single scattering). The others are
+     * guards, the measured error plus a margin for Mesa versions: gradient
+     * 47.6 %, Preetham at T 2.5 110.5 %, the blend 3.9 % (it leans on the
+     * analytic path by day). sky-bench prints the current figures */
+    static const double day_limit[PATH_COUNT] = {0.55, 1.2, 0.15, 0.05, 0.05};
     for (int p = 0; p < PATH_COUNT; p++) {
         sky_atmo_errors e[2];
         for (int q = 0; q < 2; q++) {
@@ -609,10 +609,21 @@ void test_atmosphere_gpu_tables_match_cpu(void)
     for (int i = 0; i < nm; i++)
         worst_ms = fmax(worst_ms, fabs(cpu.multiscatter[i] - sky_atmosphere_tables(&h.s->core)->multiscatter[i]) /
                                       fmax(fabs(cpu.multiscatter[i]), 1e-9));
-    NOTE("GPU vs CPU: optical depth of the transmittance table %.2g, multiple scattering %.2g (worst relative)",
-         worst_t, worst_ms);
-    CHECK(worst_t < 2e-3 && worst_ms < 5e-3, "GPU tables differ: transmittance %g, multiple scattering %g", worst_t,
-          worst_ms);
+    /* the moments against the size of the light they describe: Psi of
+     * their texel (they may be zero or negative themselves) */
+    double worst_moment = 0.0;
+    for (int i = 0; i < nm / 3; i++)
+        for (int q = 0; q < SKY_HL_MOMENTS; q++) {
+            double scale = fmax(fabs(cpu.multiscatter[3 * i + q % 3]), 1e-9);
+            double d = cpu.ms_moments[SKY_HL_MOMENTS * i + q] -
+                       sky_atmosphere_tables(&h.s->core)->ms_moments[SKY_HL_MOMENTS * i + q];
+            worst_moment = fmax(worst_moment, fabs(d) / scale);
+        }
+    NOTE("GPU vs CPU: optical depth of the transmittance table %.2g, multiple scattering %.2g, its moments %.2g "
+         "(worst relative)",
+         worst_t, worst_ms, worst_moment);
+    CHECK(worst_t < 2e-3 && worst_ms < 5e-3 && worst_moment < 5e-3,
+          "GPU tables differ: transmittance %g, multiple scattering %g, moments %g", worst_t, worst_ms, worst_moment);
     sky_hillaire_free(&cpu);
     hdr_close(&h);
 }

@@ -108,6 +108,7 @@ static int next_pow2(int n)
 static const sky_uniform_desc build_uniforms[] = {
     SKY_UT("u_transmittance_table", SKY_TEX_TRANSMITTANCE),
     SKY_UT("u_multiscatter_table", SKY_TEX_MULTISCATTER),
+    SKY_UT("u_ms_moments", SKY_TEX_MS_MOMENTS),
     SKY_UF("u_hl_geometry", SKY_U_F4, hl_geometry),
     SKY_UF("u_hl_profile", SKY_U_F4, hl_profile),
     SKY_UF("u_hl_rayleigh", SKY_U_F3, hl_rayleigh),
@@ -118,6 +119,7 @@ static const sky_uniform_desc build_uniforms[] = {
     SKY_UF("u_hl_sizes", SKY_U_F4, hl_sizes),
     SKY_UF("u_hl_misc", SKY_U_F4, hl_misc),
     SKY_UF("u_hl_steps", SKY_U_F4, hl_steps),
+    SKY_UF("u_hl_chi", SKY_U_F3, hl_chi),
 };
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
                                           SKY_UNIFORM_COUNT(build_uniforms), NULL};
@@ -131,6 +133,38 @@ static void gpu_pass(sky_core *s, GLuint fbo, sky_program *prog, sky_texture_id 
     sky_program_apply(s, prog);
     s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
     sky_gl_target_end(s, &t);
+}
+
+/* The GPU's multiple-scattering table and its moments, in
+ * hillaire_cpu.c's layout (hillaire.h). On the GPU five RGBA texels hold
+ * each texel's 18 numbers: Psi with Q_xy's red, the array's layers D_x
+ * with Q_xy's green, D_y with its blue, Q_xx and Q_yy
+ * (multiscatter_build.frag). */
+#define MS_MOMENT_LAYERS 4
+static int read_multiscatter(sky_core *s, sky_hillaire_state *hs, int mn)
+{
+    size_t texels = (size_t)mn * (size_t)mn;
+    float *rgba = malloc(sizeof(float) * 4u * texels * (1 + MS_MOMENT_LAYERS));
+    if (!rgba) return -1;
+    int rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MULTISCATTER, -1, mn, mn, rgba);
+    for (int l = 0; l < MS_MOMENT_LAYERS && !rc; l++)
+        rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MS_MOMENTS, l, mn, mn, rgba + 4u * texels * (size_t)(l + 1));
+    if (!rc) {
+        for (size_t i = 0; i < texels; i++) {
+            float *mo = hs->tables.ms_moments + i * SKY_HL_MOMENTS;
+            for (int c = 0; c < 3; c++) {
+                hs->tables.multiscatter[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
+                for (int q = 0; q < MS_MOMENT_LAYERS; q++) /* D_x, D_y, Q_xx, Q_yy: layers 0-3 */
+                    mo[3 * q + c] = rgba[4u * texels * (size_t)(q + 1) + 4 * i + (size_t)c];
+            }
+            /* Q_xy: red beside Psi, green and blue beside D_x and D_y */
+            mo[12] = rgba[4 * i + 3];
+            mo[13] = rgba[4u * texels + 4 * i + 3];
+            mo[14] = rgba[4u * texels * 2u + 4 * i + 3];
+        }
+    }
+    free(rgba);
+    return rc;
 }
 
 /* CORE33: the three tables as float textures, the framebuffer that
@@ -148,7 +182,9 @@ static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size
         return -1;
     }
     if (sky_texture_create_lut(s, SKY_TEX_TRANSMITTANCE, SKY_LAYER_ATMOSPHERE, tw, th, 1, err, err_len) ||
-        sky_texture_create_lut(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, 1, err, err_len))
+        sky_texture_create_lut(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, 1, err, err_len) ||
+        sky_texture_create_lut_layers(s, SKY_TEX_MS_MOMENTS, SKY_LAYER_ATMOSPHERE, mn, mn, MS_MOMENT_LAYERS, err,
+                                      err_len))
         return -1;
     const sky_snippet *snippets[1] = {&build_snippet};
     if (sky_program_build(s, &hs->transmittance_build, "fullscreen.vert", "transmittance_build.frag", snippets, 1, err,
@@ -187,12 +223,17 @@ static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size
     f->hl_steps[0] = (float)set->transmittance_steps;
     f->hl_steps[1] = (float)((set->multiscatter_directions + 1) / 2); /* mirrored pairs, as on the CPU */
     f->hl_steps[2] = (float)set->multiscatter_steps;
+    for (int c = 0; c < 3; c++) f->hl_chi[c] = (float)hs->tables.chi[c];
     /* the two fixed tables, built here and read back for the CPU's rays
      * (the host's lighting) */
     gpu_pass(s, hs->fbo, &hs->transmittance_build, SKY_TEX_TRANSMITTANCE, tw, th);
-    gpu_pass(s, hs->fbo, &hs->multiscatter_build, SKY_TEX_MULTISCATTER, mn, mn);
+    sky_gl_target target;
+    sky_gl_target_begin_layers(s, hs->fbo, SKY_TEX_MULTISCATTER, SKY_TEX_MS_MOMENTS, MS_MOMENT_LAYERS, mn, mn, &target);
+    sky_program_apply(s, &hs->multiscatter_build);
+    s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+    sky_gl_target_end_layers(s, MS_MOMENT_LAYERS, &target);
     if (sky_gl_read_rgb(s, hs->fbo, SKY_TEX_TRANSMITTANCE, tw, th, hs->tables.transmittance) ||
-        sky_gl_read_rgb(s, hs->fbo, SKY_TEX_MULTISCATTER, mn, mn, hs->tables.multiscatter)) {
+        read_multiscatter(s, hs, mn)) {
         sky_format(err, err_len, "sky_create: reading the lookup tables back failed (out of memory or a GL error)");
         return -1;
     }

@@ -11,6 +11,10 @@
  *                  ray meets the ground; Bruneton's (r, mu) mapping.
  *   multiscatter   Psi_ms(r, mu_s): second and higher orders as isotropic
  *                  light, L_2nd / (1 - f_ms) (Hillaire sec. 5.5, eq. 10).
+ *   ms_moments     the first bounce's light at (r, mu_s) beyond its mean:
+ *                  its dipole and quadrupole, from which the observer
+ *                  scatters the second order with the real phase
+ *                  functions instead of isotropically (see skyview_row).
  *   skyview        L(view) for one observer altitude and sun zenith:
  *                  u = azimuth from the sun's vertical plane (0..pi,
  *                  symmetric), v = elevation with the horizon-concentrated
@@ -27,9 +31,16 @@
  *     caller's (r, mu) in double, and the entry-point value (or 1) from
  *     above the top. T along a ray to the ground point is the caller's:
  *     T(r, mu) / T(r_ground, mu_ground) with both rays mirrored upward.
- *   - multiscatter: u = 0.5 + 0.5 mu_s, v = (r - R) / (Rt - R);
- *     directions a Fibonacci half-sphere mirrored across the sun's plane
- *     (multiscatter_directions rounded up to even).
+ *   - multiscatter: u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s| (columns crowd
+ *     toward the horizon), v = (r - R) / (Rt - R); the first bounce with
+ *     the real phase functions; per column, directions about the sun
+ *     (half of them spread evenly, half Henyey-Greenstein-distributed
+ *     like the aerosol's forward peak, weighted by the balance heuristic),
+ *     mirrored across the sun's plane (multiscatter_directions rounded up
+ *     to even).
+ *   - ms_moments: per texel D_x, D_y (the dipole: 3 x the mean of L w, x
+ *     toward the sun's azimuth, y up) and Q_xx, Q_yy, Q_xy (the traceless
+ *     quadrupole 3 x mean of L w w^T - mean of L), each RGB.
  *   - skyview: u = sqrt((1 - cos az) / 2) = sin(az / 2), the sun's vertical
  *     at u = 0; v = 0.5 (1 - sqrt(1 - theta / theta_h)) above the
  *     geometric horizon theta_h = pi - asin(R / r) and 0.5 + 0.5 sqrt((theta
@@ -46,6 +57,10 @@
 
 #include "../sky.h"
 
+/* floats per texel of the moments table, and of both tables */
+#define SKY_HL_MOMENTS 15
+#define SKY_HL_MS_ALL (3 + SKY_HL_MOMENTS)
+
 /* The public sky_lut_settings of sky.h (zero fields = Hillaire's). */
 typedef sky_lut_settings sky_hillaire_settings;
 
@@ -54,6 +69,13 @@ typedef struct sky_hillaire_tables {
     sky_atmosphere_params atm;
     float *transmittance;  /* width * height * 3, row-major, v rows        */
     float *multiscatter;   /* size * size * 3                               */
+    float *ms_moments;     /* size * size * SKY_HL_MOMENTS: D_x, D_y, Q_xx,
+                              Q_yy, Q_xy, each RGB                          */
+    double chi[3];         /* Legendre moments the observer scatters them
+                              with: Mie's l = 1 and 2, Rayleigh's l = 2     */
+    double *scratch;       /* the sky-view builder's: both tables at one
+                              altitude and 6 numbers per column; a table
+                              set is built and read by one thread at a time */
     float *skyview;        /* width * height * 3                            */
     double skyview_altitude_km, skyview_sun_mu; /* inputs of the last build */
 } sky_hillaire_tables;

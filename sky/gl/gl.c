@@ -289,6 +289,9 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     gl->glBindAttribLocation(p->id, 0, "a_pos");
     gl->glBindAttribLocation(p->id, 1, "a_dir");
     gl->glBindAttribLocation(p->id, 2, "a_color");
+    /* a program with more outputs (multiscatter_build.frag) places the
+     * others explicitly; the common one is always colour 0 */
+    if (s->profile == SKY_GL_CORE33) gl->glBindFragDataLocation(p->id, 0, "sky_frag_color");
     gl->glLinkProgram(p->id);
     gl->glDeleteShader(shaders[0]); /* flagged; freed with the program */
     gl->glDeleteShader(shaders[1]);
@@ -650,6 +653,23 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
                           is_float ? "float lookup texture" : "RGBA8 lookup texture", 1, err, err_len);
 }
 
+int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers, char *err,
+                                  size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    sky_texture *t = &s->textures[id];
+    gl->glGenTextures(1, &t->id);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_2D_ARRAY, t->id);
+    unpack_state unpack;
+    unpack_begin(s, &unpack);
+    gl->glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, w, h, layers, 0, GL_RGBA, GL_FLOAT, NULL);
+    unpack_end(s, &unpack);
+    return finish_texture(s, t, GL_TEXTURE_2D_ARRAY, GL_LINEAR, GL_CLAMP_TO_EDGE, w, h,
+                          (size_t)w * (size_t)h * (size_t)layers * 16u, owner, "float lookup texture array", 1, err,
+                          err_len);
+}
+
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
 {
     const sky_gl *gl = &s->gl;
@@ -715,6 +735,7 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
         gl->glActiveTexture(GL_TEXTURE0 + (GLenum)i);
         gl->glGetIntegerv(GL_TEXTURE_BINDING_2D, &st->textures[i]);
         gl->glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &st->cube_textures[i]);
+        if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &st->array_textures[i]);
     }
     gl->glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &st->array_buffer);
     if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
@@ -786,6 +807,7 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
         gl->glActiveTexture(GL_TEXTURE0 + (GLenum)i);
         gl->glBindTexture(GL_TEXTURE_2D, (GLuint)st->textures[i]);
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)st->cube_textures[i]);
+        if (s->profile == SKY_GL_CORE33) gl->glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)st->array_textures[i]);
     }
     gl->glActiveTexture((GLenum)st->active_texture);
     /* A host may delete its program while it is current: GL keeps it
@@ -933,7 +955,10 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
     t->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
     t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
+    if (s->textures[target].target == GL_TEXTURE_2D_ARRAY) /* its first layer (CORE33) */
+        gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->textures[target].id, 0, 0);
+    else
+        gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
     gl->glViewport(0, 0, w, h);
     gl->glDisable(GL_SCISSOR_TEST);
     gl->glDisable(GL_RASTERIZER_DISCARD);
@@ -942,6 +967,31 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
     gl->glDisable(GL_STENCIL_TEST);
     gl->glDisable(GL_CULL_FACE);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void sky_gl_target_begin_layers(sky_core *s, GLuint fbo, sky_texture_id target, sky_texture_id layers, int n_layers,
+                                int w, int h, sky_gl_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    GLenum bufs[1 + SKY_GL_MAX_LAYERS] = {GL_COLOR_ATTACHMENT0};
+    if (n_layers > SKY_GL_MAX_LAYERS) n_layers = SKY_GL_MAX_LAYERS;
+    sky_gl_target_begin(s, fbo, target, w, h, t);
+    for (int i = 0; i < n_layers; i++) {
+        bufs[i + 1] = GL_COLOR_ATTACHMENT1 + (GLenum)i;
+        gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, bufs[i + 1], s->textures[layers].id, 0, i);
+    }
+    gl->glDrawBuffers(1 + n_layers, bufs);
+}
+
+void sky_gl_target_end_layers(sky_core *s, int n_layers, const sky_gl_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    static const GLenum first = GL_COLOR_ATTACHMENT0;
+    if (n_layers > SKY_GL_MAX_LAYERS) n_layers = SKY_GL_MAX_LAYERS;
+    for (int i = 0; i < n_layers; i++)
+        gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1 + (GLenum)i, 0, 0, 0);
+    gl->glDrawBuffers(1, &first);
+    sky_gl_target_end(s, t);
 }
 
 void sky_gl_target_end(sky_core *s, const sky_gl_target *t)
@@ -962,11 +1012,9 @@ void sky_gl_target_end(sky_core *s, const sky_gl_target *t)
 /* RGBA/FLOAT is the read-back every float framebuffer supports; the
  * host's pixel-pack state is set aside (a row length or a bound pack
  * buffer would send the pixels elsewhere). */
-int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h, float *rgb)
+int sky_gl_read_rgba(sky_core *s, GLuint fbo, sky_texture_id source, int layer, int w, int h, float *rgba)
 {
     const sky_gl *gl = &s->gl;
-    float *rgba = malloc(sizeof(float) * 4u * (size_t)w * (size_t)h);
-    if (!rgba) return -1;
     GLint pack[4], pack_buffer = 0;
     static const GLenum pack_names[4] = {GL_PACK_ROW_LENGTH, GL_PACK_SKIP_ROWS, GL_PACK_SKIP_PIXELS, GL_PACK_ALIGNMENT};
     for (int i = 0; i < 4; i++) gl->glGetIntegerv(pack_names[i], &pack[i]);
@@ -978,15 +1026,25 @@ int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h
     if (e == GL_NO_ERROR) {
         sky_gl_target t;
         sky_gl_target_begin(s, fbo, source, w, h, &t);
+        if (layer > 0)
+            gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->textures[source].id, 0, layer);
         gl->glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
         e = gl->glGetError();
         sky_gl_target_end(s, &t);
     }
     for (int i = 0; i < 4; i++) gl->glPixelStorei(pack_names[i], pack[i]);
     gl->glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
-    if (e == GL_NO_ERROR)
+    return e == GL_NO_ERROR ? 0 : -1;
+}
+
+int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h, float *rgb)
+{
+    float *rgba = malloc(sizeof(float) * 4u * (size_t)w * (size_t)h);
+    if (!rgba) return -1;
+    int rc = sky_gl_read_rgba(s, fbo, source, -1, w, h, rgba);
+    if (!rc)
         for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
             for (int c = 0; c < 3; c++) rgb[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
     free(rgba);
-    return e == GL_NO_ERROR ? 0 : -1;
+    return rc;
 }

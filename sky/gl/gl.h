@@ -91,6 +91,9 @@ int sky_texture_load(sky_core *s, sky_texture_id id, sky_layer owner, const char
  * pointers). */
 int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
                            size_t err_len);
+/* An RGBA32F 2D array of layers w x h (CORE33), linear, clamped. */
+int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers, char *err,
+                                  size_t err_len);
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8,
                             const float *rgb32f);
 /* A cube map of six size x size RGBA8 faces, in GL's order (+x, -x, +y,
@@ -118,6 +121,7 @@ typedef struct sky_gl_state {
     GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4], scissor_box[4];
     GLfloat clear_color[4];
     GLint textures[4], cube_textures[4]; /* units 0..3: 2D and cube map bindings */
+    GLint array_textures[4];             /* and 2D-array ones (CORE33)          */
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
     GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha, depth_func;
     GLboolean program_point_size, framebuffer_srgb;
@@ -186,5 +190,14 @@ void sky_gl_target_end(sky_core *s, const sky_gl_target *t);
  * host's pixel-pack state set aside. Returns 0, or -1 on a GL error or
  * no memory. */
 int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h, float *rgb);
+/* The same as RGBA, of a 2D texture (layer -1) or one layer of an array. */
+int sky_gl_read_rgba(sky_core *s, GLuint fbo, sky_texture_id source, int layer, int w, int h, float *rgba);
+/* A target that renders into target (colour 0) and the first n_layers
+ * layers of the array layers (colours 1..n_layers), CORE33; end puts the
+ * framebuffer back to colour 0 alone. */
+#define SKY_GL_MAX_LAYERS 4
+void sky_gl_target_begin_layers(sky_core *s, GLuint fbo, sky_texture_id target, sky_texture_id layers, int n_layers,
+                                int w, int h, sky_gl_target *t);
+void sky_gl_target_end_layers(sky_core *s, int n_layers, const sky_gl_target *t);
 
 #endif /* SKY_GL_H */

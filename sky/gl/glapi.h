@@ -89,6 +89,8 @@ typedef ptrdiff_t GLintptr;
 #define GL_ACTIVE_TEXTURE 0x84E0
 #define GL_MAX_TEXTURE_IMAGE_UNITS 0x8872
 #define GL_TEXTURE_BINDING_2D 0x8069
+#define GL_TEXTURE_2D_ARRAY 0x8C1A
+#define GL_TEXTURE_BINDING_2D_ARRAY 0x8C1D
 #define GL_TEXTURE_CUBE_MAP 0x8513
 #define GL_TEXTURE_BINDING_CUBE_MAP 0x8514
 #define GL_TEXTURE_CUBE_MAP_POSITIVE_X 0x8515
@@ -139,6 +141,7 @@ typedef ptrdiff_t GLintptr;
 #define GL_FRONT_AND_BACK 0x0408
 #define GL_FILL 0x1B02
 #define GL_COLOR_ATTACHMENT0 0x8CE0
+#define GL_COLOR_ATTACHMENT1 0x8CE1
 #define GL_FRAMEBUFFER_COMPLETE 0x8CD5
 #define GL_NUM_EXTENSIONS 0x821D
 #define GL_MAJOR_VERSION 0x821B
@@ -229,7 +232,13 @@ typedef ptrdiff_t GLintptr;
     X(void, glBindFramebuffer, (GLenum target, GLuint f))                                     \
     X(void, glFramebufferTexture2D, (GLenum target, GLenum att, GLenum textarget, GLuint t,   \
                                      GLint level))                                            \
-    X(GLenum, glCheckFramebufferStatus, (GLenum target))
+    X(GLenum, glCheckFramebufferStatus, (GLenum target))                                     \
+    X(void, glFramebufferTextureLayer, (GLenum target, GLenum att, GLuint t, GLint level,     \
+                                        GLint layer))                                         \
+    X(void, glDrawBuffers, (GLsizei n, const GLenum *bufs))                                   \
+    X(void, glBindFragDataLocation, (GLuint p, GLuint color, const GLchar *name))             \
+    X(void, glTexImage3D, (GLenum target, GLint level, GLint ifmt, GLsizei w, GLsizei h,      \
+                           GLsizei d, GLint border, GLenum fmt, GLenum type, const void *data))
 
 typedef struct sky_gl {
 #define SKY_GL_MEMBER(ret, name, params) ret(SKY_APIENTRY *name) params;

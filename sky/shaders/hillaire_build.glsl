@@ -6,6 +6,8 @@
  * table's lookup. */
 uniform sampler2D u_transmittance_table;
 uniform sampler2D u_multiscatter_table;
+uniform sampler2DArray u_ms_moments; /* D_x, D_y, Q_xx, Q_yy (Q_xy in the alphas) */
+uniform vec3 u_hl_chi;        /* Mie's chi_1, chi_2, Rayleigh's chi_2 */
 uniform vec4 u_hl_geometry;   /* R, Rt, H = sqrt(Rt^2 - R^2), r0 (observer radius) */
 uniform vec4 u_hl_profile;    /* Rayleigh and Mie scale heights, ozone peak and half width */
 uniform vec3 u_hl_rayleigh;   /* scattering, 1/km */
@@ -84,6 +86,47 @@ float hl_layout_n1(float n, float tl, float len)
     if (n < 2.0 || tl <= 0.0) return 0.0;
     if (tl >= len) return n;
     return min(max(floor(n * tl / len + 0.5), 1.0), n - 1.0);
+}
+
+/* The multiple-scattering table's column of a solar cosine and back:
+ * u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s| (hillaire_cpu.c's ms_u) */
+float hl_ms_u(float mu_s)
+{
+    float x = sqrt(clamp(abs(mu_s), 0.0, 1.0));
+    return 0.5 + 0.5 * (mu_s < 0.0 ? -x : x);
+}
+float hl_ms_mu_s(float u)
+{
+    float x = clamp(2.0 * u - 1.0, -1.0, 1.0);
+    return x * abs(x);
+}
+
+/* hillaire_cpu.c's ms_direction: direction k of the n_half one column
+ * traces for the sun (sx, sy, 0), and its weight in the sphere's mean */
+vec3 hl_ms_direction(float k, float n_half, float g, vec2 sun, out float weight)
+{
+    float n_even = floor((n_half + 1.0) * 0.5), n_peak = n_half - n_even;
+    bool first = k < n_even;
+    float j = first ? k : k - n_even, n_set = first ? n_even : n_peak;
+    float xi = (j + 0.5) / n_set, c = 2.0 * xi - 1.0;
+    if (!first && abs(g) >= 1e-3) {
+        float s = (1.0 - g * g) / (1.0 - g + 2.0 * g * xi);
+        c = clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+    }
+    float phi = SKY_PI * fract((j + 0.5) * 0.6180339887), s = hl_clamp_sqrt(1.0 - c * c);
+    vec3 d = first ? vec3(s * cos(phi), c, s * sin(phi))
+                   : vec3(c * sun.x - s * cos(phi) * sun.y, c * sun.y + s * cos(phi) * sun.x, s * sin(phi));
+    float cs = d.x * sun.x + d.y * sun.y, den = 1.0 + g * g - 2.0 * g * cs;
+    weight = 1.0 / (n_even + 2.0 * n_peak * 0.5 * (1.0 - g * g) / (den * sqrt(den)));
+    return d;
+}
+
+/* Rayleigh's phase and Cornette & Shanks' (Hillaire 2020 eq. 4) */
+float hl_phase_rayleigh(float c) { return 0.0596831 * (1.0 + c * c); }
+float hl_phase_cs(float c, float g)
+{
+    float den = 1.0 + g * g - 2.0 * g * c;
+    return 0.1193662 * (1.0 - g * g) * (1.0 + c * c) / ((2.0 + g * g) * den * sqrt(den));
 }
 
 float hl_radius(float r, float mu, float t) { return hl_clamp_sqrt(r * r + 2.0 * r * mu * t + t * t); }

@@ -24,9 +24,7 @@ void main()
     float mu_sun = u_hl_misc.y;
     vec3 sun = vec3(hl_clamp_sqrt(1.0 - mu_sun * mu_sun), mu_sun, 0.0);
     float cos_theta = dot(view, sun), g = u_hl_misc.w;
-    float phase_r = 0.0596831 * (1.0 + cos_theta * cos_theta);
-    float den = 1.0 + g * g - 2.0 * g * cos_theta;
-    float phase_m = 0.1193662 * (1.0 - g * g) * (1.0 + cos_theta * cos_theta) / ((2.0 + g * g) * den * sqrt(den));
+    float phase_r = hl_phase_rayleigh(cos_theta), phase_m = hl_phase_cs(cos_theta, g);
 
     /* enter the shell from above if the observer is outside it */
     float r = r0, mu = ct, start = 0.0;
@@ -71,10 +69,22 @@ void main()
         vec3 weight = transmittance * hl_seg_weight(tau, e);
         float mus = clamp((r0 * sun.y + (start + tm) * cos_theta) / rm, -1.0, 1.0);
         vec3 ts = hl_sun_transmittance(rm, rho, mus);
-        vec2 ms_uv = vec2(hl_unit_to_tex(0.5 + 0.5 * mus, u_hl_misc.x),
+        vec2 ms_uv = vec2(hl_unit_to_tex(hl_ms_u(mus), u_hl_misc.x),
                           hl_unit_to_tex(clamp((rm - R) / (Rt - R), 0.0, 1.0), u_hl_misc.x));
-        vec3 psi = SKY_TEX2D(u_multiscatter_table, ms_uv).rgb;
-        L += u_hl_rayleigh * col.x * weight * (phase_r * ts + psi) + u_hl_mie_sca * col.y * weight * (phase_m * ts + psi);
+        vec4 psi = SKY_TEX2D(u_multiscatter_table, ms_uv);
+        vec4 mdx = texture(u_ms_moments, vec3(ms_uv, 0.0)), mdy = texture(u_ms_moments, vec3(ms_uv, 1.0));
+        vec3 qxx = texture(u_ms_moments, vec3(ms_uv, 2.0)).rgb, qyy = texture(u_ms_moments, vec3(ms_uv, 3.0)).rgb;
+        vec3 qxy = vec3(psi.a, mdx.a, mdy.a);
+        /* the view in the sample's frame: y up, x toward the sun's azimuth;
+         * the second order scattered with the real phase functions' first
+         * Legendre terms (hillaire_cpu.c's skyview_row) */
+        float vy = clamp((r0 * ct + start + tm) / rm, -1.0, 1.0), sh = hl_clamp_sqrt(1.0 - mus * mus);
+        float vx = sh > 1e-6 ? clamp((cos_theta - mus * vy) / sh, -1.0, 1.0) : 0.0;
+        float vz2 = max(1.0 - vx * vx - vy * vy, 0.0);
+        vec3 l1 = mdx.rgb * vx + mdy.rgb * vy;
+        vec3 l2 = 2.5 * (qxx * (vx * vx) + qyy * (vy * vy) - (qxx + qyy) * vz2 + 2.0 * qxy * (vx * vy));
+        L += u_hl_rayleigh * col.x * weight * (phase_r * ts + max(psi.rgb + u_hl_chi.z * l2, 0.0)) +
+             u_hl_mie_sca * col.y * weight * (phase_m * ts + max(psi.rgb + u_hl_chi.x * l1 + u_hl_chi.y * l2, 0.0));
         transmittance *= e;
         ta = tb;
         ra = rb;
