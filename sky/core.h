@@ -242,6 +242,8 @@ typedef struct sky_core {
     sky_atmosphere_params atm_rgb;   /* atm averaged over the sRGB channels     */
     double sun_irradiance_klx[3];    /* sky_sun_irradiance_rgb, once            */
     struct sky_atmosphere_state *atmosphere_state; /* atmosphere.c's own      */
+    unsigned char gradient_texels[256 * 4]; /* the day gradient (gradient.png),
+                                     for the gradient path's CPU twin (dome.c) */
 
     sky_texture textures[SKY_TEX_COUNT];
     int program_count, buffer_count; /* live GL objects, for the stats          */

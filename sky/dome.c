@@ -13,6 +13,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Upper hemisphere: ring k has elevation sine (k / RINGS_UP)^2, the same
  * square-root spacing the gradient texture uses, so the horizon band gets
@@ -70,6 +71,7 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
 {
     unsigned char *gradient = NULL, *galaxy = NULL;
     if (sky_asset_load_rgba(s, "gradient.png", 256, 1, &gradient, err, err_len)) return -1;
+    memcpy(s->gradient_texels, gradient, sizeof s->gradient_texels);
     if ((s->features & SKY_FLICKER_STARS) && sky_asset_load_rgba(s, "galaxy.png", 128, 128, &galaxy, err, err_len)) {
         sky_png_free(gradient);
         return -1;

@@ -6,6 +6,7 @@
  * the layer table back to front to draw.
  */
 #include "sky_internal.h"
+#include "irradiance.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -572,5 +573,54 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
         sky_camera_to_world(c, f->moon_dir, out->moon_direction);
         sky_moon_lighting(c, out->moon_color);
     }
+    return SKY_OK;
+}
+
+sky_result sky_get_irradiance_sh(sky *s, sky_irradiance_sh *out)
+{
+    if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    const double(*sh)[3] = sky_irradiance_cached(&s->core, &s->irradiance);
+    for (int k = 0; k < SKY_SH_COUNT; k++)
+        for (int i = 0; i < 3; i++) {
+            if (k < 9)
+                out->radiance[k][i] = (float)sh[k][i];
+            else if (k < 18)
+                out->radiance_l4[k - 9][i] = (float)sh[k][i];
+            else
+                out->radiance_zonal[k - 18][i] = (float)sh[k][i];
+        }
+    float up_h[3] = {0.0f, 1.0f, 0.0f};
+    sky_camera_to_world(&s->core, up_h, out->up);
+    sky_lighting l;
+    sky_get_lighting(s, &l);
+    for (int i = 0; i < 3; i++) {
+        out->sun_direction[i] = l.sun_direction[i];
+        out->sun_color[i] = l.sun_color[i];
+        out->moon_direction[i] = l.moon_direction[i];
+        out->moon_color[i] = l.moon_color[i];
+    }
+    return SKY_OK;
+}
+
+sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const float normal[3], float irradiance[3])
+{
+    if (!sh || !normal || !irradiance) return SKY_ERR_INVALID_ARGUMENT;
+    irradiance[0] = irradiance[1] = irradiance[2] = 0.0f;
+    double len = 0.0;
+    for (int i = 0; i < 3; i++) {
+        if (!isfinite(normal[i])) return SKY_ERR_INVALID_ARGUMENT;
+        len += (double)normal[i] * normal[i];
+    }
+    len = sqrt(len);
+    if (!(len > 0.0) || !isfinite(len)) return SKY_ERR_INVALID_ARGUMENT;
+    double n[3] = {normal[0] / len, normal[1] / len, normal[2] / len}, c[SKY_SH_COUNT][3], e[3];
+    double up[3] = {sh->up[0], sh->up[1], sh->up[2]};
+    for (int k = 0; k < SKY_SH_COUNT; k++)
+        for (int i = 0; i < 3; i++)
+            c[k][i] = k < 9 ? sh->radiance[k][i] : k < 18 ? sh->radiance_l4[k - 9][i] : sh->radiance_zonal[k - 18][i];
+    sky_irradiance_eval(c, n, up, e);
+    /* a degree-2 sum can dip below zero facing a dark hemisphere */
+    for (int i = 0; i < 3; i++) irradiance[i] = (float)fmax(e[i], 0.0);
     return SKY_OK;
 }

@@ -557,6 +557,61 @@ typedef struct sky_lighting {
 
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
 
+/* The sky as a light for a scene's ambient: the radiance that reaches the
+ * observer from every direction, as real spherical harmonics of degree
+ * 0..2 (9 coefficients per channel; Ramamoorthi & Hanrahan 2001), linear
+ * RGB in kcd/m^2, in the world frame (horizon_to_world applied). It is
+ * what the atmosphere draws around the observer: the sky with its night
+ * floor above the horizon, the ground below it. The sun's and the moon's
+ * discs are left out and given apart as beams (as sky_get_lighting gives
+ * them); stars, clouds and the moon's glow on the sky are not in it.
+ * A shader that lights with the 9 of degree <= 2 (the common form) is
+ * within about 3 % of the true irradiance on surfaces facing the sky and
+ * up to 15 % off on surfaces facing a dark ground under a bright sunset
+ * sky (the truncation); sky_irradiance_sh_eval adds degree 4 and the
+ * horizon's zonal degrees 6 and 8 and is within 2 % (make test measures
+ * both against renders).
+ * Projected from the atmosphere's CPU twin over 256 directions, once per
+ * change of the sun, sliders, observer, world frame or tables, else
+ * cached (sky-bench gives the cost).
+ * The basis, for a unit world direction (x, y, z):
+ *   [0] 0.282095            [1] 0.488603 y     [2] 0.488603 z
+ *   [3] 0.488603 x          [4] 1.092548 x y   [5] 1.092548 y z
+ *   [6] 0.315392 (3 z^2 - 1) [7] 1.092548 x z  [8] 0.546274 (x^2 - y^2) */
+typedef struct sky_irradiance_sh {
+    float radiance[9][3];      /* coefficient k, channel: kcd/m^2             */
+    float radiance_l4[9][3];   /* degree 4, which sky_irradiance_sh_eval adds
+                                  (A_4 = -pi/24; degree 3 lights nothing):
+                                  [0] 2.503343 x y (x^2 - y^2)
+                                  [1] 1.770131 y z (3 x^2 - y^2)
+                                  [2] 0.946175 x y (7 z^2 - 1)
+                                  [3] 0.669047 y z (7 z^2 - 3)
+                                  [4] 0.105786 (35 z^4 - 30 z^2 + 3)
+                                  [5] 0.669047 x z (7 z^2 - 3)
+                                  [6] 0.473087 (x^2 - y^2) (7 z^2 - 1)
+                                  [7] 1.770131 x z (x^2 - 3 y^2)
+                                  [8] 0.625836 (x^4 - 6 x^2 y^2 + y^4)     */
+    float radiance_zonal[2][3];/* degrees 6 and 8 about up alone (the sharp
+                                  horizon between sky and ground), which
+                                  sky_irradiance_sh_eval also adds:
+                                  [0] 1.017107 P6(t), [1] 1.163106 P8(t),
+                                  t = up . direction, P Legendre's          */
+    float up[3];               /* the horizon's up in the world frame       */
+    float sun_direction[3];    /* world frame, unit (sky_get_lighting's)      */
+    float sun_color[3];        /* illuminance facing the sun, klx             */
+    float moon_direction[3];
+    float moon_color[3];       /* 0 when the scene has no moon or it is down  */
+} sky_irradiance_sh;
+
+SKY_API sky_result sky_get_irradiance_sh(sky *s, sky_irradiance_sh *out);
+/* Irradiance from the sky alone (beams excluded) on a surface whose unit
+ * normal (world frame; any length is normalised) is normal, klx per
+ * channel: the sum over the coefficients of A_l radiance Y(normal), A =
+ * pi, 2 pi/3, pi/4, -pi/24, pi/64, -pi/128 for degrees 0, 1, 2, 4, 6, 8
+ * (Ramamoorthi & Hanrahan 2001 eq. 8); never below 0.
+ * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero normal. */
+SKY_API sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const float normal[3], float irradiance[3]);
+
 #ifdef __cplusplus
 }
 #endif

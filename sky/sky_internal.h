@@ -10,6 +10,7 @@
 #include "camera.h"
 #include "catalog.h"
 #include "core.h"
+#include "irradiance.h"
 #include "disc.h"
 #include "exposure.h"
 #include "layer.h"
@@ -23,6 +24,7 @@ struct sky {
     GLuint vao;                           /* CORE33 only                    */
     char error[256];
     sky_stats stats;
+    sky_irradiance_cache irradiance;      /* sky_get_irradiance_sh's          */
 };
 
 #endif /* SKY_INTERNAL_H */

@@ -181,7 +181,10 @@ int test_skipped;
     X(photometry_measures_every_path)            \
     X(photometry_preetham_twilight)              \
     X(photometry_physical_paths_targets)         \
-    X(photometry_rayleigh_goes_dark)
+    X(photometry_rayleigh_goes_dark)             \
+    X(lighting_sh_irradiance_matches_render)     \
+    X(lighting_sh_checks_its_input)              \
+    X(lighting_sh_in_the_world_frame)
 #endif
 
 #define DECLARE(name) void test_##name(void);

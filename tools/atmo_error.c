@@ -15,7 +15,7 @@
 
 #define PI 3.14159265358979323846
 #define FACE_SIZE 128
-#define FACES 5
+#define FACES 6
 
 const double sky_atmo_sun_elevations[SKY_ATMO_SUNS] = {90.0, 60.0, 30.0, 15.0, 5.0, 2.0, 0.0, -2.0, -4.0, -6.0};
 
@@ -241,10 +241,11 @@ double sky_atmo_de2000(const double lab1[3], const double lab2[3])
 
 /* ---- rendering and comparing ----------------------------------------------------------------- */
 
-/* The five faces of an upper-hemisphere cube map: up, then north, east,
- * south, west at the horizon, as sky-render's camera builds them. */
-static const double face_yaw[FACES] = {0.0, 0.0, 90.0, 180.0, 270.0};
-static const double face_pitch[FACES] = {90.0, 0.0, 0.0, 0.0, 0.0};
+/* The six faces of a cube map: up, then north, east, south, west at the
+ * horizon, as sky-render's camera builds them, and down (the ground: only
+ * the irradiance reads it). */
+static const double face_yaw[FACES] = {0.0, 0.0, 90.0, 180.0, 270.0, 0.0};
+static const double face_pitch[FACES] = {90.0, 0.0, 0.0, 0.0, 0.0, -90.0};
 
 typedef struct face {
     float view[16], proj[16];
@@ -356,6 +357,28 @@ void sky_atmo_hemisphere_read(const sky_atmo_hemisphere *h, const double d[3], d
         double a = p[(y0 * FACE_SIZE + x0) * 4 + c] * (1 - fx) + p[(y0 * FACE_SIZE + x1) * 4 + c] * fx;
         double b = p[(y1 * FACE_SIZE + x0) * 4 + c] * (1 - fx) + p[(y1 * FACE_SIZE + x1) * 4 + c] * fx;
         rgb[c] = a * (1 - fy) + b * fy;
+    }
+}
+
+void sky_atmo_hemisphere_irradiance(const sky_atmo_hemisphere *h, const double n[3], double rgb[3])
+{
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    for (int f = 0; f < FACES; f++) {
+        const float *v = h->faces[f].view;
+        for (int py = 0; py < FACE_SIZE; py++)
+            for (int px = 0; px < FACE_SIZE; px++) {
+                /* the pixel's direction: camera (x, y, -1) back to the
+                 * world through the view's rotation (its transpose) */
+                double x = (px + 0.5) / FACE_SIZE * 2.0 - 1.0, y = (py + 0.5) / FACE_SIZE * 2.0 - 1.0;
+                double len = sqrt(x * x + y * y + 1.0), d[3];
+                for (int k = 0; k < 3; k++) d[k] = (v[4 * k] * x + v[4 * k + 1] * y - v[4 * k + 2]) / len;
+                double c = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+                if (c <= 0.0) continue;
+                /* the pixel's solid angle on a 90-degree face */
+                double w = (2.0 / FACE_SIZE) * (2.0 / FACE_SIZE) / (len * len * len);
+                const float *p = h->faces[f].px + 4 * ((size_t)py * FACE_SIZE + (size_t)px);
+                for (int k = 0; k < 3; k++) rgb[k] += p[k] * c * w;
+            }
     }
 }
 

@@ -53,9 +53,9 @@ int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *cfg, sky_a
                      size_t err_len);
 
 /* An HDR sky of a config (features none, every pixel) rendered into the
- * five upper faces of a cube in a context of its own, so that any
- * direction of the upper hemisphere can be read: what the error table and
- * the photometry measure. The observer stands on the 2026 March equinox
+ * six faces of a cube in a context of its own, so that any direction of
+ * the upper hemisphere can be read: what the error table and the
+ * photometry measure (and the ground below, for the irradiance). The observer stands on the 2026 March equinox
  * where the noon sun reaches the zenith. */
 typedef struct sky_atmo_hemisphere sky_atmo_hemisphere;
 sky_atmo_hemisphere *sky_atmo_hemisphere_create(const sky_config *cfg, char *err, size_t err_len);
@@ -67,6 +67,9 @@ int sky_atmo_hemisphere_render(sky_atmo_hemisphere *h, double sun_alt_deg, doubl
                                double *azimuth_deg, char *err, size_t err_len);
 /* Linear sRGB (kcd/m^2) in direction d of the horizon frame (y up). */
 void sky_atmo_hemisphere_read(const sky_atmo_hemisphere *h, const double d[3], double rgb[3]);
+/* The irradiance (klx) of the rendered sphere on a surface of unit
+ * normal n (horizon frame), summed over every pixel of the six faces. */
+void sky_atmo_hemisphere_irradiance(const sky_atmo_hemisphere *h, const double n[3], double rgb[3]);
 /* The sky, for its lighting (sky_get_lighting after a render). */
 sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h);
 

@@ -4,7 +4,8 @@
  * the cheapest thing a sky could possibly be.
  *
  *   sky-bench [--json] [--size WxH] [--frames N] [--rounds R] [--reference FILE]
- *             [--only-atmosphere | --only-presets | --only-colour] [--tone-map NAME] [--plot FILE.png]
+ *             [--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting]
+ *             [--tone-map NAME] [--plot FILE.png]
  *   sky-bench --stability [--json]
  *   sky-bench --make-reference FILE [--paths N]
  *
@@ -1369,11 +1370,110 @@ static int plot_photometry(const char *path)
     return 0;
 }
 
+/* ---- scene lighting ---------------------------------------------------------------- */
+
+/* sky_get_irradiance_sh for every path: what one projection costs (the
+ * median over calls that each follow a move of the sun, less the move
+ * alone), what a call costs when nothing moved (the cache), and how far
+ * its irradiance is from a brute-force integral of the same sky rendered
+ * in HDR into a cube (upward, horizontal and downward normals; sun 30, 2
+ * and -20 deg), with all its coefficients and with the 9 of degree <= 2
+ * alone (what a shader reading only those gets). */
+typedef struct lighting_row {
+    double project_us, cached_us, worst, worst9;
+} lighting_row;
+
+static double lum3(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+static int lighting_rows(lighting_row out[PHOT_PATHS])
+{
+    enum { CALLS = 41 };
+    for (int p = 0; p < PHOT_PATHS; p++) {
+        char err[512];
+        sky_config cfg = sky_photometry_config(phot_paths[p]);
+        sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(&cfg, err, sizeof err);
+        if (!h) {
+            fprintf(stderr, "sky-bench: lighting of %s: %s\n", phot_names[p], err);
+            return -1;
+        }
+        lighting_row *r = &out[p];
+        r->worst = r->worst9 = 0.0;
+        static const double suns[3] = {30.0, 2.0, -20.0}, normals[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, -1, 0}};
+        for (int k = 0; k < 3; k++) {
+            double el, az;
+            if (sky_atmo_hemisphere_render(h, suns[k], &el, &az, err, sizeof err)) {
+                fprintf(stderr, "sky-bench: lighting of %s: %s\n", phot_names[p], err);
+                sky_atmo_hemisphere_destroy(h);
+                return -1;
+            }
+            sky_irradiance_sh sh;
+            sky_get_irradiance_sh(sky_atmo_hemisphere_sky(h), &sh);
+            sky_irradiance_sh nine = sh;
+            memset(nine.radiance_l4, 0, sizeof nine.radiance_l4);
+            memset(nine.radiance_zonal, 0, sizeof nine.radiance_zonal);
+            for (int n = 0; n < 3; n++) {
+                double ref[3], e[3], e9[3];
+                float nf[3] = {(float)normals[n][0], (float)normals[n][1], (float)normals[n][2]}, ef[3], ef9[3];
+                sky_atmo_hemisphere_irradiance(h, normals[n], ref);
+                sky_irradiance_sh_eval(&sh, nf, ef);
+                sky_irradiance_sh_eval(&nine, nf, ef9);
+                for (int i = 0; i < 3; i++) e[i] = ef[i], e9[i] = ef9[i];
+                r->worst = fmax(r->worst, fabs(lum3(e) / lum3(ref) - 1.0));
+                r->worst9 = fmax(r->worst9, fabs(lum3(e9) / lum3(ref) - 1.0));
+            }
+        }
+        /* the cost, the sun at 30 deg moving by 1/7200 of a day a call */
+        sky *s = sky_atmo_hemisphere_sky(h);
+        sky_params prm;
+        sky_get_params(s, &prm);
+        double with[CALLS], alone[CALLS], cached[CALLS];
+        sky_irradiance_sh sh;
+        for (int i = 0; i < CALLS; i++) {
+            prm.time += 1.0f / 7200.0f;
+            double t0 = sky_cli_now_ms();
+            sky_set_params(s, &prm);
+            double t1 = sky_cli_now_ms();
+            sky_get_irradiance_sh(s, &sh);
+            double t2 = sky_cli_now_ms();
+            sky_get_irradiance_sh(s, &sh);
+            double t3 = sky_cli_now_ms();
+            alone[i] = (t1 - t0) * 1000.0;
+            with[i] = (t2 - t1) * 1000.0;
+            cached[i] = (t3 - t2) * 1000.0;
+        }
+        r->project_us = sky_cli_median(with, CALLS);
+        r->cached_us = sky_cli_median(cached, CALLS);
+        (void)alone;
+        sky_atmo_hemisphere_destroy(h);
+    }
+    return 0;
+}
+
+static void print_lighting_table(const lighting_row r[PHOT_PATHS])
+{
+    printf("| path | SH projection us (the sun moved) | cached call us | worst irradiance error, all coefficients | "
+           "the 9 of degree <= 2 alone |\n|---|---|---|---|---|\n");
+    for (int p = 0; p < PHOT_PATHS; p++)
+        printf("| %s | %.1f | %.3f | %.1f %% | %.1f %% |\n", phot_names[p], r[p].project_us, r[p].cached_us,
+               100.0 * r[p].worst, 100.0 * r[p].worst9);
+}
+
+static void print_lighting_json(const lighting_row r[PHOT_PATHS])
+{
+    printf(" \"lighting\": [\n");
+    for (int p = 0; p < PHOT_PATHS; p++)
+        printf("  {\"path\":\"%s\", \"sh_project_us\":%.2f, \"sh_cached_us\":%.3f, \"sh_worst_error\":%.4f, "
+               "\"sh9_worst_error\":%.4f}%s\n",
+               phot_names[p], r[p].project_us, r[p].cached_us, r[p].worst, r[p].worst9,
+               p + 1 < PHOT_PATHS ? "," : "");
+    printf(" ]");
+}
+
 static void bench_usage(FILE *out)
 {
     fprintf(out,
             "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
-            "[--only-atmosphere | --only-presets | --only-colour | --only-photometry]\n"
+            "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
             "       sky-bench --stability [--json]\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
@@ -1384,7 +1484,7 @@ static void bench_usage(FILE *out)
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0, only_colour = 0, only_photometry = 0, soak = 0;
+        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, soak = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL,
                *plot_phot = NULL;
@@ -1403,6 +1503,8 @@ int main(int argc, char **argv)
             only_colour = 1;
         else if (!strcmp(argv[i], "--only-photometry"))
             only_photometry = 1;
+        else if (!strcmp(argv[i], "--only-lighting"))
+            only_lighting = 1;
         else if (!strcmp(argv[i], "--soak") && i + 1 < argc && (soak = atoi(argv[i + 1])) >= 1000 && soak <= 50000)
             i++;
         else if (!strcmp(argv[i], "--tone-map") && i + 1 < argc &&
@@ -1450,6 +1552,19 @@ int main(int argc, char **argv)
         } else {
             printf("Photometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
             print_photometry_table(phot);
+        }
+        return 0;
+    }
+    lighting_row lighting[PHOT_PATHS];
+    if (only_lighting) {
+        if (lighting_rows(lighting)) return 1;
+        if (json) {
+            printf("{\n");
+            print_lighting_json(lighting);
+            printf("\n}\n");
+        } else {
+            printf("Scene lighting: sky_get_irradiance_sh (core profile):\n\n");
+            print_lighting_table(lighting);
         }
         return 0;
     }
@@ -1542,6 +1657,7 @@ int main(int argc, char **argv)
     if (colour_rows(tone_map, colour)) return 1;
     if (photometry_rows(phot)) return 1;
     if (plot_phot && plot_photometry(plot_phot)) return 1;
+    if (lighting_rows(lighting)) return 1;
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
                rounds, astro);
@@ -1575,6 +1691,8 @@ int main(int argc, char **argv)
         print_colour_json(tone_map, colour, COLOUR_ROWS);
         printf(",\n");
         print_photometry_json(phot);
+        printf(",\n");
+        print_lighting_json(lighting);
         printf("\n}\n");
         return 0;
     }
@@ -1605,5 +1723,7 @@ int main(int argc, char **argv)
     print_colour_table(colour, COLOUR_ROWS);
     printf("\nPhotometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
     print_photometry_table(phot);
+    printf("\nScene lighting: sky_get_irradiance_sh (core profile):\n\n");
+    print_lighting_table(lighting);
     return 0;
 }

@@ -148,6 +148,46 @@ static void eval_blend(const sky_core *s, const double d[3], double rgb[3])
     for (int i = 0; i < 3; i++) rgb[i] = a[i] + (b[i] - a[i]) * w;
 }
 
+/* gradient.glsl's sky_atmosphere above the horizon, without its night
+ * floor: the day gradient by elevation (sky_gradient_vertex, as the dome's
+ * vertices carry it) tinted toward the horizon, and the aureole. */
+static void eval_gradient(const sky_core *s, const double d[3], double rgb[3])
+{
+    const sky_frame *f = &s->frame;
+    float df[3] = {(float)d[0], (float)d[1], (float)d[2]}, day[3];
+    sky_gradient_vertex(s->gradient_texels, df, day);
+    double e = sky_clampd(d[1], 0.0, 1.0);
+    double mu = fmax(d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2], 0.0);
+    double mu8 = pow(mu, 8.0), aureole = (0.25 * mu8 + 0.6 * pow(mu8, 4.0)) * (1.0 + 1.5 * (1.0 - e));
+    double low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
+    for (int i = 0; i < 3; i++)
+        rgb[i] = f->day_luminance * (day[i] * (1.0 + (f->horizon_tint[i] - 1.0) * low) +
+                                     aureole * f->sun_transmittance[i]);
+}
+
+void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3])
+{
+    const sky_frame *f = &s->frame;
+    if (d[1] < 0.0) { /* sky_ground: the horizon's haze fading into the ground */
+        double t = sky_smoothstep(0.0, 0.035, -d[1]);
+        for (int i = 0; i < 3; i++) rgb[i] = f->fog_rgb[i] + (f->ground_rgb[i] - f->fog_rgb[i]) * t;
+        return;
+    }
+    switch (s->atmosphere) {
+    case SKY_ATMOSPHERE_PREETHAM: eval_preetham(s, d, rgb); break;
+    case SKY_ATMOSPHERE_RAYLEIGH: eval_rayleigh(s, d, rgb); break;
+    case SKY_ATMOSPHERE_HILLAIRE: eval_hillaire(s, d, rgb); break;
+    case SKY_ATMOSPHERE_BLEND: eval_blend(s, d, rgb); break;
+    default: eval_gradient(s, d, rgb); break;
+    }
+    /* sky_eclipse_dim and sky_night_floor */
+    static const double floor_tint[3] = {0.55, 0.7, 1.0};
+    double e = 1.0 - sky_clampd(d[1], 0.0, 1.0), e8 = pow(e, 8.0);
+    for (int i = 0; i < 3; i++)
+        rgb[i] = rgb[i] * (f->eclipse_sky[0] + f->eclipse_sky[1 + i] * e8) +
+                 f->night_luminance * floor_tint[i] * (2.0 - (1.0 - e));
+}
+
 /* A physical path's sky summarised from its own CPU twin: Gauss-Legendre
  * in the elevation sine (4 nodes on 0..1) times 8 azimuths. The irradiance
  * on an upward surface is 2 pi int L mu dmu; the mean luminance is the

@@ -32,6 +32,11 @@ sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested);
  * description's for the physical paths, the sun model's otherwise; what
  * dims the stars and the moon (Mueller sec. 5). */
 void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3]);
+/* The CPU twin of what the atmosphere draws in direction d (horizon
+ * frame, unit), kcd/m^2: the path's sky with its eclipse dimming and the
+ * night floor above the horizon, the ground below it (atmosphere.glsl's
+ * sky_or_ground); no sun, moon, stars or clouds. */
+void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]);
 /* The sun model's direct-beam transmittance for a ray at the given
  * altitude (radians): Kasten-Young air mass times a Rayleigh+aerosol
  * optical depth; below the horizon, the horizon's value. Non-decreasing
