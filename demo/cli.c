@@ -152,7 +152,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --blend-partner rayleigh|preetham   blend: the analytic path mixed with Hillaire's (default rayleigh)\n"
             "  --turbidity T            haze on every path: the optical depth's ratio to the molecules' alone,\n"
             "                           1..64 (preetham clamps to 2..10, default 2.5; the others scale the\n"
-            "                           description's aerosol, default its own: earth 1.8)\n"
+            "                           description's aerosol, default its own: earth 1.9)\n"
             "  --dome-divisor N         8-bit output: the sky and clouds at 1/N of the pixels per axis,\n"
             "                           filtered up (1..8; default 4; 1 = every pixel, the sharpest)\n"
             "  --tone-map hue|filmic|neutral   8-bit output's curve: hue keeps each colour's hue and\n"
@@ -184,6 +184,10 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
         fprintf(out, "  --out FILE.png           8-bit sRGB image (with --frames: FILE_0001.png ...)\n"
                      "  --out-pfm FILE.pfm       linear float RGB, luminance in kcd/m^2\n"
                      "  --stats                  print JSON statistics after rendering\n"
+                     "  --capture N              with --out: the environment cube map, N x N a face (a power of\n"
+                     "                           two, 4..2048, sun disc included), written as a cube cross 4N x 3N:\n"
+                     "                           +Y above; -X, +Z, +X, -Z across; -Y below (GL's faces, as\n"
+                     "                           sky_capture_environment makes them)\n"
                      "  --query                  print the astronomical state as JSON (no GL)\n"
                      "  --hip N,N,...            with --query: also these Hipparcos stars\n");
 }
@@ -386,6 +390,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                             "--planet: expected earth, very-clean, hazy, polluted, hillaire-2020 or mars, got '%s'",
                             val ? val : "(nothing)");
             cli->planet = planets[found];
+        } else if (!is_demo && !strcmp(opt, "--capture")) {
+            if (!parse_number(val, 4.0, 2048.0, &v) || v != floor(v) || ((int)v & ((int)v - 1)))
+                return fail(err, len, "--capture: expected a power of two in 4..2048, got '%s'",
+                            val ? val : "(nothing)");
+            cli->capture = (int)v;
         } else if (!strcmp(opt, "--frames")) {
             if (!parse_number(val, 1.0, 1e6, &v) || v != floor(v))
                 return fail(err, len, "--frames: expected a whole number in 1..1000000, got '%s'",

@@ -39,6 +39,7 @@ typedef struct sky_cli {
     /* where and when */
     sky_observer observer;   /* default observer unless --date/--lat/... */
     int query;               /* --query: astronomy JSON, no GL           */
+    int capture;             /* --capture N: the cube map's face size, 0 off */
     int hip[64];
     int hip_count;
     /* sky-demo only */

@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "osmesa_ctx.h"
 
+#include <GL/gl.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -98,6 +99,66 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     return rc;
 }
 
+/* --capture N: the environment cube map (sky_capture_environment) read
+ * back face by face into a 4N x 3N cross, written as one PNG: +Y above
+ * +Z; -X, +Z, +X, -Z across; -Y below; each face with its first row (GL's
+ * t = 0) at the top, so that neighbouring faces meet edge to edge. */
+static int render_capture(const sky_cli *cli)
+{
+    static const int cell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}}; /* +X -X +Y -Y +Z -Z */
+    int n = cli->capture, w = 4 * n, h = 3 * n;
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, w, h, cli->gl, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-render: %s\n", err);
+        return 1;
+    }
+    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    sky *s = sky_create(&cfg, err, sizeof err);
+    int rc = 0;
+    unsigned char *face = malloc((size_t)n * (size_t)n * 4);
+    if (!s || !face) {
+        fprintf(stderr, "sky-render: %s\n", s ? "out of memory" : err);
+        rc = 1;
+    }
+    if (!rc && (sky_set_params(s, &cli->params) < 0 || sky_set_observer(s, &cli->observer) < 0 ||
+                sky_set_elapsed(s, cli->seconds) < 0 || sky_set_exposure_bias(s, cli->exposure) < 0 ||
+                sky_capture_environment(s, 0, n, SKY_CAPTURE_ALL_FACES, SKY_CAPTURE_SUN_DISC) < 0)) {
+        fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
+        rc = 1;
+    }
+    unsigned char *px = ctx.pixels; /* bottom row first */
+    if (!rc) {
+        memset(px, 0, (size_t)w * (size_t)h * 4);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(s));
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        for (int f = 0; f < 6; f++) {
+            glGetTexImage(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA, GL_UNSIGNED_BYTE, face);
+            for (int t = 0; t < n; t++) {
+                int row = h - 1 - (cell[f][1] * n + t);
+                memcpy(px + ((size_t)row * (size_t)w + (size_t)cell[f][0] * (size_t)n) * 4, face + (size_t)t * n * 4,
+                       (size_t)n * 4);
+            }
+        }
+        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+        if (glGetError() != GL_NO_ERROR) {
+            fprintf(stderr, "sky-render: reading the cube map back failed\n");
+            rc = 1;
+        }
+    }
+    if (!rc) {
+        char werr[4200];
+        if (sky_osmesa_write_png(&ctx, cli->out_png, werr, sizeof werr)) {
+            fprintf(stderr, "sky-render: cannot write %s\n", werr);
+            rc = 1;
+        }
+    }
+    free(face);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return rc;
+}
+
 /* What --help, --query and --stats print is output like the images: if a
  * byte of it was not written (a full disk, a closed pipe, >/dev/full) the
  * run failed. stdout is fully buffered when redirected, so the error often
@@ -137,6 +198,14 @@ static int run(int argc, char **argv)
         }
         sky_cli_print_query(stdout, &a, stars, cli.hip_count);
         return 0;
+    }
+    if (cli.capture) {
+        if (!cli.out_png || cli.out_pfm || cli.frames > 1 || cli.fisheye) {
+            fprintf(stderr, "sky-render: --capture writes one PNG: it needs --out FILE.png, and takes no --out-pfm, "
+                            "--frames or --fisheye\n");
+            return 2;
+        }
+        return render_capture(&cli);
     }
     /* The PFM needs a float buffer and a linear sky, the PNG an 8-bit one:
      * one pass each. Statistics come from the PNG pass when there is one.

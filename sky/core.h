@@ -78,6 +78,7 @@ typedef enum sky_texture_id {
     SKY_TEX_TRANSMITTANCE, /* Hillaire's transmittance table (CORE33: GPU builds)  */
     SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
     SKY_TEX_MS_MOMENTS,    /* its light's dipole and quadrupole, 4 layers (CORE33) */
+    SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT
@@ -257,6 +258,7 @@ typedef struct sky_core {
     GLuint identity_program;      /* the first program built: a context where it
                                      is no program is not the sky's (sky.c)   */
     int drawing;                  /* inside sky_draw (sky.c)                   */
+    int capture_without_sun;      /* a capture that leaves the sun's disc out  */
     int dome_divisor;             /* the dome's image is 1/divisor of the viewport
                                      on each axis; 0: drawn directly (dome.c) */
 

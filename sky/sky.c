@@ -295,6 +295,7 @@ void sky_destroy(sky *s)
     if (c->gl.glDeleteTextures) /* NULL when sky_gl_init failed early */
         for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(c, (sky_texture_id)i);
     if (s->vao) sky_gl_vertex_array_destroy(c, s->vao);
+    sky_gl_target_destroy(c, s->capture_fbo);
     free(s);
 }
 
@@ -445,6 +446,7 @@ static sky_result draw_frame(sky *s)
         if (L->dome_role == SKY_DOME_NIGHT) c->dome_night_shows |= shows;
     }
     FOR_EACH_LAYER(s, L, state) {
+        if (c->capture_without_sun && L->slot == SKY_LAYER_SUN) continue;
         if (L->draw && L->visible(c, state)) draw_layer(s, L, state);
     }
     if (!c->cfg.check_gl_errors) return SKY_OK;
@@ -506,6 +508,130 @@ sky_result sky_draw(sky *s, const float view[16], const float proj[16])
                         proj[11] > 0.0f ? "left" : "right", proj[11] > 0.0f ? "+" : "-",
                         s->core.horizon_handedness < 0 ? "reflection" : "rotation");
     return rc;
+}
+
+/* GL's cube-map faces: the direction each looks along and its up (the
+ * face's image runs right along forward x up, and down along up). */
+static const float cube_forward[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+static const float cube_up[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+
+sky_result sky_capture_face_matrices(int face, float view[16], float proj[16])
+{
+    if (face < 0 || face > 5 || !view || !proj) return SKY_ERR_INVALID_ARGUMENT;
+    const float *f = cube_forward[face], *u = cube_up[face];
+    float r[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2], f[0] * u[1] - f[1] * u[0]};
+    float v[3] = {r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]};
+    memset(view, 0, 16 * sizeof(float));
+    for (int c = 0; c < 3; c++) {
+        view[c * 4 + 0] = r[c];
+        view[c * 4 + 1] = v[c];
+        view[c * 4 + 2] = -f[c];
+    }
+    view[15] = 1.0f;
+    /* 90 degrees square; the sky ignores the depth range */
+    const float n = 0.1f, far = 100.0f;
+    memset(proj, 0, 16 * sizeof(float));
+    proj[0] = proj[5] = 1.0f;
+    proj[10] = (far + n) / (n - far);
+    proj[11] = -1.0f;
+    proj[14] = 2.0f * far * n / (n - far);
+    return SKY_OK;
+}
+
+sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size, int face, unsigned flags)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_core *c = &s->core;
+    const sky_gl *gl = &c->gl;
+    if (face_size < 4 || face_size > 2048 || (face_size & (face_size - 1)))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: face_size %d is not a power of two "
+                        "in 4..2048", face_size);
+    if (face < SKY_CAPTURE_ALL_FACES || face > 5)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: face %d is not 0..5 or "
+                        "SKY_CAPTURE_ALL_FACES", face);
+    if (flags & ~SKY_CAPTURE_SUN_DISC)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: unknown flags 0x%x", flags);
+    if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: no GL context is current");
+    if (!c->caps.render_to_rgba8)
+        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: this %s context has no framebuffer "
+                        "objects (the back-buffer capture is not built yet)", c->gl_version);
+    int hdr = c->cfg.output == SKY_OUTPUT_HDR;
+    if (hdr && c->profile != SKY_GL_CORE33)
+        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: HDR output is captured in CORE33 only");
+    GLint limit = 0;
+    gl->glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &limit);
+    if (limit > 0 && face_size > limit)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: face_size %d is over this context's "
+                        "limit %d", face_size, (int)limit);
+    /* the texture: the host's, checked, or our own at this size */
+    sky_gl_state host;
+    sky_gl_state_save(c, &host);
+    GLuint tex = cube_texture;
+    if (!tex) {
+        sky_texture *own = &c->textures[SKY_TEX_ENVIRONMENT];
+        if (own->id && own->width != face_size) sky_texture_destroy(c, SKY_TEX_ENVIRONMENT);
+        char why[160];
+        if (!own->id && sky_texture_create_cube(c, SKY_TEX_ENVIRONMENT, SKY_LAYER_ATMOSPHERE, NULL, face_size, hdr, why,
+                                                sizeof why)) {
+            sky_gl_state_restore(c, &host);
+            return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: %s", why);
+        }
+        tex = own->id;
+    } else {
+        GLint w = 0;
+        gl->glActiveTexture(GL_TEXTURE0);
+        gl->glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
+        gl->glGetTexLevelParameteriv(GL_TEXTURE_CUBE_MAP_POSITIVE_X, 0, GL_TEXTURE_WIDTH, &w);
+        sky_gl_state_restore(c, &host);
+        if (w != face_size)
+            return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: texture %u is not a cube map "
+                            "with %d x %d faces (its +X level 0 is %d wide)", cube_texture, face_size, face_size,
+                            (int)w);
+    }
+    if (!s->capture_fbo) {
+        c->gl.glGenFramebuffers(1, &s->capture_fbo);
+        if (!s->capture_fbo) {
+            sky_gl_state_restore(c, &host);
+            return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: no framebuffer object");
+        }
+    }
+    GLint draw_fbo = 0, read_fbo = 0;
+    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &draw_fbo);
+    read_fbo = draw_fbo;
+    if (c->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
+    sky_result rc = SKY_OK;
+    c->capture_without_sun = !(flags & SKY_CAPTURE_SUN_DISC);
+    for (int f = face < 0 ? 0 : face; f <= (face < 0 ? 5 : face) && rc == SKY_OK; f++) {
+        gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
+        gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f,
+                                   tex, 0);
+        GLenum status = gl->glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            rc = sky_fail(s, SKY_ERR_GL, "sky_capture_environment: cannot render into face %d of texture %u "
+                          "(framebuffer status 0x%04x: its format?)", f, tex, status);
+            break;
+        }
+        gl->glViewport(0, 0, face_size, face_size);
+        float view[16], proj[16];
+        sky_capture_face_matrices(f, view, proj);
+        rc = draw_with(s, view, proj);
+    }
+    c->capture_without_sun = 0;
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X, 0, 0);
+    if (c->caps.separate_framebuffers) {
+        gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)draw_fbo);
+        gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read_fbo);
+    } else {
+        gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)draw_fbo);
+    }
+    sky_gl_state_restore(c, &host);
+    return rc;
+}
+
+unsigned sky_environment_texture(const sky *s)
+{
+    return s ? s->core.textures[SKY_TEX_ENVIRONMENT].id : 0u;
 }
 
 sky_result sky_draw_fisheye(sky *s)

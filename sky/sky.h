@@ -557,6 +557,39 @@ typedef struct sky_lighting {
 
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
 
+/* Environment capture: the sky as sky_draw draws it (every layer, clouds
+ * included), seen from the observer in the six directions of a cube map
+ * in the world frame (horizon_to_world applied; GL's face order +X, -X,
+ * +Y, -Y, +Z, -Z and its face orientation, so that a samplerCube looked
+ * up with a world direction finds the sky there), for reflections and
+ * image-based lighting.
+ *   cube_texture  0: the library's own (sky_environment_texture; made or
+ *                 remade at face_size), else the host's GL_TEXTURE_CUBE_MAP
+ *                 whose level 0 is face_size square on every face captured,
+ *                 in a format the output fits: RGBA8 for LDR, a float
+ *                 format for HDR (the library's own is RGBA32F: the sun's
+ *                 disc is far beyond a half float's range)
+ *   face_size     a power of two, 4..2048, at most the context's limit
+ *   face          0..5, one face (to spread the cost over frames), or
+ *                 SKY_CAPTURE_ALL_FACES
+ *   flags         SKY_CAPTURE_SUN_DISC to keep the sun's disc (its light is
+ *                 sky_get_lighting's beam; left out by default)
+ * It renders through a framebuffer object of its own; the host's
+ * framebuffer bindings, viewport and every state sky_draw restores come
+ * back. CORE33, and COMPAT20 where the context has framebuffer objects;
+ * elsewhere, and for HDR output in COMPAT20, SKY_ERR_UNSUPPORTED (not yet:
+ * the back-buffer copy). SKY_ERR_INVALID_ARGUMENT for a bad size, face or
+ * flag, or a host texture that is not a cube map of that size. */
+#define SKY_CAPTURE_ALL_FACES (-1)
+#define SKY_CAPTURE_SUN_DISC 1u
+SKY_API sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size, int face, unsigned flags);
+/* The view and projection sky_capture_environment draws face 0..5 with
+ * (world frame, right-handed, 90 degrees square): sky_draw with them at a
+ * square viewport draws that face's pixels. */
+SKY_API sky_result sky_capture_face_matrices(int face, float view[16], float proj[16]);
+/* The library's own cube map (0 before the first capture into it). */
+SKY_API unsigned sky_environment_texture(const sky *s);
+
 /* The sky as a light for a scene's ambient: the radiance that reaches the
  * observer from every direction, as real spherical harmonics of degree
  * 0..2 (9 coefficients per channel; Ramamoorthi & Hanrahan 2001), linear

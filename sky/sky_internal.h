@@ -25,6 +25,7 @@ struct sky {
     char error[256];
     sky_stats stats;
     sky_irradiance_cache irradiance;      /* sky_get_irradiance_sh's          */
+    GLuint capture_fbo;                   /* sky_capture_environment's        */
 };
 
 #endif /* SKY_INTERNAL_H */

@@ -73,7 +73,7 @@ static int starmap_create(sky_core *s, void *state, char *err, size_t err_len)
                 sample_equirect(img, e, faces + 4u * (((size_t)f * STARMAP_FACE + (size_t)j) * STARMAP_FACE + (size_t)i));
             }
     sky_png_free(img);
-    int rc = sky_texture_create_cube(s, SKY_TEX_STARMAP, SKY_LAYER_STARMAP, faces, STARMAP_FACE, err, err_len);
+    int rc = sky_texture_create_cube(s, SKY_TEX_STARMAP, SKY_LAYER_STARMAP, faces, STARMAP_FACE, 0, err, err_len);
     free(faces);
     return rc;
 }

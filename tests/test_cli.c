@@ -292,7 +292,7 @@ void test_cli_every_option_checked(void)
         {"--yaw", "left", "400"},        {"--pitch", "up", "-91"},           {"--fov", "wide", "180"},
         {"--atmosphere", "fog", NULL},   {"--features", "rain", NULL},       {"--gl", "vulkan", NULL},
         {"--preset", "beach", NULL},     {"--frames", "many", "0"},          {"--moon-scale", "big", "51"},
-        {"--exposure", "bright", "11"},
+        {"--exposure", "bright", "11"},  {"--capture", "big", "60"},
         {"--hip", "sirius", "0"},        {"--out", NULL, NULL},              {"--out-pfm", NULL, NULL},
     };
     char render[512], cmd[1024], out[2048];
@@ -318,6 +318,16 @@ void test_cli_every_option_checked(void)
             CHECK(rc == 2 && strstr(out, o), "%s: exit %d, message '%.120s' (case %d)", cmd, rc, out, v);
             checked++;
         }
+    }
+    /* --capture writes one PNG: without --out, or with what it cannot
+     * write, it is a usage error */
+    static const char *const capture_bad[3] = {"--capture 16", "--capture 16 --out /tmp/c.png --frames 2",
+                                                "--capture 16 --out-pfm /tmp/c.pfm"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(cmd, sizeof cmd, "%s %s 2>&1 >/dev/null", render, capture_bad[k]);
+        int rc = run_command(cmd, out, sizeof out);
+        CHECK(rc == 2 && strstr(out, "--capture"), "%s: exit %d, '%.120s'", capture_bad[k], rc, out);
+        checked++;
     }
     /* unwritable outputs */
     const char *paths[2] = {"--out /proc/sky-test.png", "--out-pfm /proc/sky-test.pfm"};
@@ -349,6 +359,24 @@ void test_cli_outputs_png_pfm_stats(void)
     image im;
     CHECK(image_load_png(png, &im) == 0 && im.w == 64 && im.h == 32, "PNG of the asked size");
     image_free(&im);
+    /* --capture: a 4N x 3N cube cross (its first row at the top), the
+     * corners around it empty, the up face (top) the blue sky, the down
+     * one (bottom) the ground */
+    char cross[512];
+    tmp_path("cross.png", cross, sizeof cross);
+    snprintf(cmd, sizeof cmd, "%s --preset noon --capture 16 --out %s", render, cross);
+    CHECK(run_command(cmd, out, sizeof out) == 0, "--capture exits 0: %s", out);
+    if (image_load_png(cross, &im) == 0) {
+        CHECK(im.w == 64 && im.h == 48, "the cross is 64 x 48: %d x %d", im.w, im.h);
+        const float *up = im.px + (8 * 64 + 24) * 3, *down = im.px + (40 * 64 + 24) * 3;
+        float corner = image_luminance(&im, 2, 2);
+        CHECK(corner == 0.0f && up[2] > up[0] && down[0] >= down[2],
+              "corner %g; +Y (%g, %g, %g) blue, -Y (%g, %g, %g) the ground", corner, up[0], up[1], up[2], down[0],
+              down[1], down[2]);
+        image_free(&im);
+    } else {
+        CHECK(0, "no cross written");
+    }
     FILE *f = fopen(pfm, "rb");
     CHECK(f != NULL, "PFM written");
     if (f) {

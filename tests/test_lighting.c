@@ -8,12 +8,18 @@
 
 #include "atmo_error.h"
 
+#include <GL/gl.h>
+#include <GL/glext.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 void test_lighting_sh_irradiance_matches_render(void);
 void test_lighting_sh_checks_its_input(void);
 void test_lighting_sh_in_the_world_frame(void);
+void test_lighting_capture_faces_are_sky_draw(void);
+void test_lighting_capture_checks_and_restores(void);
+void test_lighting_capture_hdr(void);
 
 /* Issue target: the SH irradiance within 3 % of a brute-force integral of
  * the rendered sky on an upward, a horizontal and a downward normal, by
@@ -142,4 +148,196 @@ void test_lighting_sh_in_the_world_frame(void)
         }
         fixture_close(&f);
     }
+}
+
+/* Issue target: each captured face is what sky_draw draws with the face's
+ * camera (the same pixels: the same pipeline, dither included), in both
+ * profiles, clouds and sun disc included; and the faces meet without
+ * seams: the pixels along a shared edge differ by no more than pixels one
+ * apart inside a face. */
+enum { CAP = 64 };
+static int face_pixels(GLuint tex, int face, unsigned char *out)
+{
+    glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTexImage(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)face, 0, GL_RGBA, GL_UNSIGNED_BYTE, out);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    return glGetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+void test_lighting_capture_faces_are_sky_draw(void)
+{
+    static const sky_gl_profile profiles[2] = {SKY_GL_CORE33, SKY_GL_COMPAT20};
+    for (int q = 0; q < 2; q++) {
+        fixture f;
+        if (fixture_open_sized(&f, CAP, CAP, 0, profiles[q], NULL)) {
+            CHECK(0, "no sky");
+            continue;
+        }
+        sky_params p = sky_default_params();
+        p.time = 0.3f;
+        p.cover = 0.5f;
+        sky_set_params(f.s, &p);
+        sky_result rc = sky_capture_environment(f.s, 0, CAP, SKY_CAPTURE_ALL_FACES, SKY_CAPTURE_SUN_DISC);
+        CHECK(rc == SKY_OK, "profile %d: capture: %s", q, sky_last_error(f.s));
+        GLuint tex = sky_environment_texture(f.s);
+        CHECK(tex != 0, "profile %d: no texture", q);
+        static unsigned char face[6][CAP * CAP * 4], drawn[CAP * CAP * 4];
+        int worst = 0;
+        for (int k = 0; k < 6 && rc == SKY_OK; k++) {
+            CHECK(face_pixels(tex, k, face[k]) == 0, "profile %d: face %d not read", q, k);
+            float view[16], proj[16];
+            sky_capture_face_matrices(k, view, proj);
+            CHECK(sky_draw(f.s, view, proj) == SKY_OK, "profile %d: sky_draw: %s", q, sky_last_error(f.s));
+            glReadPixels(0, 0, CAP, CAP, GL_RGBA, GL_UNSIGNED_BYTE, drawn);
+            for (int i = 0; i < CAP * CAP * 4; i++)
+                if (i % 4 != 3) worst = abs(face[k][i] - drawn[i]) > worst ? abs(face[k][i] - drawn[i]) : worst;
+        }
+        NOTE("profile %d: faces against sky_draw, largest difference %d levels", q, worst);
+        /* orientation: where GL's cube-map addressing puts the sun's disc
+         * (the centroid of its white pixels) is where sky_get_lighting says */
+        double sum[3] = {0, 0, 0};
+        int white = 0;
+        for (int k = 0; k < 6; k++)
+            for (int j = 0; j < CAP; j++)
+                for (int i = 0; i < CAP; i++) {
+                    const unsigned char *px = &face[k][4 * (j * CAP + i)];
+                    if (px[0] < 250 || px[1] < 250 || px[2] < 250) continue;
+                    double sc = (i + 0.5) / CAP * 2.0 - 1.0, tc = (j + 0.5) / CAP * 2.0 - 1.0, d[3];
+                    switch (k) {
+                    case 0: d[0] = 1, d[1] = -tc, d[2] = -sc; break;
+                    case 1: d[0] = -1, d[1] = -tc, d[2] = sc; break;
+                    case 2: d[0] = sc, d[1] = 1, d[2] = tc; break;
+                    case 3: d[0] = sc, d[1] = -1, d[2] = -tc; break;
+                    case 4: d[0] = sc, d[1] = -tc, d[2] = 1; break;
+                    default: d[0] = -sc, d[1] = -tc, d[2] = -1; break;
+                    }
+                    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                    for (int a = 0; a < 3; a++) sum[a] += d[a] / len;
+                    white++;
+                }
+        sky_lighting l;
+        sky_get_lighting(f.s, &l);
+        double len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+        double cosang = len > 0.0 ? (sum[0] * l.sun_direction[0] + sum[1] * l.sun_direction[1] +
+                                     sum[2] * l.sun_direction[2]) / len
+                                  : -1.0;
+        double ang = acos(fmin(fmax(cosang, -1.0), 1.0)) * 180.0 / 3.14159265358979;
+        NOTE("profile %d: %d white pixels, their centre %.2f deg from the sun's direction", q, white, ang);
+        CHECK(white > 0 && ang < 3.0, "profile %d: the captured sun is %.1f deg from sky_get_lighting's", q, ang);
+        CHECK(worst <= 1, "profile %d: a face differs from sky_draw by %d levels", q, worst);
+        /* seams: +X's right column against -Z's left column (both with
+         * -Y up, rows aligned), against the step over the same distance
+         * inside each (the dome's image is a quarter of the face or less,
+         * so neighbouring pixels inside are often equal: the step over
+         * four of them is the sky's own gradient there) */
+        double seam = 0.0, inside = 0.0;
+        for (int y = 0; y < CAP; y++)
+            for (int c = 0; c < 3; c++) {
+                int a = face[0][4 * (y * CAP + CAP - 1) + c], b = face[5][4 * (y * CAP) + c],
+                    a4 = face[0][4 * (y * CAP + CAP - 5) + c], b4 = face[5][4 * (y * CAP + 4) + c];
+                seam += abs(a - b);
+                inside += 0.5 * (abs(a - a4) + abs(b - b4)) / 4.0;
+            }
+        seam /= 3.0 * CAP;
+        inside /= 3.0 * CAP;
+        NOTE("profile %d: mean step across the +X/-Z edge %.2f levels, a pixel inside %.2f", q, seam, inside);
+        CHECK(seam <= 2.0 * inside + 1.5, "profile %d: a seam: %.2f levels across the edge, %.2f a pixel inside",
+              q, seam, inside);
+        fixture_close(&f);
+    }
+}
+
+/* The host's framebuffer, viewport and texture bindings come back; bad
+ * sizes, faces, flags and foreign textures are refused with a message. */
+void test_lighting_capture_checks_and_restores(void)
+{
+    fixture f;
+    if (fixture_open_sized(&f, CAP, CAP, 0, SKY_GL_CORE33, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    GLuint host_tex = 0, host_cube = 0;
+    glGenTextures(1, &host_tex);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, host_tex);
+    glViewport(3, 5, 17, 19);
+    GLint vp[4], bound = 0, fbo = -1;
+    CHECK(sky_capture_environment(f.s, 0, 16, 2, 0) == SKY_OK, "capture: %s", sky_last_error(f.s));
+    glGetIntegerv(GL_VIEWPORT, vp);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
+    CHECK(vp[0] == 3 && vp[1] == 5 && vp[2] == 17 && vp[3] == 19, "viewport %d %d %d %d", vp[0], vp[1], vp[2], vp[3]);
+    CHECK(bound == (GLint)host_tex && fbo == 0, "texture %d (host's %u), framebuffer %d", bound, host_tex, fbo);
+    CHECK(sky_capture_environment(f.s, 0, 12, 0, 0) == SKY_ERR_INVALID_ARGUMENT &&
+              strstr(sky_last_error(f.s), "power of two"),
+          "a face of 12: '%s'", sky_last_error(f.s));
+    CHECK(sky_capture_environment(f.s, 0, 16, 6, 0) == SKY_ERR_INVALID_ARGUMENT, "face 6 refused");
+    CHECK(sky_capture_environment(f.s, 0, 16, -2, 0) == SKY_ERR_INVALID_ARGUMENT, "face -2 refused");
+    CHECK(sky_capture_environment(f.s, 0, 16, 0, 8u) == SKY_ERR_INVALID_ARGUMENT, "flag 8 refused");
+    CHECK(sky_capture_environment(NULL, 0, 16, 0, 0) == SKY_ERR_INVALID_ARGUMENT, "NULL sky refused");
+    /* the host's own cube map, of the size asked or not */
+    glGenTextures(1, &host_cube);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, host_cube);
+    for (int k = 0; k < 6; k++)
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)k, 0, GL_RGBA8, 32, 32, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    CHECK(sky_capture_environment(f.s, host_cube, 32, SKY_CAPTURE_ALL_FACES, 0) == SKY_OK, "host's cube: %s",
+          sky_last_error(f.s));
+    CHECK(sky_capture_environment(f.s, host_cube, 64, 0, 0) == SKY_ERR_INVALID_ARGUMENT &&
+              strstr(sky_last_error(f.s), "32 wide"),
+          "a host cube of another size: '%s'", sky_last_error(f.s));
+    static unsigned char px[32 * 32 * 4];
+    CHECK(face_pixels(host_cube, 2, px) == 0 && (px[0] | px[1] | px[2]) != 0, "the host's +Y face was drawn");
+    CHECK(glGetError() == GL_NO_ERROR, "a GL error left");
+    glDeleteTextures(1, &host_cube);
+    glDeleteTextures(1, &host_tex);
+    fixture_close(&f);
+}
+
+/* HDR output (CORE33): the faces are float (RGBA32F), the same linear
+ * radiance sky_draw writes into a float framebuffer, sun disc included,
+ * within the issue's 1 % (measured: all but a few values of the clouds
+ * identical; those few, where the clouds fade their detail by screen-space
+ * derivatives, up to 0.99 %). */
+void test_lighting_capture_hdr(void)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.output = SKY_OUTPUT_HDR;
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    fixture f;
+    if (fixture_open_sized(&f, CAP, CAP, 1, SKY_GL_CORE33, &cfg)) {
+        CHECK(0, "no HDR sky");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.time = 0.3f;
+    sky_set_params(f.s, &p);
+    CHECK(sky_capture_environment(f.s, 0, CAP, SKY_CAPTURE_ALL_FACES, SKY_CAPTURE_SUN_DISC) == SKY_OK, "capture: %s",
+          sky_last_error(f.s));
+    static float face[CAP * CAP * 4], drawn[CAP * CAP * 4];
+    double worst = 0.0;
+    int differing = 0;
+    for (int k = 0; k < 6; k++) {
+        glBindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(f.s));
+        glGetTexImage(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)k, 0, GL_RGBA, GL_FLOAT, face);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+        float view[16], proj[16];
+        sky_capture_face_matrices(k, view, proj);
+        sky_draw(f.s, view, proj);
+        sky_osmesa_finish(&f.ctx);
+        memcpy(drawn, f.ctx.pixels, sizeof drawn); /* the float buffer, bottom row first like the face */
+        for (int i = 0; i < CAP * CAP * 4; i++)
+            if (i % 4 != 3 && drawn[i] > 1e-6f) {
+                double d = fabs(face[i] / drawn[i] - 1.0);
+                worst = fmax(worst, d);
+                if (d > 1e-4) differing++;
+            }
+    }
+    NOTE("HDR faces against sky_draw: worst relative difference %.2g; %d of %d values over 1e-4", worst, differing,
+         6 * CAP * CAP * 3);
+    CHECK(worst <= 0.01, "an HDR face differs from sky_draw by %.3g", worst);
+    CHECK(glGetError() == GL_NO_ERROR, "a GL error left");
+    fixture_close(&f);
 }

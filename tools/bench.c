@@ -1449,6 +1449,73 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
     return 0;
 }
 
+/* sky_capture_environment's cost against a frame: the noon preset (the
+ * default gradient sky with clouds, core profile), a w x h frame drawn
+ * and finished, against all six 128 x 128 faces and one face captured and
+ * finished; medians of n. */
+typedef struct capture_cost {
+    double frame_ms, all_ms, one_ms;
+} capture_cost;
+
+static int capture_costs(int w, int h, int n, capture_cost *out)
+{
+    char err[512];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, w, h, SKY_GL_CORE33, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-bench: capture: %s\n", err);
+        return -1;
+    }
+    sky_cli cli;
+    char *argv[] = {"sky-bench", "--preset", "noon", NULL};
+    if (sky_cli_parse(&cli, 3, argv, 0, err, sizeof err)) {
+        fprintf(stderr, "sky-bench: capture: %s\n", err);
+        sky_osmesa_destroy(&ctx);
+        return -1;
+    }
+    sky_config cfg = sky_cli_config(&cli, sky_osmesa_loader());
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        fprintf(stderr, "sky-bench: capture: %s\n", err);
+        sky_osmesa_destroy(&ctx);
+        return -1;
+    }
+    sky_set_params(s, &cli.params);
+    float view[16], proj[16];
+    sky_cli_camera(&cli, view, proj);
+    double *t[3];
+    for (int k = 0; k < 3; k++) t[k] = malloc(sizeof(double) * (size_t)n);
+    int rc = t[0] && t[1] && t[2] ? 0 : -1;
+    /* the first of each: programs built and the cube map made */
+    sky_draw(s, view, proj);
+    sky_capture_environment(s, 0, 128, SKY_CAPTURE_ALL_FACES, 0);
+    sky_osmesa_finish(&ctx);
+    for (int i = 0; i < n && !rc; i++) {
+        double t0 = sky_cli_now_ms();
+        sky_draw(s, view, proj);
+        sky_osmesa_finish(&ctx);
+        double t1 = sky_cli_now_ms();
+        rc |= sky_capture_environment(s, 0, 128, SKY_CAPTURE_ALL_FACES, 0) < 0;
+        sky_osmesa_finish(&ctx);
+        double t2 = sky_cli_now_ms();
+        rc |= sky_capture_environment(s, 0, 128, i % 6, 0) < 0;
+        sky_osmesa_finish(&ctx);
+        double t3 = sky_cli_now_ms();
+        t[0][i] = t1 - t0;
+        t[1][i] = t2 - t1;
+        t[2][i] = t3 - t2;
+    }
+    if (rc) fprintf(stderr, "sky-bench: capture: %s\n", sky_last_error(s));
+    else {
+        out->frame_ms = sky_cli_median(t[0], n);
+        out->all_ms = sky_cli_median(t[1], n);
+        out->one_ms = sky_cli_median(t[2], n);
+    }
+    for (int k = 0; k < 3; k++) free(t[k]);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return rc;
+}
+
 static void print_lighting_table(const lighting_row r[PHOT_PATHS])
 {
     printf("| path | SH projection us (the sun moved) | cached call us | worst irradiance error, all coefficients | "
@@ -1458,8 +1525,19 @@ static void print_lighting_table(const lighting_row r[PHOT_PATHS])
                100.0 * r[p].worst, 100.0 * r[p].worst9);
 }
 
-static void print_lighting_json(const lighting_row r[PHOT_PATHS])
+static void print_capture(const capture_cost *c, int w, int h)
 {
+    printf("\nsky_capture_environment, the noon preset, 128 x 128 faces, against a %dx%d frame (core, GPU time\n"
+           "with glFinish, medians):\n\n| what | ms | x a frame |\n|---|---|---|\n| a frame | %.2f | 1.00 |\n"
+           "| six faces | %.2f | %.2f |\n| one face | %.2f | %.2f |\n",
+           w, h, c->frame_ms, c->all_ms, c->all_ms / c->frame_ms, c->one_ms, c->one_ms / c->frame_ms);
+}
+
+static void print_lighting_json(const lighting_row r[PHOT_PATHS], const capture_cost *c, int w, int h)
+{
+    printf(" \"capture\": {\"frame_size\":\"%dx%d\", \"frame_ms\":%.3f, \"six_faces_128_ms\":%.3f, "
+           "\"one_face_128_ms\":%.3f},\n",
+           w, h, c->frame_ms, c->all_ms, c->one_ms);
     printf(" \"lighting\": [\n");
     for (int p = 0; p < PHOT_PATHS; p++)
         printf("  {\"path\":\"%s\", \"sh_project_us\":%.2f, \"sh_cached_us\":%.3f, \"sh_worst_error\":%.4f, "
@@ -1556,15 +1634,17 @@ int main(int argc, char **argv)
         return 0;
     }
     lighting_row lighting[PHOT_PATHS];
+    capture_cost capture = {0, 0, 0};
     if (only_lighting) {
-        if (lighting_rows(lighting)) return 1;
+        if (lighting_rows(lighting) || capture_costs(w, h, frames, &capture)) return 1;
         if (json) {
             printf("{\n");
-            print_lighting_json(lighting);
+            print_lighting_json(lighting, &capture, w, h);
             printf("\n}\n");
         } else {
             printf("Scene lighting: sky_get_irradiance_sh (core profile):\n\n");
             print_lighting_table(lighting);
+            print_capture(&capture, w, h);
         }
         return 0;
     }
@@ -1657,7 +1737,7 @@ int main(int argc, char **argv)
     if (colour_rows(tone_map, colour)) return 1;
     if (photometry_rows(phot)) return 1;
     if (plot_phot && plot_photometry(plot_phot)) return 1;
-    if (lighting_rows(lighting)) return 1;
+    if (lighting_rows(lighting) || capture_costs(w, h, frames, &capture)) return 1;
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
                rounds, astro);
@@ -1692,7 +1772,7 @@ int main(int argc, char **argv)
         printf(",\n");
         print_photometry_json(phot);
         printf(",\n");
-        print_lighting_json(lighting);
+        print_lighting_json(lighting, &capture, w, h);
         printf("\n}\n");
         return 0;
     }
@@ -1725,5 +1805,6 @@ int main(int argc, char **argv)
     print_photometry_table(phot);
     printf("\nScene lighting: sky_get_irradiance_sh (core profile):\n\n");
     print_lighting_table(lighting);
+    print_capture(&capture, w, h);
     return 0;
 }

@@ -22,6 +22,9 @@ for a in gradient preetham rayleigh hillaire blend; do
     $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.255 --yaw 91 --pitch 15 --fov 70 --out $out/atm-$a-sunrise.png
     $r --size 320x180 --atmosphere $a --features sun --cover 0 --time 0.235 --yaw 87 --pitch 15 --fov 70 --out $out/atm-$a-twilight.png
 done
+# the environment cube map as a cross (issue: the sky lights the scene):
+# a late afternoon with clouds, 128 x 128 a face
+$r --capture 128 --preset sunset --time 0.7 --out $out/env-cross.png
 # the 8-bit output's colours (issue Look): a sunset toward the sun, 3
 # degrees up, and Hillaire's twilight, 11 degrees down; the "before"
 # pictures beside them were rendered by the code before that issue

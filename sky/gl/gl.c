@@ -488,7 +488,7 @@ int sky_texture_create_image(sky_core *s, sky_texture_id id, sky_layer owner, in
 }
 
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
-                            char *err, size_t err_len)
+                            int is_float, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
     sky_texture *t = &s->textures[id];
@@ -497,10 +497,11 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
     gl->glBindTexture(GL_TEXTURE_CUBE_MAP, t->id);
     unpack_state unpack;
     unpack_begin(s, &unpack);
-    size_t face_bytes = (size_t)size * (size_t)size * 4u;
+    size_t face_bytes = (size_t)size * (size_t)size * (is_float ? 16u : 4u);
     for (int f = 0; f < 6; f++)
-        gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA8, size, size, 0, GL_RGBA,
-                         GL_UNSIGNED_BYTE, faces + (size_t)f * face_bytes);
+        gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_float ? GL_RGBA32F : GL_RGBA8, size, size, 0,
+                         GL_RGBA, is_float ? GL_FLOAT : GL_UNSIGNED_BYTE,
+                         faces ? faces + (size_t)f * face_bytes : NULL);
     unpack_end(s, &unpack);
     return finish_texture(s, t, GL_TEXTURE_CUBE_MAP, GL_LINEAR, GL_CLAMP_TO_EDGE, size, size, 6u * face_bytes, owner,
                           "cube map", 1, err, err_len);

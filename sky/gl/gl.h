@@ -96,11 +96,13 @@ int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owne
                                   size_t err_len);
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8,
                             const float *rgb32f);
-/* A cube map of six size x size RGBA8 faces, in GL's order (+x, -x, +y,
- * -y, +z, -z), each face's rows following GL's convention; linear,
- * clamped at the edges. */
+/* A cube map of six size x size faces, in GL's order (+x, -x, +y, -y,
+ * +z, -z), each face's rows following GL's convention; linear, clamped at
+ * the edges. RGBA8 from faces, or empty (faces NULL) to render into:
+ * RGBA8, or RGBA32F when is_float (the sun's disc is far beyond a half
+ * float's 65504 kcd/m^2). */
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
-                            char *err, size_t err_len);
+                            int is_float, char *err, size_t err_len);
 /* A new size for such an image; on failure the old one stays. */
 int sky_texture_resize_image(sky_core *s, sky_texture_id id, int w, int h);
 void sky_texture_destroy(sky_core *s, sky_texture_id id);

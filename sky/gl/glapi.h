@@ -94,6 +94,8 @@ typedef ptrdiff_t GLintptr;
 #define GL_TEXTURE_CUBE_MAP 0x8513
 #define GL_TEXTURE_BINDING_CUBE_MAP 0x8514
 #define GL_TEXTURE_CUBE_MAP_POSITIVE_X 0x8515
+#define GL_MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
+#define GL_TEXTURE_WIDTH 0x1000
 #define GL_ARRAY_BUFFER 0x8892
 #define GL_ELEMENT_ARRAY_BUFFER 0x8893
 #define GL_ARRAY_BUFFER_BINDING 0x8894
@@ -159,6 +161,7 @@ typedef ptrdiff_t GLintptr;
     X(void, glGetIntegerv, (GLenum pname, GLint *data))                                       \
     X(void, glGetBooleanv, (GLenum pname, GLboolean *data))                                   \
     X(GLboolean, glIsEnabled, (GLenum cap))                                                   \
+    X(void, glGetTexLevelParameteriv, (GLenum target, GLint level, GLenum pname, GLint *v))    \
     X(void, glEnable, (GLenum cap))                                                           \
     X(void, glDisable, (GLenum cap))                                                          \
     X(void, glBlendFunc, (GLenum s, GLenum d))                                                \
