@@ -3,8 +3,9 @@
  * window and the context (GLFW: OpenGL 3.3 core, or 2.0 with --gl compat)
  * and loads its own GL entry points through the loader it gives the sky.
  * Each frame it draws the sky first, then its own depth-tested world lit by
- * sky_get_lighting: the sun and moon as directional lights, the sky and the
- * ground it lights as ambient light, its horizon as fog (per pixel), and the
+ * sky_get_lighting: the sun and moon as directional lights; the sky and the
+ * ground it lights as ambient light (sky_get_irradiance_sh's 9 coefficients,
+ * per normal); its horizon as fog (per pixel), and the
  * sky's exposure and tone map so world and sky share one brightness scale.
  * Without a display it renders the same frames headless through OSMesa.
  *
@@ -103,7 +104,7 @@ static const char *const vs =
  * a wall and the sky behind it are judged on one scale. */
 static const char *const fs =
     "VARY vec3 n;\nVARY vec3 world;\n"
-    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, ambient, fog;\nuniform float exposure;\n"
+    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, fog;\nuniform vec3 sky_sh[9];\nuniform float exposure;\n"
     "const vec3 grass = vec3(0.20, 0.30, 0.12), stone = vec3(0.45, 0.40, 0.35);\n"
     "vec3 tonemap(vec3 e) {\n"
     "  float y = dot(e, vec3(0.2126, 0.7152, 0.0722));\n"
@@ -117,11 +118,16 @@ static const char *const fs =
     "  vec3 nn = normalize(n);\n"
     "  vec3 albedo = world.y < 0.01 ? grass : stone;\n"
     /* a surface sees the sky above its horizon and the lit ground below
-     * it: at night a wall turned from the moon is lit by the moonlit
-     * ground and the sky, as dark as they make it but not black */
-    "  vec3 on_ground = sun_col * max(sun_dir.y, 0.0) + moon_col * max(moon_dir.y, 0.0) + ambient;\n"
-    "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0)\n"
-    "         + ambient * (0.5 + 0.5 * nn.y) + grass * on_ground * (0.5 - 0.5 * nn.y);\n"
+     * it (sky_get_irradiance_sh: the sky's radiance as 9 spherical
+     * harmonics, evaluated for the surface's normal as engines do,
+     * Ramamoorthi & Hanrahan's A_l folded in): at night a wall turned
+     * from the moon is lit by the moonlit ground and the sky, as dark as
+     * they make it but not black */
+    "  vec3 sky = 3.14159 * 0.282095 * sky_sh[0]\n"
+    "      + 2.0944 * 0.488603 * (sky_sh[1] * nn.y + sky_sh[2] * nn.z + sky_sh[3] * nn.x)\n"
+    "      + 0.785398 * (1.092548 * (sky_sh[4] * nn.x * nn.y + sky_sh[5] * nn.y * nn.z + sky_sh[7] * nn.x * nn.z)\n"
+    "                    + 0.315392 * sky_sh[6] * (3.0 * nn.z * nn.z - 1.0) + 0.546274 * sky_sh[8] * (nn.x * nn.x - nn.y * nn.y));\n"
+    "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0) + max(sky, vec3(0.0));\n"
     "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-length(world - eye) / 400.0));\n"
     "  FRAG = vec4(tonemap(max(L * exposure, vec3(0.0))), 1.0);\n"
     "}\n";
@@ -242,6 +248,8 @@ static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int heig
      * from 0.25 m to past the ground's far corners (2.8 km) */
     sky_lighting l;
     sky_get_lighting(s, &l);
+    sky_irradiance_sh sh;
+    sky_get_irradiance_sh(s, &sh); /* cached while the sun and sliders stay */
     const float zn = 0.25f, zf = 4000.0f;
     proj[10] = (zf + zn) / (zn - zf);
     proj[14] = 2.0f * zf * zn / (zn - zf);
@@ -259,7 +267,7 @@ static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int heig
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_col"), 1, l.sun_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_col"), 1, l.moon_color);
-    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "ambient"), 1, l.ambient_color);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sky_sh"), 9, &sh.radiance[0][0]);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "fog"), 1, l.fog_color);
     gl->Uniform1f(gl->GetUniformLocation(w->prog, "exposure"), l.exposure);
     if (w->vao) gl->BindVertexArray(w->vao);

@@ -82,6 +82,7 @@ eval $x build/bin/sky-demo --size 960x540 --frames 30 --screenshot $out/demo.png
     --date 2024-01-15T21:00:00Z --lat 45 --lon 10 --yaw 180 --pitch 30 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-noon.png --time 0.45 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-dusk.png --time 0.74 --sunset 0.8 >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night.png --preset moonlit >/dev/null
 # the engine examples (make examples builds them): 7:12 in the morning,
 # looking south
 if [ -x build/examples/sky-sdl2 ] && [ -x build/examples/sky-osg ] && [ -x build/examples/sky-irrlicht ]; then

@@ -5,6 +5,7 @@
  * irradiance it casts on the ground, the horizon's colour for fog).
  */
 #include "atmosphere.h"
+#include "../layer.h"
 #include "../solar_eclipse.h"
 #include "spectrum.h"
 
@@ -310,12 +311,18 @@ void sky_atmosphere_frame(sky_core *s)
     sky_solar_eclipse_sky(s, s->atmosphere == SKY_ATMOSPHERE_GRADIENT ? 0.0 : mu_node[0]);
     /* The ground under every path (atmosphere.glsl): Lambertian, its
      * luminance the albedo over pi times the illuminance on it, the sky's
-     * (the summary's irradiance) and the sun's beam through the air, with
-     * what a solar eclipse leaves of it. */
+     * (the summary's irradiance), the sun's beam through the air, with
+     * what a solar eclipse leaves of it, and the moon's (what
+     * sky_get_lighting reports, on the level), which is all of a moonlit
+     * night's ground. */
     double beam = fmax(sin(f->sun_altitude), 0.0) * sky_solar_eclipse_light_left(s);
+    float moon[3] = {0.0f, 0.0f, 0.0f};
+    if (s->features & SKY_MOON) sky_moon_lighting(s, moon);
+    double moon_up = fmax(s->astro.moon.dir[1], 0.0);
     for (int i = 0; i < 3; i++)
         f->ground_rgb[i] = (float)(s->atm.ground_albedo[i] / SKY_PI *
-                                   (f->ambient_rgb[i] + s->sun_irradiance_klx[i] * f->sun_transmittance[i] * beam));
+                                   (f->ambient_rgb[i] + s->sun_irradiance_klx[i] * f->sun_transmittance[i] * beam +
+                                    moon[i] * moon_up));
 }
 
 int sky_atmosphere_create(sky_core *s, char *err, size_t err_len)
