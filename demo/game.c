@@ -5,7 +5,8 @@
  * Each frame it draws the sky first, then its own depth-tested world lit by
  * sky_get_lighting: the sun and moon as directional lights; the sky and the
  * ground it lights as ambient light (sky_get_irradiance_sh's 9 coefficients,
- * per normal); its horizon as fog (per pixel), and the
+ * per normal); a glossy ball reflecting the sky (sky_capture_environment);
+ * its horizon as fog (per pixel), and the
  * sky's exposure and tone map so world and sky share one brightness scale.
  * Without a display it renders the same frames headless through OSMesa.
  *
@@ -16,6 +17,7 @@
 #include "osmesa_ctx.h"
 
 #include <GLFW/glfw3.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,6 +49,9 @@
     X(void, UseProgram, (GLuint))                                                    \
     X(GLint, GetUniformLocation, (GLuint, const GLchar *))                           \
     X(void, Uniform1f, (GLint, GLfloat))                                             \
+    X(void, Uniform1i, (GLint, GLint))                                               \
+    X(void, ActiveTexture, (GLenum))                                                 \
+    X(void, BindTexture, (GLenum, GLuint))                                           \
     X(void, Uniform3fv, (GLint, GLsizei, const GLfloat *))                           \
     X(void, UniformMatrix4fv, (GLint, GLsizei, GLboolean, const GLfloat *))          \
     X(void, GenBuffers, (GLsizei, GLuint *))                                         \
@@ -89,9 +94,11 @@ static int load_gl(game_gl *gl, sky_get_proc_address_fn loader, int core)
 /* One source for both profiles: a prologue per profile defines how
  * attributes, varyings and the output are spelled. */
 static const char *const vs_core = "#version 330 core\n#define ATTR in\n#define VARY out\n";
-static const char *const fs_core = "#version 330 core\n#define VARY in\nout vec4 frag;\n#define FRAG frag\n";
+static const char *const fs_core =
+    "#version 330 core\n#define VARY in\nout vec4 frag;\n#define FRAG frag\n#define CUBE texture\n";
 static const char *const vs_compat = "#version 110\n#define ATTR attribute\n#define VARY varying\n";
-static const char *const fs_compat = "#version 110\n#define VARY varying\n#define FRAG gl_FragColor\n";
+static const char *const fs_compat =
+    "#version 110\n#define VARY varying\n#define FRAG gl_FragColor\n#define CUBE textureCube\n";
 
 static const char *const vs =
     "ATTR vec3 pos;\nATTR vec3 nrm;\nuniform mat4 mvp;\nVARY vec3 n;\nVARY vec3 world;\n"
@@ -105,6 +112,7 @@ static const char *const vs =
 static const char *const fs =
     "VARY vec3 n;\nVARY vec3 world;\n"
     "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, fog;\nuniform vec3 sky_sh[9];\nuniform float exposure;\n"
+    "uniform samplerCube sky_env;\nuniform vec3 ball;\n"
     "const vec3 grass = vec3(0.20, 0.30, 0.12), stone = vec3(0.45, 0.40, 0.35);\n"
     "vec3 tonemap(vec3 e) {\n"
     "  float y = dot(e, vec3(0.2126, 0.7152, 0.0722));\n"
@@ -129,13 +137,28 @@ static const char *const fs =
     "                    + 0.315392 * sky_sh[6] * (3.0 * nn.z * nn.z - 1.0) + 0.546274 * sky_sh[8] * (nn.x * nn.x - nn.y * nn.y));\n"
     "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0) + max(sky, vec3(0.0));\n"
     "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-length(world - eye) / 400.0));\n"
-    "  FRAG = vec4(tonemap(max(L * exposure, vec3(0.0))), 1.0);\n"
+    "  vec3 c = tonemap(max(L * exposure, vec3(0.0)));\n"
+    /* the glossy ball: the captured sky (sky_capture_environment, 8-bit
+     * and tone-mapped as the screen is) reflected about its normal, by
+     * Schlick's Fresnel over a dark base */
+    "  if (length(world - ball.xyz) < 2.6) {\n"
+    /* the sphere's own normal, not the mesh's interpolated one (its
+     * triangles would show in the reflection) */
+    "    nn = normalize(world - ball);\n"
+    "    vec3 v = normalize(world - eye), r = reflect(v, nn);\n"
+    "    float f = 0.04 + 0.96 * pow(1.0 - max(dot(-v, nn), 0.0), 5.0);\n"
+    "    c = mix(c * 0.3, CUBE(sky_env, r).rgb, 0.35 + 0.65 * f);\n"
+    "  }\n"
+    "  FRAG = vec4(c, 1.0);\n"
     "}\n";
 
 /* The eye stands 1.7 m above the ground at the origin. */
 static const float eye[3] = {0.0f, 1.7f, 0.0f};
 
-/* A ground plane and five boxes: position and normal per vertex. */
+/* the glossy ball's centre */
+static const float ball[3] = {6.0f, 2.5f, 18.0f};
+
+/* A ground plane, five boxes and a ball: position and normal per vertex. */
 static int build_world(float *v)
 {
     int n = 0;
@@ -163,6 +186,21 @@ static int build_world(float *v)
             for (int k = 0; k < 6; k++) VERT(c[tri[k]][0], c[tri[k]][1], c[tri[k]][2], nn[0], nn[1], nn[2]);
         }
     }
+    /* the glossy ball, 2.5 m across its radius, a UV sphere */
+    enum { RINGS = 16, SEGS = 32 };
+    for (int i = 0; i < RINGS; i++)
+        for (int j = 0; j < SEGS; j++) {
+            float p[4][3];
+            for (int k = 0; k < 4; k++) {
+                double th = 3.14159265 * (i + (k >= 2)) / RINGS, ph = 2.0 * 3.14159265 * (j + (k == 1 || k == 2)) / SEGS;
+                p[k][0] = (float)(sin(th) * cos(ph)), p[k][1] = (float)cos(th), p[k][2] = (float)(sin(th) * sin(ph));
+            }
+            static const int tri[6] = {0, 1, 2, 0, 2, 3};
+            for (int k = 0; k < 6; k++) {
+                const float *q = p[tri[k]];
+                VERT(ball[0] + 2.5f * q[0], ball[1] + 2.5f * q[1], ball[2] + 2.5f * q[2], q[0], q[1], q[2]);
+            }
+        }
 #undef VERT
     return n;
 }
@@ -172,6 +210,7 @@ typedef struct world {
     game_gl gl;
     GLuint prog, vbo, vao; /* vao: core profile only */
     int count;
+    int frames;            /* drawn so far: which face of the sky to capture */
 } world;
 
 static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *body)
@@ -196,7 +235,7 @@ static int world_create(world *w, sky_get_proc_address_fn loader, int core)
     memset(w, 0, sizeof *w);
     game_gl *gl = &w->gl;
     if (load_gl(gl, loader, core)) return -1;
-    static float verts[(6 + 5 * 6 * 5) * 6];
+    static float verts[(6 + 5 * 6 * 5 + 16 * 32 * 6) * 6];
     w->count = build_world(verts);
     GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, vs);
     GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, fs);
@@ -234,9 +273,14 @@ static void world_destroy(world *w)
 }
 
 /* One frame into the current w x h framebuffer: the sky, then the world. */
-static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int height)
+static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
 {
     const game_gl *gl = &w->gl;
+    /* 0. the sky for the ball's reflection: all six faces the first time,
+     * then one face a frame (the cost spread over six frames) */
+    if (sky_capture_environment(s, 0, 64, w->frames ? w->frames % 6 : SKY_CAPTURE_ALL_FACES, 0) < 0 && !w->frames)
+        fprintf(stderr, "sky-game: no reflections: %s\n", sky_last_error(s));
+    w->frames++;
     gl->Viewport(0, 0, width, height);
     gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     cli->width = width, cli->height = height;
@@ -270,6 +314,10 @@ static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int heig
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sky_sh"), 9, &sh.radiance[0][0]);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "fog"), 1, l.fog_color);
     gl->Uniform1f(gl->GetUniformLocation(w->prog, "exposure"), l.exposure);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "ball"), 1, ball);
+    gl->Uniform1i(gl->GetUniformLocation(w->prog, "sky_env"), 0);
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(s));
     if (w->vao) gl->BindVertexArray(w->vao);
     gl->BindBuffer(GL_ARRAY_BUFFER, w->vbo);
     gl->VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 24, (void *)0);
@@ -278,6 +326,7 @@ static void draw_frame(const world *w, sky *s, sky_cli *cli, int width, int heig
     gl->EnableVertexAttribArray(1);
     gl->DrawArrays(GL_TRIANGLES, 0, w->count);
     /* left as found, so the next frame's sky_draw meets no stray arrays */
+    gl->BindTexture(GL_TEXTURE_CUBE_MAP, 0);
     gl->DisableVertexAttribArray(0);
     gl->DisableVertexAttribArray(1);
     gl->BindBuffer(GL_ARRAY_BUFFER, 0);

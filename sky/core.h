@@ -259,6 +259,8 @@ typedef struct sky_core {
                                      is no program is not the sky's (sky.c)   */
     int drawing;                  /* inside sky_draw (sky.c)                   */
     int capture_without_sun;      /* a capture that leaves the sun's disc out  */
+    int capturing;                /* inside sky_capture_environment: the dome
+                                     at every pixel (dome.c)                  */
     int dome_divisor;             /* the dome's image is 1/divisor of the viewport
                                      on each axis; 0: drawn directly (dome.c) */
 

@@ -199,10 +199,12 @@ static const sky_snippet corner_snippet = {"SKY_DOME_CORNER", NULL, NULL, 0, NUL
  * (used), in a texture of that size, or without NPOT textures of the
  * powers of two that hold it (its corner used: the same picture on every
  * GPU, at up to four times the memory). The all-sky image is for looking
- * at, not for a frame rate: its image has every pixel. */
+ * at, not for a frame rate, and a cube map's faces are small and must meet
+ * without the reduced image's steps at their edges: theirs have every
+ * pixel. */
 static void image_size(const sky_core *s, int used[2], int size[2])
 {
-    int divisor = s->frame.fisheye >= 0.5f ? 1 : s->dome_divisor;
+    int divisor = s->frame.fisheye >= 0.5f || s->capturing ? 1 : s->dome_divisor;
     for (int i = 0; i < 2; i++) {
         int n = (s->viewport[2 + i] + divisor - 1) / divisor, p = 1;
         used[i] = n < 1 ? 1 : n;

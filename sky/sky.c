@@ -601,6 +601,7 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
     if (c->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
     sky_result rc = SKY_OK;
     c->capture_without_sun = !(flags & SKY_CAPTURE_SUN_DISC);
+    c->capturing = 1;
     for (int f = face < 0 ? 0 : face; f <= (face < 0 ? 5 : face) && rc == SKY_OK; f++) {
         gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
         gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f,
@@ -616,7 +617,7 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
         sky_capture_face_matrices(f, view, proj);
         rc = draw_with(s, view, proj);
     }
-    c->capture_without_sun = 0;
+    c->capture_without_sun = c->capturing = 0;
     gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
     gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X, 0, 0);
     if (c->caps.separate_framebuffers) {

@@ -574,6 +574,9 @@ SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
  *                 SKY_CAPTURE_ALL_FACES
  *   flags         SKY_CAPTURE_SUN_DISC to keep the sun's disc (its light is
  *                 sky_get_lighting's beam; left out by default)
+ * Each face is the picture sky_draw draws with that face's camera
+ * (sky_capture_face_matrices) at dome_divisor 1: the faces are small, and
+ * a reduced image's steps would show at their edges.
  * It renders through a framebuffer object of its own; the host's
  * framebuffer bindings, viewport and every state sky_draw restores come
  * back. CORE33, and COMPAT20 where the context has framebuffer objects;

@@ -170,7 +170,10 @@ void test_lighting_capture_faces_are_sky_draw(void)
     static const sky_gl_profile profiles[2] = {SKY_GL_CORE33, SKY_GL_COMPAT20};
     for (int q = 0; q < 2; q++) {
         fixture f;
-        if (fixture_open_sized(&f, CAP, CAP, 0, profiles[q], NULL)) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.dome_divisor = 1; /* what a capture draws: every pixel */
+        if (fixture_open_sized(&f, CAP, CAP, 0, profiles[q], &cfg)) {
             CHECK(0, "no sky");
             continue;
         }
@@ -305,6 +308,7 @@ void test_lighting_capture_hdr(void)
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
     cfg.output = SKY_OUTPUT_HDR;
+    cfg.dome_divisor = 1;
     cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
     fixture f;
     if (fixture_open_sized(&f, CAP, CAP, 1, SKY_GL_CORE33, &cfg)) {
