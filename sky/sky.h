@@ -598,9 +598,10 @@ SKY_API unsigned sky_environment_texture(const sky *s);
  * 0..2 (9 coefficients per channel; Ramamoorthi & Hanrahan 2001), linear
  * RGB in kcd/m^2, in the world frame (horizon_to_world applied). It is
  * what the atmosphere draws around the observer: the sky with its night
- * floor above the horizon, the ground below it. The sun's and the moon's
- * discs are left out and given apart as beams (as sky_get_lighting gives
- * them); stars, clouds and the moon's glow on the sky are not in it.
+ * floor (moonlit when the moon is up) above the horizon, the ground lit
+ * by sun, moon and sky below it. The sun's and the moon's discs are left
+ * out and given apart as beams (as sky_get_lighting gives them); stars
+ * and clouds are not in it yet.
  * A shader that lights with the 9 of degree <= 2 (the common form) is
  * within about 3 % of the true irradiance on surfaces facing the sky and
  * up to 15 % off on surfaces facing a dark ground under a bright sunset
