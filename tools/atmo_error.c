@@ -382,6 +382,25 @@ void sky_atmo_hemisphere_irradiance(const sky_atmo_hemisphere *h, const double n
     }
 }
 
+void sky_atmo_hemisphere_sh_check(sky_atmo_hemisphere *h, const double n[3], double *rendered, double *sh_all,
+                                  double *sh_nine)
+{
+    sky_irradiance_sh sh, nine;
+    sky_get_irradiance_sh(h->s, &sh); /* cached after the first normal */
+    nine = sh;
+    memset(nine.radiance_l4, 0, sizeof nine.radiance_l4);
+    memset(nine.radiance_zonal, 0, sizeof nine.radiance_zonal);
+    double ref[3], e[3], e9[3];
+    float nf[3] = {(float)n[0], (float)n[1], (float)n[2]}, ef[3], ef9[3];
+    sky_atmo_hemisphere_irradiance(h, n, ref);
+    sky_irradiance_sh_eval(&sh, nf, ef);
+    sky_irradiance_sh_eval(&nine, nf, ef9);
+    for (int i = 0; i < 3; i++) e[i] = ef[i], e9[i] = ef9[i];
+    *rendered = luminance(ref);
+    *sh_all = luminance(e);
+    *sh_nine = luminance(e9);
+}
+
 int sky_atmo_measure(const sky_atmo_reference *ref, const sky_config *base, sky_atmo_errors *out, char *err,
                      size_t err_len)
 {

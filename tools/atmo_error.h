@@ -70,6 +70,12 @@ void sky_atmo_hemisphere_read(const sky_atmo_hemisphere *h, const double d[3], d
 /* The irradiance (klx) of the rendered sphere on a surface of unit
  * normal n (horizon frame), summed over every pixel of the six faces. */
 void sky_atmo_hemisphere_irradiance(const sky_atmo_hemisphere *h, const double n[3], double rgb[3]);
+/* For the sky last rendered, the luminance (klx) of its irradiance on a
+ * surface of unit normal n: from the render (as above), from
+ * sky_get_irradiance_sh with every coefficient, and from its 9 of degree
+ * <= 2 alone (what a shader reading only those gets). */
+void sky_atmo_hemisphere_sh_check(sky_atmo_hemisphere *h, const double n[3], double *rendered, double *sh_all,
+                                  double *sh_nine);
 /* The sky, for its lighting (sky_get_lighting after a render). */
 sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h);
 

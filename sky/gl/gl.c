@@ -431,15 +431,23 @@ static void unpack_end(sky_core *s, const unpack_state *u)
     if (s->caps.pixel_buffers) gl->glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)u->buffer);
 }
 
+/* A new texture name for id, bound to target on unit 0 (where every
+ * upload happens) for its creation. */
+static sky_texture *new_texture(sky_core *s, sky_texture_id id, GLenum target)
+{
+    sky_texture *t = &s->textures[id];
+    s->gl.glGenTextures(1, &t->id);
+    s->gl.glActiveTexture(GL_TEXTURE0);
+    s->gl.glBindTexture(target, t->id);
+    return t;
+}
+
 /* An 8-bit 2D texture of 3 or 4 channels, linear; pixels may be NULL. */
 static int create_2d(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *pixels, int channels,
                      int w, int h, GLint wrap, const char *what, int check, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
-    sky_texture *t = &s->textures[id];
-    gl->glGenTextures(1, &t->id);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_2D, t->id);
+    sky_texture *t = new_texture(s, id, GL_TEXTURE_2D);
     unpack_state unpack;
     unpack_begin(s, &unpack);
     gl->glTexImage2D(GL_TEXTURE_2D, 0, channels == 3 ? GL_RGB8 : GL_RGBA8, w, h, 0, channels == 3 ? GL_RGB : GL_RGBA,
@@ -491,10 +499,7 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
                             int is_float, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
-    sky_texture *t = &s->textures[id];
-    gl->glGenTextures(1, &t->id);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, t->id);
+    sky_texture *t = new_texture(s, id, GL_TEXTURE_CUBE_MAP);
     unpack_state unpack;
     unpack_begin(s, &unpack);
     size_t face_bytes = (size_t)size * (size_t)size * (is_float ? 16u : 4u);
@@ -634,10 +639,7 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
         sky_format(err, err_len, "lookup texture %dx%d is not a power of two", w, h);
         return -1;
     }
-    sky_texture *t = &s->textures[id];
-    gl->glGenTextures(1, &t->id);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_2D, t->id);
+    sky_texture *t = new_texture(s, id, GL_TEXTURE_2D);
     /* float (CORE33): RGBA32F, the precision twilight needs (16F would
      * lose the darkest tables' low bits) and a format every GL 3.3 can
      * render into; else RGBA8 for an encoding */
@@ -658,10 +660,7 @@ int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owne
                                   size_t err_len)
 {
     const sky_gl *gl = &s->gl;
-    sky_texture *t = &s->textures[id];
-    gl->glGenTextures(1, &t->id);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_2D_ARRAY, t->id);
+    sky_texture *t = new_texture(s, id, GL_TEXTURE_2D_ARRAY);
     unpack_state unpack;
     unpack_begin(s, &unpack);
     gl->glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, w, h, layers, 0, GL_RGBA, GL_FLOAT, NULL);
