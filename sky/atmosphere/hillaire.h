@@ -129,5 +129,12 @@ void sky_hillaire_sky(const sky_hillaire_tables *t, const double view[3], const 
  * sky-view table holds at that direction, before its interpolation. */
 void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
                       double rgb[3]);
+/* Aerial perspective: the same march stopped max_km from the observer
+ * (short of the ground or the top it would meet): the light scattered
+ * into the view on the way (per unit solar illuminance, 1/sr) and the
+ * view's transmittance there (NULL: not wanted). max_km 0: nothing
+ * scattered, transmittance 1. */
+void sky_hillaire_segment(const sky_hillaire_tables *t, double altitude_km, const double view[3],
+                          const double sun_dir[3], double max_km, double rgb[3], double transmittance[3]);
 
 #endif

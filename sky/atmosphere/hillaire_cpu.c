@@ -841,11 +841,12 @@ static void ms_texel(const sky_hillaire_tables *t, int y0, int y1, double fy, in
  * spectral reference (sky-bench, the default Earth): daytime error 6.7 %
  * -> 2.9 %, mean CIEDE2000 2.0 -> 1.4. */
 static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double r0, double th, int ground,
-                        const double sun[3], int w, float *row)
+                        const double sun[3], int w, float *row, double max_len, double view_tr[3])
 {
     enum { MAX_STEPS = 256 };
     double ct = cos(th), st = sin(th);
     for (int i = 0; i < w * 3; i++) row[i] = 0.0f;
+    if (view_tr) view_tr[0] = view_tr[1] = view_tr[2] = 1.0;
     double r = r0, mu = ct, start = 0.0;
     if (r > m->Rt) {
         double disc = r * r * (mu * mu - 1.0) + m->Rt * m->Rt;
@@ -855,6 +856,13 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
         mu = clamp((r0 * ct + start) / m->Rt, -1.0, 1.0);
     }
     double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
+    /* aerial perspective: the view ends max_len from the observer, short
+     * of the ground it would have met */
+    if (start + L > max_len) {
+        if (max_len <= start) return;
+        L = max_len - start;
+        ground = 0;
+    }
     int n = L > 0.0 ? skyview_steps_for(m, t->settings.skyview_steps, L) : 0;
     /* per sample: radius, distance from the observer, the table rows of
      * the two lookups, and the Rayleigh and Mie weights per channel */
@@ -945,6 +953,8 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
             }
         }
     }
+    if (view_tr)
+        for (int c = 0; c < 3; c++) view_tr[c] = tr[c];
     double rg = ground ? radius_along(r, mu, L) : 0.0;
     for (int i = 0; i < w; i++) {
         if (ground && rg > 0.0) {
@@ -1001,7 +1011,7 @@ void sky_hillaire_build_skyview_rows(const sky_hillaire_tables *t, double altitu
             double q = 2.0 * y - 1.0;
             th = th_h + beta * q * q;
         }
-        skyview_row(t, &m, r0, th, below, sun, w, table + (size_t)j * w * 3);
+        skyview_row(t, &m, r0, th, below, sun, w, table + (size_t)j * w * 3, INFINITY, NULL);
     }
 }
 
@@ -1021,11 +1031,13 @@ void sky_hillaire_install_skyview(sky_hillaire_tables *t, float **table, double 
     skyview_record(t, altitude_km, sun_mu);
 }
 
-void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
-                      double rgb[3])
+void sky_hillaire_segment(const sky_hillaire_tables *t, double altitude_km, const double view[3],
+                          const double sun_dir[3], double max_km, double rgb[3], double transmittance[3])
 {
     if (!rgb) return;
     rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (transmittance) transmittance[0] = transmittance[1] = transmittance[2] = 1.0;
+    if (!(max_km >= 0.0)) return;
     if (!t || !t->transmittance || !t->multiscatter || !t->ms_moments || !t->scratch || !view || !sun_dir) return;
     for (int k = 0; k < 3; k++)
         if (!isfinite(view[k]) || !isfinite(sun_dir[k])) return;
@@ -1046,8 +1058,14 @@ void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const do
     }
     double sun[3] = {hs / sl * caz, sun_dir[1] / sl, hs / sl * saz};
     float out[3];
-    skyview_row(t, &m, r0, th, th > horizon_zenith(&m, r0), sun, 1, out);
+    skyview_row(t, &m, r0, th, th > horizon_zenith(&m, r0), sun, 1, out, max_km, transmittance);
     for (int c = 0; c < 3; c++) rgb[c] = out[c];
+}
+
+void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
+                      double rgb[3])
+{
+    sky_hillaire_segment(t, altitude_km, view, sun_dir, INFINITY, rgb, NULL);
 }
 
 void sky_hillaire_sky(const sky_hillaire_tables *t, const double view[3], const double sun_dir[3], double rgb[3])

@@ -320,14 +320,19 @@ void sky_ref_transmittance(const sky_atmosphere_params *atm, double altitude_km,
 /* First-order radiance along the view ray for every wavelength, into
  * single[]. pos is the eye in the planet-centred frame. */
 static void single_scattering(const ref_medium *md, const double eye[3], const double view[3], const double sun[3],
-                              int view_segments, int sun_segments, double single[SKY_REF_WAVELENGTHS])
+                              int view_segments, int sun_segments, double max_distance, double single[SKY_REF_WAVELENGTHS],
+                              double transmittance[SKY_REF_WAVELENGTHS])
 {
-    for (int i = 0; i < md->n; i++) single[i] = 0.0;
+    for (int i = 0; i < md->n; i++) single[i] = 0.0, transmittance[i] = 1.0;
     double r = sqrt(dot3(eye, eye));
     double mu = dot3(eye, view) / r;
     double t0, t1;
     int ground;
     if (!ray_interval(md, r, mu, &t0, &t1, &ground)) return; /* misses the shell: black space */
+    if (max_distance > 0.0 && t1 > max_distance) { /* aerial perspective: the ray ends there */
+        t1 = fmax(max_distance, t0);
+        ground = 0;
+    }
     double cos_theta = dot3(view, sun);
     double pr = phase_rayleigh(cos_theta), pm = phase_cs(cos_theta, md->g);
     double tau_eye[SKY_REF_WAVELENGTHS] = {0};
@@ -362,6 +367,7 @@ static void single_scattering(const ref_medium *md, const double eye[3], const d
         ta = tb;
         da = db;
     }
+    for (int i = 0; i < md->n; i++) transmittance[i] = exp(-tau_eye[i]);
     if (ground) {
         /* sun -> ground -> eye (Lambertian) */
         double x[3];
@@ -465,13 +471,17 @@ static double sample_hg(double xi, double g)
  * each density follows the same exponential (ozone: linear) form as the
  * optical depth, and the distance is solved by safeguarded Newton. */
 static int free_flight(const ref_medium *md, int i, const double pos[3], const double d[3], int n, double tau_target,
-                       double *t_hit, dens3 *dens, int *ground, double *t_end, double *tau_total)
+                       double t_max, double *t_hit, dens3 *dens, int *ground, double *t_end, double *tau_total)
 {
     *tau_total = 0.0;
     double r = sqrt(dot3(pos, pos)), mu = dot3(pos, d) / r, t0, t1;
     *ground = 0;
     *t_end = 0.0;
     if (!ray_interval(md, r, mu, &t0, &t1, ground)) return 0;
+    if (t1 > t_max) { /* aerial perspective: the ray ends short of the ground or the top */
+        t1 = t_max;
+        *ground = 0;
+    }
     *t_end = t1;
     if (!(t1 > t0)) return 0;
     ray_layout L;
@@ -528,7 +538,7 @@ static double sun_at(const ref_medium *md, int i, const double x[3], const doubl
 
 /* One path's contribution of orders 2..max_order (0 = unbounded). */
 static double trace_path(const ref_medium *md, int i, const double start[3], const double view[3], const double sun[3],
-                         int n, int max_order, ref_rng *rng)
+                         int n, int max_order, double first_max, ref_rng *rng)
 {
     double pos[3] = {start[0], start[1], start[2]}, d[3] = {view[0], view[1], view[2]};
     double w = 1.0, c = 0.0;
@@ -544,7 +554,7 @@ static double trace_path(const ref_medium *md, int i, const double start[3], con
              * probability of scattering there, 1 - T, in the weight. Where
              * the ray ends on the ground, half the paths go there instead
              * (weight T / 0.5) so the ground's bounce keeps its share. */
-            (void)free_flight(md, i, pos, d, n, INFINITY, &t_hit, &dn, &ground, &t_end, &tau_total);
+            (void)free_flight(md, i, pos, d, n, INFINITY, first_max, &t_hit, &dn, &ground, &t_end, &tau_total);
             double transmitted = exp(-tau_total), p_force = ground ? 0.5 : 1.0;
             if (rng_uniform(rng) < p_force) {
                 double xi = rng_uniform(rng);
@@ -555,7 +565,8 @@ static double trace_path(const ref_medium *md, int i, const double start[3], con
                 w *= transmitted / (1.0 - p_force);
             }
         }
-        int scattered = free_flight(md, i, pos, d, n, tau_target, &t_hit, &dn, &ground, &t_end, &tau_total);
+        int scattered = free_flight(md, i, pos, d, n, tau_target, order == 1 ? first_max : INFINITY, &t_hit, &dn, &ground,
+                                    &t_end, &tau_total);
         if (scattered) {
             for (int j = 0; j < 3; j++) pos[j] += d[j] * t_hit;
             double ssr = md->br[i] * dn.r, ssm = md->bms[i] * dn.m;
@@ -628,7 +639,8 @@ int sky_ref_radiance(const sky_atmosphere_params *atm, double altitude_km, const
     else memset(&o, 0, sizeof o);
     if (o.view_segments < 0 || o.view_segments > REF_MAX_SEGMENTS || o.sun_segments < 0 ||
         o.sun_segments > REF_MAX_SEGMENTS || o.paths < 0 || o.paths > REF_MAX_PATHS || o.max_order < 0 ||
-        o.max_order > REF_MAX_ORDER || !isfinite(o.only_nm) || (o.only_nm != 0.0 && (o.only_nm < 360.0 || o.only_nm > 830.0)))
+        o.max_order > REF_MAX_ORDER || !isfinite(o.only_nm) || (o.only_nm != 0.0 && (o.only_nm < 360.0 || o.only_nm > 830.0)) ||
+        !isfinite(o.max_distance_km) || o.max_distance_km < 0.0)
         return -1;
     int nv = o.view_segments ? o.view_segments : REF_DEFAULT_VIEW_SEGMENTS;
     int ns = o.sun_segments ? o.sun_segments : REF_DEFAULT_SUN_SEGMENTS;
@@ -638,7 +650,8 @@ int sky_ref_radiance(const sky_atmosphere_params *atm, double altitude_km, const
     ref_medium md;
     medium_init(&md, &a, o.only_nm);
     double eye[3] = {0.0, md.R + altitude_km, 0.0};
-    single_scattering(&md, eye, view, sun, nv, ns, out->single);
+    double dmax = o.max_distance_km;
+    single_scattering(&md, eye, view, sun, nv, ns, dmax, out->single, out->transmittance);
     for (int i = 0; i < md.n; i++) out->spectral[i] = out->single[i];
 
     if (o.max_order != 1) {
@@ -653,7 +666,8 @@ int sky_ref_radiance(const sky_atmosphere_params *atm, double altitude_km, const
                 rng_seed(&rng, s);
                 double sum = 0.0, sum2 = 0.0;
                 for (int p = 0; p < np; p++) {
-                    double c = trace_path(&md, i, start, view, sun, ns, o.max_order, &rng);
+                    double c = trace_path(&md, i, start, view, sun, ns, o.max_order,
+                                          dmax > 0.0 ? fmax(dmax - t0, 0.0) : INFINITY, &rng);
                     sum += c;
                     sum2 += c * c;
                 }
@@ -667,6 +681,14 @@ int sky_ref_radiance(const sky_atmosphere_params *atm, double altitude_km, const
     if (o.only_nm == 0.0) {
         sky_spectrum_to_xyz(out->spectral, out->xyz);
         sky_spectrum_xyz_to_linear_srgb(out->xyz, out->rgb);
+        /* the transmittance of sunlight per channel */
+        double et[SKY_REF_WAVELENGTHS], xyz_et[3], xyz_e[3], rgb_e[3];
+        for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) et[i] = md.esun[i] * out->transmittance[i];
+        sky_spectrum_to_xyz(et, xyz_et);
+        sky_spectrum_xyz_to_linear_srgb(xyz_et, out->transmittance_rgb);
+        sky_spectrum_to_xyz(md.esun, xyz_e);
+        sky_spectrum_xyz_to_linear_srgb(xyz_e, rgb_e);
+        for (int c = 0; c < 3; c++) out->transmittance_rgb[c] = rgb_e[c] > 0.0 ? out->transmittance_rgb[c] / rgb_e[c] : 0.0;
         double v = 0.0;
         for (int i = 0; i < SKY_REF_WAVELENGTHS; i++) {
             double c[3];

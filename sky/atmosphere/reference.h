@@ -36,6 +36,9 @@ typedef struct sky_ref_options {
     unsigned long long seed; /* 0 = a fixed default: results are reproducible  */
     double only_nm;     /* 0: all wavelengths; else this one wavelength alone,
                            reported in spectral[0] (xyz and rgb stay zero)     */
+    double max_distance_km; /* 0: the whole view ray; else only the light
+                           scattered into it within this distance of the eye
+                           (aerial perspective), and transmittance[] to there */
 } sky_ref_options;
 
 typedef struct sky_ref_result {
@@ -45,6 +48,10 @@ typedef struct sky_ref_result {
     double xyz[3];             /* Y = luminance in kcd/m^2                  */
     double rgb[3];             /* linear sRGB primaries, same scale as xyz  */
     double luminance_std_err;  /* kcd/m^2                                   */
+    double transmittance[SKY_REF_WAVELENGTHS]; /* eye to the ray's end (or to
+                                  max_distance_km), per spectral sample       */
+    double transmittance_rgb[3]; /* of sunlight, per sRGB channel: rgb(E T) /
+                                  rgb(E)                                       */
 } sky_ref_result;
 
 /* Transmittance from an observer at altitude_km along dir to space (0 if
