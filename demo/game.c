@@ -6,8 +6,10 @@
  * sky_get_lighting: the sun and moon as directional lights; the sky and the
  * ground it lights as ambient light (sky_get_irradiance_sh's 9 coefficients,
  * per normal); a glossy ball reflecting the sky (sky_capture_environment);
- * its horizon as fog (per pixel), and the
- * sky's exposure and tone map so world and sky share one brightness scale.
+ * the air between the eye and every pixel (sky_aerial_glsl and
+ * sky_aerial_bind: hills 2 to 20 km away fade into the horizon behind
+ * them), and the sky's exposure and tone map so world and sky share one
+ * brightness scale.
  * Without a display it renders the same frames headless through OSMesa.
  *
  *   sky-game [--time T] [--preset P] [--gl compat] [--frames N --screenshot FILE]   (--help)
@@ -103,15 +105,16 @@ static const char *const fs_compat =
 static const char *const vs =
     "ATTR vec3 pos;\nATTR vec3 nrm;\nuniform mat4 mvp;\nVARY vec3 n;\nVARY vec3 world;\n"
     "void main() { n = nrm; world = pos; gl_Position = mvp * vec4(pos, 1.0); }\n";
-/* Luminance = albedo / pi * illuminance (kcd/m^2 from klx). The fog is
- * found per pixel from the distance to the eye: per vertex, the ground's
- * four corners 2.8 km away would fog all of it. Then the sky's exposure
+/* Luminance = albedo / pi * illuminance (kcd/m^2 from klx), seen through
+ * the air to the eye (sky_aerial_apply, from the sky_aerial_glsl source
+ * compiled in front of this one; per pixel: per vertex, the ground's far
+ * corners would lend all of it their haze). Then the sky's exposure
  * and its default tone map (sky_tonemap in common.glsl, SKY_TONE_MAP_HUE,
  * without the night-vision shift, which sky_lighting does not report), so
  * a wall and the sky behind it are judged on one scale. */
 static const char *const fs =
     "VARY vec3 n;\nVARY vec3 world;\n"
-    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, fog;\nuniform vec3 sky_sh[9];\nuniform float exposure;\n"
+    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col;\nuniform vec3 sky_sh[9];\nuniform float exposure;\n"
     "uniform samplerCube sky_env;\nuniform vec3 ball;\n"
     "const vec3 grass = vec3(0.20, 0.30, 0.12), stone = vec3(0.45, 0.40, 0.35);\n"
     "vec3 tonemap(vec3 e) {\n"
@@ -136,7 +139,7 @@ static const char *const fs =
     "      + 0.785398 * (1.092548 * (sky_sh[4] * nn.x * nn.y + sky_sh[5] * nn.y * nn.z + sky_sh[7] * nn.x * nn.z)\n"
     "                    + 0.315392 * sky_sh[6] * (3.0 * nn.z * nn.z - 1.0) + 0.546274 * sky_sh[8] * (nn.x * nn.x - nn.y * nn.y));\n"
     "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0) + max(sky, vec3(0.0));\n"
-    "  vec3 L = mix(albedo / 3.14159 * E, fog, 1.0 - exp(-length(world - eye) / 400.0));\n"
+    "  vec3 L = sky_aerial_apply(albedo / 3.14159 * E, world - eye, length(world - eye));\n"
     "  vec3 c = tonemap(max(L * exposure, vec3(0.0)));\n"
     /* the glossy ball: the captured sky (sky_capture_environment, 8-bit
      * and tone-mapped as the screen is) reflected about its normal, by
@@ -158,18 +161,26 @@ static const float eye[3] = {0.0f, 1.7f, 0.0f};
 /* the glossy ball's centre */
 static const float ball[3] = {6.0f, 2.5f, 18.0f};
 
-/* A ground plane, five boxes and a ball: position and normal per vertex. */
+/* A ground plane 60 km across, five boxes near the eye, six hills 2 to
+ * 20 km away and a ball: position and normal per vertex. */
+enum { BOXES = 11 };
 static int build_world(float *v)
 {
     int n = 0;
 #define VERT(x, y, z, a, b, c) (v[n * 6 + 0] = x, v[n * 6 + 1] = y, v[n * 6 + 2] = z, v[n * 6 + 3] = a, \
                                 v[n * 6 + 4] = b, v[n * 6 + 5] = c, n++)
-    const float g = 2000.0f;
+    const float g = 30000.0f;
     VERT(-g, 0, -g, 0, 1, 0), VERT(g, 0, -g, 0, 1, 0), VERT(g, 0, g, 0, 1, 0);
     VERT(-g, 0, -g, 0, 1, 0), VERT(g, 0, g, 0, 1, 0), VERT(-g, 0, g, 0, 1, 0);
-    /* to the south (+z), where the default camera looks */
-    static const float boxes[5][4] = {{-12, 40, 4, 6}, {10, 30, 3, 10}, {0, 60, 8, 4}, {25, 55, 5, 14}, {-30, 25, 3, 3}};
-    for (int b = 0; b < 5; b++) {
+    /* to the south (+z), where the default camera looks: centre x, z,
+     * half width, height (m) */
+    static const float boxes[BOXES][4] = {
+        {-12, 40, 4, 6}, {10, 30, 3, 10}, {0, 60, 8, 4}, {25, 55, 5, 14}, {-30, 25, 3, 3},
+        /* hills 2, 4, 7, 11, 15 and 20 km away, where the boxes and the
+         * ball hide none of them */
+        {-1064, 2000, 120, 90}, {2906, 4000, 300, 260}, {-5086, 7000, 400, 420}, {9562, 11000, 700, 700},
+        {-1312, 15000, 1200, 2000}, {2811, 20000, 1800, 2500}};
+    for (int b = 0; b < BOXES; b++) {
         float cx = boxes[b][0], cz = boxes[b][1], r = boxes[b][2], h = boxes[b][3];
         /* four walls and a roof, two triangles each */
         static const float faces[5][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}, {0, 1, 0}};
@@ -213,11 +224,12 @@ typedef struct world {
     int frames;            /* drawn so far: which face of the sky to capture */
 } world;
 
-static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *body)
+/* prologue, then the library's snippet (or NULL), then body */
+static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *snippet, const char *body)
 {
-    const char *src[2] = {prologue, body};
+    const char *src[3] = {prologue, snippet ? snippet : "", body};
     GLuint s = gl->CreateShader(type);
-    gl->ShaderSource(s, 2, src, NULL);
+    gl->ShaderSource(s, 3, src, NULL);
     gl->CompileShader(s);
     GLint ok = 0;
     gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
@@ -235,10 +247,10 @@ static int world_create(world *w, sky_get_proc_address_fn loader, int core)
     memset(w, 0, sizeof *w);
     game_gl *gl = &w->gl;
     if (load_gl(gl, loader, core)) return -1;
-    static float verts[(6 + 5 * 6 * 5 + 16 * 32 * 6) * 6];
+    static float verts[(6 + BOXES * 6 * 5 + 16 * 32 * 6) * 6];
     w->count = build_world(verts);
-    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, vs);
-    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, fs);
+    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, NULL, vs);
+    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, sky_aerial_glsl(), fs);
     w->prog = gl->CreateProgram();
     gl->AttachShader(w->prog, v);
     gl->AttachShader(w->prog, f);
@@ -289,12 +301,12 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     /* 1. the sky: first, it writes no depth and restores what it touched */
     if (sky_draw(s, view, proj) != SKY_OK) fprintf(stderr, "sky-game: %s\n", sky_last_error(s));
     /* 2. the world, lit by the sky, seen from the eye; its own depth range,
-     * from 0.25 m to past the ground's far corners (2.8 km) */
+     * from 0.5 m to past the farthest hill (20 km) */
     sky_lighting l;
     sky_get_lighting(s, &l);
     sky_irradiance_sh sh;
     sky_get_irradiance_sh(s, &sh); /* cached while the sun and sliders stay */
-    const float zn = 0.25f, zf = 4000.0f;
+    const float zn = 0.5f, zf = 45000.0f;
     proj[10] = (zf + zn) / (zn - zf);
     proj[14] = 2.0f * zf * zn / (zn - zf);
     for (int r = 0; r < 3; r++) view[12 + r] -= eye[1] * view[4 + r]; /* -R * eye, eye = (0, y, 0) */
@@ -312,10 +324,12 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_col"), 1, l.moon_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sky_sh"), 9, &sh.radiance[0][0]);
-    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "fog"), 1, l.fog_color);
     gl->Uniform1f(gl->GetUniformLocation(w->prog, "exposure"), l.exposure);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "ball"), 1, ball);
     gl->Uniform1i(gl->GetUniformLocation(w->prog, "sky_env"), 0);
+    /* the air's table on unit 1 and its uniforms (the cube map is on 0) */
+    if (sky_aerial_bind(s, w->prog, 1) != SKY_OK && w->frames == 1)
+        fprintf(stderr, "sky-game: no aerial perspective: %s\n", sky_last_error(s));
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(s));
     if (w->vao) gl->BindVertexArray(w->vao);
@@ -327,6 +341,9 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     gl->DrawArrays(GL_TRIANGLES, 0, w->count);
     /* left as found, so the next frame's sky_draw meets no stray arrays */
     gl->BindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, 0);
+    gl->ActiveTexture(GL_TEXTURE0);
     gl->DisableVertexAttribArray(0);
     gl->DisableVertexAttribArray(1);
     gl->BindBuffer(GL_ARRAY_BUFFER, 0);

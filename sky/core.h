@@ -79,6 +79,7 @@ typedef enum sky_texture_id {
     SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
     SKY_TEX_MS_MOMENTS,    /* its light's dipole and quadrupole, 4 layers (CORE33) */
     SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
+    SKY_TEX_AERIAL,        /* sky_aerial_bind's table (aerial.c), RGBA8          */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT

@@ -90,10 +90,10 @@ void sky_irradiance_project(const sky_core *s, double sh[SKY_SH_COUNT][3])
     }
 }
 
-const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *cache))[3]
+void sky_irradiance_key(const sky_core *s, double key[SKY_IRRADIANCE_KEY])
 {
     const sky_frame *f = &s->frame;
-    double key[SKY_IRRADIANCE_KEY] = {0}, mu = 0.0, alt = 0.0;
+    double mu = 0.0, alt = 0.0;
     int n = 0;
     for (int i = 0; i < 3; i++) {
         key[n++] = f->sun_dir[i];
@@ -112,7 +112,14 @@ const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *ca
     key[n++] = f->day_luminance;
     key[n++] = f->blend_weight;
     key[n++] = f->rl_geometry[0]; /* the observer's radius (physical paths) */
-    _Static_assert(5 * 3 + 4 + 9 + 6 == SKY_IRRADIANCE_KEY, "the key's length");
+    key[n++] = s->observer.altitude_m;
+    _Static_assert(5 * 3 + 4 + 9 + 7 == SKY_IRRADIANCE_KEY, "the key's length");
+}
+
+const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *cache))[3]
+{
+    double key[SKY_IRRADIANCE_KEY];
+    sky_irradiance_key(s, key);
     if (!cache->valid || memcmp(key, cache->key, sizeof key) != 0) {
         sky_irradiance_project(s, cache->sh);
         memcpy(cache->key, key, sizeof key);

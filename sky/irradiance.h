@@ -20,7 +20,10 @@ void sky_irradiance_project(const sky_core *s, double sh[SKY_SH_COUNT][3]);
  * frame's sun, night floor, eclipse, ground and horizon, the gradient's
  * and the blend's scales, the observer, the world frame and Hillaire's
  * table in use. */
-enum { SKY_IRRADIANCE_KEY = 34 };
+enum { SKY_IRRADIANCE_KEY = 35 };
+/* What the sky's light around the observer depends on, as numbers that
+ * change when it does (also the aerial perspective table's key). */
+void sky_irradiance_key(const sky_core *s, double key[SKY_IRRADIANCE_KEY]);
 typedef struct sky_irradiance_cache {
     int valid;
     double key[SKY_IRRADIANCE_KEY];

@@ -6,6 +6,7 @@
  * the layer table back to front to draw.
  */
 #include "sky_internal.h"
+#include "aerial.h"
 #include "irradiance.h"
 
 #include <math.h>
@@ -296,6 +297,7 @@ void sky_destroy(sky *s)
         for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(c, (sky_texture_id)i);
     if (s->vao) sky_gl_vertex_array_destroy(c, s->vao);
     sky_gl_target_destroy(c, s->capture_fbo);
+    sky_aerial_free(&s->aerial);
     free(s);
 }
 
@@ -727,6 +729,114 @@ sky_result sky_get_irradiance_sh(sky *s, sky_irradiance_sh *out)
         out->moon_direction[i] = l.moon_direction[i];
         out->moon_color[i] = l.moon_color[i];
     }
+    return SKY_OK;
+}
+
+/* A world direction (any length) into the horizon frame: the transpose
+ * of horizon_to_world (orthonormal). 0, or -1 for a non-finite or zero
+ * vector. */
+static int world_to_horizon(const sky_core *c, const float w[3], double h[3])
+{
+    double len = 0.0;
+    for (int i = 0; i < 3; i++) {
+        if (!isfinite(w[i])) return -1;
+        len += (double)w[i] * w[i];
+    }
+    len = sqrt(len);
+    if (!(len > 0.0) || !isfinite(len)) return -1;
+    const float *m = c->horizon_to_world; /* column j: horizon axis j in the world */
+    for (int j = 0; j < 3; j++) h[j] = (m[3 * j] * w[0] + m[3 * j + 1] * w[1] + m[3 * j + 2] * w[2]) / len;
+    return 0;
+}
+
+sky_result sky_get_aerial_perspective(sky *s, const float direction[3], float distance_m, sky_aerial *out)
+{
+    if (out) {
+        for (int i = 0; i < 3; i++) out->transmittance[i] = 1.0f, out->inscatter[i] = 0.0f;
+    }
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!direction || !out) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_aerial_perspective: NULL argument");
+    double d[3];
+    if (world_to_horizon(&s->core, direction, d))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_aerial_perspective: the direction (%g, %g, %g) is not "
+                        "a finite non-zero vector", (double)direction[0], (double)direction[1], (double)direction[2]);
+    if (!(distance_m >= 0.0f))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_aerial_perspective: distance %g m is not 0 or more",
+                        (double)distance_m);
+    double in[3], tr[3];
+    if (sky_aerial_eval(&s->core, &s->aerial, d, (double)distance_m / 1000.0, in, tr))
+        return sky_fail(s, SKY_ERR_OUT_OF_MEMORY, "sky_get_aerial_perspective: out of memory for the atmosphere's "
+                        "tables");
+    for (int i = 0; i < 3; i++) {
+        out->transmittance[i] = (float)tr[i];
+        out->inscatter[i] = (float)in[i];
+    }
+    return SKY_OK;
+}
+
+const char *sky_aerial_glsl(void)
+{
+    const sky_blob *b = sky_find_blob("aerial.glsl");
+    return b ? (const char *)b->data : "";
+}
+
+sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_core *c = &s->core;
+    const sky_gl *gl = &c->gl;
+    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_aerial_bind: program 0");
+    if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_aerial_bind: no GL context is current");
+    GLint units = 0;
+    gl->glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+    if (texture_unit < 0 || (units > 0 && texture_unit >= units))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_aerial_bind: texture unit %d is not 0..%d", texture_unit,
+                        (int)units - 1);
+    int rebuilt = sky_aerial_table(c, &s->aerial);
+    if (rebuilt < 0) return sky_fail(s, SKY_ERR_OUT_OF_MEMORY, "sky_aerial_bind: out of memory for the table");
+    GLint host_program = 0, host_unit = 0;
+    gl->glGetIntegerv(GL_CURRENT_PROGRAM, &host_program);
+    gl->glGetIntegerv(GL_ACTIVE_TEXTURE, &host_unit);
+    if (!c->textures[SKY_TEX_AERIAL].id || !s->aerial.uploaded) {
+        /* the upload binds on unit 0 and sets the unpack state: the host's
+         * come back */
+        sky_gl_state host;
+        sky_gl_state_save(c, &host);
+        char why[160];
+        if (!c->textures[SKY_TEX_AERIAL].id) {
+            if (sky_texture_create(c, SKY_TEX_AERIAL, SKY_LAYER_ATMOSPHERE, s->aerial.texels, 4, SKY_AP_TABLE_W,
+                                   SKY_AP_TABLE_H, 0, why, sizeof why)) {
+                sky_gl_state_restore(c, &host);
+                return sky_fail(s, SKY_ERR_GL, "sky_aerial_bind: %s", why);
+            }
+        } else {
+            sky_texture_update_lut(c, SKY_TEX_AERIAL, SKY_AP_TABLE_W, SKY_AP_TABLE_H, s->aerial.texels, NULL);
+        }
+        sky_gl_state_restore(c, &host);
+        s->aerial.uploaded = 1;
+    }
+    /* the uniforms, in the host's program; its own program and active
+     * unit come back, the table stays bound on texture_unit */
+    float up_h[3] = {0.0f, 1.0f, 0.0f}, sun_h[3], up[3], sun[3];
+    const float *sd = c->frame.sun_dir;
+    double across = hypot(sd[0], sd[2]);
+    sun_h[0] = across > 1e-9 ? (float)(sd[0] / across) : 1.0f;
+    sun_h[1] = 0.0f;
+    sun_h[2] = across > 1e-9 ? (float)(sd[2] / across) : 0.0f;
+    sky_camera_to_world(c, up_h, up);
+    sky_camera_to_world(c, sun_h, sun);
+    gl->glUseProgram(program);
+    gl->glActiveTexture(GL_TEXTURE0 + (GLenum)texture_unit);
+    gl->glBindTexture(GL_TEXTURE_2D, c->textures[SKY_TEX_AERIAL].id);
+    gl->glUniform1i(gl->glGetUniformLocation(program, "sky_aerial_table"), texture_unit);
+    gl->glUniform3f(gl->glGetUniformLocation(program, "sky_aerial_up"), up[0], up[1], up[2]);
+    gl->glUniform3f(gl->glGetUniformLocation(program, "sky_aerial_sun"), sun[0], sun[1], sun[2]);
+    double r0, rt;
+    sky_aerial_shell(c, &s->aerial, &r0, &rt);
+    gl->glUniform4f(gl->glGetUniformLocation(program, "sky_aerial_params"), (float)s->aerial.scale,
+                    (float)SKY_AP_TABLE_M, (float)(r0 * 1000.0), (float)(rt * 1000.0));
+    gl->glActiveTexture((GLenum)host_unit);
+    gl->glUseProgram((GLuint)host_program);
     return SKY_OK;
 }
 

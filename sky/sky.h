@@ -649,6 +649,59 @@ SKY_API sky_result sky_get_irradiance_sh(sky *s, sky_irradiance_sh *out);
  * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero normal. */
 SKY_API sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const float normal[3], float irradiance[3]);
 
+/* Aerial perspective: what the air between the observer and a point of
+ * the scene does to the point's light (Hillaire 2020 sec. 5.4). A host
+ * that sees a surface of radiance L (kcd/m^2, as it lights it with the
+ * values above) at distance d in direction v draws
+ *     L * transmittance + inscatter
+ * instead, then applies the sky's exposure: far hills take the colour of
+ * the sky behind them, near ones are untouched.
+ *   direction   world frame (horizon_to_world applied), any length
+ *   distance_m  metres from the observer, 0 or more (INFINITY: the end of
+ *               the view ray, where the air's light is the sky drawn
+ *               there, the horizon's colour for a level view)
+ *   out         transmittance (0..1 per channel) and inscatter (kcd/m^2,
+ *               linear RGB); 0 m: 1 and 0
+ * One atmosphere for every path: Hillaire's ray march stopped at the point
+ * on the description the sky is drawn with (sky_config.atmosphere_params
+ * and turbidity), its light scaled so that at the ray's end it is the sky
+ * the path draws (so it meets the gradient's or Preetham's horizon too;
+ * the night floor is spread along the ray by optical depth). The light
+ * of the ground itself is not in it: the host's ground is the point.
+ * The Hillaire and blend paths use their own tables; the others build a
+ * transmittance and multiple-scattering table at the first call (about
+ * 60 ms on the CPU, once). A call marches three rays (a few us).
+ * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero direction, a
+ * negative or NaN distance; SKY_ERR_OUT_OF_MEMORY. */
+typedef struct sky_aerial {
+    float transmittance[3];
+    float inscatter[3];
+} sky_aerial;
+SKY_API sky_result sky_get_aerial_perspective(sky *s, const float direction[3], float distance_m, sky_aerial *out);
+/* The same for the host's own shaders: GLSL source to include after its
+ * #version line (GLSL 1.10 to 3.30 and ES 1.00; a NUL-terminated static
+ * string) that defines
+ *     vec3 sky_aerial_apply(vec3 radiance, vec3 direction, float distance_m);
+ *     void sky_aerial(vec3 direction, float distance_m,
+ *                     out vec3 transmittance, out vec3 inscatter);
+ * with the arguments and units of sky_get_aerial_perspective, from a
+ * 256 x 64 RGBA8 table (directions about the sun by 16 slices of distance
+ * to 50 km and the ray's end; aerial.glsl describes it). It declares the
+ * uniforms sky_aerial_table (sampler2D), sky_aerial_up, sky_aerial_sun
+ * and sky_aerial_params. */
+SKY_API const char *sky_aerial_glsl(void);
+/* Makes the table current for the frame (remade on the CPU when the sun,
+ * sliders, observer or world frame moved: 1.3-2.7 ms; sky-bench gives
+ * the cost), binds it to texture_unit and sets the uniforms of program
+ * (a linked program that includes sky_aerial_glsl; uniforms it optimised
+ * away are skipped). Call it after sky_update, before drawing with the
+ * program. The host's current program and active texture unit come back;
+ * the table stays bound to GL_TEXTURE_2D of texture_unit, which is the
+ * point: the host keeps that unit for it while it draws.
+ * SKY_ERR_INVALID_ARGUMENT for program 0 or a unit outside the context's;
+ * SKY_ERR_GL without a current context. */
+SKY_API sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit);
+
 #ifdef __cplusplus
 }
 #endif

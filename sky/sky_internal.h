@@ -10,6 +10,7 @@
 #include "camera.h"
 #include "catalog.h"
 #include "core.h"
+#include "aerial.h"
 #include "irradiance.h"
 #include "disc.h"
 #include "exposure.h"
@@ -26,6 +27,8 @@ struct sky {
     sky_stats stats;
     sky_irradiance_cache irradiance;      /* sky_get_irradiance_sh's          */
     GLuint capture_fbo;                   /* sky_capture_environment's        */
+    sky_aerial_state aerial;              /* sky_get_aerial_perspective's and
+                                             sky_aerial_bind's                */
 };
 
 #endif /* SKY_INTERNAL_H */

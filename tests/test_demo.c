@@ -7,6 +7,7 @@
  * (DISPLAY unset), which render through OSMesa.
  */
 #include "test.h"
+#include "cli.h"
 
 #include <limits.h>
 #include <math.h>
@@ -387,31 +388,57 @@ static double colour_distance(const double a[3], const double b[3])
     return fabs(a[0] - b[0]) + fabs(a[1] - b[1]) + fabs(a[2] - b[2]);
 }
 
-/* The fog is found per pixel: the ground at the eye's feet is green and
- * sunlit, the ground hundreds of metres away near the horizon has faded
- * toward the horizon sky. (Found per vertex, every corner of the 4 km
- * ground was 2.8 km away, and all of it was fog.) */
+/* Aerial perspective: the hills 2 to 20 km away (stone like the boxes
+ * by the eye, their sunlit faces turned to it) fade into the sky behind
+ * them the farther they are (sky_aerial_apply in the game's shader),
+ * while a box 40 m away keeps its colour. Each hill is sampled where the
+ * game's camera projects a point on its face, the sky just above its
+ * top. */
 void test_game_fog_grows_with_distance(void)
 {
     image im;
     if (game_headless("--time 0.45", &im)) return;
-    /* 320x180, pitch 20, fov 60: the horizon is at row 146.7; the bottom
-     * rows are 11 m away, row 147 390 m (63 % fog); columns clear of the boxes */
-    double near[3], far_l[3], far_r[3], far[3], sky_l[3], sky_r[3], horizon[3];
-    region_mean(&im, 0, 172, 320, 180, near);
-    region_mean(&im, 0, 147, 55, 148, far_l);
-    region_mean(&im, 245, 147, 310, 148, far_r);
-    region_mean(&im, 0, 140, 55, 144, sky_l);
-    region_mean(&im, 245, 140, 310, 144, sky_r);
-    for (int c = 0; c < 3; c++) far[c] = 0.5 * (far_l[c] + far_r[c]), horizon[c] = 0.5 * (sky_l[c] + sky_r[c]);
-    NOTE("near ground %.3f %.3f %.3f, far ground %.3f %.3f %.3f, sky above the horizon %.3f %.3f %.3f", near[0],
-         near[1], near[2], far[0], far[1], far[2], horizon[0], horizon[1], horizon[2]);
-    CHECK(near[1] > near[2] + 0.1, "the near ground is green grass (g %.3f, b %.3f)", near[1], near[2]);
-    CHECK(colour_distance(near, far) > 0.1, "the near ground differs from the far ground (%.3f)",
-          colour_distance(near, far));
-    CHECK(colour_distance(far, horizon) < 0.75 * colour_distance(near, horizon),
-          "the far ground has faded toward the horizon sky (%.3f from it, the near ground %.3f)",
-          colour_distance(far, horizon), colour_distance(near, horizon));
+    /* demo/game.c's: the eye 1.7 m up, looking south (+z) 20 degrees up;
+     * a point on the face of the box 40 m away, of each hill, and the
+     * sky 1 degree above each */
+    static const double points[7][3] = {{-12, 3, 36},        {-1064, 40, 1880},    {2906, 120, 3700},
+                                        {-5086, 200, 6600},  {9562, 300, 10300},   {-1312, 1390, 13800},
+                                        {2811, 1926, 18200}};
+    static const double tops[7] = {6, 90, 260, 420, 700, 2000, 2500};
+    float view[16], proj[16];
+    sky_cli_camera_at(180.0, 20.0, 60.0, im.w, im.h, view, proj);
+    double colour[7][3], above[7][3], fade[7];
+    for (int k = 0; k < 7; k++)
+        for (int which = 0; which < 2; which++) {
+            double p[3] = {points[k][0], which ? 0.0 : points[k][1] - 1.7, points[k][2]};
+            if (which) { /* 1 degree above the top, at the same bearing */
+                double dist = hypot(p[0], p[2]);
+                p[1] = tops[k] - 1.7 + dist * tan(1.0 * M_PI / 180.0);
+            }
+            double clip[4];
+            /* eye space, then clip space */
+            double e[4];
+            for (int r = 0; r < 4; r++) e[r] = view[12 + r] + view[r] * p[0] + view[4 + r] * p[1] + view[8 + r] * p[2];
+            for (int r = 0; r < 4; r++)
+                clip[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2] + proj[12 + r] * e[3];
+            int x = (int)((clip[0] / clip[3] * 0.5 + 0.5) * im.w), y = (int)((0.5 - clip[1] / clip[3] * 0.5) * im.h);
+            if (x < 1 || x >= im.w - 1 || y < 1 || y >= im.h - 1) {
+                CHECK(0, "point %d projects outside the frame (%d, %d)", k, x, y);
+                image_free(&im);
+                return;
+            }
+            region_mean(&im, x - 1, y - 1, x + 2, y + 2, which ? above[k] : colour[k]);
+        }
+    for (int k = 0; k < 7; k++) {
+        fade[k] = colour_distance(colour[k], above[k]);
+        NOTE("%s %5.0f m: %.3f %.3f %.3f, the sky above it %.3f %.3f %.3f: %.3f apart", k ? "hill" : "box ",
+             hypot(points[k][0], points[k][2]), colour[k][0], colour[k][1], colour[k][2], above[k][0], above[k][1],
+             above[k][2], fade[k]);
+        if (k) CHECK(fade[k] < fade[k - 1], "the hill %d is no nearer the sky's colour than the one before (%.3f, %.3f)",
+                     k, fade[k], fade[k - 1]);
+    }
+    CHECK(fade[6] < 0.5 * fade[0], "the farthest hill has faded at least half way into the sky (%.3f from it, the "
+          "near box %.3f)", fade[6], fade[0]);
     image_free(&im);
 }
 

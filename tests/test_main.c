@@ -187,7 +187,11 @@ int test_skipped;
     X(lighting_sh_in_the_world_frame)            \
     X(lighting_capture_faces_are_sky_draw)       \
     X(lighting_capture_checks_and_restores)      \
-    X(lighting_capture_hdr)
+    X(lighting_capture_hdr)                      \
+    X(aerial_meets_the_sky)                      \
+    X(aerial_against_reference)                  \
+    X(aerial_checks_its_input)                   \
+    X(aerial_glsl_matches_cpu)
 #endif
 
 #define DECLARE(name) void test_##name(void);

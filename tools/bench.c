@@ -1378,9 +1378,14 @@ static int plot_photometry(const char *path)
  * its irradiance is from a brute-force integral of the same sky rendered
  * in HDR into a cube (upward, horizontal and downward normals; sun 30, 2
  * and -20 deg), with all its coefficients and with the 9 of degree <= 2
- * alone (what a shader reading only those gets). */
+ * alone (what a shader reading only those gets).
+ * And aerial perspective: a sky_get_aerial_perspective call (a level view
+ * 5 km long), its first call on the path (the tables the paths without
+ * Hillaire's build then), and the shader's table remade by
+ * sky_aerial_bind after the sun moved (CPU build and upload; medians). */
 typedef struct lighting_row {
     double project_us, cached_us, worst, worst9;
+    double aerial_first_ms, aerial_call_us, aerial_table_ms;
 } lighting_row;
 
 static int lighting_rows(lighting_row out[PHOT_PATHS])
@@ -1413,9 +1418,20 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
         }
         /* the cost, the sun at 30 deg moving by 1/7200 of a day a call */
         sky *s = sky_atmo_hemisphere_sky(h);
+        static const float level[3] = {0.6f, 0.0f, -0.8f};
+        sky_aerial air;
+        double t0 = sky_cli_now_ms();
+        sky_get_aerial_perspective(s, level, 5000.0f, &air);
+        r->aerial_first_ms = sky_cli_now_ms() - t0;
+        /* a host program that reads the table */
+        const char *vs[1] = {"#version 330 core\nin vec4 p;\nvoid main() { gl_Position = p; }\n"};
+        const char *fs[3] = {"#version 330 core\nout vec4 c;\n", sky_aerial_glsl(),
+                             "void main() { c = vec4(sky_aerial_apply(vec3(1.0), vec3(1.0, 0.1, 0.0), 1e4), 1.0); }\n"};
+        const char *attribs[1] = {"p"};
+        GLuint host = program(vs, 1, fs, 3, attribs, 1);
         sky_params prm;
         sky_get_params(s, &prm);
-        double project[CALLS], cached[CALLS];
+        double project[CALLS], cached[CALLS], call[CALLS], table[CALLS];
         sky_irradiance_sh sh;
         for (int i = 0; i < CALLS; i++) {
             prm.time += 1.0f / 7200.0f;
@@ -1425,11 +1441,21 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
             double t2 = sky_cli_now_ms();
             sky_get_irradiance_sh(s, &sh);
             double t3 = sky_cli_now_ms();
+            sky_get_aerial_perspective(s, level, 5000.0f, &air);
+            double t4 = sky_cli_now_ms();
+            if (host) sky_aerial_bind(s, host, 1);
+            glFinish();
+            double t5 = sky_cli_now_ms();
             project[i] = (t2 - t1) * 1000.0;
             cached[i] = (t3 - t2) * 1000.0;
+            call[i] = (t4 - t3) * 1000.0;
+            table[i] = t5 - t4;
         }
+        if (host) glDeleteProgram(host);
         r->project_us = sky_cli_median(project, CALLS);
         r->cached_us = sky_cli_median(cached, CALLS);
+        r->aerial_call_us = sky_cli_median(call, CALLS);
+        r->aerial_table_ms = host ? sky_cli_median(table, CALLS) : -1.0;
         sky_atmo_hemisphere_destroy(h);
     }
     return 0;
@@ -1509,6 +1535,12 @@ static void print_lighting_table(const lighting_row r[PHOT_PATHS])
     for (int p = 0; p < PHOT_PATHS; p++)
         printf("| %s | %.1f | %.3f | %.1f %% | %.1f %% |\n", phot_names[p], r[p].project_us, r[p].cached_us,
                100.0 * r[p].worst, 100.0 * r[p].worst9);
+    printf("\nAerial perspective (core profile; the sun moving as above):\n\n"
+           "| path | first call ms (tables made) | sky_get_aerial_perspective us | shader table remade ms |\n"
+           "|---|---|---|---|\n");
+    for (int p = 0; p < PHOT_PATHS; p++)
+        printf("| %s | %.1f | %.1f | %.2f |\n", phot_names[p], r[p].aerial_first_ms, r[p].aerial_call_us,
+               r[p].aerial_table_ms);
 }
 
 static void print_capture(const capture_cost *c, int w, int h)
@@ -1527,9 +1559,10 @@ static void print_lighting_json(const lighting_row r[PHOT_PATHS], const capture_
     printf(" \"lighting\": [\n");
     for (int p = 0; p < PHOT_PATHS; p++)
         printf("  {\"path\":\"%s\", \"sh_project_us\":%.2f, \"sh_cached_us\":%.3f, \"sh_worst_error\":%.4f, "
-               "\"sh9_worst_error\":%.4f}%s\n",
-               phot_names[p], r[p].project_us, r[p].cached_us, r[p].worst, r[p].worst9,
-               p + 1 < PHOT_PATHS ? "," : "");
+               "\"sh9_worst_error\":%.4f, \"aerial_first_ms\":%.2f, \"aerial_call_us\":%.2f, "
+               "\"aerial_table_ms\":%.3f}%s\n",
+               phot_names[p], r[p].project_us, r[p].cached_us, r[p].worst, r[p].worst9, r[p].aerial_first_ms,
+               r[p].aerial_call_us, r[p].aerial_table_ms, p + 1 < PHOT_PATHS ? "," : "");
     printf(" ]");
 }
 

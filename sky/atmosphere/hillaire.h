@@ -131,10 +131,25 @@ void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const do
                       double rgb[3]);
 /* Aerial perspective: the same march stopped max_km from the observer
  * (short of the ground or the top it would meet): the light scattered
- * into the view on the way (per unit solar illuminance, 1/sr) and the
- * view's transmittance there (NULL: not wanted). max_km 0: nothing
- * scattered, transmittance 1. */
+ * into the view on the way (per unit solar illuminance, 1/sr; a finite
+ * max_km leaves the ground's own light out: the host's object is there)
+ * and the view's transmittance there (NULL: not wanted). max_km 0:
+ * nothing scattered, transmittance 1; INFINITY: sky_hillaire_ray. */
 void sky_hillaire_segment(const sky_hillaire_tables *t, double altitude_km, const double view[3],
                           const double sun_dir[3], double max_km, double rgb[3], double transmittance[3]);
+/* The march's running sums: the light scattered into the view between
+ * the observer and each sample's far end, and the view's transmittance
+ * there, from the observer (0 km: nothing, 1) to the ray's end at the
+ * ground or the top (the ground's own light left out). Distances rise;
+ * between two points the light grows about linearly and the
+ * transmittance about exponentially with distance. Up to max_points
+ * (SKY_HL_PROFILE_MAX holds any ray); returns how many, at least 1. */
+#define SKY_HL_MAX_STEPS 256
+#define SKY_HL_PROFILE_MAX (SKY_HL_MAX_STEPS + 2)
+typedef struct sky_hillaire_point {
+    double km, inscatter[3], transmittance[3];
+} sky_hillaire_point;
+int sky_hillaire_profile(const sky_hillaire_tables *t, double altitude_km, const double view[3],
+                         const double sun_dir[3], sky_hillaire_point *points, int max_points);
 
 #endif

@@ -840,13 +840,39 @@ static void ms_texel(const sky_hillaire_tables *t, int y0, int y1, double fy, in
  * 4-8 % too bright and a low sun's horizon too dark. Against the
  * spectral reference (sky-bench, the default Earth): daytime error 6.7 %
  * -> 2.9 %, mean CIEDE2000 2.0 -> 1.4. */
-static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double r0, double th, int ground,
-                        const double sun[3], int w, float *row, double max_len, double view_tr[3])
+/* What a single ray asks of skyview_row beyond the table's row (NULL for
+ * a table): where the view ends, whether the ground's own light is
+ * wanted, the transmittance to the end, the running sums. */
+typedef struct hl_view {
+    double max_len;             /* km from the observer; INFINITY: the ray's end */
+    int no_ground;              /* 1: the light scattered on the way alone        */
+    double tr[3];               /* out: the view's transmittance at its end       */
+    sky_hillaire_point *points; /* out, if not NULL: the running sums (w == 1)    */
+    int max_points, count;
+} hl_view;
+
+/* A running sum at km from the observer, if the view keeps them. */
+static void record_point(hl_view *v, double km, const double inscatter[3], const double tr[3])
 {
-    enum { MAX_STEPS = 256 };
-    double ct = cos(th), st = sin(th);
+    if (!v || !v->points || v->count >= v->max_points) return;
+    sky_hillaire_point *p = &v->points[v->count++];
+    p->km = km;
+    for (int c = 0; c < 3; c++) p->inscatter[c] = inscatter[c], p->transmittance[c] = tr[c];
+}
+
+static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double r0, double th, int ground,
+                        const double sun[3], int w, float *row, hl_view *view)
+{
+    enum { MAX_STEPS = SKY_HL_MAX_STEPS };
+    double ct = cos(th), st = sin(th), max_len = view ? view->max_len : INFINITY;
     for (int i = 0; i < w * 3; i++) row[i] = 0.0f;
-    if (view_tr) view_tr[0] = view_tr[1] = view_tr[2] = 1.0;
+    if (view) {
+        view->tr[0] = view->tr[1] = view->tr[2] = 1.0;
+        view->count = 0;
+        if (view->no_ground) ground = 0;
+    }
+    static const double zero[3] = {0.0, 0.0, 0.0}, one[3] = {1.0, 1.0, 1.0};
+    record_point(view, 0.0, zero, one);
     double r = r0, mu = ct, start = 0.0;
     if (r > m->Rt) {
         double disc = r * r * (mu * mu - 1.0) + m->Rt * m->Rt;
@@ -854,6 +880,7 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
         start = (r * r - m->Rt * m->Rt) / (-r * mu + sqrt(disc));
         r = m->Rt;
         mu = clamp((r0 * ct + start) / m->Rt, -1.0, 1.0);
+        record_point(view, fmin(start, max_len), zero, one);
     }
     double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
     /* aerial perspective: the view ends max_len from the observer, short
@@ -867,7 +894,7 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
     /* per sample: radius, distance from the observer, the table rows of
      * the two lookups, and the Rayleigh and Mie weights per channel */
     double rs[MAX_STEPS], ds[MAX_STEPS], rho[MAX_STEPS], vt[MAX_STEPS], vm[MAX_STEPS];
-    double wr[MAX_STEPS][3], wm[MAX_STEPS][3], tr[3] = {1.0, 1.0, 1.0};
+    double wr[MAX_STEPS][3], wm[MAX_STEPS][3], tr[3] = {1.0, 1.0, 1.0}, trs[MAX_STEPS][3], ends[MAX_STEPS];
     int tr_h = t->settings.transmittance_height, ms_n = t->settings.multiscatter_size;
     if (n > 0) {
         hl_layout ly;
@@ -889,7 +916,9 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
                 wr[s][c] = m->br[c] * col.r * f;
                 wm[s][c] = m->bms[c] * col.m * f;
                 tr[c] *= e;
+                trs[s][c] = tr[c];
             }
+            ends[s] = start + tb;
             ta = tb;
             ra = rb;
             da = db;
@@ -952,9 +981,10 @@ static void skyview_row(const sky_hillaire_tables *t, const hl_medium *m, double
                                   wm[s][c] * (ph_m[i] * ts[c] + fmax(psi[c] + t->chi[0] * l1 + t->chi[1] * l2, 0.0));
             }
         }
+        if (w == 1) record_point(view, ends[s], out, trs[s]);
     }
-    if (view_tr)
-        for (int c = 0; c < 3; c++) view_tr[c] = tr[c];
+    if (view)
+        for (int c = 0; c < 3; c++) view->tr[c] = tr[c];
     double rg = ground ? radius_along(r, mu, L) : 0.0;
     for (int i = 0; i < w; i++) {
         if (ground && rg > 0.0) {
@@ -1011,7 +1041,7 @@ void sky_hillaire_build_skyview_rows(const sky_hillaire_tables *t, double altitu
             double q = 2.0 * y - 1.0;
             th = th_h + beta * q * q;
         }
-        skyview_row(t, &m, r0, th, below, sun, w, table + (size_t)j * w * 3, INFINITY, NULL);
+        skyview_row(t, &m, r0, th, below, sun, w, table + (size_t)j * w * 3, NULL);
     }
 }
 
@@ -1031,13 +1061,15 @@ void sky_hillaire_install_skyview(sky_hillaire_tables *t, float **table, double 
     skyview_record(t, altitude_km, sun_mu);
 }
 
-void sky_hillaire_segment(const sky_hillaire_tables *t, double altitude_km, const double view[3],
-                          const double sun_dir[3], double max_km, double rgb[3], double transmittance[3])
+/* One view ray of skyview_row for a caller's view and sun (any length,
+ * any azimuth); rgb: what it gathered. */
+static void march_view(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
+                       hl_view *v, double rgb[3])
 {
-    if (!rgb) return;
     rgb[0] = rgb[1] = rgb[2] = 0.0;
-    if (transmittance) transmittance[0] = transmittance[1] = transmittance[2] = 1.0;
-    if (!(max_km >= 0.0)) return;
+    v->tr[0] = v->tr[1] = v->tr[2] = 1.0;
+    v->count = 0;
+    if (!(v->max_len >= 0.0)) return;
     if (!t || !t->transmittance || !t->multiscatter || !t->ms_moments || !t->scratch || !view || !sun_dir) return;
     for (int k = 0; k < 3; k++)
         if (!isfinite(view[k]) || !isfinite(sun_dir[k])) return;
@@ -1058,8 +1090,32 @@ void sky_hillaire_segment(const sky_hillaire_tables *t, double altitude_km, cons
     }
     double sun[3] = {hs / sl * caz, sun_dir[1] / sl, hs / sl * saz};
     float out[3];
-    skyview_row(t, &m, r0, th, th > horizon_zenith(&m, r0), sun, 1, out, max_km, transmittance);
+    skyview_row(t, &m, r0, th, th > horizon_zenith(&m, r0), sun, 1, out, v);
     for (int c = 0; c < 3; c++) rgb[c] = out[c];
+}
+
+void sky_hillaire_segment(const sky_hillaire_tables *t, double altitude_km, const double view[3],
+                          const double sun_dir[3], double max_km, double rgb[3], double transmittance[3])
+{
+    if (!rgb) return;
+    hl_view v = {.max_len = max_km, .no_ground = isfinite(max_km)};
+    march_view(t, altitude_km, view, sun_dir, &v, rgb);
+    if (transmittance)
+        for (int c = 0; c < 3; c++) transmittance[c] = v.tr[c];
+}
+
+int sky_hillaire_profile(const sky_hillaire_tables *t, double altitude_km, const double view[3],
+                         const double sun_dir[3], sky_hillaire_point *points, int max_points)
+{
+    if (!points || max_points < 1) return 0;
+    hl_view v = {.max_len = INFINITY, .no_ground = 1, .points = points, .max_points = max_points};
+    double rgb[3];
+    march_view(t, altitude_km, view, sun_dir, &v, rgb);
+    if (v.count == 0) { /* a rejected ray: nothing between, seen through */
+        points[0] = (sky_hillaire_point){0.0, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}};
+        v.count = 1;
+    }
+    return v.count;
 }
 
 void sky_hillaire_ray(const sky_hillaire_tables *t, double altitude_km, const double view[3], const double sun_dir[3],
