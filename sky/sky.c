@@ -554,17 +554,26 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
     if (flags & ~SKY_CAPTURE_SUN_DISC)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: unknown flags 0x%x", flags);
     if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: no GL context is current");
-    if (!c->caps.render_to_rgba8)
-        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: this %s context has no framebuffer "
-                        "objects (the back-buffer capture is not built yet)", c->gl_version);
     int hdr = c->cfg.output == SKY_OUTPUT_HDR;
-    if (hdr && c->profile != SKY_GL_CORE33)
-        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: HDR output is captured in CORE33 only");
+    if (hdr && c->profile != SKY_GL_CORE33 && !cube_texture)
+        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: HDR output in COMPAT20 is captured into "
+                        "the host's float cube map only (the library's textures there are 8-bit)");
     GLint limit = 0;
     gl->glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &limit);
     if (limit > 0 && face_size > limit)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: face_size %d is over this context's "
                         "limit %d", face_size, (int)limit);
+    /* without framebuffer objects each face is drawn into the host's
+     * draw buffer at its viewport's corner and copied from there */
+    int backbuffer = !c->caps.render_to_rgba8;
+    if (backbuffer) {
+        GLint vp[4] = {0, 0, 0, 0};
+        gl->glGetIntegerv(GL_VIEWPORT, vp);
+        if (face_size > vp[2] || face_size > vp[3])
+            return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_capture_environment: face_size %d does not fit the "
+                            "viewport (%d x %d) it is drawn through: this %s context has no framebuffer objects",
+                            face_size, (int)vp[2], (int)vp[3], c->gl_version);
+    }
     /* the texture: the host's, checked, or our own at this size */
     sky_gl_state host;
     sky_gl_state_save(c, &host);
@@ -590,7 +599,7 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
                             "with %d x %d faces (its +X level 0 is %d wide)", cube_texture, face_size, face_size,
                             (int)w);
     }
-    if (!s->capture_fbo) {
+    if (!backbuffer && !s->capture_fbo) {
         c->gl.glGenFramebuffers(1, &s->capture_fbo);
         if (!s->capture_fbo) {
             sky_gl_state_restore(c, &host);
@@ -598,13 +607,26 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
         }
     }
     GLint draw_fbo = 0, read_fbo = 0;
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &draw_fbo);
-    read_fbo = draw_fbo;
-    if (c->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
+    if (!backbuffer) {
+        gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &draw_fbo);
+        read_fbo = draw_fbo;
+        if (c->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
+    }
     sky_result rc = SKY_OK;
     c->capture_without_sun = !(flags & SKY_CAPTURE_SUN_DISC);
     c->capturing = 1;
     for (int f = face < 0 ? 0 : face; f <= (face < 0 ? 5 : face) && rc == SKY_OK; f++) {
+        float view[16], proj[16];
+        sky_capture_face_matrices(f, view, proj);
+        if (backbuffer) {
+            gl->glViewport(host.viewport[0], host.viewport[1], face_size, face_size);
+            if ((rc = draw_with(s, view, proj)) != SKY_OK) break;
+            gl->glActiveTexture(GL_TEXTURE0);
+            gl->glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
+            gl->glCopyTexSubImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, 0, 0, host.viewport[0],
+                                    host.viewport[1], face_size, face_size);
+            continue;
+        }
         gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
         gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f,
                                    tex, 0);
@@ -615,21 +637,33 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
             break;
         }
         gl->glViewport(0, 0, face_size, face_size);
-        float view[16], proj[16];
-        sky_capture_face_matrices(f, view, proj);
         rc = draw_with(s, view, proj);
     }
     c->capture_without_sun = c->capturing = 0;
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
-    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X, 0, 0);
-    if (c->caps.separate_framebuffers) {
-        gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)draw_fbo);
-        gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read_fbo);
+    for (int i = 0; i < 4; i++) s->capture_overwrote[i] = 0;
+    if (backbuffer) {
+        s->capture_overwrote[0] = host.viewport[0];
+        s->capture_overwrote[1] = host.viewport[1];
+        s->capture_overwrote[2] = s->capture_overwrote[3] = face_size;
     } else {
-        gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)draw_fbo);
+        gl->glBindFramebuffer(GL_FRAMEBUFFER, s->capture_fbo);
+        gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X, 0, 0);
+        if (c->caps.separate_framebuffers) {
+            gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)draw_fbo);
+            gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read_fbo);
+        } else {
+            gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)draw_fbo);
+        }
     }
     sky_gl_state_restore(c, &host);
     return rc;
+}
+
+int sky_capture_overwrote(const sky *s, int rect[4])
+{
+    if (rect)
+        for (int i = 0; i < 4; i++) rect[i] = s ? s->capture_overwrote[i] : 0;
+    return s && s->capture_overwrote[2] > 0;
 }
 
 unsigned sky_environment_texture(const sky *s)

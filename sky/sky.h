@@ -579,10 +579,22 @@ SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
  * a reduced image's steps would show at their edges.
  * It renders through a framebuffer object of its own; the host's
  * framebuffer bindings, viewport and every state sky_draw restores come
- * back. CORE33, and COMPAT20 where the context has framebuffer objects;
- * elsewhere, and for HDR output in COMPAT20, SKY_ERR_UNSUPPORTED (not yet:
- * the back-buffer copy). SKY_ERR_INVALID_ARGUMENT for a bad size, face or
- * flag, or a host texture that is not a cube map of that size. */
+ * back. A COMPAT20 context without framebuffer objects has no such
+ * object: there each face is drawn into the host's current draw buffer,
+ * face_size square at the lower-left corner of its viewport, and copied
+ * from the read buffer into the cube map (glCopyTexSubImage2D; the read
+ * buffer must be the draw buffer, as GL_BACK is for both by default).
+ * Call it there where those pixels are the host's to lose: before it
+ * draws its frame (sky_draw and the scene then cover them) or on a frame
+ * it clears; sky_capture_overwrote says which they were. face_size must
+ * fit the viewport. HDR output in COMPAT20 is captured into the host's
+ * float cube map only (the library's textures there are 8-bit, and the
+ * layers blend in linear light, which no 8-bit encoding can be blended
+ * in): through a framebuffer object where the context renders into
+ * float textures, else copied from a float draw buffer; into the
+ * library's own, SKY_ERR_UNSUPPORTED. SKY_ERR_INVALID_ARGUMENT for a
+ * bad size, face or flag, or a host texture that is not a cube map of
+ * that size. */
 #define SKY_CAPTURE_ALL_FACES (-1)
 #define SKY_CAPTURE_SUN_DISC 1u
 SKY_API sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size, int face, unsigned flags);
@@ -590,6 +602,11 @@ SKY_API sky_result sky_capture_environment(sky *s, unsigned cube_texture, int fa
  * (world frame, right-handed, 90 degrees square): sky_draw with them at a
  * square viewport draws that face's pixels. */
 SKY_API sky_result sky_capture_face_matrices(int face, float view[16], float proj[16]);
+/* The pixels of the host's draw buffer the last sky_capture_environment
+ * drew into (a context without framebuffer objects): x, y, width, height
+ * in rect (may be NULL), returns 1; 0 (and zeros) when it drew into a
+ * framebuffer object of its own, or has not run. */
+SKY_API int sky_capture_overwrote(const sky *s, int rect[4]);
 /* The library's own cube map (0 before the first capture into it). */
 SKY_API unsigned sky_environment_texture(const sky *s);
 

@@ -27,6 +27,9 @@ struct sky {
     sky_stats stats;
     sky_irradiance_cache irradiance;      /* sky_get_irradiance_sh's          */
     GLuint capture_fbo;                   /* sky_capture_environment's        */
+    int capture_overwrote[4];             /* x, y, w, h of the host's draw
+                                             buffer its last call drew into
+                                             (no FBO), else zero              */
     sky_aerial_state aerial;              /* sky_get_aerial_perspective's and
                                              sky_aerial_bind's                */
 };

@@ -188,6 +188,7 @@ int test_skipped;
     X(lighting_capture_faces_are_sky_draw)       \
     X(lighting_capture_checks_and_restores)      \
     X(lighting_capture_hdr)                      \
+    X(lighting_capture_without_framebuffer_objects) \
     X(aerial_meets_the_sky)                      \
     X(aerial_against_reference)                  \
     X(aerial_checks_its_input)                   \

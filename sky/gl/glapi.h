@@ -185,6 +185,8 @@ typedef ptrdiff_t GLintptr;
     X(void, glTexParameteri, (GLenum target, GLenum pname, GLint param))                      \
     X(void, glTexImage2D, (GLenum target, GLint level, GLint ifmt, GLsizei w, GLsizei h,      \
                            GLint border, GLenum fmt, GLenum type, const void *pixels))        \
+    X(void, glCopyTexSubImage2D, (GLenum target, GLint level, GLint xoff, GLint yoff, GLint x, GLint y,       \
+                                  GLsizei w, GLsizei h))                                        \
     X(void, glTexSubImage2D, (GLenum target, GLint level, GLint x, GLint y, GLsizei w,        \
                               GLsizei h, GLenum fmt, GLenum type, const void *pixels))        \
     X(void, glGenBuffers, (GLsizei n, GLuint *b))                                             \
