@@ -174,8 +174,8 @@ static unsigned char byte_of(double x) { return (unsigned char)lrint(255.0 * sky
 
 int sky_aerial_table(const sky_core *s, sky_aerial_state *a)
 {
-    double key[SKY_IRRADIANCE_KEY];
-    sky_irradiance_key(s, key);
+    double key[SKY_ATMOSPHERE_KEY];
+    sky_atmosphere_key(s, key);
     if (a->table_valid && memcmp(key, a->key, sizeof key) == 0) return 0;
     const sky_hillaire_tables *t = tables_for(s, a);
     if (!t) return -1;

@@ -28,7 +28,7 @@ typedef struct sky_aerial_state {
     sky_hillaire_tables own; /* paths without Hillaire's tables: made at first use */
     int own_ready;
     int table_valid;
-    double key[SKY_IRRADIANCE_KEY];
+    double key[SKY_ATMOSPHERE_KEY];
     unsigned char *texels;  /* SKY_AP_TABLE_W x SKY_AP_TABLE_H RGBA8           */
     float *values;          /* the table before its encoding: per elevation,
                                azimuth and slice the light and transmittance */
@@ -49,7 +49,7 @@ int sky_aerial_eval(const sky_core *s, sky_aerial_state *a, const double d[3], d
  * the atmosphere (aerial.glsl finds a view ray's end from them). */
 void sky_aerial_shell(const sky_core *s, sky_aerial_state *a, double *observer_radius_km, double *top_km);
 /* The shader's table for the frame, remade when what it depends on
- * changed (sky_irradiance_key): 1 remade, 0 current, -1 out of memory. */
+ * changed (sky_atmosphere_key): 1 remade, 0 current, -1 out of memory. */
 int sky_aerial_table(const sky_core *s, sky_aerial_state *a);
 
 #endif /* SKY_AERIAL_H */

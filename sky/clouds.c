@@ -52,8 +52,16 @@ const double sky_cloud_velocity[SKY_CLOUD_LAYERS][2] = {
     {0.0120, 0.0015},  /* thin upper layer        */
 };
 
+/* The texture every STRIDE texels (R photo, G noise, B detail baked), for
+ * the clouds' mean opacity on the CPU. */
+#define SKY_CLOUD_SAMPLE_STRIDE 8
+enum { CLOUD_SAMPLES = SKY_CLOUD_TEXTURE_SIZE / SKY_CLOUD_SAMPLE_STRIDE };
+
 typedef struct clouds_state {
     double offsets[SKY_CLOUD_LAYERS][2]; /* wrapped into [0,1) */
+    unsigned char sample[CLOUD_SAMPLES * CLOUD_SAMPLES][3];
+    float mean_for[2];                   /* cover and density of cloud_mean */
+    int mean_valid;
 } clouds_state;
 
 /* The blue channel (detail) replaced by the detail at three times the
@@ -96,11 +104,17 @@ static void sample_sunset(const unsigned char *rgba, float out[SKY_SUNSET_SAMPLE
 
 static int clouds_create(sky_core *s, void *state, char *err, size_t err_len)
 {
-    (void)state;
+    clouds_state *st = state;
     unsigned char *rgba = NULL;
     if (sky_asset_load_rgba(s, "clouds.png", SKY_CLOUD_TEXTURE_SIZE, SKY_CLOUD_TEXTURE_SIZE, &rgba, err, err_len))
         return -1;
     bake_detail(rgba);
+    for (int y = 0; y < CLOUD_SAMPLES; y++)
+        for (int x = 0; x < CLOUD_SAMPLES; x++)
+            for (int c = 0; c < 3; c++)
+                st->sample[y * CLOUD_SAMPLES + x][c] =
+                    rgba[4 * ((size_t)y * SKY_CLOUD_SAMPLE_STRIDE * SKY_CLOUD_TEXTURE_SIZE +
+                              (size_t)x * SKY_CLOUD_SAMPLE_STRIDE) + (size_t)c];
     sample_sunset(rgba, s->frame.sunset_gradient);
     /* Where the dome is drawn into its image, the quads over it read the
      * clouds' cover from there and nothing reads the alpha channel: the
@@ -129,9 +143,49 @@ static void clouds_advance(sky_core *s, void *state, double dt)
             st->offsets[l][i] = sky_phase_advance(st->offsets[l][i], s->params.speed * sky_cloud_velocity[l][i], dt);
 }
 
+/* clouds.glsl's sky_cloud_grey, R-P lines 14-25 and the upper layer:
+ * (grey, alpha) from the first layer's photo and detail, the second
+ * layer's noise and the upper layer's noise, all 0..1. */
+static void cloud_grey(double photo, double detail, double noise, double upper, double cover, double density,
+                       double *grey, double *alpha)
+{
+    double g = photo + noise * (1.0 - photo);
+    double a = (g - (1.0 - cover)) / sky_clampd(cover, 0.05, 1.0);
+    g = g + detail * (1.0 - g);
+    a *= detail + (1.0 - detail) * density;
+    double k = density * fmax(a, 0.0) * 2.0;
+    g = fmin(g + k, 1.5 - 0.5 * (g + k));
+    a += k;
+    g = sky_clampd(g, 0.0, 1.0);
+    a = sky_clampd(a, 0.0, 1.0);
+    double thin = sky_clampd((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * cover * (1.0 - a);
+    *grey = g + thin * (1.0 - g);
+    *alpha = a + thin;
+}
+
+/* The clouds' mean opacity and grey x opacity over the texture: the three
+ * layers drift apart, so over time every texel of one meets every texel
+ * of the others; each sample of the first layer is paired with a
+ * scrambled sample of the noise and of the upper layer. */
+static void cloud_means(const clouds_state *st, double cover, double density, float out[2])
+{
+    enum { N = CLOUD_SAMPLES * CLOUD_SAMPLES };
+    double sa = 0.0, sga = 0.0;
+    for (int i = 0; i < N; i++) {
+        const unsigned char *first = st->sample[i], *second = st->sample[(i * 1031 + 17) % N],
+                            *upper = st->sample[(i * 2053 + 911) % N];
+        double g, a;
+        cloud_grey(first[0] / 255.0, first[2] / 255.0, second[1] / 255.0, upper[1] / 255.0, cover, density, &g, &a);
+        sa += a;
+        sga += g * a;
+    }
+    out[0] = (float)(sa / N);
+    out[1] = (float)(sga / N);
+}
+
 static void clouds_frame(sky_core *s, void *state)
 {
-    const clouds_state *st = state;
+    clouds_state *st = state;
     sky_frame *f = &s->frame;
     const sky_params *p = &s->params;
     f->cover = p->cover;
@@ -157,6 +211,33 @@ static void clouds_frame(sky_core *s, void *state)
     f->sunset_color[0] = 1.0f;
     f->sunset_color[1] = 0.42f;
     f->sunset_color[2] = 0.18f;
+    if (!st->mean_valid || st->mean_for[0] != p->cover || st->mean_for[1] != p->density) {
+        if (p->cover > 0.0f)
+            cloud_means(st, p->cover, p->density, f->cloud_mean);
+        else
+            f->cloud_mean[0] = f->cloud_mean[1] = 0.0f;
+        st->mean_for[0] = p->cover;
+        st->mean_for[1] = p->density;
+        st->mean_valid = 1;
+    }
+}
+
+void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, double rgb[3])
+{
+    const sky_frame *f = &s->frame;
+    *alpha = 0.0;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!(f->cloud_mean[0] > 0.0f) || d[1] <= 0.0) return;
+    /* sky_clouds_vertex: the fade into the horizon, the sunset amount by
+     * the angle from the sun; sky_cloud_colour */
+    *alpha = f->cloud_mean[0] * sky_smoothstep(0.0, 0.06, d[1]);
+    double from_sun = sky_clampd(0.5 - 0.5 * (d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2]),
+                                 0.01, 0.99) * (SKY_SUNSET_SAMPLES - 1);
+    int i = (int)fmin(floor(from_sun), SKY_SUNSET_SAMPLES - 2);
+    double sunset = (f->sunset_gradient[i] + (f->sunset_gradient[i + 1] - f->sunset_gradient[i]) * (from_sun - i)) *
+                    f->sunset;
+    double grey = f->cloud_mean[1] / f->cloud_mean[0];
+    for (int c = 0; c < 3; c++) rgb[c] = (grey * (1.0 - sunset) + f->sunset_color[c] * sunset) * f->cloud_light[c];
 }
 
 /* At cover 0 Roden-Parberry's line 15 makes every cloud texel vanish: the
@@ -167,7 +248,11 @@ static int clouds_visible(const sky_core *s, const void *state)
     return s->params.cover > 0.0f;
 }
 
-static void clouds_reset(void *state) { memset(state, 0, sizeof(clouds_state)); }
+static void clouds_reset(void *state)
+{
+    clouds_state *st = state;
+    memset(st->offsets, 0, sizeof st->offsets);
+}
 
 const double *sky_clouds_offsets(const void *state) { return &((const clouds_state *)state)->offsets[0][0]; }
 

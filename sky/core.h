@@ -182,6 +182,8 @@ typedef struct sky_frame {
                                     of the viewport one fragment step spans  */
     float cloud_offset0[2], cloud_offset1[2], cloud_offset_upper[2];
     float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
+    float cloud_mean[2];     /* the clouds' opacity and grey times opacity,
+                                averaged over the texture (the host's ambient)  */
     float sunset_color[3];
     float sunset_gradient[SKY_SUNSET_SAMPLES]; /* R-P's sunset gradient by the
                                 angle from the sun, from the texture's alpha */

@@ -7,6 +7,7 @@
  */
 #include "irradiance.h"
 #include "camera.h"
+#include "layer.h"
 #include "atmosphere/atmosphere.h"
 
 #include <math.h>
@@ -59,7 +60,11 @@ static void ring(const sky_core *s, double mu, double w, double sh[SKY_SH_COUNT]
     double c = sqrt(fmax(1.0 - mu * mu, 0.0)), dphi = 2.0 * SKY_PI / AZIMUTHS;
     for (int a = 0; a < AZIMUTHS; a++) {
         double phi = (a + 0.5) * dphi, d[3] = {c * sin(phi), mu, -c * cos(phi)}, rgb[3], y[SKY_SH_COUNT];
+        double cloud_alpha, cloud[3];
         sky_atmosphere_radiance(s, d, rgb);
+        /* the clouds over it, as their mean over the drifting texture */
+        sky_clouds_mean_at(s, d, &cloud_alpha, cloud);
+        for (int i = 0; i < 3; i++) rgb[i] += (cloud[i] - rgb[i]) * cloud_alpha;
         float h[3] = {(float)d[0], (float)d[1], (float)d[2]}, wf[3];
         sky_camera_to_world(s, h, wf);
         double wd[3] = {wf[0], wf[1], wf[2]};
@@ -90,7 +95,7 @@ void sky_irradiance_project(const sky_core *s, double sh[SKY_SH_COUNT][3])
     }
 }
 
-void sky_irradiance_key(const sky_core *s, double key[SKY_IRRADIANCE_KEY])
+void sky_atmosphere_key(const sky_core *s, double key[SKY_ATMOSPHERE_KEY])
 {
     const sky_frame *f = &s->frame;
     double mu = 0.0, alt = 0.0;
@@ -113,13 +118,20 @@ void sky_irradiance_key(const sky_core *s, double key[SKY_IRRADIANCE_KEY])
     key[n++] = f->blend_weight;
     key[n++] = f->rl_geometry[0]; /* the observer's radius (physical paths) */
     key[n++] = s->observer.altitude_m;
-    _Static_assert(5 * 3 + 4 + 9 + 7 == SKY_IRRADIANCE_KEY, "the key's length");
+    _Static_assert(5 * 3 + 4 + 9 + 7 == SKY_ATMOSPHERE_KEY, "the key's length");
 }
 
 const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *cache))[3]
 {
+    const sky_frame *f = &s->frame;
     double key[SKY_IRRADIANCE_KEY];
-    sky_irradiance_key(s, key);
+    sky_atmosphere_key(s, key);
+    int n = SKY_ATMOSPHERE_KEY;
+    key[n++] = f->cloud_mean[0];
+    key[n++] = f->cloud_mean[1];
+    for (int i = 0; i < 3; i++) key[n++] = f->cloud_light[i];
+    key[n++] = f->sunset;
+    _Static_assert(SKY_ATMOSPHERE_KEY + 6 == SKY_IRRADIANCE_KEY, "the key's length");
     if (!cache->valid || memcmp(key, cache->key, sizeof key) != 0) {
         sky_irradiance_project(s, cache->sh);
         memcpy(cache->key, key, sizeof key);

@@ -13,17 +13,19 @@
 
 /* The real basis Y_lm at unit direction w (sky.h gives the order). */
 void sky_sh_basis(const double w[3], double y[SKY_SH_COUNT]);
-/* The atmosphere's radiance (sky_atmosphere_radiance) over the whole
- * sphere projected on the basis in the world frame, kcd/m^2. */
+/* The atmosphere's radiance (sky_atmosphere_radiance) under the clouds'
+ * mean (sky_clouds_mean_at) over the whole sphere projected on the basis
+ * in the world frame, kcd/m^2. */
 void sky_irradiance_project(const sky_core *s, double sh[SKY_SH_COUNT][3]);
 /* The projection kept for as long as what it depends on stays: the
  * frame's sun, night floor, eclipse, ground and horizon, the gradient's
- * and the blend's scales, the observer, the world frame and Hillaire's
- * table in use. */
-enum { SKY_IRRADIANCE_KEY = 35 };
-/* What the sky's light around the observer depends on, as numbers that
- * change when it does (also the aerial perspective table's key). */
-void sky_irradiance_key(const sky_core *s, double key[SKY_IRRADIANCE_KEY]);
+ * and the blend's scales, the observer, the world frame, Hillaire's
+ * table in use and the clouds. */
+enum { SKY_ATMOSPHERE_KEY = 35, SKY_IRRADIANCE_KEY = SKY_ATMOSPHERE_KEY + 6 };
+/* What the atmosphere's light around the observer depends on, as numbers
+ * that change when it does (the aerial perspective table's key; the SH's
+ * adds the clouds'). */
+void sky_atmosphere_key(const sky_core *s, double key[SKY_ATMOSPHERE_KEY]);
 typedef struct sky_irradiance_cache {
     int valid;
     double key[SKY_IRRADIANCE_KEY];

@@ -87,6 +87,12 @@ int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_
 #define SKY_CLOUD_LAYERS 3
 extern const double sky_cloud_velocity[SKY_CLOUD_LAYERS][2];
 const double *sky_clouds_offsets(const void *clouds_state);
+/* clouds.c: the clouds as the host's ambient sees them in direction d
+ * (horizon frame, unit): their mean opacity over the drifting texture
+ * (frame.cloud_mean, faded into the horizon as the dome fades them) and
+ * their colour there (kcd/m^2, lit and sunset-tinted as clouds.glsl
+ * tints them); 0 below the horizon, without clouds or at cover 0. */
+void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, double rgb[3]);
 /* flicker.c: galaxy brightness 0..1 for a direction, from the 128x128
  * galaxy image stretched over the dome (R-P sec. 4); the flicker clock. */
 float sky_flicker_galaxy_vertex(const unsigned char *galaxy_rgba, const float dir[3]);

@@ -616,9 +616,13 @@ SKY_API unsigned sky_environment_texture(const sky *s);
  * RGB in kcd/m^2, in the world frame (horizon_to_world applied). It is
  * what the atmosphere draws around the observer: the sky with its night
  * floor (moonlit when the moon is up) above the horizon, the ground lit
- * by sun, moon and sky below it. The sun's and the moon's discs are left
- * out and given apart as beams (as sky_get_lighting gives them); stars
- * and clouds are not in it yet.
+ * by sun, moon and sky below it, under the clouds (with SKY_CLOUDS and
+ * cover above 0): their mean opacity and colour over the drifting texture
+ * (the pattern overhead at one moment is not followed: the ambient would
+ * flicker as it drifts), lit and tinted as they are drawn. The sun's and
+ * the moon's discs are left out and given apart as beams (as
+ * sky_get_lighting gives them, not dimmed by the clouds); the catalogue
+ * stars and the star map are not in it.
  * A shader that lights with the 9 of degree <= 2 (the common form) is
  * within about 3 % of the true irradiance on surfaces facing the sky and
  * up to 15 % off on surfaces facing a dark ground under a bright sunset

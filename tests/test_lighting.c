@@ -16,6 +16,7 @@
 
 void test_lighting_sh_irradiance_matches_render(void);
 void test_lighting_sh_checks_its_input(void);
+void test_lighting_sh_with_clouds(void);
 void test_lighting_sh_in_the_world_frame(void);
 void test_lighting_capture_faces_are_sky_draw(void);
 void test_lighting_capture_checks_and_restores(void);
@@ -77,6 +78,70 @@ void test_lighting_sh_irradiance_matches_render(void)
     }
     NOTE("worst difference %.2f %% (%.1f %% from the degree <= 2 coefficients alone)", 100.0 * worst,
          100.0 * worst9);
+}
+
+/* Issue target: the SH carries the clouds' dimming. The clouds drawn are
+ * one moment of a drifting texture, the SH their mean over it
+ * (sky_clouds_mean_at), so the measure is the irradiance with clouds
+ * against the render with the same clouds (512^2 faces), cover 0.3 to
+ * 0.9, day and sunset, facing up, the sun and the side: within 5 %
+ * (measured: 2.8 %), and on an upward surface closer than the cloudless
+ * SH (which is 6 to 61 % off). One case is held to 12 %: a surface
+ * facing a sun on the horizon (measured -6 and -10 % at cover 0.6 and
+ * 0.9), where the drawn clouds fade into the bright horizon glow by
+ * their footprint (clouds.glsl) and the mean does not. */
+void test_lighting_sh_with_clouds(void)
+{
+    static const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
+    static const char *const names[2] = {"gradient", "hillaire"};
+    static const float covers[3] = {0.3f, 0.6f, 0.9f};
+    static const double suns[2] = {30.0, 2.0};
+    static const double normals[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
+    double worst = 0.0, worst_clear = 0.0;
+    for (int p = 0; p < 2; p++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.gl_profile = SKY_GL_CORE33;
+        cfg.atmosphere = paths[p];
+        cfg.features = SKY_CLOUDS;
+        char err[256] = "";
+        sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(&cfg, err, sizeof err);
+        if (!h) {
+            CHECK(0, "%s: %s", names[p], err);
+            continue;
+        }
+        for (int k = 0; k < 2; k++) {
+            double clear[3], el, az;
+            sky_atmo_hemisphere_clouds(h, 0.0f, 0.5f);
+            if (sky_atmo_hemisphere_render(h, suns[k], &el, &az, err, sizeof err)) break;
+            for (int n = 0; n < 3; n++) {
+                double ly, l9;
+                sky_atmo_hemisphere_sh_check(h, normals[n], &ly, &clear[n], &l9);
+            }
+            for (int c = 0; c < 3; c++) {
+                sky_atmo_hemisphere_clouds(h, covers[c], 0.5f);
+                if (sky_atmo_hemisphere_render(h, suns[k], &el, &az, err, sizeof err)) break;
+                for (int n = 0; n < 3; n++) {
+                    double ly, ls, l9;
+                    sky_atmo_hemisphere_sh_check(h, normals[n], &ly, &ls, &l9);
+                    double rel = fabs(ls / ly - 1.0), rel_clear = fabs(clear[n] / ly - 1.0);
+                    int glow = k == 1 && n == 1;
+                    if (!glow) worst = fmax(worst, rel);
+                    worst_clear = fmax(worst_clear, rel_clear);
+                    CHECK(rel <= (glow ? 0.12 : 0.05) && (n != 0 || rel < rel_clear),
+                          "%s, sun %.0f, cover %.1f, normal %d: SH %.4g klx, rendered %.4g (%+.1f %%; cloudless "
+                          "%+.1f %%)", names[p], suns[k], covers[c], n, ls, ly, 100.0 * (ls / ly - 1.0),
+                          100.0 * (clear[n] / ly - 1.0));
+                    NOTE("%s, sun %.0f, cover %.1f, normal %d: rendered %.4g klx, SH %.4g (%+.1f %%), cloudless SH "
+                         "%+.1f %%", names[p], suns[k], covers[c], n, ly, ls, 100.0 * (ls / ly - 1.0),
+                         100.0 * (clear[n] / ly - 1.0));
+                }
+            }
+        }
+        sky_atmo_hemisphere_destroy(h);
+    }
+    NOTE("worst %.1f %% with the clouds' mean (a surface facing a sun on the horizon apart), %.1f %% without",
+         100.0 * worst, 100.0 * worst_clear);
 }
 
 void test_lighting_sh_checks_its_input(void)

@@ -14,7 +14,6 @@
 #include <string.h>
 
 #define PI 3.14159265358979323846
-#define FACE_SIZE 128
 #define FACES 6
 
 const double sky_atmo_sun_elevations[SKY_ATMO_SUNS] = {90.0, 60.0, 30.0, 15.0, 5.0, 2.0, 0.0, -2.0, -4.0, -6.0};
@@ -249,7 +248,7 @@ static const double face_pitch[FACES] = {90.0, 0.0, 0.0, 0.0, 0.0, -90.0};
 
 typedef struct face {
     float view[16], proj[16];
-    float *px; /* FACE_SIZE^2 RGBA, bottom row first */
+    float *px; /* n^2 RGBA, bottom row first */
 } face;
 
 struct sky_atmo_hemisphere {
@@ -257,6 +256,8 @@ struct sky_atmo_hemisphere {
     sky *s;
     sky_observer observer;
     face faces[FACES];
+    float cover, density; /* the clouds (with SKY_CLOUDS in the config) */
+    int n;                /* the faces' size */
 };
 
 sky_atmo_hemisphere *sky_atmo_hemisphere_create(const sky_config *base, char *err, size_t err_len)
@@ -266,19 +267,22 @@ sky_atmo_hemisphere *sky_atmo_hemisphere_create(const sky_config *base, char *er
         snprintf(err, err_len, "out of memory");
         return NULL;
     }
-    if (sky_osmesa_create(&h->ctx, FACE_SIZE, FACE_SIZE, base->gl_profile, 1, err, err_len)) {
+    /* 128 x 128 faces; 512 with clouds, which at 128 fade their detail
+     * (clouds.glsl's footprint fade) over most of the sky */
+    h->n = (base->features & SKY_CLOUDS) ? 512 : 128;
+    if (sky_osmesa_create(&h->ctx, h->n, h->n, base->gl_profile, 1, err, err_len)) {
         free(h);
         return NULL;
     }
     sky_config cfg = *base;
     cfg.output = SKY_OUTPUT_HDR;
-    cfg.features = SKY_FEATURES_NONE;
+    cfg.features = (base->features & SKY_CLOUDS) ? SKY_CLOUDS : SKY_FEATURES_NONE;
     cfg.get_proc_address = sky_osmesa_loader();
     h->s = sky_create(&cfg, err, err_len);
     int ok = h->s != NULL;
     for (int f = 0; f < FACES; f++) {
-        sky_cli_camera_at(face_yaw[f], face_pitch[f], 90.0, FACE_SIZE, FACE_SIZE, h->faces[f].view, h->faces[f].proj);
-        h->faces[f].px = malloc(sizeof(float) * 4 * FACE_SIZE * FACE_SIZE);
+        sky_cli_camera_at(face_yaw[f], face_pitch[f], 90.0, h->n, h->n, h->faces[f].view, h->faces[f].proj);
+        h->faces[f].px = malloc(sizeof(float) * 4 * h->n * h->n);
         if (!h->faces[f].px && ok) {
             snprintf(err, err_len, "out of memory");
             ok = 0;
@@ -309,11 +313,18 @@ void sky_atmo_hemisphere_destroy(sky_atmo_hemisphere *h)
 
 sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h) { return h->s; }
 
+void sky_atmo_hemisphere_clouds(sky_atmo_hemisphere *h, float cover, float density)
+{
+    h->cover = cover;
+    h->density = density;
+}
+
 int sky_atmo_hemisphere_render(sky_atmo_hemisphere *h, double sun_alt_deg, double *elevation_deg,
                                double *azimuth_deg, char *err, size_t err_len)
 {
     sky_params p = sky_default_params();
-    p.cover = 0.0f;
+    p.cover = h->cover;
+    p.density = h->density;
     p.time = (float)sky_atmo_time_for_altitude(&h->observer, sun_alt_deg);
     sky_set_observer(h->s, &h->observer);
     sky_set_params(h->s, &p);
@@ -327,7 +338,7 @@ int sky_atmo_hemisphere_render(sky_atmo_hemisphere *h, double sun_alt_deg, doubl
             return -1;
         }
         sky_osmesa_finish(&h->ctx);
-        memcpy(h->faces[f].px, h->ctx.pixels, sizeof(float) * 4 * FACE_SIZE * FACE_SIZE);
+        memcpy(h->faces[f].px, h->ctx.pixels, sizeof(float) * 4 * h->n * h->n);
     }
     return 0;
 }
@@ -347,15 +358,15 @@ void sky_atmo_hemisphere_read(const sky_atmo_hemisphere *h, const double d[3], d
     const float *v = faces[best].view;
     double xc = v[0] * d[0] + v[4] * d[1] + v[8] * d[2], yc = v[1] * d[0] + v[5] * d[1] + v[9] * d[2];
     /* 90 degree square faces: ndc = camera x / z, y / z */
-    double px = (xc / best_z * 0.5 + 0.5) * FACE_SIZE - 0.5, py = (yc / best_z * 0.5 + 0.5) * FACE_SIZE - 0.5;
-    px = px < 0.0 ? 0.0 : (px > FACE_SIZE - 1 ? FACE_SIZE - 1 : px);
-    py = py < 0.0 ? 0.0 : (py > FACE_SIZE - 1 ? FACE_SIZE - 1 : py);
-    int x0 = (int)px, y0 = (int)py, x1 = x0 + 1 < FACE_SIZE ? x0 + 1 : x0, y1 = y0 + 1 < FACE_SIZE ? y0 + 1 : y0;
+    double px = (xc / best_z * 0.5 + 0.5) * h->n - 0.5, py = (yc / best_z * 0.5 + 0.5) * h->n - 0.5;
+    px = px < 0.0 ? 0.0 : (px > h->n - 1 ? h->n - 1 : px);
+    py = py < 0.0 ? 0.0 : (py > h->n - 1 ? h->n - 1 : py);
+    int x0 = (int)px, y0 = (int)py, x1 = x0 + 1 < h->n ? x0 + 1 : x0, y1 = y0 + 1 < h->n ? y0 + 1 : y0;
     double fx = px - x0, fy = py - y0;
     const float *p = faces[best].px;
     for (int c = 0; c < 3; c++) {
-        double a = p[(y0 * FACE_SIZE + x0) * 4 + c] * (1 - fx) + p[(y0 * FACE_SIZE + x1) * 4 + c] * fx;
-        double b = p[(y1 * FACE_SIZE + x0) * 4 + c] * (1 - fx) + p[(y1 * FACE_SIZE + x1) * 4 + c] * fx;
+        double a = p[(y0 * h->n + x0) * 4 + c] * (1 - fx) + p[(y0 * h->n + x1) * 4 + c] * fx;
+        double b = p[(y1 * h->n + x0) * 4 + c] * (1 - fx) + p[(y1 * h->n + x1) * 4 + c] * fx;
         rgb[c] = a * (1 - fy) + b * fy;
     }
 }
@@ -365,18 +376,18 @@ void sky_atmo_hemisphere_irradiance(const sky_atmo_hemisphere *h, const double n
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     for (int f = 0; f < FACES; f++) {
         const float *v = h->faces[f].view;
-        for (int py = 0; py < FACE_SIZE; py++)
-            for (int px = 0; px < FACE_SIZE; px++) {
+        for (int py = 0; py < h->n; py++)
+            for (int px = 0; px < h->n; px++) {
                 /* the pixel's direction: camera (x, y, -1) back to the
                  * world through the view's rotation (its transpose) */
-                double x = (px + 0.5) / FACE_SIZE * 2.0 - 1.0, y = (py + 0.5) / FACE_SIZE * 2.0 - 1.0;
+                double x = (px + 0.5) / h->n * 2.0 - 1.0, y = (py + 0.5) / h->n * 2.0 - 1.0;
                 double len = sqrt(x * x + y * y + 1.0), d[3];
                 for (int k = 0; k < 3; k++) d[k] = (v[4 * k] * x + v[4 * k + 1] * y - v[4 * k + 2]) / len;
                 double c = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
                 if (c <= 0.0) continue;
                 /* the pixel's solid angle on a 90-degree face */
-                double w = (2.0 / FACE_SIZE) * (2.0 / FACE_SIZE) / (len * len * len);
-                const float *p = h->faces[f].px + 4 * ((size_t)py * FACE_SIZE + (size_t)px);
+                double w = (2.0 / h->n) * (2.0 / h->n) / (len * len * len);
+                const float *p = h->faces[f].px + 4 * ((size_t)py * h->n + (size_t)px);
                 for (int k = 0; k < 3; k++) rgb[k] += p[k] * c * w;
             }
     }

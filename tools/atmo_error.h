@@ -78,6 +78,9 @@ void sky_atmo_hemisphere_sh_check(sky_atmo_hemisphere *h, const double n[3], dou
                                   double *sh_nine);
 /* The sky, for its lighting (sky_get_lighting after a render). */
 sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h);
+/* The clouds the next renders draw (a config with SKY_CLOUDS; none by
+ * default). */
+void sky_atmo_hemisphere_clouds(sky_atmo_hemisphere *h, float cover, float density);
 
 /* The morning time-slider value (0..0.5) that puts the sun's apparent
  * centre at alt_deg for the observer (bisection; at the highest the sun
