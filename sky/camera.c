@@ -133,6 +133,27 @@ int sky_camera_set(sky_core *s, const float view[16], const float proj[16], cons
     return 0;
 }
 
+int sky_camera_clip_to_horizon(const sky_core *s, const float view[16], const float proj[16], float out[16])
+{
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(view[i]) || !isfinite(proj[i])) return -1;
+    double rot[9], m[16], inv[16];
+    if (!camera_rotation(s, view, rot)) return -1;
+    /* proj * [rot 0; 0 1], as sky_camera_set builds it, inverted */
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) {
+            double acc = 0.0;
+            for (int k = 0; k < 4; k++) {
+                double r = (k < 3 && col < 3) ? rot[k * 3 + col] : (k == 3 && col == 3 ? 1.0 : 0.0);
+                acc += (double)proj[k * 4 + row] * r;
+            }
+            m[col * 4 + row] = acc;
+        }
+    if (!invert4(m, inv)) return -1;
+    for (int i = 0; i < 16; i++) out[i] = (float)inv[i];
+    return 0;
+}
+
 void sky_camera_fisheye(sky_core *s, const GLint viewport[4])
 {
     double w = viewport[2] > 0 ? viewport[2] : 1, h = viewport[3] > 0 ? viewport[3] : 1;

@@ -12,6 +12,10 @@
  * and pixel_angle for the viewport. Returns 0, or -1 with a message. */
 int sky_camera_set(sky_core *s, const float view[16], const float proj[16], const GLint viewport[4], char *err,
                    size_t err_len);
+/* The inverse of that view_proj for a host's camera: clip coordinates to
+ * a point on the view ray in the horizon frame (the eye at the origin).
+ * 0, or -1 for a non-finite, degenerate or singular camera. */
+int sky_camera_clip_to_horizon(const sky_core *s, const float view[16], const float proj[16], float out[16]);
 /* The all-sky image in the viewport: aspect and pixel_angle (the caller
  * clears the viewport). */
 void sky_camera_fisheye(sky_core *s, const GLint viewport[4]);

@@ -80,6 +80,7 @@ typedef enum sky_texture_id {
     SKY_TEX_MS_MOMENTS,    /* its light's dipole and quadrupole, 4 layers (CORE33) */
     SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
     SKY_TEX_AERIAL,        /* sky_aerial_bind's table (aerial.c), RGBA8          */
+    SKY_TEX_FROXELS,       /* sky_aerial_froxels' volume (CORE33, Hillaire)      */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT
@@ -182,6 +183,9 @@ typedef struct sky_frame {
                                     of the viewport one fragment step spans  */
     float cloud_offset0[2], cloud_offset1[2], cloud_offset_upper[2];
     float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
+    /* the aerial-perspective froxels (hillaire.c, sky_aerial_froxels) */
+    float froxel_clip_to_dir[16]; /* clip to a horizon-frame point on the view ray */
+    float froxel[4];         /* the pass's first slice, km per slice, steps per slice */
     float cloud_mean[2];     /* the clouds' opacity and grey times opacity,
                                 averaged over the texture (the host's ambient)  */
     float sunset_color[3];

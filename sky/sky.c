@@ -808,6 +808,40 @@ sky_result sky_get_aerial_perspective(sky *s, const float direction[3], float di
     return SKY_OK;
 }
 
+sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16], unsigned *texture)
+{
+    if (texture) *texture = 0;
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_core *c = &s->core;
+    const sky_gl *gl = &c->gl;
+    if (!view || !proj || !texture) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_aerial_froxels: NULL argument");
+    float clip_to_dir[16];
+    if (sky_camera_clip_to_horizon(c, view, proj, clip_to_dir))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_aerial_froxels: the camera is not finite, or its view or "
+                        "projection is degenerate");
+    if (c->profile != SKY_GL_CORE33 ||
+        (c->atmosphere != SKY_ATMOSPHERE_HILLAIRE && c->atmosphere != SKY_ATMOSPHERE_BLEND))
+        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_aerial_froxels: the froxel volume is Hillaire's, in CORE33 (the "
+                        "hillaire and blend paths); sky_aerial_bind serves every path and profile");
+    if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_aerial_froxels: no GL context is current");
+    /* the build binds its program, tables and framebuffer; the volume is
+     * made on unit 0's 3D target the first time: the host's come back */
+    sky_gl_state host;
+    sky_gl_state_save(c, &host);
+    GLint host_volume = 0;
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glGetIntegerv(GL_TEXTURE_BINDING_3D, &host_volume);
+    if (s->vao) gl->glBindVertexArray(s->vao); /* a core context draws nothing without one */
+    char why[200];
+    int rc = sky_atmosphere_froxels(c, clip_to_dir, why, sizeof why);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_3D, (GLuint)host_volume);
+    sky_gl_state_restore(c, &host);
+    if (rc) return sky_fail(s, SKY_ERR_GL, "sky_aerial_froxels: %s", why);
+    *texture = c->textures[SKY_TEX_FROXELS].id;
+    return SKY_OK;
+}
+
 const char *sky_aerial_glsl(void)
 {
     const sky_blob *b = sky_find_blob("aerial.glsl");

@@ -722,6 +722,23 @@ SKY_API const char *sky_aerial_glsl(void);
  * SKY_ERR_INVALID_ARGUMENT for program 0 or a unit outside the context's;
  * SKY_ERR_GL without a current context. */
 SKY_API sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit);
+/* Hillaire's froxel volume (Hillaire 2020 sec. 5.4; Unreal's aerial
+ * perspective table), CORE33 on the hillaire and blend paths: the same
+ * air for one camera (view and proj as sky_draw takes them), marched on
+ * the GPU into a 32 x 32 x 32 RGBA16F GL_TEXTURE_3D that *texture names
+ * (the library's; valid until the next call or sky_destroy): x and y
+ * across the viewport, slice k the air between the observer and
+ * (k + 1) km along the view (32 km in all): RGB the in-scattered light
+ * (kcd/m^2), A the mean transmittance of the three channels. The
+ * physical march alone: no path's drawn-sky scale, night floor or
+ * eclipse. sky_aerial_glsl's sky_aerial_froxel_apply(volume, radiance,
+ * screen_uv, distance_m) reads it (the first km from the identity,
+ * beyond 32 km the last slice). Rebuild it when the camera turns or the
+ * sun moves; sky-bench gives its cost. The host's framebuffer, program,
+ * viewport and texture bindings come back. SKY_ERR_UNSUPPORTED elsewhere
+ * (sky_aerial_bind serves every path and profile);
+ * SKY_ERR_INVALID_ARGUMENT for NULL or a degenerate camera. */
+SKY_API sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16], unsigned *texture);
 
 #ifdef __cplusplus
 }

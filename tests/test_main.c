@@ -193,7 +193,8 @@ int test_skipped;
     X(aerial_meets_the_sky)                      \
     X(aerial_against_reference)                  \
     X(aerial_checks_its_input)                   \
-    X(aerial_glsl_matches_cpu)
+    X(aerial_glsl_matches_cpu)                   \
+    X(aerial_froxels_match_cpu)
 #endif
 
 #define DECLARE(name) void test_##name(void);

@@ -1381,11 +1381,13 @@ static int plot_photometry(const char *path)
  * alone (what a shader reading only those gets).
  * And aerial perspective: a sky_get_aerial_perspective call (a level view
  * 5 km long), its first call on the path (the tables the paths without
- * Hillaire's build then), and the shader's table remade by
- * sky_aerial_bind after the sun moved (CPU build and upload; medians). */
+ * Hillaire's build then), the shader's table remade by sky_aerial_bind
+ * after the sun moved (CPU build and upload), and Hillaire's froxel
+ * volume built for a camera (GPU, with glFinish; -1 where there is
+ * none); medians. */
 typedef struct lighting_row {
     double project_us, cached_us, worst, worst9;
-    double aerial_first_ms, aerial_call_us, aerial_table_ms;
+    double aerial_first_ms, aerial_call_us, aerial_table_ms, froxels_ms;
 } lighting_row;
 
 static int lighting_rows(lighting_row out[PHOT_PATHS])
@@ -1431,7 +1433,11 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
         GLuint host = program(vs, 1, fs, 3, attribs, 1);
         sky_params prm;
         sky_get_params(s, &prm);
-        double project[CALLS], cached[CALLS], call[CALLS], table[CALLS];
+        double project[CALLS], cached[CALLS], call[CALLS], table[CALLS], froxels[CALLS];
+        float view[16], proj[16];
+        sky_cli_camera_at(180.0, 10.0, 60.0, 1280, 720, view, proj);
+        unsigned volume = 0;
+        int has_froxels = sky_aerial_froxels(s, view, proj, &volume) == SKY_OK;
         sky_irradiance_sh sh;
         for (int i = 0; i < CALLS; i++) {
             prm.time += 1.0f / 7200.0f;
@@ -1450,12 +1456,16 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
             cached[i] = (t3 - t2) * 1000.0;
             call[i] = (t4 - t3) * 1000.0;
             table[i] = t5 - t4;
+            if (has_froxels) sky_aerial_froxels(s, view, proj, &volume);
+            glFinish();
+            froxels[i] = sky_cli_now_ms() - t5;
         }
         if (host) glDeleteProgram(host);
         r->project_us = sky_cli_median(project, CALLS);
         r->cached_us = sky_cli_median(cached, CALLS);
         r->aerial_call_us = sky_cli_median(call, CALLS);
         r->aerial_table_ms = host ? sky_cli_median(table, CALLS) : -1.0;
+        r->froxels_ms = has_froxels ? sky_cli_median(froxels, CALLS) : -1.0;
         sky_atmo_hemisphere_destroy(h);
     }
     return 0;
@@ -1536,11 +1546,14 @@ static void print_lighting_table(const lighting_row r[PHOT_PATHS])
         printf("| %s | %.1f | %.3f | %.1f %% | %.1f %% |\n", phot_names[p], r[p].project_us, r[p].cached_us,
                100.0 * r[p].worst, 100.0 * r[p].worst9);
     printf("\nAerial perspective (core profile; the sun moving as above):\n\n"
-           "| path | first call ms (tables made) | sky_get_aerial_perspective us | shader table remade ms |\n"
-           "|---|---|---|---|\n");
-    for (int p = 0; p < PHOT_PATHS; p++)
-        printf("| %s | %.1f | %.1f | %.2f |\n", phot_names[p], r[p].aerial_first_ms, r[p].aerial_call_us,
-               r[p].aerial_table_ms);
+           "| path | first call ms (tables made) | sky_get_aerial_perspective us | shader table remade ms | "
+           "froxel volume ms |\n|---|---|---|---|---|\n");
+    for (int p = 0; p < PHOT_PATHS; p++) {
+        char froxels[32] = "-";
+        if (r[p].froxels_ms >= 0.0) snprintf(froxels, sizeof froxels, "%.2f", r[p].froxels_ms);
+        printf("| %s | %.1f | %.1f | %.2f | %s |\n", phot_names[p], r[p].aerial_first_ms, r[p].aerial_call_us,
+               r[p].aerial_table_ms, froxels);
+    }
 }
 
 static void print_capture(const capture_cost *c, int w, int h)
@@ -1560,9 +1573,9 @@ static void print_lighting_json(const lighting_row r[PHOT_PATHS], const capture_
     for (int p = 0; p < PHOT_PATHS; p++)
         printf("  {\"path\":\"%s\", \"sh_project_us\":%.2f, \"sh_cached_us\":%.3f, \"sh_worst_error\":%.4f, "
                "\"sh9_worst_error\":%.4f, \"aerial_first_ms\":%.2f, \"aerial_call_us\":%.2f, "
-               "\"aerial_table_ms\":%.3f}%s\n",
+               "\"aerial_table_ms\":%.3f, \"froxels_ms\":%.3f}%s\n",
                phot_names[p], r[p].project_us, r[p].cached_us, r[p].worst, r[p].worst9, r[p].aerial_first_ms,
-               r[p].aerial_call_us, r[p].aerial_table_ms, p + 1 < PHOT_PATHS ? "," : "");
+               r[p].aerial_call_us, r[p].aerial_table_ms, r[p].froxels_ms, p + 1 < PHOT_PATHS ? "," : "");
     printf(" ]");
 }
 

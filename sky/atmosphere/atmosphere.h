@@ -108,6 +108,18 @@ int sky_hillaire_frame(sky_core *s, sky_hillaire_state *h);
 void sky_hillaire_upload(sky_core *s, sky_hillaire_state *h);
 void sky_hillaire_eval(const sky_core *s, const sky_hillaire_state *h, const double d[3], double rgb[3]);
 sky_hillaire_tables *sky_hillaire_state_tables(const sky_hillaire_state *h);
+/* Hillaire's aerial-perspective volume (sec. 5.4) for a camera, into
+ * SKY_TEX_FROXELS (CORE33): SKY_FROXEL_SIZE^3 froxels, x and y across the
+ * viewport, slice k the air between the observer and
+ * (k + 1) SKY_FROXEL_KM_PER_SLICE km along the view: RGB in-scattered
+ * kcd/m^2, A the mean transmittance. clip_to_dir: sky_camera_clip_to_horizon.
+ * 0, or -1 with a message. */
+#define SKY_FROXEL_SIZE 32
+#define SKY_FROXEL_KM_PER_SLICE 1.0
+int sky_hillaire_froxels(sky_core *s, sky_hillaire_state *h, const float clip_to_dir[16], char *err, size_t err_len);
+/* The same from the stage: -1 with a message off the Hillaire and blend
+ * paths or outside CORE33. */
+int sky_atmosphere_froxels(sky_core *s, const float clip_to_dir[16], char *err, size_t err_len);
 void sky_hillaire_skyview_at(const sky_hillaire_state *h, double *sun_mu, double *altitude_km);
 
 #endif /* SKY_ATMOSPHERE_H */

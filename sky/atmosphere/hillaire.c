@@ -95,6 +95,7 @@ struct sky_hillaire_state {
     double skyview_sun_mu, skyview_altitude_km, skyview_log2_floor;
     double drawn_sun_mu;             /* the sun at the last draw: jumps are measured from it */
     sky_program transmittance_build, multiscatter_build, skyview_build; /* CORE33 */
+    sky_program froxel_build;        /* CORE33: made at the first froxel call  */
     GLuint fbo;                      /* CORE33: renders into each table in turn */
 };
 
@@ -123,6 +124,12 @@ static const sky_uniform_desc build_uniforms[] = {
 };
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
                                           SKY_UNIFORM_COUNT(build_uniforms), NULL};
+static const sky_uniform_desc froxel_uniforms[] = {
+    SKY_UF("u_froxel_clip_to_dir", SKY_U_M4, froxel_clip_to_dir),
+    SKY_UF("u_froxel", SKY_U_F4, froxel),
+    SKY_UF("u_froxel_sun_irradiance", SKY_U_F3, sun_irradiance),
+};
+static const sky_snippet froxel_snippet = {NULL, NULL, froxel_uniforms, SKY_UNIFORM_COUNT(froxel_uniforms), NULL};
 
 /* One full-screen pass of a build program into the w x h corner of a
  * texture. */
@@ -291,6 +298,7 @@ void sky_hillaire_destroy(sky_core *s, sky_hillaire_state *hs)
     sky_program_destroy(s, &hs->transmittance_build);
     sky_program_destroy(s, &hs->multiscatter_build);
     sky_program_destroy(s, &hs->skyview_build);
+    sky_program_destroy(s, &hs->froxel_build);
     sky_hillaire_free(&hs->tables);
     free(hs->skyview_encoded);
     free(hs->build.encoded);
@@ -473,6 +481,41 @@ void sky_hillaire_upload(sky_core *s, sky_hillaire_state *hs)
     else
         build_on_gpu(s, hs);
     hs->skyview_uploaded = 1;
+}
+
+int sky_hillaire_froxels(sky_core *s, sky_hillaire_state *hs, const float clip_to_dir[16], char *err, size_t err_len)
+{
+    enum { N = SKY_FROXEL_SIZE, PASS = 8 };
+    if (!hs || !hs->fbo) {
+        sky_format(err, err_len, "the froxel volume needs Hillaire's tables on the GPU (CORE33, the hillaire and "
+                   "blend paths)");
+        return -1;
+    }
+    double t0 = sky_now_ms();
+    if (!s->textures[SKY_TEX_FROXELS].id &&
+        sky_texture_create_volume(s, SKY_TEX_FROXELS, SKY_LAYER_ATMOSPHERE, N, N, N, err, err_len))
+        return -1;
+    if (!hs->froxel_build.id) {
+        const sky_snippet *snippets[2] = {&build_snippet, &froxel_snippet};
+        if (sky_program_build(s, &hs->froxel_build, "fullscreen.vert", "froxel_build.frag", snippets, 2, err,
+                              err_len))
+            return -1;
+    }
+    sky_frame *f = &s->frame;
+    memcpy(f->froxel_clip_to_dir, clip_to_dir, sizeof f->froxel_clip_to_dir);
+    f->froxel[1] = (float)SKY_FROXEL_KM_PER_SLICE;
+    f->froxel[2] = 1.0f; /* a step per slice: the air of one km changes little */
+    for (int first = 0; first < N; first += PASS) {
+        sky_gl_target t;
+        f->froxel[0] = (float)first;
+        sky_gl_target_begin_slices(s, hs->fbo, SKY_TEX_FROXELS, first, PASS, N, N, &t);
+        sky_program_apply(s, &hs->froxel_build);
+        s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+        sky_gl_target_end_slices(s, PASS, &t);
+    }
+    if (s->cfg.profile_layers) sky_gl_finish(s);
+    s->lut_ms += sky_now_ms() - t0;
+    return 0;
 }
 
 sky_hillaire_tables *sky_hillaire_state_tables(const sky_hillaire_state *hs)

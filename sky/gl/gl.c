@@ -670,6 +670,20 @@ int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owne
                           err_len);
 }
 
+int sky_texture_create_volume(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int d, char *err,
+                              size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    sky_texture *t = new_texture(s, id, GL_TEXTURE_3D);
+    unpack_state unpack;
+    unpack_begin(s, &unpack);
+    gl->glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, w, h, d, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
+    unpack_end(s, &unpack);
+    gl->glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return finish_texture(s, t, GL_TEXTURE_3D, GL_LINEAR, GL_CLAMP_TO_EDGE, w, h, (size_t)w * (size_t)h * (size_t)d * 8u,
+                          owner, "half-float volume", 1, err, err_len);
+}
+
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
 {
     const sky_gl *gl = &s->gl;
@@ -955,7 +969,8 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
     t->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
     t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    if (s->textures[target].target == GL_TEXTURE_2D_ARRAY) /* its first layer (CORE33) */
+    if (s->textures[target].target == GL_TEXTURE_2D_ARRAY || s->textures[target].target == GL_TEXTURE_3D)
+        /* its first layer (CORE33) */
         gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->textures[target].id, 0, 0);
     else
         gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
@@ -990,6 +1005,30 @@ void sky_gl_target_end_layers(sky_core *s, int n_layers, const sky_gl_target *t)
     if (n_layers > SKY_GL_MAX_LAYERS) n_layers = SKY_GL_MAX_LAYERS;
     for (int i = 0; i < n_layers; i++)
         gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1 + (GLenum)i, 0, 0, 0);
+    gl->glDrawBuffers(1, &first);
+    sky_gl_target_end(s, t);
+}
+
+void sky_gl_target_begin_slices(sky_core *s, GLuint fbo, sky_texture_id volume, int first, int n, int w, int h,
+                                sky_gl_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    GLenum bufs[8];
+    if (n > 8) n = 8;
+    sky_gl_target_begin(s, fbo, volume, w, h, t);
+    for (int i = 0; i < n; i++) {
+        bufs[i] = GL_COLOR_ATTACHMENT0 + (GLenum)i;
+        gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, bufs[i], s->textures[volume].id, 0, first + i);
+    }
+    gl->glDrawBuffers(n, bufs);
+}
+
+void sky_gl_target_end_slices(sky_core *s, int n, const sky_gl_target *t)
+{
+    const sky_gl *gl = &s->gl;
+    static const GLenum first = GL_COLOR_ATTACHMENT0;
+    if (n > 8) n = 8;
+    for (int i = 0; i < n; i++) gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, 0, 0, 0);
     gl->glDrawBuffers(1, &first);
     sky_gl_target_end(s, t);
 }

@@ -96,6 +96,10 @@ int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owne
                                   size_t err_len);
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8,
                             const float *rgb32f);
+/* A w x h x d RGBA16F volume to render into slice by slice and sample
+ * (CORE33): linear, clamped. */
+int sky_texture_create_volume(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int d, char *err,
+                              size_t err_len);
 /* A cube map of six size x size faces, in GL's order (+x, -x, +y, -y,
  * +z, -z), each face's rows following GL's convention; linear, clamped at
  * the edges. RGBA8 from faces, or empty (faces NULL) to render into:
@@ -201,5 +205,10 @@ int sky_gl_read_rgba(sky_core *s, GLuint fbo, sky_texture_id source, int layer, 
 void sky_gl_target_begin_layers(sky_core *s, GLuint fbo, sky_texture_id target, sky_texture_id layers, int n_layers,
                                 int w, int h, sky_gl_target *t);
 void sky_gl_target_end_layers(sky_core *s, int n_layers, const sky_gl_target *t);
+/* A target that renders into slices first .. first + n - 1 of a volume
+ * (colours 0 .. n - 1, n <= 8), CORE33; end detaches them. */
+void sky_gl_target_begin_slices(sky_core *s, GLuint fbo, sky_texture_id volume, int first, int n, int w, int h,
+                                sky_gl_target *t);
+void sky_gl_target_end_slices(sky_core *s, int n, const sky_gl_target *t);
 
 #endif /* SKY_GL_H */

@@ -17,8 +17,10 @@
  * above the transmittance's. Texel i of n holds i / (n - 1). */
 #if __VERSION__ >= 130
 #define SKY_AERIAL_TEXTURE texture
+#define SKY_AERIAL_TEXTURE3D texture
 #else
 #define SKY_AERIAL_TEXTURE texture2D
+#define SKY_AERIAL_TEXTURE3D texture3D
 #endif
 
 uniform sampler2D sky_aerial_table;
@@ -87,3 +89,16 @@ vec3 sky_aerial_apply(vec3 radiance, vec3 direction, float distance_m)
     sky_aerial(direction, distance_m, transmittance, inscatter);
     return radiance * transmittance + inscatter;
 }
+
+#ifndef GL_ES
+/* Hillaire's froxel volume (sky_aerial_froxels, CORE33): screen_uv the
+ * pixel's place in the viewport the volume was built for (0..1), slices
+ * of 1 km, the first km from the identity, beyond 32 km the last slice. */
+vec3 sky_aerial_froxel_apply(sampler3D volume, vec3 radiance, vec2 screen_uv, float distance_m)
+{
+    float km = max(distance_m, 0.0) / 1000.0;
+    vec4 f = SKY_AERIAL_TEXTURE3D(volume, vec3(screen_uv, (clamp(km, 1.0, 32.0) - 0.5) / 32.0));
+    f = mix(vec4(0.0, 0.0, 0.0, 1.0), f, clamp(km, 0.0, 1.0));
+    return radiance * f.a + f.rgb;
+}
+#endif

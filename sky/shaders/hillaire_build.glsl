@@ -136,3 +136,33 @@ vec3 hl_seg_weight(vec3 tau, vec3 e)
 {
     return mix((1.0 - e) / max(tau, vec3(1e-30)), 1.0 - tau * (0.5 - tau / 6.0), step(tau, vec3(1e-3)));
 }
+
+/* The light one segment of a view ray scatters toward the observer, per
+ * unit of sunlight (skyview_row's sum in hillaire_cpu.c): col its
+ * columns (hl_column), weight the transmittance to it times
+ * hl_seg_weight, rm its middle's radius, mus the sun's cosine there, vy
+ * the view's there, cos_theta the view's angle to the sun and the two
+ * phases at it. Single scattering (eq. 1-3) and the multiple scattering
+ * (eq. 11) with the second order's dipole and quadrupole scattered by the
+ * real phase functions' first Legendre terms. */
+vec3 hl_segment_light(vec3 col, vec3 weight, float rm, float mus, float vy, float cos_theta, float phase_r,
+                      float phase_m)
+{
+    float R = u_hl_geometry.x, Rt = u_hl_geometry.y;
+    float rho = hl_clamp_sqrt(rm * rm - R * R);
+    vec3 ts = hl_sun_transmittance(rm, rho, mus);
+    vec2 ms_uv = vec2(hl_unit_to_tex(hl_ms_u(mus), u_hl_misc.x),
+                      hl_unit_to_tex(clamp((rm - R) / (Rt - R), 0.0, 1.0), u_hl_misc.x));
+    vec4 psi = SKY_TEX2D(u_multiscatter_table, ms_uv);
+    vec4 mdx = texture(u_ms_moments, vec3(ms_uv, 0.0)), mdy = texture(u_ms_moments, vec3(ms_uv, 1.0));
+    vec3 qxx = texture(u_ms_moments, vec3(ms_uv, 2.0)).rgb, qyy = texture(u_ms_moments, vec3(ms_uv, 3.0)).rgb;
+    vec3 qxy = vec3(psi.a, mdx.a, mdy.a);
+    /* the view in the sample's frame: y up, x toward the sun's azimuth */
+    float sh = hl_clamp_sqrt(1.0 - mus * mus);
+    float vx = sh > 1e-6 ? clamp((cos_theta - mus * vy) / sh, -1.0, 1.0) : 0.0;
+    float vz2 = max(1.0 - vx * vx - vy * vy, 0.0);
+    vec3 l1 = mdx.rgb * vx + mdy.rgb * vy;
+    vec3 l2 = 2.5 * (qxx * (vx * vx) + qyy * (vy * vy) - (qxx + qyy) * vz2 + 2.0 * qxy * (vx * vy));
+    return u_hl_rayleigh * col.x * weight * (phase_r * ts + max(psi.rgb + u_hl_chi.z * l2, 0.0)) +
+           u_hl_mie_sca * col.y * weight * (phase_m * ts + max(psi.rgb + u_hl_chi.x * l1 + u_hl_chi.y * l2, 0.0));
+}

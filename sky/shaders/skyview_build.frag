@@ -63,28 +63,12 @@ void main()
         vec3 db = hl_density(rb);
         vec3 col = hl_column(da, ra, db, rb, tb - ta);
         float tm = 0.5 * (ta + tb), rm = hl_radius(r, mu, tm);
-        float rho = hl_clamp_sqrt(rm * rm - R * R);
         vec3 tau = u_hl_rayleigh * col.x + u_hl_mie_ext * col.y + u_hl_ozone * col.z;
         vec3 e = exp(-tau);
         vec3 weight = transmittance * hl_seg_weight(tau, e);
         float mus = clamp((r0 * sun.y + (start + tm) * cos_theta) / rm, -1.0, 1.0);
-        vec3 ts = hl_sun_transmittance(rm, rho, mus);
-        vec2 ms_uv = vec2(hl_unit_to_tex(hl_ms_u(mus), u_hl_misc.x),
-                          hl_unit_to_tex(clamp((rm - R) / (Rt - R), 0.0, 1.0), u_hl_misc.x));
-        vec4 psi = SKY_TEX2D(u_multiscatter_table, ms_uv);
-        vec4 mdx = texture(u_ms_moments, vec3(ms_uv, 0.0)), mdy = texture(u_ms_moments, vec3(ms_uv, 1.0));
-        vec3 qxx = texture(u_ms_moments, vec3(ms_uv, 2.0)).rgb, qyy = texture(u_ms_moments, vec3(ms_uv, 3.0)).rgb;
-        vec3 qxy = vec3(psi.a, mdx.a, mdy.a);
-        /* the view in the sample's frame: y up, x toward the sun's azimuth;
-         * the second order scattered with the real phase functions' first
-         * Legendre terms (hillaire_cpu.c's skyview_row) */
-        float vy = clamp((r0 * ct + start + tm) / rm, -1.0, 1.0), sh = hl_clamp_sqrt(1.0 - mus * mus);
-        float vx = sh > 1e-6 ? clamp((cos_theta - mus * vy) / sh, -1.0, 1.0) : 0.0;
-        float vz2 = max(1.0 - vx * vx - vy * vy, 0.0);
-        vec3 l1 = mdx.rgb * vx + mdy.rgb * vy;
-        vec3 l2 = 2.5 * (qxx * (vx * vx) + qyy * (vy * vy) - (qxx + qyy) * vz2 + 2.0 * qxy * (vx * vy));
-        L += u_hl_rayleigh * col.x * weight * (phase_r * ts + max(psi.rgb + u_hl_chi.z * l2, 0.0)) +
-             u_hl_mie_sca * col.y * weight * (phase_m * ts + max(psi.rgb + u_hl_chi.x * l1 + u_hl_chi.y * l2, 0.0));
+        float vy = clamp((r0 * ct + start + tm) / rm, -1.0, 1.0);
+        L += hl_segment_light(col, weight, rm, mus, vy, cos_theta, phase_r, phase_m);
         transmittance *= e;
         ta = tb;
         ra = rb;
