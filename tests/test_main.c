@@ -185,6 +185,7 @@ int test_skipped;
     X(lighting_sh_irradiance_matches_render)     \
     X(lighting_sh_checks_its_input)              \
     X(lighting_sh_with_clouds)                   \
+    X(lighting_sh_matches_fisheye)               \
     X(lighting_sh_in_the_world_frame)            \
     X(lighting_capture_faces_are_sky_draw)       \
     X(lighting_capture_checks_and_restores)      \
