@@ -59,8 +59,7 @@ static const sky_hillaire_tables *tables_for(const sky_core *s, sky_aerial_state
     return &a->own;
 }
 
-/* What the march needs of the frame: the observer's altitude in the
- * description's shell (km) and the sun (horizon frame, unit). */
+/* The observer's altitude in the description's shell (km). */
 static double observer_km(const sky_core *s, const sky_hillaire_tables *t)
 {
     double top = t->atm.top_radius_km - t->atm.planet_radius_km;
@@ -139,8 +138,9 @@ void sky_aerial_shell(const sky_core *s, sky_aerial_state *a, double *observer_r
  * shader maps it) */
 static double texel_x(int i, int n) { return (double)i / (n - 1); }
 
-/* The slice's distance (km): aerial.glsl's map t = 13 sqrt(d / D) to D,
- * then 13 + 2 (1 - D / d): slice 14 at 2 D, the last at the ray's end. */
+/* The slice's distance (km): 13 slices at D (k / 13)^2 after the
+ * observer's, slice 14 at 2 D, the last at the ray's end (aerial.glsl
+ * maps a distance between them). */
 static double slice_km(int k)
 {
     double D = SKY_AP_TABLE_M / 1000.0;

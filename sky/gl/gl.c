@@ -656,32 +656,34 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
                           is_float ? "float lookup texture" : "RGBA8 lookup texture", 1, err, err_len);
 }
 
+/* A texture of d layers or slices w x h (CORE33), empty, linear, clamped
+ * on every axis; texel_bytes of ifmt's size. */
+static int create_3d(sky_core *s, sky_texture_id id, sky_layer owner, GLenum target, GLint ifmt, GLenum type,
+                     size_t texel_bytes, int w, int h, int d, const char *what, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    sky_texture *t = new_texture(s, id, target);
+    unpack_state unpack;
+    unpack_begin(s, &unpack);
+    gl->glTexImage3D(target, 0, ifmt, w, h, d, 0, GL_RGBA, type, NULL);
+    unpack_end(s, &unpack);
+    if (target == GL_TEXTURE_3D) gl->glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return finish_texture(s, t, target, GL_LINEAR, GL_CLAMP_TO_EDGE, w, h, (size_t)w * (size_t)h * (size_t)d * texel_bytes,
+                          owner, what, 1, err, err_len);
+}
+
 int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers, char *err,
                                   size_t err_len)
 {
-    const sky_gl *gl = &s->gl;
-    sky_texture *t = new_texture(s, id, GL_TEXTURE_2D_ARRAY);
-    unpack_state unpack;
-    unpack_begin(s, &unpack);
-    gl->glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, w, h, layers, 0, GL_RGBA, GL_FLOAT, NULL);
-    unpack_end(s, &unpack);
-    return finish_texture(s, t, GL_TEXTURE_2D_ARRAY, GL_LINEAR, GL_CLAMP_TO_EDGE, w, h,
-                          (size_t)w * (size_t)h * (size_t)layers * 16u, owner, "float lookup texture array", 1, err,
-                          err_len);
+    return create_3d(s, id, owner, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, GL_FLOAT, 16u, w, h, layers,
+                     "float lookup texture array", err, err_len);
 }
 
 int sky_texture_create_volume(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int d, char *err,
                               size_t err_len)
 {
-    const sky_gl *gl = &s->gl;
-    sky_texture *t = new_texture(s, id, GL_TEXTURE_3D);
-    unpack_state unpack;
-    unpack_begin(s, &unpack);
-    gl->glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, w, h, d, 0, GL_RGBA, GL_HALF_FLOAT, NULL);
-    unpack_end(s, &unpack);
-    gl->glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    return finish_texture(s, t, GL_TEXTURE_3D, GL_LINEAR, GL_CLAMP_TO_EDGE, w, h, (size_t)w * (size_t)h * (size_t)d * 8u,
-                          owner, "half-float volume", 1, err, err_len);
+    return create_3d(s, id, owner, GL_TEXTURE_3D, GL_RGBA16F, GL_HALF_FLOAT, 8u, w, h, d, "half-float volume", err,
+                     err_len);
 }
 
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
