@@ -94,6 +94,16 @@ int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profil
 sky_observer equator_equinox(void);
 void fixture_close(fixture *f);
 
+/* Every atmosphere path and its name, in sky.h's order. */
+#define TEST_PATHS 5
+extern const sky_atmosphere_path test_paths[TEST_PATHS];
+extern const char *const test_path_names[TEST_PATHS];
+/* tools/atmo_error.h's HDR cube around the observer, for a path (the
+ * photometry's config: defaults, core profile) with features (0: none,
+ * or SKY_CLOUDS); NULL after a failed CHECK naming the path. */
+typedef struct sky_atmo_hemisphere sky_atmo_hemisphere;
+sky_atmo_hemisphere *hemisphere_open(sky_atmosphere_path path, unsigned features);
+
 /* A host's own program (test_api.c): white, its attribute 0 "p" the clip
  * position (a vec4: give it x, y, z and GL supplies w = 1). */
 unsigned test_host_program(int core);

@@ -410,14 +410,12 @@ void test_game_fog_grows_with_distance(void)
     double colour[7][3], above[7][3], fade[7];
     for (int k = 0; k < 7; k++)
         for (int which = 0; which < 2; which++) {
-            double p[3] = {points[k][0], which ? 0.0 : points[k][1] - 1.7, points[k][2]};
-            if (which) { /* 1 degree above the top, at the same bearing */
-                double dist = hypot(p[0], p[2]);
-                p[1] = tops[k] - 1.7 + dist * tan(1.0 * M_PI / 180.0);
-            }
-            double clip[4];
+            /* relative to the eye; the sky 1 degree above the top, at the same bearing */
+            double dist = hypot(points[k][0], points[k][2]);
+            double p[3] = {points[k][0], which ? tops[k] - 1.7 + dist * tan(M_PI / 180.0) : points[k][1] - 1.7,
+                           points[k][2]};
             /* eye space, then clip space */
-            double e[4];
+            double e[4], clip[4];
             for (int r = 0; r < 4; r++) e[r] = view[12 + r] + view[r] * p[0] + view[4 + r] * p[1] + view[8 + r] * p[2];
             for (int r = 0; r < 4; r++)
                 clip[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2] + proj[12 + r] * e[3];

@@ -30,34 +30,23 @@ void test_lighting_capture_without_framebuffer_objects(void);
  * left out of both; the render's own sky is the SH's source). */
 void test_lighting_sh_irradiance_matches_render(void)
 {
-    static const sky_atmosphere_path paths[5] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
-                                                 SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
-                                                 SKY_ATMOSPHERE_BLEND};
-    static const char *const names[5] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
     static const double suns[3] = {30.0, 2.0, -20.0};
     static const char *const when[3] = {"day", "sunset", "night"};
     static const double normals[4][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, -1, 0}};
     static const char *const facing[4] = {"up", "east (toward the sun)", "south", "down"};
     double worst = 0.0, worst9 = 0.0;
-    for (int p = 0; p < 5; p++) {
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.gl_profile = SKY_GL_CORE33;
-        cfg.atmosphere = paths[p];
+    for (int p = 0; p < TEST_PATHS; p++) {
+        sky_atmo_hemisphere *h = hemisphere_open(test_paths[p], 0);
+        if (!h) continue;
         char err[256] = "";
-        sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(&cfg, err, sizeof err);
-        if (!h) {
-            CHECK(0, "%s: %s", names[p], err);
-            continue;
-        }
         for (int k = 0; k < 3; k++) {
             double el, az;
             if (sky_atmo_hemisphere_render(h, suns[k], &el, &az, err, sizeof err)) {
-                CHECK(0, "%s: %s", names[p], err);
+                CHECK(0, "%s: %s", test_path_names[p], err);
                 break;
             }
             sky_irradiance_sh sh;
-            CHECK(sky_get_irradiance_sh(sky_atmo_hemisphere_sky(h), &sh) == SKY_OK, "%s: no SH", names[p]);
+            CHECK(sky_get_irradiance_sh(sky_atmo_hemisphere_sky(h), &sh) == SKY_OK, "%s: no SH", test_path_names[p]);
             for (int n = 0; n < 4; n++) {
                 /* rendered, from every coefficient, from the 9 of degree
                  * <= 2 alone (as a shader uses them) */
@@ -69,10 +58,10 @@ void test_lighting_sh_irradiance_matches_render(void)
                 if (n == 0 || n == 3)
                     NOTE("%s, %s (sun %.1f deg), facing %s: %.4g klx rendered, %.4g from the SH (%+.1f %%), %.4g "
                          "from its degree <= 2 (%+.1f %%)",
-                         names[p], when[k], el, facing[n], ly, ls, 100.0 * (ls / ly - 1.0), l9,
+                         test_path_names[p], when[k], el, facing[n], ly, ls, 100.0 * (ls / ly - 1.0), l9,
                          100.0 * (l9 / ly - 1.0));
                 CHECK(ly > 0.0 && rel <= 0.03, "%s, %s, facing %s: SH %.4g klx, rendered %.4g (%.1f %%, limit 3 %%)",
-                      names[p], when[k], facing[n], ls, ly, 100.0 * rel);
+                      test_path_names[p], when[k], facing[n], ls, ly, 100.0 * rel);
             }
         }
         sky_atmo_hemisphere_destroy(h);
@@ -100,17 +89,9 @@ void test_lighting_sh_with_clouds(void)
     static const double normals[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
     double worst = 0.0, worst_clear = 0.0;
     for (int p = 0; p < 2; p++) {
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.gl_profile = SKY_GL_CORE33;
-        cfg.atmosphere = paths[p];
-        cfg.features = SKY_CLOUDS;
+        sky_atmo_hemisphere *h = hemisphere_open(paths[p], SKY_CLOUDS);
+        if (!h) continue;
         char err[256] = "";
-        sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(&cfg, err, sizeof err);
-        if (!h) {
-            CHECK(0, "%s: %s", names[p], err);
-            continue;
-        }
         for (int k = 0; k < 2; k++) {
             double clear[3], el, az;
             sky_atmo_hemisphere_clouds(h, 0.0f, 0.5f);
@@ -153,21 +134,17 @@ void test_lighting_sh_with_clouds(void)
 void test_lighting_sh_matches_fisheye(void)
 {
     enum { N = 512 };
-    static const sky_atmosphere_path paths[5] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
-                                                 SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
-                                                 SKY_ATMOSPHERE_BLEND};
-    static const char *const names[5] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
     static const double suns[3] = {30.0, 2.0, -20.0};
     double worst = 0.0;
-    for (int p = 0; p < 5; p++) {
+    for (int p = 0; p < TEST_PATHS; p++) {
         sky_config cfg;
         memset(&cfg, 0, sizeof cfg);
-        cfg.atmosphere = paths[p];
+        cfg.atmosphere = test_paths[p];
         cfg.output = SKY_OUTPUT_HDR;
         cfg.features = SKY_FEATURES_NONE;
         fixture f;
         if (fixture_open_sized(&f, N, N, 1, SKY_GL_CORE33, &cfg)) {
-            CHECK(0, "%s: no sky", names[p]);
+            CHECK(0, "%s: no sky", test_path_names[p]);
             continue;
         }
         sky_observer o = equator_equinox();
@@ -179,7 +156,7 @@ void test_lighting_sh_matches_fisheye(void)
             sky_set_params(f.s, &prm);
             glClearColor(0, 0, 0, 0);
             glClear(GL_COLOR_BUFFER_BIT);
-            CHECK(sky_draw_fisheye(f.s) == SKY_OK, "%s: fisheye: %s", names[p], sky_last_error(f.s));
+            CHECK(sky_draw_fisheye(f.s) == SKY_OK, "%s: fisheye: %s", test_path_names[p], sky_last_error(f.s));
             sky_osmesa_finish(&f.ctx);
             const float *px = f.ctx.pixels;
             double e[3] = {0, 0, 0};
@@ -198,7 +175,7 @@ void test_lighting_sh_matches_fisheye(void)
             double rel = fabs(ls / ly - 1.0);
             worst = fmax(worst, rel);
             CHECK(ly > 0.0 && rel <= 0.03, "%s, sun %.0f: SH %.4g klx on an upward surface, the fisheye %.4g (%+.1f %%)",
-                  names[p], suns[k], ls, ly, 100.0 * (ls / ly - 1.0));
+                  test_path_names[p], suns[k], ls, ly, 100.0 * (ls / ly - 1.0));
         }
         fixture_close(&f);
     }

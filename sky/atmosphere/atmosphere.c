@@ -349,13 +349,8 @@ void sky_atmosphere_upload(sky_core *s) { sky_hillaire_upload(s, s->atmosphere_s
 
 int sky_atmosphere_froxels(sky_core *s, const float clip_to_dir[16], char *err, size_t err_len)
 {
-    if (s->profile != SKY_GL_CORE33 ||
-        (s->atmosphere != SKY_ATMOSPHERE_HILLAIRE && s->atmosphere != SKY_ATMOSPHERE_BLEND)) {
-        sky_format(err, err_len, "the froxel volume is Hillaire's, in CORE33 (the hillaire and blend paths): "
-                   "sky_aerial_bind serves every path and profile");
-        return -1;
-    }
-    return sky_hillaire_froxels(s, s->atmosphere_state->hillaire, clip_to_dir, err, err_len);
+    return sky_hillaire_froxels(s, s->atmosphere_state ? s->atmosphere_state->hillaire : NULL, clip_to_dir, err,
+                                err_len);
 }
 
 sky_hillaire_tables *sky_atmosphere_tables(const sky_core *s)

@@ -117,8 +117,9 @@ sky_hillaire_tables *sky_hillaire_state_tables(const sky_hillaire_state *h);
 #define SKY_FROXEL_SIZE 32
 #define SKY_FROXEL_KM_PER_SLICE 1.0
 int sky_hillaire_froxels(sky_core *s, sky_hillaire_state *h, const float clip_to_dir[16], char *err, size_t err_len);
-/* The same from the stage: -1 with a message off the Hillaire and blend
- * paths or outside CORE33. */
+/* The same from the stage (sky_hillaire_froxels' -1 and message where
+ * there are no tables on the GPU: off the Hillaire and blend paths or
+ * outside CORE33; sky.c refuses those first). */
 int sky_atmosphere_froxels(sky_core *s, const float clip_to_dir[16], char *err, size_t err_len);
 void sky_hillaire_skyview_at(const sky_hillaire_state *h, double *sun_mu, double *altitude_km);
 
