@@ -94,7 +94,7 @@ int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profil
 sky_observer equator_equinox(void);
 void fixture_close(fixture *f);
 
-/* Every atmosphere path and its name, in sky.h's order. */
+/* Every atmosphere path and its name, in sky.h's order (test_lighting.c). */
 #define TEST_PATHS 5
 extern const sky_atmosphere_path test_paths[TEST_PATHS];
 extern const char *const test_path_names[TEST_PATHS];

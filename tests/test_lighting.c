@@ -7,6 +7,7 @@
 #include "test.h"
 
 #include "atmo_error.h"
+#include "photometry.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -23,6 +24,28 @@ void test_lighting_capture_faces_are_sky_draw(void);
 void test_lighting_capture_checks_and_restores(void);
 void test_lighting_capture_hdr(void);
 void test_lighting_capture_without_framebuffer_objects(void);
+
+/* test.h's path list and hemisphere (here, in the suite's own build:
+ * the engine examples' test build has no tools) */
+const sky_atmosphere_path test_paths[TEST_PATHS] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
+                                                     SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
+                                                     SKY_ATMOSPHERE_BLEND};
+const char *const test_path_names[TEST_PATHS] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
+
+sky_atmo_hemisphere *hemisphere_open(sky_atmosphere_path path, unsigned features)
+{
+    sky_config cfg = sky_photometry_config(path);
+    cfg.features = features;
+    char err[256] = "";
+    sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(&cfg, err, sizeof err);
+    if (!h) {
+        const char *name = "?";
+        for (int i = 0; i < TEST_PATHS; i++)
+            if (test_paths[i] == path) name = test_path_names[i];
+        CHECK(0, "%s: %s", name, err);
+    }
+    return h;
+}
 
 /* Issue target: the SH irradiance within 3 % of a brute-force integral of
  * the rendered sky on an upward, a horizontal and a downward normal, by

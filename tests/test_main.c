@@ -4,9 +4,7 @@
  * ", N skipped" when a test could not run here).
  */
 #include "test.h"
-#include "atmo_error.h"
 #include "cli.h"
-#include "photometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -311,26 +309,6 @@ int fixture_open_sized(fixture *f, int w, int h, int float_buffer, sky_gl_profil
         return -1;
     }
     return 0;
-}
-
-const sky_atmosphere_path test_paths[TEST_PATHS] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
-                                                     SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
-                                                     SKY_ATMOSPHERE_BLEND};
-const char *const test_path_names[TEST_PATHS] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
-
-sky_atmo_hemisphere *hemisphere_open(sky_atmosphere_path path, unsigned features)
-{
-    sky_config cfg = sky_photometry_config(path);
-    cfg.features = features;
-    char err[256] = "";
-    sky_atmo_hemisphere *h = sky_atmo_hemisphere_create(&cfg, err, sizeof err);
-    if (!h) {
-        const char *name = "?";
-        for (int i = 0; i < TEST_PATHS; i++)
-            if (test_paths[i] == path) name = test_path_names[i];
-        CHECK(0, "%s: %s", name, err);
-    }
-    return h;
 }
 
 void fixture_close(fixture *f)
