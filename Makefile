@@ -11,7 +11,7 @@ CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
 
-SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
 TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
@@ -26,7 +26,7 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run check test install textures screenshots bench fuzz clean examples test-examples
+.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -96,6 +96,10 @@ bench: all
 	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png
 
 $(BIN)/catgen: tools/catgen.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
+
+$(BIN)/vsopgen: tools/vsopgen.c
 	@mkdir -p $(@D)
 	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
 
@@ -244,6 +248,15 @@ textures: $(BIN)/texgen $(BIN)/catgen
 	$(BIN)/catgen --stars $(BUILD)/d3-celestial/package/data/stars.8.json \
 	    --pm $(BUILD)/stellarium/usr/share/stellarium/stars/default/hip_pm.dat --max-mag 6.5 --out textures/stars.dat \
 	    --map textures/starmap.png --mw $(BUILD)/d3-celestial/package/data/mw.json
+
+# Rebuilds sky/planet_tables.c (the VSOP87D series, truncated) from the
+# npm package astronomia, and tests/data/planets_reference.txt (the planets
+# as PyEphem sees them: Debian's python3-ephem, hence /usr/bin/python3).
+planet-tables: $(BIN)/vsopgen
+	@sh tools/fetch-astronomia.sh $(BUILD)/astronomia
+	$(BIN)/vsopgen --data $(BUILD)/astronomia/package/data --out sky/planet_tables.c
+	/usr/bin/python3 tools/planet-reference.py > tests/data/planets_reference.txt.tmp
+	mv tests/data/planets_reference.txt.tmp tests/data/planets_reference.txt
 
 # The README's pictures, rendered by sky-render.
 screenshots: all

@@ -251,11 +251,16 @@ static double vsop_sum(const sky_vsop_series *series, int n, double tau)
 /* Apparent geocentric ecliptic longitude and latitude of the sun and its
  * distance in au (Meeus ch. 25, higher accuracy): VSOP87 heliocentric
  * Earth, FK5 correction (32.3), nutation, aberration. Also the true
- * geometric longitude (for stellar aberration). */
-static void sun_position(double t, double dpsi, double *lambda, double *beta, double *r_au, double *true_lon)
+ * geometric longitude (for stellar aberration), and the Earth's
+ * heliocentric rectangular position (for the planets). */
+static void sun_position(double t, double dpsi, double *lambda, double *beta, double *r_au, double *true_lon,
+                         double earth[3])
 {
     double tau = t / 10.0;
     double l = vsop_sum(sky_earth_L, 6, tau), b = vsop_sum(sky_earth_B, 2, tau), r = vsop_sum(sky_earth_R, 5, tau);
+    earth[0] = r * cos(b) * cos(l);
+    earth[1] = r * cos(b) * sin(l);
+    earth[2] = r * sin(b);
     double theta = wrap_2pi(l + PI), bet = -b;
     double lp = theta - (1.397 * t + 0.00031 * t * t) * DEG;
     theta += -0.09033 * ARCSEC;
@@ -457,7 +462,13 @@ static void set_error(char *err, size_t len, const char *fmt, ...)
 
 int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a, char *err, size_t err_len)
 {
-    if (!isfinite(jd_ut) || !obs || !isfinite(obs->latitude) || !isfinite(obs->longitude) ||
+    return sky_astro_compute_dt(jd_ut, isfinite(jd_ut) ? sky_delta_t(jd_ut) : 0.0, obs, a, err, err_len);
+}
+
+int sky_astro_compute_dt(double jd_ut, double delta_t, const sky_astro_observer *obs, sky_astro *a, char *err,
+                         size_t err_len)
+{
+    if (!isfinite(jd_ut) || !isfinite(delta_t) || !obs || !isfinite(obs->latitude) || !isfinite(obs->longitude) ||
         !isfinite(obs->altitude_m)) {
         set_error(err, err_len, "date or observer is not finite");
         return -1;
@@ -478,7 +489,7 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
     }
     double lat = clamp(obs->latitude, -PI / 2, PI / 2);
     a->jd_ut = jd_ut;
-    a->delta_t = sky_delta_t(jd_ut);
+    a->delta_t = delta_t;
     a->jd_tt = jd_ut + a->delta_t / 86400.0;
     double t = (a->jd_tt - J2000) / 36525.0;
     a->years_since_j2000 = (a->jd_tt - J2000) / 365.25;
@@ -501,12 +512,14 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
     double u = atan(b_a * tan(lat));
     double rho_sin = b_a * sin(u) + obs->altitude_m / 1000.0 / EARTH_RADIUS_KM * sin(lat);
     double rho_cos = cos(u) + obs->altitude_m / 1000.0 / EARTH_RADIUS_KM * cos(lat);
-    double obs_eq[3] = {EARTH_RADIUS_KM * rho_cos * cos(a->last), EARTH_RADIUS_KM * rho_cos * sin(a->last),
-                        EARTH_RADIUS_KM * rho_sin};
+    double *obs_eq = a->observer_eq;
+    obs_eq[0] = EARTH_RADIUS_KM * rho_cos * cos(a->last);
+    obs_eq[1] = EARTH_RADIUS_KM * rho_cos * sin(a->last);
+    obs_eq[2] = EARTH_RADIUS_KM * rho_sin;
 
     /* sun */
     double sl, sb, sr, true_lon;
-    sun_position(t, dpsi, &sl, &sb, &sr, &true_lon);
+    sun_position(t, dpsi, &sl, &sb, &sr, &true_lon, a->earth_helio);
     ecl_to_eq(sl, sb, eps, &a->sun.ra, &a->sun.dec);
     a->sun.distance_km = sr * AU_KM;
     body_place(a, obs_eq, &a->sun);
@@ -627,4 +640,200 @@ void sky_astro_star(const sky_astro *a, const sky_star *s, double *alt, double *
     for (int i = 0; i < 3; i++) v[i] += a->aberration[i];
     mat_vec(a->horizon, v, h);
     horizon_from_vector(h, a->pressure_factor, alt, alt_geometric, az, dir);
+}
+
+/* ---- planets -------------------------------------------------------------------------- */
+
+#define LIGHT_DAYS_PER_AU 0.0057755183      /* Meeus 33.3 */
+#define GAUSS_K2 (0.01720209895 * 0.01720209895) /* the sun's GM, au^3/day^2 */
+#define DAYS_PER_MILLENNIUM 365250.0
+
+typedef struct planet_data {
+    const char *name;
+    const sky_vsop_planet *series;
+    double radius_km; /* equatorial (IAU WGCCRE 2015) */
+    double bv;        /* B-V of the planet's integrated light, as Allen's
+                         Astrophysical Quantities (4th ed., 2000) lists it */
+} planet_data;
+
+static const planet_data planets[SKY_ASTRO_PLANETS] = {
+    {"mercury", &sky_vsop_mercury, 2440.53, 0.93}, {"venus", &sky_vsop_venus, 6051.8, 0.82},
+    {"mars", &sky_vsop_mars, 3396.19, 1.36},       {"jupiter", &sky_vsop_jupiter, 71492.0, 0.83},
+    {"saturn", &sky_vsop_saturn, 60268.0, 1.04},
+};
+
+const char *sky_astro_planet_name(int planet)
+{
+    return planet >= 0 && planet < SKY_ASTRO_PLANETS ? planets[planet].name : NULL;
+}
+
+/* A VSOP87 coordinate and its rate (per millennium) at tau: the sum over
+ * powers alpha of tau^alpha S_alpha, differentiated term by term. */
+static void vsop_value_rate(const sky_vsop_series *series, int n, double tau, double *value, double *rate)
+{
+    double v = 0.0, r = 0.0, tp = 1.0, dtp = 0.0; /* tau^i and its derivative */
+    for (int i = 0; i < n; i++) {
+        double s = 0.0, ds = 0.0;
+        for (int k = 0; k < series[i].count; k++) {
+            const sky_vsop_term *term = &series[i].terms[k];
+            double arg = term->b + term->c * tau;
+            s += term->a * cos(arg);
+            ds -= term->a * term->c * sin(arg);
+        }
+        v += s * tp;
+        r += ds * tp + s * dtp;
+        dtp = (i + 1) * tp;
+        tp *= tau;
+    }
+    *value = v * 1e-8;
+    *rate = r * 1e-8;
+}
+
+void sky_planet_state_at(int planet, double jd_tt, sky_planet_state *st)
+{
+    const sky_vsop_planet *p = planets[planet < 0 ? 0 : (planet >= SKY_ASTRO_PLANETS ? 0 : planet)].series;
+    double tau = (jd_tt - J2000) / DAYS_PER_MILLENNIUM, lbr[3], rate[3];
+    for (int c = 0; c < 3; c++) {
+        vsop_value_rate(p->series[c], p->powers[c], tau, &lbr[c], &rate[c]);
+        rate[c] /= DAYS_PER_MILLENNIUM;
+    }
+    double cl = cos(lbr[0]), sl = sin(lbr[0]), cb = cos(lbr[1]), sb = sin(lbr[1]), r = lbr[2];
+    st->jd_tt = jd_tt;
+    st->pos[0] = r * cb * cl;
+    st->pos[1] = r * cb * sl;
+    st->pos[2] = r * sb;
+    st->vel[0] = rate[2] * cb * cl - r * sb * cl * rate[1] - r * cb * sl * rate[0];
+    st->vel[1] = rate[2] * cb * sl - r * sb * sl * rate[1] + r * cb * cl * rate[0];
+    st->vel[2] = rate[2] * sb + r * cb * rate[1];
+}
+
+/* Mars's brightness by season, Mallama (2007, Icarus 192, 404), table 8:
+ * the correction every 10 degrees of the areocentric solar longitude Ls
+ * from 0 to 360 (Mallama & Hilton 2018 add it to eq. 6-7). */
+static const double mars_season[37] = {
+    -0.029, -0.017, -0.014, -0.006, -0.018, -0.020, -0.014, -0.030, -0.008, -0.040, -0.024, -0.037, -0.036,
+    -0.032, 0.010,  0.010,  -0.001, 0.044,  0.025,  -0.004, -0.016, -0.008, 0.029,  -0.054, -0.033, 0.055,
+    0.017,  0.052,  0.006,  0.087,  0.006,  0.064,  0.030,  0.019,  -0.030, -0.017, -0.029};
+
+double sky_astro_planet_magnitude(int planet, double r_au, double delta_au, double alpha, double ring_lat,
+                                  double helio_lon)
+{
+    /* Mallama & Hilton 2018 ("Computing apparent planetary magnitudes for
+     * The Astronomical Almanac", Astronomy and Computing 25, 10), the
+     * geocentric forms by phase angle a in degrees: Mercury eq. 2, Venus
+     * 3-4, Mars 6-7 with the season term (not the rotation term of Mallama
+     * 2007, +-0.06, which needs the planet's central meridian), Jupiter
+     * 8-9, Saturn 10 (globe and rings). */
+    double a = clamp(alpha / DEG, 0.0, 180.0), a2 = a * a, a3 = a2 * a, a4 = a3 * a, v;
+    switch (planet) {
+    case SKY_ASTRO_MERCURY:
+        v = -0.613 + 6.3280e-02 * a - 1.6336e-03 * a2 + 3.3644e-05 * a3 - 3.4265e-07 * a4 + 1.6893e-09 * a4 * a -
+            3.0334e-12 * a4 * a2;
+        break;
+    case SKY_ASTRO_VENUS:
+        if (a < 163.7)
+            v = -4.384 - 1.044e-03 * a + 3.687e-04 * a2 - 2.814e-06 * a3 + 8.938e-09 * a4;
+        else
+            v = 236.05828 - 2.81914 * a + 8.39034e-03 * a2;
+        break;
+    case SKY_ASTRO_MARS: {
+        if (a <= 50.0)
+            v = -1.601 + 2.267e-02 * a - 1.302e-04 * a2;
+        else
+            v = -0.367 - 0.02573 * a + 0.0003445 * a2;
+        /* Ls from the heliocentric longitude (Mallama & Hilton: minus 85) */
+        double ls = fmod(wrap_2pi(helio_lon) / DEG - 85.0 + 360.0, 360.0) / 10.0;
+        int i = (int)ls;
+        i = i < 0 ? 0 : (i > 35 ? 35 : i);
+        v += mars_season[i] + (ls - i) * (mars_season[i + 1] - mars_season[i]);
+        break;
+    }
+    case SKY_ASTRO_JUPITER:
+        if (a <= 12.0)
+            v = -9.395 - 3.7e-04 * a + 6.16e-04 * a2;
+        else {
+            double x = a / 180.0, x2 = x * x;
+            double f = 1.0 - 1.507 * x - 0.363 * x2 - 0.062 * x2 * x + 2.809 * x2 * x2 - 1.876 * x2 * x2 * x;
+            v = -9.428 - 2.5 * log10(fmax(f, 1e-6));
+        }
+        break;
+    default: {
+        /* from the Earth, a < 6.5 and the latitude < 27 degrees: eq. 10 holds */
+        double sb = sin(clamp(ring_lat, 0.0, 27.0 * DEG));
+        v = -8.914 - 1.825 * sb + 0.026 * a - 0.378 * sb * exp(-2.25 * a);
+    }
+    }
+    return v + 5.0 * log10(fmax(r_au * delta_au, 1e-12));
+}
+
+static double norm3(const double v[3]) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/* Latitude over Saturn's rings of a direction (lambda, beta) seen from
+ * Saturn's centre, ecliptic of date: Meeus 45.1-45.3 (the rings' plane
+ * inclination i and node Omega, T in Julian centuries). */
+static double saturn_ring_latitude(double t, double lambda, double beta)
+{
+    double i = (28.075216 - 0.012998 * t + 0.000004 * t * t) * DEG;
+    double node = (169.508470 + 1.394681 * t + 0.000412 * t * t) * DEG;
+    return safe_asin(sin(i) * cos(beta) * sin(lambda - node) - cos(i) * sin(beta));
+}
+
+void sky_astro_planet_place(const sky_astro *a, int planet, const sky_planet_state *st, sky_astro_planet *out)
+{
+    if (planet < 0 || planet >= SKY_ASTRO_PLANETS) planet = 0;
+    const planet_data *pd = &planets[planet];
+    const double *earth = a->earth_helio;
+    /* The Taylor step: position, velocity and the sun's pull at the
+     * state's instant (the planets' pulls on each other change the path by
+     * far less within a day). */
+    double r0 = fmax(norm3(st->pos), 1e-6), acc[3];
+    for (int k = 0; k < 3; k++) acc[k] = -GAUSS_K2 * st->pos[k] / (r0 * r0 * r0);
+    /* light time (Meeus 33): the planet where it was when the light left */
+    double p[3], g[3], delta = 0.0, light = 0.0, dt0 = a->jd_tt - st->jd_tt;
+    for (int iter = 0; iter < 3; iter++) {
+        double dt = dt0 - light;
+        for (int k = 0; k < 3; k++) {
+            p[k] = st->pos[k] + st->vel[k] * dt + 0.5 * acc[k] * dt * dt;
+            g[k] = p[k] - earth[k];
+        }
+        delta = fmax(norm3(g), 1e-9);
+        light = LIGHT_DAYS_PER_AU * delta;
+    }
+    double t = (a->jd_tt - J2000) / 36525.0;
+    double lambda = wrap_2pi(atan2(g[1], g[0])), beta = safe_asin(g[2] / delta);
+    /* Saturn's rings: the Earth's and the sun's latitudes over them
+     * (Meeus ch. 45 B and B'), before the corrections to the Earth's view */
+    double ring_lat = 0.0;
+    out->ring_tilt = 0.0;
+    if (planet == SKY_ASTRO_SATURN) {
+        double r = norm3(p);
+        double b_earth = saturn_ring_latitude(t, lambda, beta);
+        double b_sun = saturn_ring_latitude(t, atan2(p[1], p[0]), safe_asin(p[2] / r));
+        out->ring_tilt = b_earth;
+        /* eq. 10's latitude: the square root of the product, 0 when the
+         * sun and the Earth are on opposite sides of the rings */
+        ring_lat = b_earth * b_sun > 0.0 ? sqrt(b_earth * b_sun) : 0.0;
+    }
+    /* FK5 (Meeus 32.3), nutation, then annual aberration as a vector (as for
+     * the stars): the light-time position is the planet's true place, and
+     * only the Earth's motion is left to add */
+    double lp = lambda - (1.397 * t + 0.00031 * t * t) * DEG;
+    lambda += (-0.09033 + 0.03916 * (cos(lp) + sin(lp)) * tan(beta)) * ARCSEC + a->nutation_longitude;
+    beta += 0.03916 * (cos(lp) - sin(lp)) * ARCSEC;
+    double ra, dec, v[3];
+    ecl_to_eq(lambda, beta, a->obliquity, &ra, &dec);
+    spherical_to_vec(ra, dec, v);
+    for (int k = 0; k < 3; k++) v[k] += a->aberration[k];
+    vec_to_spherical(v, &out->body.ra, &out->body.dec);
+    out->body.distance_km = delta * AU_KM;
+    body_place(a, a->observer_eq, &out->body);
+
+    double r = fmax(norm3(p), 1e-9), big_r = fmax(norm3(earth), 1e-9);
+    out->distance_au = delta;
+    out->sun_distance_au = r;
+    out->phase_angle = acos(clamp((r * r + delta * delta - big_r * big_r) / (2.0 * r * delta), -1.0, 1.0));
+    out->illuminated = (1.0 + cos(out->phase_angle)) / 2.0;
+    out->diameter = 2.0 * atan(pd->radius_km / out->body.distance_km);
+    out->bv = pd->bv;
+    out->vmag = sky_astro_planet_magnitude(planet, r, delta, out->phase_angle, ring_lat, atan2(p[1], p[0]));
 }

@@ -1,6 +1,8 @@
 /*
  * Positional astronomy for libsky: time scales, the sun (VSOP87 as
  * truncated by Meeus), the moon (Meeus ch. 47, the full 60 + 60 terms),
+ * the planets Mercury to Saturn (VSOP87D truncated by tools/vsopgen.c,
+ * Meeus ch. 33; magnitudes of Mallama & Hilton 2018),
  * catalogue stars (proper motion, precession, nutation, aberration),
  * topocentric horizon coordinates with refraction, the moon's phase,
  * libration and orientation, and lunar eclipse magnitudes. Pure C, double
@@ -88,12 +90,21 @@ typedef struct sky_astro {
     double horizon[9];             /* true equatorial of date -> horizon frame */
     double years_since_j2000;      /* for proper motion (TT, Julian years)    */
     double pressure_factor;        /* refraction scale for the altitude       */
+    /* for the planets */
+    double earth_helio[3];         /* the Earth from the sun: rectangular
+                                      ecliptic of date (VSOP87), au           */
+    double observer_eq[3];         /* the observer from the Earth's centre,
+                                      true equator of date, km                */
 } sky_astro;
 
 /* Computes everything for one instant (UTC, taken as UT1) and observer.
  * Returns 0, or -1 with a message for a date outside the supported span,
  * a latitude outside +-90 degrees or a non-finite input. */
 int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *out, char *err, size_t err_len);
+/* The same with a given Delta T (seconds), e.g. another program's, so that
+ * both turn the Earth alike when compared. */
+int sky_astro_compute_dt(double jd_ut, double delta_t, const sky_astro_observer *obs, sky_astro *out, char *err,
+                         size_t err_len);
 
 /* A catalogue star: J2000 position, proper motion (mas/yr, RA component
  * times cos dec). */
@@ -132,6 +143,53 @@ void sky_solar_eclipse(double sun_radius, double moon_radius, double separation,
  * shadow scatters in (brightest along the horizon). */
 #define SKY_ECLIPSE_ZENITH_RESIDUAL 3e-4
 #define SKY_ECLIPSE_HORIZON_RESIDUAL 1.5e-3
+
+/* ---- planets ----------------------------------------------------------------------- */
+
+enum { SKY_ASTRO_MERCURY, SKY_ASTRO_VENUS, SKY_ASTRO_MARS, SKY_ASTRO_JUPITER, SKY_ASTRO_SATURN, SKY_ASTRO_PLANETS };
+
+/* A planet's heliocentric state from its VSOP87D series at jd_tt:
+ * position (au) and velocity (au/day), rectangular ecliptic of date. The
+ * series cost some 70-350 terms a planet; a state serves
+ * sky_astro_planet_place for instants near jd_tt (see there). */
+typedef struct sky_planet_state {
+    double jd_tt;
+    double pos[3], vel[3];
+} sky_planet_state;
+void sky_planet_state_at(int planet, double jd_tt, sky_planet_state *st);
+/* How far from its instant a state serves: within it the Taylor step
+ * (position, velocity, the sun's pull) keeps Mercury, the fastest, within
+ * 0.5" (tests/test_planets.c measures it). */
+#define SKY_PLANET_STATE_DAYS 0.3
+
+typedef struct sky_astro_planet {
+    sky_astro_body body;           /* apparent place; distance_km geocentric  */
+    double distance_au;            /* geocentric (light time's distance)      */
+    double sun_distance_au;        /* heliocentric                            */
+    double phase_angle;            /* sun-planet-earth angle                  */
+    double illuminated;            /* fraction of the disc lit, 0..1          */
+    double vmag;                   /* V magnitude (Mallama & Hilton 2018)     */
+    double diameter;               /* apparent equatorial diameter, radians   */
+    double ring_tilt;              /* Saturn: the Earth's latitude over the
+                                      rings' plane (Meeus ch. 45's B); else 0 */
+    double bv;                     /* measured B-V colour of the planet       */
+} sky_astro_planet;
+
+/* The planet's apparent topocentric place and brightness at a's instant
+ * (Meeus ch. 33: the planet at t minus the light time seen from the Earth
+ * at t, the FK5 correction, nutation and annual aberration; parallax and
+ * refraction as for the moon), from a state of the planet within
+ * SKY_PLANET_STATE_DAYS of that instant. */
+void sky_astro_planet_place(const sky_astro *a, int planet, const sky_planet_state *st, sky_astro_planet *out);
+/* V magnitude (Mallama & Hilton 2018) at distances r from the sun and
+ * delta from the observer (au), phase angle alpha; ring_lat: Saturn's
+ * effective latitude over its rings (the root of the sun's and the
+ * Earth's, 0 when they are on opposite sides); helio_lon: Mars's
+ * heliocentric ecliptic longitude, for its season term. Radians. */
+double sky_astro_planet_magnitude(int planet, double r_au, double delta_au, double alpha, double ring_lat,
+                                  double helio_lon);
+/* "mercury", ... for SKY_ASTRO_MERCURY...; NULL out of range. */
+const char *sky_astro_planet_name(int planet);
 
 /* Horizon-frame unit vector of an altitude and azimuth. */
 void sky_horizon_vector(double alt, double az, double out[3]);

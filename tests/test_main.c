@@ -105,6 +105,9 @@ int test_skipped;
     X(astro_bad_input)                           \
     X(astro_time_slider_is_solar_time)           \
     X(astro_query_json)                          \
+    X(planets_vs_pyephem)                        \
+    X(planets_magnitudes_published)              \
+    X(planets_state_serves_its_window)           \
     X(stars_where_astronomy_puts_them)           \
     X(stars_control_magnitude_and_twilight)      \
     X(stars_colour_follows_bv)                   \
