@@ -11,7 +11,7 @@ CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
 
-SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/planets.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
 TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o

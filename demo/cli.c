@@ -97,14 +97,17 @@ static int parse_hips(const char *s, sky_cli *cli)
     return 1;
 }
 
+/* The command line's names of the feature bits (--features, --stats). */
+static const struct {
+    const char *name;
+    unsigned bit;
+} feature_names[] = {{"clouds", SKY_CLOUDS},        {"sun", SKY_SUN},         {"moon", SKY_MOON},
+                     {"stars", SKY_STARS},          {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
+                     {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}, {"planets", SKY_PLANETS}};
+#define FEATURE_NAMES "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets"
+
 static int parse_features(const char *s, unsigned *out, char *err, size_t len)
 {
-    static const struct {
-        const char *name;
-        unsigned bit;
-    } names[] = {{"clouds", SKY_CLOUDS}, {"sun", SKY_SUN},         {"moon", SKY_MOON},
-                 {"stars", SKY_STARS},   {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
-                 {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}};
     if (!strcmp(s, "none")) {
         *out = SKY_FEATURES_NONE;
         return SKY_CLI_OK;
@@ -114,15 +117,16 @@ static int parse_features(const char *s, unsigned *out, char *err, size_t len)
     while (*p) {
         size_t n = strcspn(p, ",");
         int found = 0;
-        for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-            if (strlen(names[i].name) == n && !strncmp(p, names[i].name, n)) {
-                if (!(names[i].bit & SKY_FEATURES_AVAILABLE))
-                    return fail(err, len, "--features: '%s' is not available yet in this build", names[i].name);
-                mask |= names[i].bit;
+        for (size_t i = 0; i < sizeof feature_names / sizeof feature_names[0]; i++)
+            if (strlen(feature_names[i].name) == n && !strncmp(p, feature_names[i].name, n)) {
+                if (!(feature_names[i].bit & SKY_FEATURES_AVAILABLE))
+                    return fail(err, len, "--features: '%s' is not available yet in this build",
+                                feature_names[i].name);
+                mask |= feature_names[i].bit;
                 found = 1;
             }
         if (!found)
-            return fail(err, len, "--features: unknown feature '%.*s' (accepted: clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse or none)", (int)n,
+            return fail(err, len, "--features: unknown feature '%.*s' (accepted: " FEATURE_NAMES " or none)", (int)n,
                         p);
         p += n;
         if (*p == ',') {
@@ -162,7 +166,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           the default), very-clean, hazy, polluted, hillaire-2020 (his paper's\n"
             "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
-            "                           solar-eclipse (or none); eclipse = the lunar one\n"
+            "                           solar-eclipse,planets (or none); eclipse = the lunar one\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
@@ -213,18 +217,19 @@ static const preset presets[] = {
     {"overcast", SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0, 0},
     {"sunset", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f, NULL, 0, 0,
      0, 0, 0},
-    {"starry", SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f,
+    {"starry", SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f,
      0.0f, NULL, 0, 0, 0, 0, 0},
     /* the full moon of 2026-04-02 from 40 N, looking at it */
-    {"moonlit", SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f,
+    {"moonlit", SKY_MOON | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f,
      0.0f, 0.1f, 0.0f, "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0, 0},
     /* the total lunar eclipse of 2026-03-03, greatest at about 11:33 UTC,
      * from Hawaii where the moon stands at 69 degrees */
-    {"eclipse", SKY_MOON | SKY_LUNAR_ECLIPSE | SKY_STARS | SKY_STARMAP | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.0f, 0.6f,
+    {"eclipse", SKY_MOON | SKY_LUNAR_ECLIPSE | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.0f, 0.6f,
      0.2f, 0.0f, 0.1f, 0.0f, "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0, 0},
     /* the total solar eclipse of 2024-04-08 near Nazas, Durango, at its
      * greatest (18:17:20 UT), looking up toward the sun at 70 degrees */
-    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.1f,
+    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE,
+     SKY_GL_AUTO, 0.1f,
      0.6f, 0.2f, 0.0f, 0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0, 0},
     /* the weakest GPUs' preset: the dome at a fifth of the resolution
      * (softer clouds), which keeps it within one and a half textured
@@ -620,6 +625,17 @@ void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place
         else
             fprintf(out, "%s{\"hip\":%d, \"found\":false}", i ? ", " : "", p->hip);
     }
+    fprintf(out, "],\n \"planets\": [");
+    for (int i = 0; i < SKY_PLANET_COUNT; i++) {
+        const sky_planet_place *p = &a->planets[i];
+        fprintf(out,
+                "%s{\"name\":\"%s\", \"alt\":%.6f, \"alt_geometric\":%.6f, \"az\":%.6f, \"ra\":%.6f, \"dec\":%.6f, "
+                "\"distance_au\":%.8f, \"vmag\":%.3f, \"illuminated_fraction\":%.6f, \"phase_angle\":%.4f, "
+                "\"diameter_arcsec\":%.3f}",
+                i ? ",\n   " : "", sky_planet_name((sky_planet)i), p->place.alt_deg, p->place.alt_geometric_deg,
+                p->place.az_deg, p->place.ra_deg, p->place.dec_deg, p->distance_au, p->vmag, p->illuminated_fraction,
+                p->phase_angle_deg, p->diameter_arcsec);
+    }
     fprintf(out, "],\n \"star_visibility\":%.6g, \"moon_visibility\":%.6g}\n", a->star_visibility,
             a->moon_visibility);
 }
@@ -628,12 +644,6 @@ static const char *profile_name(sky_gl_profile p) { return p == SKY_GL_CORE33 ? 
 
 void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
 {
-    static const struct {
-        const char *name;
-        unsigned bit;
-    } feats[] = {{"clouds", SKY_CLOUDS}, {"sun", SKY_SUN}, {"moon", SKY_MOON}, {"stars", SKY_STARS},
-                 {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP}, {"eclipse", SKY_LUNAR_ECLIPSE},
-                 {"solar-eclipse", SKY_SOLAR_ECLIPSE}};
     fprintf(out, "{\"gl_version\":\"");
     for (const char *p = st->gl_version ? st->gl_version : ""; *p; p++)
         if (*p == '"' || *p == '\\')
@@ -642,9 +652,9 @@ void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
             fputc(*p, out);
     fprintf(out, "\", \"profile\":\"%s\", \"features\":[", profile_name(st->profile));
     int first = 1;
-    for (size_t i = 0; i < sizeof feats / sizeof feats[0]; i++)
-        if (st->features & feats[i].bit) {
-            fprintf(out, "%s\"%s\"", first ? "" : ",", feats[i].name);
+    for (size_t i = 0; i < sizeof feature_names / sizeof feature_names[0]; i++)
+        if (st->features & feature_names[i].bit) {
+            fprintf(out, "%s\"%s\"", first ? "" : ",", feature_names[i].name);
             first = 0;
         }
     fprintf(out, "], \"frame_ms\":%.4f, \"lut_ms\":%.4f, \"gpu_bytes\":%zu, \"textures\":%d, \"programs\":%d, "

@@ -203,6 +203,14 @@ typedef struct sky_frame {
     float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
     float star_occulter[4];  /* the moon's true direction and the cosine of its
                                 drawn radius (2: no moon): stars behind it go */
+    /* planets (planets.c): the same uniforms as the catalogue stars, their
+     * places already apparent in the horizon frame */
+    float planet_rot[16], planet_aberration[3], planet_pressure[3];
+    struct {
+        float q, glare_ck, max_radius, control_magnitude;
+    } planet_size;
+    float planet_flux_scale, planet_extinction[3], planet_shell[3], planet_seed;
+    float planet_occulter[4];
     /* star map (starmap.c) */
     float starmap_rot[16], starmap_scale;
     /* moon (moon.c) */
@@ -219,6 +227,7 @@ typedef struct sky_frame {
 /* The uniform table reads each packed vec4 above as four floats in a row. */
 _Static_assert(sizeof(((sky_frame *)0)->moon_terms) == 4 * sizeof(float), "moon_terms is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->star_size) == 4 * sizeof(float), "star_size is a vec4");
+_Static_assert(sizeof(((sky_frame *)0)->planet_size) == 4 * sizeof(float), "planet_size is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->hl_misc) == 4 * sizeof(float), "hl_misc is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "eclipse_sun is a vec4");
 

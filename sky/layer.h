@@ -62,6 +62,7 @@ extern const sky_layer_class sky_starmap_layer;
 extern const sky_layer_class sky_stars_layer;
 extern const sky_layer_class sky_moon_layer;
 extern const sky_layer_class sky_sun_layer;
+extern const sky_layer_class sky_planets_layer;
 
 /* The dome snippets of the enabled layers, by role (sky.c fills them from
  * the table before any layer is created): the dome composes its programs
@@ -104,6 +105,20 @@ void sky_star_color(double bv, float rgb[3]);
 double sky_stars_clock(const void *stars_state);
 struct sky_catalog *sky_stars_catalog(void *stars_state);
 void sky_stars_reload(void *stars_state);
+/* stars.c: what every point source (catalogue stars, planets) draws with
+ * through stars.vert: the sizes of Mueller eq. 9 (q, glare c_k, largest
+ * radius in pixels, control magnitude), the refraction's pressure factor,
+ * the peak luminance of a V = 0 point on its PSF before any fade (eq. 10,
+ * kcd/m^2), the zenith optical depths and the shell of eq. 11, and the
+ * moon's disc that hides them. For the view being drawn. */
+typedef struct sky_point_uniforms {
+    float size[4], pressure[3];
+    double peak;
+    float extinction[3], shell[3], occulter[4];
+} sky_point_uniforms;
+void sky_point_view(sky_core *s, float point_max, sky_point_uniforms *u);
+/* planets.c: the planets' places of the last frame (SKY_ASTRO_PLANETS). */
+const sky_astro_planet *sky_planets_places(const void *planets_state);
 /* Illuminance of a V = 0 source above the atmosphere, 2.54e-6 lux (Allen's
  * Astrophysical Quantities), in klx: the one zero point the stars and the
  * moon's magnitude share. */

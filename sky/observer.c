@@ -124,6 +124,39 @@ void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *o)
     o->moon_visibility = a->moon_visibility;
 }
 
+const char *sky_planet_name(sky_planet planet)
+{
+    const char *name = sky_astro_planet_name((int)planet);
+    return name ? name : "unknown";
+}
+
+_Static_assert((int)SKY_PLANET_COUNT == SKY_ASTRO_PLANETS, "the public planets are astro.c's");
+
+void sky_planets_out(const sky_astro_planet places[SKY_ASTRO_PLANETS], sky_astronomy *out)
+{
+    for (int p = 0; p < SKY_ASTRO_PLANETS; p++) {
+        const sky_astro_planet *pl = &places[p];
+        sky_planet_place *o = &out->planets[p];
+        body_out(&pl->body, &o->place);
+        o->distance_au = pl->distance_au;
+        o->vmag = pl->vmag;
+        o->illuminated_fraction = pl->illuminated;
+        o->phase_angle_deg = pl->phase_angle / DEG;
+        o->diameter_arcsec = pl->diameter / DEG * 3600.0;
+    }
+}
+
+void sky_planets_fill(const sky_astro *a, sky_astronomy *out)
+{
+    sky_astro_planet places[SKY_ASTRO_PLANETS];
+    for (int p = 0; p < SKY_ASTRO_PLANETS; p++) {
+        sky_planet_state st;
+        sky_planet_state_at(p, a->jd_tt, &st);
+        sky_astro_planet_place(a, p, &st, &places[p]);
+    }
+    sky_planets_out(places, out);
+}
+
 sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, const int *hip, int count,
                                  sky_star_place *stars, sky_astronomy *out, char *err, size_t err_len)
 {
@@ -140,6 +173,7 @@ sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, con
     sky_astro a;
     if (sky_observer_astro(obs, time_of_day, &a, err, err_len)) return SKY_ERR_INVALID_ARGUMENT;
     sky_astronomy_from_astro(&a, out);
+    sky_planets_fill(&a, out);
     if (count == 0) return SKY_OK;
     sky_catalog cat;
     if (sky_catalog_load(&cat, err, err_len)) return SKY_ERR_ASSET;

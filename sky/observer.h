@@ -14,5 +14,9 @@ int sky_observer_check(const sky_observer *o, char *err, size_t err_len);
  * observer asks for it. */
 int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro *a, char *err, size_t err_len);
 void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *out);
+/* The planets into out->planets: from places already computed, or
+ * computed now for a's instant (the full series, some 30 us). */
+void sky_planets_out(const sky_astro_planet places[SKY_ASTRO_PLANETS], sky_astronomy *out);
+void sky_planets_fill(const sky_astro *a, sky_astronomy *out);
 
 #endif /* SKY_OBSERVER_H */

@@ -20,7 +20,7 @@
  * program and draw nothing themselves. */
 static const sky_layer_class *const layer_table[] = {
     &sky_dome_layer, &sky_clouds_layer, &sky_flicker_layer, &sky_starmap_layer,
-    &sky_stars_layer, &sky_moon_layer,  &sky_sun_layer,
+    &sky_stars_layer, &sky_planets_layer, &sky_moon_layer, &sky_sun_layer,
 };
 #define LAYER_COUNT ((int)(sizeof layer_table / sizeof layer_table[0]))
 
@@ -55,7 +55,7 @@ unsigned sky_version(void)
 const char *sky_layer_name(sky_layer layer)
 {
     static const char *const names[SKY_LAYER_COUNT] = {"starmap", "stars", "flicker", "moon",
-                                                       "atmosphere", "sun", "clouds"};
+                                                       "atmosphere", "sun", "clouds", "planets"};
     return (unsigned)layer < SKY_LAYER_COUNT ? names[layer] : "unknown";
 }
 
@@ -351,6 +351,12 @@ sky_result sky_get_astronomy(const sky *s, sky_astronomy *out)
 {
     if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
     sky_astronomy_from_astro(&s->core.astro, out);
+    /* the planets layer's places of this frame; without it, computed now */
+    const void *planets = s->layer_state[SKY_LAYER_PLANETS];
+    if (planets)
+        sky_planets_out(sky_planets_places(planets), out);
+    else
+        sky_planets_fill(&s->core.astro, out);
     return SKY_OK;
 }
 

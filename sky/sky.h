@@ -109,11 +109,13 @@ typedef enum sky_feature {
     SKY_STARMAP       = 1u << 5, /* Milky Way star map (Mueller sec. 4.4)    */
     SKY_LUNAR_ECLIPSE = 1u << 6, /* lunar eclipses on the moon (needs MOON)  */
     SKY_ECLIPSE       = SKY_LUNAR_ECLIPSE, /* deprecated: SKY_LUNAR_ECLIPSE   */
-    SKY_SOLAR_ECLIPSE = 1u << 7  /* the moon hides the sun, dims the sky and
+    SKY_SOLAR_ECLIPSE = 1u << 7, /* the moon hides the sun, dims the sky and
                                     the host's sunlight; nothing while they
                                     are apart. It creates no resource: left
                                     out, the sun's and the sky's shaders
                                     read "no eclipse"                      */
+    SKY_PLANETS       = 1u << 8  /* Mercury, Venus, Mars, Jupiter, Saturn as
+                                    points like the catalogue stars        */
 } sky_feature;
 /* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
  * to fit an int. */
@@ -124,7 +126,7 @@ typedef enum sky_feature {
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
-     SKY_SOLAR_ECLIPSE)
+     SKY_SOLAR_ECLIPSE | SKY_PLANETS)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
@@ -452,8 +454,29 @@ typedef struct sky_body_place {
     double distance_km;
 } sky_body_place;
 
+/* The planets, in the order of sky_astronomy's planets[]. */
+typedef enum sky_planet {
+    SKY_PLANET_MERCURY = 0,
+    SKY_PLANET_VENUS,
+    SKY_PLANET_MARS,
+    SKY_PLANET_JUPITER,
+    SKY_PLANET_SATURN,
+    SKY_PLANET_COUNT
+} sky_planet;
+SKY_API const char *sky_planet_name(sky_planet planet); /* "mercury", ...; "unknown" */
+
+typedef struct sky_planet_place {
+    sky_body_place place;          /* distance_km geocentric                    */
+    double distance_au;            /* geocentric, where the light left it       */
+    double vmag;                   /* V magnitude, Mallama & Hilton 2018, above
+                                      the atmosphere                           */
+    double illuminated_fraction;   /* of the disc, 0..1                         */
+    double phase_angle_deg;        /* sun-planet-observer                       */
+    double diameter_arcsec;        /* apparent equatorial diameter              */
+} sky_planet_place;
+
 /* The astronomical state of an instant and place (Meeus-class theories;
- * see README for the measured accuracy against ERFA). */
+ * see README for the measured accuracy against ERFA and PyEphem). */
 typedef struct sky_astronomy {
     double julian_day_ut, delta_t_s, lmst_deg;
     sky_body_place sun, moon;
@@ -474,6 +497,8 @@ typedef struct sky_astronomy {
     double star_visibility;  /* Mueller sec. 5 star fade: 0 day .. 1 night      */
     double moon_visibility;  /* Mueller sec. 5 moon factor: 0.5 day .. 1.207
                                 (0.5 + 1/sqrt 2) with the sun well down       */
+    sky_planet_place planets[SKY_PLANET_COUNT]; /* VSOP87D truncated to 2" of
+                                the full series, apparent topocentric        */
 } sky_astronomy;
 
 /* A catalogue star's place (Hipparcos number; found = 0 if it is not in
@@ -501,6 +526,7 @@ typedef enum sky_layer {
     SKY_LAYER_ATMOSPHERE,
     SKY_LAYER_SUN,
     SKY_LAYER_CLOUDS,
+    SKY_LAYER_PLANETS,
     SKY_LAYER_COUNT
 } sky_layer;
 SKY_API const char *sky_layer_name(sky_layer layer); /* "starmap", "stars", ... */

@@ -159,6 +159,42 @@ static void stars_frame(sky_core *s, void *state)
     sky_j2000_to_horizon_mat4(&s->astro, 0, s->frame.star_rot);
 }
 
+void sky_point_view(sky_core *s, float point_max, sky_point_uniforms *u)
+{
+    const sky_frame *f = &s->frame;
+    const sky_astro *a = &s->astro;
+    float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
+    u->size[0] = (float)STAR_Q_PX;
+    u->size[1] = (float)STAR_GLARE_CK_PX;
+    u->size[2] = 0.5f * point_max - 1.0f;
+    u->size[3] = m_a;
+    u->pressure[0] = (float)a->pressure_factor;
+    u->pressure[1] = u->pressure[2] = 0.0f;
+    /* eq. 10 in physical units: peak luminance of a V = 0 star on a PSF of
+     * radius q pixels (pixel_angle radians each) */
+    double r = STAR_Q_PX * f->pixel_angle;
+    u->peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
+    /* the atmosphere's zenith optical depths above the observer */
+    double depth[3];
+    sky_atmosphere_zenith_depth(s, depth);
+    for (int i = 0; i < 3; i++) u->extinction[i] = (float)depth[i];
+    const double re = 6371.0, te = 8.0;
+    double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
+    u->shell[0] = (float)(re + h);
+    u->shell[1] = (float)(re + te);
+    u->shell[2] = (float)(te - h);
+    /* The moon hides what is behind its disc, whatever the sky's
+     * brightness (the disc itself only adds light by day, moon.c, so it
+     * cannot hide them): the test is in true directions, at the disc's
+     * drawn size. */
+    u->occulter[0] = u->occulter[1] = u->occulter[2] = 0.0f;
+    u->occulter[3] = 2.0f;
+    if (s->features & SKY_MOON) {
+        for (int i = 0; i < 3; i++) u->occulter[i] = (float)a->moon.dir_geometric[i];
+        u->occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
+    }
+}
+
 /* Per draw, from the observer's astronomy and the camera. */
 static void stars_view(sky_core *s, void *state)
 {
@@ -170,35 +206,19 @@ static void stars_view(sky_core *s, void *state)
     for (int i = 0; i < 3; i++)
         f->star_aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
                                         a->horizon[i * 3 + 2] * a->aberration[2]);
-    float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
-    f->star_size.q = (float)STAR_Q_PX;
-    f->star_size.glare_ck = (float)STAR_GLARE_CK_PX;
-    f->star_size.max_radius = 0.5f * st->point_max - 1.0f;
-    f->star_size.control_magnitude = m_a;
-    f->star_pressure[0] = (float)a->pressure_factor;
-    /* eq. 10 in physical units: peak luminance of a V = 0 star on a PSF of
-     * radius q pixels (pixel_angle radians each) */
-    double r = STAR_Q_PX * f->pixel_angle;
-    double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
-    f->star_flux_scale = (float)(peak * a->star_visibility * f->star_local_gain);
-    /* the atmosphere's zenith optical depths above the observer */
-    double depth[3];
-    sky_atmosphere_zenith_depth(s, depth);
-    for (int i = 0; i < 3; i++) f->star_extinction[i] = (float)depth[i];
-    const double re = 6371.0, te = 8.0;
-    double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
-    f->star_shell[0] = (float)(re + h);
-    f->star_shell[1] = (float)(re + te);
-    f->star_shell[2] = (float)(te - h);
-    /* The moon hides the stars behind its disc, whatever the sky's
-     * brightness (the disc itself only adds light by day, moon.c, so it
-     * cannot hide them): the test is in true directions, at the disc's
-     * drawn size. */
-    f->star_occulter[3] = 2.0f;
-    if (s->features & SKY_MOON) {
-        for (int i = 0; i < 3; i++) f->star_occulter[i] = (float)a->moon.dir_geometric[i];
-        f->star_occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
+    sky_point_uniforms u;
+    sky_point_view(s, st->point_max, &u);
+    f->star_size.q = u.size[0];
+    f->star_size.glare_ck = u.size[1];
+    f->star_size.max_radius = u.size[2];
+    f->star_size.control_magnitude = u.size[3];
+    for (int i = 0; i < 3; i++) {
+        f->star_pressure[i] = u.pressure[i];
+        f->star_extinction[i] = u.extinction[i];
+        f->star_shell[i] = u.shell[i];
     }
+    for (int i = 0; i < 4; i++) f->star_occulter[i] = u.occulter[i];
+    f->star_flux_scale = (float)(u.peak * f->star_local_gain);
     /* the scintillation clock, in random values */
     f->star_seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
 }

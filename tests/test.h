@@ -79,6 +79,16 @@ void image_free(image *im);
 float image_luminance(const image *im, int x, int y);
 /* The camera of a scene as sky-render builds it. */
 void scene_camera(const scene *sc, float view[16], float proj[16]);
+/* Where a horizon direction (degrees) lands in the scene's image, in
+ * pixels from the top left; -1 behind the camera. */
+int scene_project(const scene *sc, double alt_deg, double az_deg, double *px, double *py);
+/* Luminance-weighted centroid of the brightest blob within r px of
+ * (cx, cy); returns its peak. */
+double image_blob(const image *im, double cx, double cy, int r, double *bx, double *by);
+/* The luminance within radius px of the centre of an n x n RGBA float
+ * image (rows bottom first or top first alike), less the median of the
+ * ring 2-6 px outside it: a point's light in pixel units. */
+double image_centre_sum(const float *rgba, int n, int radius);
 
 /* A small OSMesa context and a sky in it (base: config or NULL for the
  * defaults; the loader and profile are filled in). */

@@ -661,7 +661,9 @@ void test_astro_query_json(void)
                                  "\"libration_lat\":", "\"libration_lon\":", "\"parallactic_angle\":",
                                  "\"eclipse\": {\"umbral_magnitude\":", "\"penumbral_magnitude\":",
                                  "\"stars\": [{\"hip\":32349", "\"vmag\":-1.44", "\"star_visibility\":",
-                                 "\"moon_visibility\":"};
+                                 "\"moon_visibility\":", "\"planets\": [{\"name\":\"mercury\", \"alt\":",
+                                 "{\"name\":\"venus\"", "{\"name\":\"mars\"", "{\"name\":\"jupiter\"",
+                                 "{\"name\":\"saturn\"", "\"diameter_arcsec\":"};
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) CHECK(strstr(out, keys[i]) != NULL, "%s in %s", keys[i], out);
     /* the instant as given: no --time, so JD is exactly the date's */
     double jd = 0.0;
@@ -672,4 +674,19 @@ void test_astro_query_json(void)
     p = strstr(out, "\"umbral_magnitude\":");
     if (p) umbral = atof(p + 19);
     CHECK(umbral > 1.6 && umbral < 1.8, "the 2011-06-15 eclipse is total (%g)", umbral);
+    /* the planets as sky_compute_astronomy gives them */
+    sky_observer o = {sky_julian_day(2011, 6, 15, 20, 11, 31.0), -30.0, 20.0, 1500.0, 0};
+    sky_astronomy a;
+    CHECK(sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) == SKY_OK, "sky_compute_astronomy");
+    for (int i = 0; i < SKY_PLANET_COUNT; i++) {
+        char key[64];
+        snprintf(key, sizeof key, "{\"name\":\"%s\", \"alt\":", sky_planet_name((sky_planet)i));
+        p = strstr(out, key);
+        double alt = p ? atof(p + strlen(key)) : 1e9;
+        const char *vm = p ? strstr(p, "\"vmag\":") : NULL;
+        double vmag = vm ? atof(vm + 7) : 1e9;
+        CHECK(fabs(alt - a.planets[i].place.alt_deg) < 1e-5 && fabs(vmag - a.planets[i].vmag) < 1e-3,
+              "%s: --query alt %g vmag %g, the API %g %g", sky_planet_name((sky_planet)i), alt, vmag,
+              a.planets[i].place.alt_deg, a.planets[i].vmag);
+    }
 }

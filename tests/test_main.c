@@ -108,6 +108,10 @@ int test_skipped;
     X(planets_vs_pyephem)                        \
     X(planets_magnitudes_published)              \
     X(planets_state_serves_its_window)           \
+    X(planets_drawn_where_astronomy_puts_them)   \
+    X(planets_light_sums_to_magnitude)           \
+    X(planets_venus_in_the_afternoon)            \
+    X(planets_layer_costs)                       \
     X(stars_where_astronomy_puts_them)           \
     X(stars_control_magnitude_and_twilight)      \
     X(stars_colour_follows_bv)                   \
@@ -223,6 +227,66 @@ scene scene_default(void)
 void scene_camera(const scene *sc, float view[16], float proj[16])
 {
     sky_cli_camera_at(sc->yaw, sc->pitch, sc->fov, sc->w, sc->h, view, proj);
+}
+
+int scene_project(const scene *sc, double alt_deg, double az_deg, double *px, double *py)
+{
+    const double deg = 3.14159265358979323846 / 180.0;
+    float view[16], proj[16];
+    scene_camera(sc, view, proj);
+    double d[3] = {cos(alt_deg * deg) * sin(az_deg * deg), sin(alt_deg * deg), -cos(alt_deg * deg) * cos(az_deg * deg)};
+    double e[4], c[4];
+    for (int r = 0; r < 4; r++) e[r] = view[r] * d[0] + view[4 + r] * d[1] + view[8 + r] * d[2];
+    for (int r = 0; r < 4; r++) c[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2];
+    if (c[3] <= 0.0) return -1;
+    *px = (c[0] / c[3] + 1.0) * 0.5 * sc->w;
+    *py = (1.0 - c[1] / c[3]) * 0.5 * sc->h;
+    return 0;
+}
+
+double image_blob(const image *im, double cx, double cy, int r, double *bx, double *by)
+{
+    double peak = 0.0;
+    for (int y = (int)cy - r; y <= (int)cy + r; y++)
+        for (int x = (int)cx - r; x <= (int)cx + r; x++)
+            if (x >= 0 && y >= 0 && x < im->w && y < im->h) peak = fmax(peak, image_luminance(im, x, y));
+    double sx = 0, sy = 0, sw = 0;
+    for (int y = (int)cy - r; y <= (int)cy + r; y++)
+        for (int x = (int)cx - r; x <= (int)cx + r; x++)
+            if (x >= 0 && y >= 0 && x < im->w && y < im->h) {
+                double l = image_luminance(im, x, y);
+                if (l > 0.3 * peak) sx += l * (x + 0.5), sy += l * (y + 0.5), sw += l;
+            }
+    *bx = sw > 0 ? sx / sw : -1;
+    *by = sw > 0 ? sy / sw : -1;
+    return peak;
+}
+
+double image_centre_sum(const float *rgba, int n, int radius)
+{
+    double ring[2048];
+    int nr = 0;
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) {
+            double r = hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0);
+            if (r > radius + 2 && r <= radius + 6 && nr < 2048) {
+                const float *q = rgba + 4 * (y * n + x);
+                ring[nr++] = 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
+            }
+        }
+    for (int i = 1; i < nr; i++) /* insertion sort: a few hundred values */
+        for (int j = i; j > 0 && ring[j] < ring[j - 1]; j--) {
+            double t = ring[j];
+            ring[j] = ring[j - 1], ring[j - 1] = t;
+        }
+    double bg = nr ? ring[nr / 2] : 0.0, sum = 0.0;
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++)
+            if (hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0) <= radius) {
+                const float *q = rgba + 4 * (y * n + x);
+                sum += 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2] - bg;
+            }
+    return sum;
 }
 
 int render_scene(const scene *sc, int hdr, sky_gl_profile want, image *out)

@@ -7,12 +7,19 @@
 #include "test.h"
 #include "astro.h"
 
+#include "cli.h"
+#include "sky_internal.h"
+
 #include <math.h>
 #include <string.h>
 
 void test_planets_vs_pyephem(void);
 void test_planets_magnitudes_published(void);
 void test_planets_state_serves_its_window(void);
+void test_planets_drawn_where_astronomy_puts_them(void);
+void test_planets_light_sums_to_magnitude(void);
+void test_planets_venus_in_the_afternoon(void);
+void test_planets_layer_costs(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 #define ARCSEC_PER_RAD 206264.806
@@ -164,4 +171,226 @@ void test_planets_state_serves_its_window(void)
         CHECK(worst[p] <= 0.5, "%s: %.3f\" after %.1f days (limit 0.5\")", sky_astro_planet_name(p), worst[p],
               SKY_PLANET_STATE_DAYS);
     }
+}
+
+static sky_observer observer_at(int y, int mo, int d, int h, int mi)
+{
+    sky_observer o = {sky_julian_day(y, mo, d, h, mi, 0.0), 48.1, 11.6, 500.0, 0};
+    return o;
+}
+
+/* Venus and Jupiter half a degree apart in the evening twilight of
+ * 2023-03-01 (Munich, sun 8.8 degrees down): each drawn where the
+ * astronomy puts it, and nothing there without SKY_PLANETS. */
+void test_planets_drawn_where_astronomy_puts_them(void)
+{
+    sky_observer o = observer_at(2023, 3, 1, 17, 45);
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+        CHECK(0, "sky_compute_astronomy");
+        return;
+    }
+    const sky_planet_place *venus = &a.planets[SKY_PLANET_VENUS], *jupiter = &a.planets[SKY_PLANET_JUPITER];
+    scene sc = scene_default();
+    sc.cfg.features = SKY_PLANETS;
+    sc.params.cover = 0.0f;
+    sc.has_observer = 1;
+    sc.observer = o;
+    sc.w = sc.h = 256;
+    sc.fov = 4.0;
+    sc.yaw = venus->place.az_deg + 0.4;
+    sc.pitch = venus->place.alt_deg + 0.3;
+    image with, without;
+    if (render_scene(&sc, 1, SKY_GL_AUTO, &with)) {
+        CHECK(0, "render failed");
+        return;
+    }
+    sc.cfg.features = SKY_FEATURES_NONE;
+    if (render_scene(&sc, 1, SKY_GL_AUTO, &without)) {
+        CHECK(0, "render failed");
+        image_free(&with);
+        return;
+    }
+    const sky_planet_place *pair[2] = {venus, jupiter};
+    double peak[2] = {0, 0};
+    for (int i = 0; i < 2; i++) {
+        double px = -1, py = -1, bx, by, ex, ey;
+        scene_project(&sc, pair[i]->place.alt_deg, pair[i]->place.az_deg, &px, &py);
+        peak[i] = image_blob(&with, px, py, 5, &bx, &by);
+        double bare = image_blob(&without, px, py, 5, &ex, &ey);
+        double off = hypot(bx - px, by - py);
+        NOTE("%-7s alt %.3f az %.3f: expected (%.2f, %.2f), found (%.2f, %.2f): %.2f px; peak %.3g, sky %.3g kcd/m^2",
+             i ? "Jupiter" : "Venus", pair[i]->place.alt_deg, pair[i]->place.az_deg, px, py, bx, by, off, peak[i], bare);
+        CHECK(off <= 1.5, "%s %.2f px from its place", i ? "Jupiter" : "Venus", off);
+        CHECK(peak[i] > 5.0 * bare, "%s stands out of the twilight (%.3g vs %.3g)", i ? "Jupiter" : "Venus", peak[i],
+              bare);
+    }
+    /* Venus 1.85 magnitudes brighter: its peak holds the larger share of
+     * its light in the glare (stars.vert), so its peak outshines Jupiter's
+     * by less than 5.5 but clearly */
+    CHECK(peak[0] > 1.5 * peak[1], "Venus brighter than Jupiter (%.3g vs %.3g)", peak[0], peak[1]);
+    image_free(&with);
+    image_free(&without);
+}
+
+/* A planet's light sums to its illuminance: V from Mallama & Hilton, the
+ * extinction and colour of a star (stars.vert), no day-night fade. Venus
+ * at 15 degrees in the twilight of 2023-06-04, at the default m_a 4 (a
+ * glare of 63 px, which carries 84 % of its light). */
+void test_planets_light_sums_to_magnitude(void)
+{
+    sky_observer o = observer_at(2023, 6, 4, 20, 40);
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+        CHECK(0, "sky_compute_astronomy");
+        return;
+    }
+    const sky_planet_place *v = &a.planets[SKY_PLANET_VENUS];
+    const int n = 256, radius = 70;
+    const float m_a = 4.0f;
+    /* the sky at Venus's altitude outshines Venus's pixels a hundred
+     * times: the same view without the planets takes it away exactly */
+    double sums[2] = {0, 0};
+    sky_frame fr;
+    for (int k = 0; k < 2; k++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.features = k ? SKY_FEATURES_NONE : SKY_PLANETS;
+        cfg.output = SKY_OUTPUT_HDR;
+        cfg.star_control_magnitude = m_a;
+        fixture f;
+        if (fixture_open_sized(&f, n, n, 1, SKY_GL_AUTO, &cfg)) {
+            CHECK(0, "fixture");
+            return;
+        }
+        sky_params prm = sky_default_params();
+        prm.cover = 0.0f;
+        float view[16], proj[16];
+        sky_cli_camera_at(v->place.az_deg, v->place.alt_deg, 20.0, n, n, view, proj);
+        if (sky_set_params(f.s, &prm) < 0 || sky_set_observer(f.s, &o) != SKY_OK || sky_draw(f.s, view, proj) < 0) {
+            CHECK(0, "draw");
+            fixture_close(&f);
+            return;
+        }
+        sky_osmesa_finish(&f.ctx);
+        sums[k] = image_centre_sum(f.ctx.pixels, n, radius);
+        if (!k) fr = f.s->core.frame;
+        fixture_close(&f);
+    }
+    double got = (sums[0] - sums[1]) * fr.pixel_angle * fr.pixel_angle;
+    float rgb[3];
+    sky_star_color(0.82, rgb);
+    double cos_t = sin(v->place.alt_deg * DEG), sa = fr.planet_shell[0], sb = fr.planet_shell[1];
+    double airmass = (sqrt(sb * sb - sa * sa * (1.0 - cos_t * cos_t)) - sa * cos_t) / fr.planet_shell[2];
+    static const double w[3] = {0.2126, 0.7152, 0.0722};
+    double ext = 0.0;
+    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr.planet_extinction[c] * airmass);
+    double expect = 2.54e-9 * pow(2.512, m_a - 4.0 - v->vmag) * ext;
+    NOTE("Venus V %.2f at %.1f deg sums to %.4g lx, physical %.4g lx (%+.1f %%)", v->vmag, v->place.alt_deg,
+         got * 1e3, expect * 1e3, 100.0 * (got / expect - 1.0));
+    CHECK(fabs(got / expect - 1.0) <= 0.03, "Venus's light %.4g lx, its magnitude's %.4g lx", got * 1e3, expect * 1e3);
+}
+
+/* Venus in a clear afternoon sky (2023-06-04, 17:00 local time, the sun at
+ * 38 degrees, Venus 45 degrees east of it, some 2 % of the blue sky's
+ * luminance in a 1' PSF: there for an eye that knows where to look):
+ * through a 5-degree view, whose pixels are about 1', it is a speck a
+ * few 8-bit levels above the blue; through a 60-degree view of 256
+ * pixels its light spreads over 14' and it is gone. */
+void test_planets_venus_in_the_afternoon(void)
+{
+    sky_observer o = observer_at(2023, 6, 4, 15, 0);
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+        CHECK(0, "sky_compute_astronomy");
+        return;
+    }
+    const sky_planet_place *v = &a.planets[SKY_PLANET_VENUS];
+    CHECK(a.sun.alt_deg > 30.0 && v->place.alt_deg > 30.0, "sun %.1f, Venus %.1f degrees up", a.sun.alt_deg,
+          v->place.alt_deg);
+    const double fovs[2] = {5.0, 60.0};
+    double step[2] = {0, 0}; /* what Venus adds to its brightest pixel, 8-bit levels */
+    for (int k = 0; k < 2; k++) {
+        double peak[2];
+        for (int with = 0; with < 2; with++) {
+            scene sc = scene_default();
+            sc.cfg.features = with ? SKY_PLANETS | SKY_SUN : SKY_SUN;
+            sc.params.cover = 0.0f;
+            sc.has_observer = 1;
+            sc.observer = o;
+            sc.w = sc.h = 256;
+            sc.fov = fovs[k];
+            sc.yaw = v->place.az_deg;
+            sc.pitch = v->place.alt_deg;
+            image im;
+            if (render_scene(&sc, 0, SKY_GL_AUTO, &im)) {
+                CHECK(0, "render failed");
+                return;
+            }
+            double bx, by;
+            peak[with] = image_blob(&im, 128.0, 128.0, 2, &bx, &by);
+            image_free(&im);
+        }
+        step[k] = 255.0 * (peak[1] - peak[0]);
+    }
+    NOTE("Venus (V %.2f) in the afternoon sky adds %.1f 8-bit levels through 5 degrees, %.1f through 60", v->vmag,
+         step[0], step[1]);
+    CHECK(step[0] >= 3.0, "Venus shows through a 5-degree view (%.1f levels; the dither moves +-1)", step[0]);
+    CHECK(step[1] < 0.5 * step[0], "and far less through a 60-degree one (%.1f levels)", step[1]);
+}
+
+/* SKY_PLANETS is a layer of its own: without it nothing is created; with
+ * it one program and a 180-byte buffer, and at noon with every planet
+ * down, no draw. */
+void test_planets_layer_costs(void)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_STARS;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_stats without, with;
+    sky_get_stats(f.s, &without);
+    fixture_close(&f);
+    cfg.features = SKY_STARS | SKY_PLANETS;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_get_stats(f.s, &with);
+    CHECK(!without.layers[SKY_LAYER_PLANETS].enabled && without.layers[SKY_LAYER_PLANETS].bytes == 0,
+          "no planets layer without the feature");
+    CHECK(with.layers[SKY_LAYER_PLANETS].enabled && with.layers[SKY_LAYER_PLANETS].bytes == 180,
+          "five points of nine floats (%zu bytes)", with.layers[SKY_LAYER_PLANETS].bytes);
+    CHECK(with.programs == without.programs + 1 && with.buffers == without.buffers + 1,
+          "one program and one buffer more (%d/%d programs, %d/%d buffers)", with.programs, without.programs,
+          with.buffers, without.buffers);
+    /* an hour of 2023-06-04 with every planet below the horizon: nothing
+     * to draw; one with Venus up at night: drawn */
+    int down_hour = -1, venus_hour = -1;
+    for (int h = 0; h < 24; h++) {
+        sky_observer o = observer_at(2023, 6, 4, h, 0);
+        sky_astronomy a;
+        if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) continue;
+        int up = 0;
+        for (int i = 0; i < SKY_PLANET_COUNT; i++) up += a.planets[i].place.alt_deg > 0.0;
+        if (!up && down_hour < 0) down_hour = h;
+        if (a.sun.alt_deg < -12.0 && a.planets[SKY_PLANET_VENUS].place.alt_deg > 5.0) venus_hour = h;
+    }
+    CHECK(down_hour >= 0 && venus_hour >= 0, "an hour with every planet down (%d), one with Venus up at night (%d)",
+          down_hour, venus_hour);
+    float view[16], proj[16];
+    sky_cli_camera_at(270.0, 30.0, 60.0, 64, 64, view, proj);
+    for (int k = 0; k < 2; k++) {
+        sky_observer o = observer_at(2023, 6, 4, k ? venus_hour : down_hour, 0);
+        sky_set_observer(f.s, &o);
+        sky_draw(f.s, view, proj);
+        sky_get_stats(f.s, &with);
+        CHECK(with.layers[SKY_LAYER_PLANETS].drawn == k, "%s: planets drawn %d", k ? "Venus up" : "every planet down",
+              with.layers[SKY_LAYER_PLANETS].drawn);
+    }
+    fixture_close(&f);
 }

@@ -46,25 +46,6 @@ static int render_with_observer(const scene *sc, const sky_observer *o, int hdr,
     return render_scene(&with, hdr, SKY_GL_AUTO, out);
 }
 
-/* Luminance-weighted centroid of the brightest blob within r px of (cx, cy). */
-static double blob(const image *im, double cx, double cy, int r, double *bx, double *by)
-{
-    double peak = 0.0;
-    for (int y = (int)cy - r; y <= (int)cy + r; y++)
-        for (int x = (int)cx - r; x <= (int)cx + r; x++)
-            if (x >= 0 && y >= 0 && x < im->w && y < im->h) peak = fmax(peak, image_luminance(im, x, y));
-    double sx = 0, sy = 0, sw = 0;
-    for (int y = (int)cy - r; y <= (int)cy + r; y++)
-        for (int x = (int)cx - r; x <= (int)cx + r; x++)
-            if (x >= 0 && y >= 0 && x < im->w && y < im->h) {
-                double l = image_luminance(im, x, y);
-                if (l > 0.3 * peak) sx += l * (x + 0.5), sy += l * (y + 0.5), sw += l;
-            }
-    *bx = sw > 0 ? sx / sw : -1;
-    *by = sw > 0 ? sy / sw : -1;
-    return peak;
-}
-
 void test_stars_where_astronomy_puts_them(void)
 {
     const struct {
@@ -96,15 +77,9 @@ void test_stars_where_astronomy_puts_them(void)
             CHECK(0, "render failed");
             return;
         }
-        float view[16], proj[16];
-        scene_camera(&sc, view, proj);
-        double d[3], e[4], c[4];
-        sky_horizon_vector(places[i].alt_deg * DEG, places[i].az_deg * DEG, d);
-        for (int r = 0; r < 4; r++) e[r] = view[r] * d[0] + view[4 + r] * d[1] + view[8 + r] * d[2];
-        for (int r = 0; r < 4; r++) c[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2];
-        double px = (c[0] / c[3] + 1.0) * 0.5 * sc.w, py = (1.0 - c[1] / c[3]) * 0.5 * sc.h;
-        double bx, by;
-        double peak = blob(&im, px, py, 6, &bx, &by);
+        double px = -1.0, py = -1.0, bx, by;
+        scene_project(&sc, places[i].alt_deg, places[i].az_deg, &px, &py);
+        double peak = image_blob(&im, px, py, 6, &bx, &by);
         double err_px = hypot(bx - px, by - py);
         NOTE("%-10s alt %6.2f az %6.2f: expected (%.2f, %.2f), found (%.2f, %.2f): %.2f px", stars[i].name,
              places[i].alt_deg, places[i].az_deg, px, py, bx, by, err_px);
@@ -439,8 +414,9 @@ void test_starmap_shows_the_milky_way(void)
  * ring just outside (the dome and the faint stars), times the pixel's solid
  * angle (the centre's, pixel_angle^2: the star sits on the axis). expect:
  * its physical illuminance, E0 2.512^-V scaled by the control magnitude
- * (2.512^(m_a - 4)), the night fade and the extinction the shader applies
- * (eq. 11-12 over the frame's optical depths, the star's colour weighted). */
+ * (2.512^(m_a - 4)) and the extinction the shader applies (eq. 11-12 over
+ * the frame's optical depths, the star's colour weighted); no fade: the
+ * sky's own light is what hides the stars by day. */
 static double star_flux(const sky_observer *o, const sky_star_place *p, float m_a, int radius, double *expect)
 {
     const int n = 256;
@@ -460,29 +436,7 @@ static double star_flux(const sky_observer *o, const sky_star_place *p, float m_
         return -1.0;
     }
     sky_osmesa_finish(&f.ctx);
-    const float *px = f.ctx.pixels;
-    double ring[2048];
-    int nr = 0;
-    for (int y = 0; y < n; y++)
-        for (int x = 0; x < n; x++) {
-            double r = hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0);
-            if (r > radius + 2 && r <= radius + 6 && nr < 2048) {
-                const float *q = px + 4 * (y * n + x);
-                ring[nr++] = 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
-            }
-        }
-    for (int i = 1; i < nr; i++) /* insertion sort: a few hundred values */
-        for (int j = i; j > 0 && ring[j] < ring[j - 1]; j--) {
-            double t = ring[j];
-            ring[j] = ring[j - 1], ring[j - 1] = t;
-        }
-    double bg = nr ? ring[nr / 2] : 0.0, sum = 0.0;
-    for (int y = 0; y < n; y++)
-        for (int x = 0; x < n; x++)
-            if (hypot(x + 0.5 - n / 2.0, y + 0.5 - n / 2.0) <= radius) {
-                const float *q = px + 4 * (y * n + x);
-                sum += 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2] - bg;
-            }
+    double sum = image_centre_sum(f.ctx.pixels, n, radius);
     const sky_frame *fr = &f.s->core.frame;
     double pa = fr->pixel_angle;
     float rgb[3];
@@ -492,7 +446,7 @@ static double star_flux(const sky_observer *o, const sky_star_place *p, float m_
     static const double w[3] = {0.2126, 0.7152, 0.0722};
     double ext = 0.0;
     for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr->star_extinction[c] * airmass);
-    *expect = 2.54e-9 * pow(2.512, m_a - 4.0 - p->vmag) * f.s->core.astro.star_visibility * ext;
+    *expect = 2.54e-9 * pow(2.512, m_a - 4.0 - p->vmag) * ext;
     fixture_close(&f);
     return sum * pa * pa;
 }

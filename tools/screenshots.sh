@@ -14,6 +14,9 @@ $r --size 640x360 --preset minimal --time 0.02 --pitch 35 --out $out/flicker.png
 $r --size 360x360 --fisheye --time 0.3 --cover 0.5 --out $out/fisheye.png
 $r --size 640x360 --preset minimal --pitch 25 --out $out/minimal-compat.png
 $r --size 640x360 --preset moonlit --out $out/moonlit.png
+# the planets (Night sky II): Venus and Jupiter half a degree apart in the
+# evening twilight of 2023-03-01 over Munich
+$r --size 640x400 --date 2023-03-01T17:45:00Z --lat 48.1 --lon 11.6 --features clouds,stars,starmap,planets --cover 0.1 --yaw 254 --pitch 15 --fov 40 --out $out/venus-jupiter.png
 # the atmosphere paths (issue 6): a clear morning at 40 N on the 2026
 # equinox, looking east toward the sun: day (sun 27 deg), sunrise (1.6
 # deg) and civil twilight (-4 deg)

@@ -17,7 +17,9 @@ uniform vec3 u_star_aberration;   /* annual aberration, horizon frame          *
 uniform vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
 uniform vec3 u_star_pressure;     /* refraction pressure factor, -, -          */
 uniform vec4 u_star_occulter;     /* moon's true direction, cos of its drawn radius */
-SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed)         */
+SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed); y: the
+                                     share of the twinkle a disc averages away
+                                     (planets; 0 for a star)                 */
 SKY_ATTR vec3 a_dir;
 SKY_ATTR vec4 a_color;            /* rgb: colour of unit luminance, a: V mag    */
 SKY_OUT vec3 v_dir;
@@ -62,7 +64,7 @@ vec3 sky_star_light(vec3 d, float index)
     float n0 = fract(sin(index * 12.9898 + k0 * 78.233) * 43758.5453);
     float n1 = fract(sin(index * 12.9898 + (k0 + 1.0) * 78.233) * 43758.5453);
     float n = mix(n0, n1, kt * kt * (3.0 - 2.0 * kt));
-    float twinkle = min(0.02 / max(n, 1e-4), 1.0);
+    float twinkle = min(0.02 / max(n, 1e-4), 1.0) * (1.0 - a_pos.y);
     vec3 beta = vec3(0.16, 0.37, 0.91) / 0.91;
     vec3 scint = vec3(1.0) - min(0.25 * (airmass - 1.0), 0.8) * twinkle * beta;
     return u_star_flux_scale * flux * a_color.rgb * extinction * scint;

@@ -1,0 +1,212 @@
+/*
+ * The planets Mercury to Saturn (SKY_PLANETS): points drawn exactly as the
+ * catalogue stars are (stars.vert/.frag: Mueller eq. 9-12's size, PSF,
+ * glare, extinction and scintillation), from their apparent places
+ * (astro.c: VSOP87D, Meeus ch. 33) and their magnitudes (Mallama & Hilton
+ * 2018), coloured by their measured B-V. A planet's disc averages the
+ * twinkle away: the shader's scintillation is scaled by
+ * 1 / (1 + (diameter / 5")^2), so Jupiter keeps 1.5 % of a star's and
+ * Mercury at 7" a third.
+ *
+ * The VSOP87 series (967 terms) are evaluated into a state of position
+ * and velocity per planet that serves SKY_PLANET_STATE_DAYS either side
+ * of its instant; a frame refreshes at most one state that has grown
+ * older than half of that, or every state beyond it (a jump in time).
+ */
+#include "layer.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PLANET_FLOATS 9 /* a_pos (seed, twinkle removed), a_dir (3), a_color (rgb, V) */
+#define SCINTILLATION_RATE 10.0
+#define SCINTILLATION_PERIOD 997.0
+#define DISC_TWINKLE_ARCSEC 5.0
+
+typedef struct planets_state {
+    sky_program program;
+    GLuint buffer;
+    float point_max;
+    double scintillation;
+    int have_states;
+    sky_planet_state states[SKY_ASTRO_PLANETS];
+    sky_astro_planet places[SKY_ASTRO_PLANETS];
+    float vertices[SKY_ASTRO_PLANETS * PLANET_FLOATS];
+    int dirty; /* vertices changed since the last upload */
+} planets_state;
+
+static const sky_uniform_desc planet_uniforms[] = {
+    SKY_UF("u_star_rot", SKY_U_M4, planet_rot),
+    SKY_UF("u_star_aberration", SKY_U_F3, planet_aberration),
+    SKY_UF("u_star_size", SKY_U_F4, planet_size),
+    SKY_UF("u_star_pressure", SKY_U_F3, planet_pressure),
+    SKY_UF("u_star_flux_scale", SKY_U_F1, planet_flux_scale),
+    SKY_UF("u_star_extinction", SKY_U_F3, planet_extinction),
+    SKY_UF("u_star_shell", SKY_U_F3, planet_shell),
+    SKY_UF("u_star_seed", SKY_U_F1, planet_seed),
+    SKY_UF("u_star_occulter", SKY_U_F4, planet_occulter),
+};
+static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms), NULL};
+
+static const size_t planet_bytes = sizeof(float) * SKY_ASTRO_PLANETS * PLANET_FLOATS;
+
+/* The states the frame's instant needs: every one past its window, else
+ * the oldest past half of it (so a clock that runs keeps the work to one
+ * planet's series a frame). */
+static void refresh_states(planets_state *st, double jd_tt)
+{
+    int oldest = -1;
+    double oldest_age = 0.5 * SKY_PLANET_STATE_DAYS;
+    for (int p = 0; p < SKY_ASTRO_PLANETS; p++) {
+        double age = st->have_states ? fabs(jd_tt - st->states[p].jd_tt) : INFINITY;
+        if (!(age <= SKY_PLANET_STATE_DAYS))
+            sky_planet_state_at(p, jd_tt, &st->states[p]);
+        else if (age > oldest_age) {
+            oldest = p;
+            oldest_age = age;
+        }
+    }
+    if (oldest >= 0) sky_planet_state_at(oldest, jd_tt, &st->states[oldest]);
+    st->have_states = 1;
+}
+
+static int planets_create(sky_core *s, void *state, char *err, size_t err_len)
+{
+    planets_state *st = state;
+    st->point_max = sky_gl_point_size_max(s);
+    st->buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, NULL, planet_bytes, GL_DYNAMIC_DRAW);
+    if (!st->buffer) {
+        sky_format(err, err_len, "glGenBuffers failed for the planets");
+        return -1;
+    }
+    st->dirty = 1;
+    const sky_snippet *own[1] = {&planets_snippet};
+    return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
+                                       err_len);
+}
+
+static void planets_destroy(sky_core *s, void *state)
+{
+    planets_state *st = state;
+    sky_program_destroy(s, &st->program);
+    sky_buffers_destroy(s, &st->buffer, &planet_bytes, 1);
+}
+
+static void planets_advance(sky_core *s, void *state, double dt)
+{
+    planets_state *st = state;
+    (void)s;
+    st->scintillation = sky_phase_advance(st->scintillation, SCINTILLATION_RATE / SCINTILLATION_PERIOD, dt);
+}
+
+static void planets_reset(void *state) { ((planets_state *)state)->scintillation = 0.0; }
+
+static void planets_frame(sky_core *s, void *state)
+{
+    planets_state *st = state;
+    sky_frame *f = &s->frame;
+    refresh_states(st, s->astro.jd_tt);
+    for (int p = 0; p < SKY_ASTRO_PLANETS; p++) {
+        sky_astro_planet *pl = &st->places[p];
+        sky_astro_planet_place(&s->astro, p, &st->states[p], pl);
+        float *v = st->vertices + p * PLANET_FLOATS;
+        double disc = pl->diameter / (DISC_TWINKLE_ARCSEC * SKY_PI / 648000.0);
+        v[0] = (float)(100000 + p); /* a seed no catalogue star has */
+        v[1] = (float)(1.0 - 1.0 / (1.0 + disc * disc));
+        /* unrefracted: stars.vert refracts each point by its own altitude */
+        for (int i = 0; i < 3; i++) v[2 + i] = (float)pl->body.dir_geometric[i];
+        sky_star_color(pl->bv, v + 5);
+        v[8] = (float)pl->vmag;
+    }
+    st->dirty = 1;
+    /* the places are apparent in the horizon frame already */
+    memset(f->planet_rot, 0, sizeof f->planet_rot);
+    f->planet_rot[0] = f->planet_rot[5] = f->planet_rot[10] = f->planet_rot[15] = 1.0f;
+    f->planet_aberration[0] = f->planet_aberration[1] = f->planet_aberration[2] = 0.0f;
+}
+
+static void planets_view(sky_core *s, void *state)
+{
+    planets_state *st = state;
+    sky_frame *f = &s->frame;
+    if (st->dirty) {
+        sky_buffer_update(s, GL_ARRAY_BUFFER, st->buffer, st->vertices, planet_bytes, GL_DYNAMIC_DRAW);
+        st->dirty = 0;
+    }
+    sky_point_uniforms u;
+    sky_point_view(s, st->point_max, &u);
+    f->planet_size.q = u.size[0];
+    f->planet_size.glare_ck = u.size[1];
+    f->planet_size.max_radius = u.size[2];
+    f->planet_size.control_magnitude = u.size[3];
+    for (int i = 0; i < 3; i++) {
+        f->planet_pressure[i] = u.pressure[i];
+        f->planet_extinction[i] = u.extinction[i];
+        f->planet_shell[i] = u.shell[i];
+    }
+    for (int i = 0; i < 4; i++) f->planet_occulter[i] = u.occulter[i];
+    /* No day-night fade: the planets' light is added to the sky as it is,
+     * and the day sky's own brightness is what hides them (Venus at -4.5
+     * adds some 1 % to a blue sky through a 1.4-pixel PSF at 60 degrees of
+     * view, 15 % through a 5-degree one). */
+    f->planet_flux_scale = (float)(u.peak * f->star_local_gain);
+    f->planet_seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
+}
+
+/* Drawn when the brightest planet above the horizon would add at least a
+ * quarter of an 8-bit step at the exposure (the stars' rule). */
+static int planets_visible(const sky_core *s, const void *state)
+{
+    const planets_state *st = state;
+    const sky_frame *f = &s->frame;
+    double brightest = 0.0;
+    for (int p = 0; p < SKY_ASTRO_PLANETS; p++)
+        if (st->places[p].body.alt > -0.01) brightest = fmax(brightest, pow(2.512, -st->places[p].vmag));
+    return f->planet_flux_scale * brightest * f->exposure >= 1.0 / 1024.0;
+}
+
+static int planets_draw(sky_core *s, void *state)
+{
+    planets_state *st = state;
+    const sky_gl *gl = &s->gl;
+    sky_program_apply(s, &st->program);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, st->buffer);
+    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, PLANET_FLOATS * sizeof(float), (const void *)0);
+    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, PLANET_FLOATS * sizeof(float),
+                              (const void *)(2 * sizeof(float)));
+    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, PLANET_FLOATS * sizeof(float),
+                              (const void *)(5 * sizeof(float)));
+    gl->glEnableVertexAttribArray(0);
+    gl->glEnableVertexAttribArray(1);
+    gl->glEnableVertexAttribArray(2);
+    sky_gl_program_point_size(s, 1);
+    gl->glDrawArrays(GL_POINTS, 0, SKY_ASTRO_PLANETS);
+    sky_gl_program_point_size(s, 0);
+    return 1;
+}
+
+static size_t planets_buffer_bytes(const sky_core *s, const void *state)
+{
+    (void)s;
+    return ((const planets_state *)state)->buffer ? planet_bytes : 0;
+}
+
+const sky_astro_planet *sky_planets_places(const void *state) { return ((const planets_state *)state)->places; }
+
+/* Added over the dome like the stars: dimmed by the atmosphere, hidden by
+ * the clouds and the moon. */
+const sky_layer_class sky_planets_layer = {
+    .slot = SKY_LAYER_PLANETS,
+    .feature = SKY_PLANETS,
+    .state_size = sizeof(planets_state),
+    .blend = SKY_BLEND_ADD,
+    .create = planets_create,
+    .destroy = planets_destroy,
+    .advance = planets_advance,
+    .reset_clock = planets_reset,
+    .frame = planets_frame,
+    .view = planets_view,
+    .visible = planets_visible,
+    .draw = planets_draw,
+    .buffer_bytes = planets_buffer_bytes,
+};
