@@ -662,6 +662,10 @@ static const planet_data planets[SKY_ASTRO_PLANETS] = {
     {"saturn", &sky_vsop_saturn, 60268.0, 1.04},
 };
 
+void sky_astro_topocentric(const sky_astro *a, sky_astro_body *b) { body_place(a, a->observer_eq, b); }
+
+double sky_astro_planet_bv(int planet) { return planets[planet >= 0 && planet < SKY_ASTRO_PLANETS ? planet : 0].bv; }
+
 const char *sky_astro_planet_name(int planet)
 {
     return planet >= 0 && planet < SKY_ASTRO_PLANETS ? planets[planet].name : NULL;

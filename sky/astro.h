@@ -188,6 +188,13 @@ void sky_astro_planet_place(const sky_astro *a, int planet, const sky_planet_sta
  * heliocentric ecliptic longitude, for its season term. Radians. */
 double sky_astro_planet_magnitude(int planet, double r_au, double delta_au, double alpha, double ring_lat,
                                   double helio_lon);
+/* A body's topocentric horizon place (alt, az, dirs, topo_distance_km)
+ * from its geocentric apparent ra, dec and distance_km, for a's observer
+ * and instant: how a planet's place of an instant moments ago follows the
+ * sky's turning. */
+void sky_astro_topocentric(const sky_astro *a, sky_astro_body *b);
+/* The planet's B-V (what sky_astro_planet.bv holds). */
+double sky_astro_planet_bv(int planet);
 /* "mercury", ... for SKY_ASTRO_MERCURY...; NULL out of range. */
 const char *sky_astro_planet_name(int planet);
 

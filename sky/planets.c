@@ -12,6 +12,10 @@
  * and velocity per planet that serves SKY_PLANET_STATE_DAYS either side
  * of its instant; a frame refreshes at most one state that has grown
  * older than half of that, or every state beyond it (a jump in time).
+ * The geocentric place from a state (light time, nutation, aberration,
+ * magnitude) is kept for GEOCENTRIC_DAYS, in which Mercury, the fastest
+ * across the sky, moves under 3"; every frame only turns it into the
+ * observer's horizon.
  */
 #include "layer.h"
 
@@ -22,6 +26,7 @@
 #define SCINTILLATION_RATE 10.0
 #define SCINTILLATION_PERIOD 997.0
 #define DISC_TWINKLE_ARCSEC 5.0
+#define GEOCENTRIC_DAYS 0.0005 /* 43 s */
 
 typedef struct planets_state {
     sky_program program;
@@ -31,6 +36,7 @@ typedef struct planets_state {
     int have_states;
     sky_planet_state states[SKY_ASTRO_PLANETS];
     sky_astro_planet places[SKY_ASTRO_PLANETS];
+    double places_jd_tt;      /* the instant of the places' geocentric part */
     float vertices[SKY_ASTRO_PLANETS * PLANET_FLOATS];
     int dirty; /* vertices changed since the last upload */
 } planets_state;
@@ -80,6 +86,12 @@ static int planets_create(sky_core *s, void *state, char *err, size_t err_len)
         return -1;
     }
     st->dirty = 1;
+    st->places_jd_tt = -INFINITY;
+    for (int p = 0; p < SKY_ASTRO_PLANETS; p++) {
+        float *v = st->vertices + p * PLANET_FLOATS;
+        v[0] = (float)(100000 + p); /* a seed no catalogue star has */
+        sky_star_color(sky_astro_planet_bv(p), v + 5);
+    }
     const sky_snippet *own[1] = {&planets_snippet};
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
                                        err_len);
@@ -105,17 +117,23 @@ static void planets_frame(sky_core *s, void *state)
 {
     planets_state *st = state;
     sky_frame *f = &s->frame;
-    refresh_states(st, s->astro.jd_tt);
+    double jd_tt = s->astro.jd_tt;
+    int geocentric = !(fabs(jd_tt - st->places_jd_tt) <= GEOCENTRIC_DAYS);
+    if (geocentric) {
+        refresh_states(st, jd_tt);
+        st->places_jd_tt = jd_tt;
+    }
     for (int p = 0; p < SKY_ASTRO_PLANETS; p++) {
         sky_astro_planet *pl = &st->places[p];
-        sky_astro_planet_place(&s->astro, p, &st->states[p], pl);
+        if (geocentric)
+            sky_astro_planet_place(&s->astro, p, &st->states[p], pl);
+        else
+            sky_astro_topocentric(&s->astro, &pl->body);
         float *v = st->vertices + p * PLANET_FLOATS;
         double disc = pl->diameter / (DISC_TWINKLE_ARCSEC * SKY_PI / 648000.0);
-        v[0] = (float)(100000 + p); /* a seed no catalogue star has */
         v[1] = (float)(1.0 - 1.0 / (1.0 + disc * disc));
         /* unrefracted: stars.vert refracts each point by its own altitude */
         for (int i = 0; i < 3; i++) v[2 + i] = (float)pl->body.dir_geometric[i];
-        sky_star_color(pl->bv, v + 5);
         v[8] = (float)pl->vmag;
     }
     st->dirty = 1;

@@ -112,6 +112,7 @@ int test_skipped;
     X(planets_light_sums_to_magnitude)           \
     X(planets_venus_in_the_afternoon)            \
     X(planets_layer_costs)                       \
+    X(planets_layer_follows_the_clock)           \
     X(stars_where_astronomy_puts_them)           \
     X(stars_control_magnitude_and_twilight)      \
     X(stars_colour_follows_bv)                   \

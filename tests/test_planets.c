@@ -20,6 +20,7 @@ void test_planets_drawn_where_astronomy_puts_them(void);
 void test_planets_light_sums_to_magnitude(void);
 void test_planets_venus_in_the_afternoon(void);
 void test_planets_layer_costs(void);
+void test_planets_layer_follows_the_clock(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 #define ARCSEC_PER_RAD 206264.806
@@ -393,4 +394,43 @@ void test_planets_layer_costs(void)
               with.layers[SKY_LAYER_PLANETS].drawn);
     }
     fixture_close(&f);
+}
+
+/* The layer keeps a planet's geocentric place for 43 s of the clock and
+ * turns it with the sky every frame: what sky_get_astronomy reports (the
+ * layer's places) stays within 5" of a fresh computation as the clock
+ * runs in steps of 5 s, and within 1e-9 degrees right after a jump. */
+void test_planets_layer_follows_the_clock(void)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_PLANETS;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    sky_observer o = observer_at(2023, 3, 1, 17, 45);
+    double worst = 0.0, worst_jump = 0.0;
+    for (int k = 0; k < 60; k++) {
+        o.julian_day_utc += (k % 20 == 0 ? 3.7 : 5.0 / 86400.0); /* a jump every 20 steps */
+        sky_set_observer(f.s, &o);
+        sky_astronomy layer, fresh;
+        sky_get_astronomy(f.s, &layer);
+        sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &fresh, NULL, 0);
+        for (int p = 0; p < SKY_PLANET_COUNT; p++) {
+            double u[3], v[3];
+            sky_horizon_vector(layer.planets[p].place.alt_deg * DEG, layer.planets[p].place.az_deg * DEG, u);
+            sky_horizon_vector(fresh.planets[p].place.alt_deg * DEG, fresh.planets[p].place.az_deg * DEG, v);
+            double e = angle_between(u, v) * ARCSEC_PER_RAD;
+            if (k % 20 == 0)
+                worst_jump = fmax(worst_jump, e);
+            else
+                worst = fmax(worst, e);
+        }
+    }
+    fixture_close(&f);
+    NOTE("the layer's places against fresh ones: %.3f\" as the clock runs, %.2g\" after a jump", worst, worst_jump);
+    CHECK(worst <= 5.0, "%.3f\" while the clock runs (limit 5\")", worst);
+    CHECK(worst_jump <= 1e-3, "%.2g\" after a jump", worst_jump);
 }
