@@ -11,7 +11,7 @@ CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
 
-SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/planets.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/planets.c sky/airglow.c sky/zodiacal.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
 TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
@@ -242,7 +242,7 @@ install: all
 # Debian's stellarium-data, which it downloads and unpacks into build/.
 textures: $(BIN)/texgen $(BIN)/catgen
 	@sh tools/fetch-stellarium.sh $(BUILD)/stellarium
-	@sh tools/fetch-d3celestial.sh $(BUILD)/d3-celestial
+	@sh tools/fetch-npm.sh d3-celestial 0.7.35 $(BUILD)/d3-celestial package/data/stars.8.json
 	$(BIN)/texgen --out textures --photo $(BUILD)/stellarium/usr/share/stellarium/textures/earth-clouds.png --crop 0,20,176 \
 	    --moon $(BUILD)/stellarium/usr/share/stellarium/textures/moon.png
 	$(BIN)/catgen --stars $(BUILD)/d3-celestial/package/data/stars.8.json \
@@ -253,7 +253,7 @@ textures: $(BIN)/texgen $(BIN)/catgen
 # npm package astronomia, and tests/data/planets_reference.txt (the planets
 # as PyEphem sees them: Debian's python3-ephem, hence /usr/bin/python3).
 planet-tables: $(BIN)/vsopgen
-	@sh tools/fetch-astronomia.sh $(BUILD)/astronomia
+	@sh tools/fetch-npm.sh astronomia 4.2.0 $(BUILD)/astronomia package/data/vsop87Dmars.js
 	$(BIN)/vsopgen --data $(BUILD)/astronomia/package/data --out sky/planet_tables.c
 	/usr/bin/python3 tools/planet-reference.py > tests/data/planets_reference.txt.tmp
 	mv tests/data/planets_reference.txt.tmp tests/data/planets_reference.txt

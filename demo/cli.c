@@ -103,8 +103,9 @@ static const struct {
     unsigned bit;
 } feature_names[] = {{"clouds", SKY_CLOUDS},        {"sun", SKY_SUN},         {"moon", SKY_MOON},
                      {"stars", SKY_STARS},          {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
-                     {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}, {"planets", SKY_PLANETS}};
-#define FEATURE_NAMES "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets"
+                     {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}, {"planets", SKY_PLANETS},
+                     {"airglow", SKY_AIRGLOW},      {"zodiacal", SKY_ZODIACAL}};
+#define FEATURE_NAMES "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal"
 
 static int parse_features(const char *s, unsigned *out, char *err, size_t len)
 {
@@ -166,11 +167,13 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           the default), very-clean, hazy, polluted, hillaire-2020 (his paper's\n"
             "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
-            "                           solar-eclipse,planets (or none); eclipse = the lunar one\n"
+            "                           solar-eclipse,planets,airglow,zodiacal (or none); eclipse = the lunar one\n"
             "  --gl auto|core|compat    GL profile\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
             "  --moon-scale C           draw the moon C times its true size (0.5..50; default 2.5)\n"
+            "  --bortle N               light pollution of Bortle class N (1 excellent dark site .. 9 inner city)\n"
+            "  --solar-activity A       the airglow's solar cycle: 0 minimum .. 1 maximum (default: the date's)\n"
             "  --exposure STOPS         on top of the automatic exposure (-10..10; the sun as through a filter: -8)\n"
             "  --date YYYY-MM-DDTHH:MM:SSZ   UTC instant (years -1999..3000); with --time,\n"
             "                           --time sets the local solar time on that date\n"
@@ -217,24 +220,28 @@ static const preset presets[] = {
     {"overcast", SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.95f, 0.3f, 0.85f, 0.0f, 0.3f, 0.45f, NULL, 0, 0, 0, 0, 0},
     {"sunset", SKY_CLOUDS | SKY_SUN | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.5f, 0.7f, 0.25f, 0.9f, 0.15f, 0.735f, NULL, 0, 0,
      0, 0, 0},
-    {"starry", SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f,
+    {"starry", SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_AIRGLOW | SKY_ZODIACAL | SKY_CLOUDS | SKY_SOLAR_ECLIPSE,
+     SKY_GL_AUTO, 0.15f, 0.6f, 0.2f, 0.0f, 0.1f,
      0.0f, NULL, 0, 0, 0, 0, 0},
     /* the full moon of 2026-04-02 from 40 N, looking at it */
-    {"moonlit", SKY_MOON | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f,
+    {"moonlit", SKY_MOON | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_AIRGLOW | SKY_ZODIACAL | SKY_CLOUDS |
+                    SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.3f, 0.6f, 0.2f,
      0.0f, 0.1f, 0.0f, "2026-04-02T00:00:00Z", 40.0, 0.0, 181.6, 30.0, 0},
     /* the total lunar eclipse of 2026-03-03, greatest at about 11:33 UTC,
      * from Hawaii where the moon stands at 69 degrees */
-    {"eclipse", SKY_MOON | SKY_LUNAR_ECLIPSE | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.0f, 0.6f,
+    {"eclipse", SKY_MOON | SKY_LUNAR_ECLIPSE | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_AIRGLOW | SKY_ZODIACAL |
+                    SKY_SOLAR_ECLIPSE, SKY_GL_AUTO, 0.0f, 0.6f,
      0.2f, 0.0f, 0.1f, 0.0f, "2026-03-03T11:33:00Z", 20.0, -155.0, 229.9, 55.0, 0},
     /* the total solar eclipse of 2024-04-08 near Nazas, Durango, at its
      * greatest (18:17:20 UT), looking up toward the sun at 70 degrees */
-    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_CLOUDS | SKY_SOLAR_ECLIPSE,
+    {"solar-eclipse", SKY_SUN | SKY_MOON | SKY_STARS | SKY_PLANETS | SKY_STARMAP | SKY_AIRGLOW | SKY_ZODIACAL |
+                          SKY_CLOUDS | SKY_SOLAR_ECLIPSE,
      SKY_GL_AUTO, 0.1f,
      0.6f, 0.2f, 0.0f, 0.1f, 0.0f, "2024-04-08T18:17:20Z", 25.29, -104.14, 149.4, 42.0, 0},
     /* the weakest GPUs' preset: the dome at a fifth of the resolution
      * (softer clouds), which keeps it within one and a half textured
      * full-screen quads on a software rasteriser */
-    {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f,
+    {"minimal", SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE | SKY_AIRGLOW, SKY_GL_COMPAT20, 0.45f, 0.5f, 0.3f, 0.5f,
      0.2f, 0.45f, NULL, 0, 0, 0, 0, 5},
 };
 
@@ -335,6 +342,16 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 1.0, 179.0, &v))
                 return fail(err, len, "--fov: expected degrees in 1..179, got '%s'", val ? val : "(nothing)");
             cli->fov = v;
+        } else if (!strcmp(opt, "--bortle")) {
+            if (!parse_number(val, 1.0, 9.0, &v))
+                return fail(err, len, "--bortle: expected a Bortle class in 1..9, got '%s'", val ? val : "(nothing)");
+            cli->bortle = (float)v;
+        } else if (!strcmp(opt, "--solar-activity")) {
+            if (!parse_number(val, 0.0, 1.0, &v))
+                return fail(err, len, "--solar-activity: expected 0 (minimum) .. 1 (maximum), got '%s'",
+                            val ? val : "(nothing)");
+            cli->solar_activity = (float)v;
+            cli->solar_activity_manual = 1;
         } else if (!strcmp(opt, "--moon-scale")) {
             if (!parse_number(val, 0.5, 50.0, &v))
                 return fail(err, len, "--moon-scale: expected a factor in 0.5..50, got '%s'", val ? val : "(nothing)");
@@ -532,6 +549,9 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.gl_profile = cli->gl;
     cfg.atmosphere = cli->atmosphere;
     cfg.moon_scale = cli->moon_scale;
+    cfg.bortle = cli->bortle;
+    cfg.solar_activity_manual = cli->solar_activity_manual;
+    cfg.solar_activity = cli->solar_activity;
     cfg.turbidity = cli->turbidity;
     cfg.dome_divisor = cli->dome_divisor;
     cfg.tone_map = cli->tone_map;

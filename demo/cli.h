@@ -23,6 +23,9 @@ typedef struct sky_cli {
     sky_gl_profile gl;
     sky_atmosphere_path atmosphere;
     float moon_scale;       /* --moon-scale (0 = the library's default)  */
+    float bortle;           /* --bortle (0 = no light pollution)         */
+    int solar_activity_manual; /* --solar-activity given                 */
+    float solar_activity;
     float exposure;         /* --exposure: stops on the automatic exposure */
     float turbidity;        /* --turbidity (0 = the library's default)   */
     int dome_divisor;       /* --dome-divisor (0 = the library's default) */

@@ -13,6 +13,8 @@
 #include "gl/glapi.h"
 #include "sky.h"
 
+#include <math.h>
+
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -81,6 +83,7 @@ typedef enum sky_texture_id {
     SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
     SKY_TEX_AERIAL,        /* sky_aerial_bind's table (aerial.c), RGBA8          */
     SKY_TEX_FROXELS,       /* sky_aerial_froxels' volume (CORE33, Hillaire)      */
+    SKY_TEX_ZODIACAL,      /* Leinert et al.'s zodiacal light table, log-encoded  */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT
@@ -101,6 +104,23 @@ typedef struct sky_texture {
 /* ---- the frame: everything the shaders read ------------------------------
  * One writer per field: the room named in its group. The uniform tables
  * (each room's sky_uniform_desc rows) point into it by offset. */
+/* What stars.vert draws a set of points with (the catalogue stars, the
+ * planets), as its uniforms have it. */
+typedef struct sky_point_frame {
+    float rot[16];           /* the points' frame -> horizon (J2000 for stars) */
+    float aberration[3];     /* annual aberration, horizon frame (0: applied)  */
+    float pressure[3];       /* refraction's pressure factor, the faintest V
+                                drawn (sky_point_limit), -                   */
+    struct {                 /* Mueller eq. 9, pixels                          */
+        float q, glare_ck, max_radius, control_magnitude;
+    } size;
+    float flux_scale;        /* kcd/m^2 at the PSF's peak of a V = 0 point     */
+    float extinction[3], shell[3]; /* zenith optical depths; eq. 11's shell     */
+    float seed;              /* the scintillation clock, in random values       */
+    float occulter[4];       /* the moon's true direction and the cosine of its
+                                drawn radius (2: no moon): points behind it go */
+} sky_point_frame;
+
 typedef struct sky_frame {
     /* astronomy and the shared frame state (sky.c) */
     float sun_dir[3];        /* horizon frame, unit                              */
@@ -118,7 +138,15 @@ typedef struct sky_frame {
     float day_luminance;     /* kcd/m^2: the gradient path's own scale, before
                                 the eclipse (its shader applies that per pixel) */
     float horizon_tint[3];   /* colour of the horizon under a low sun            */
-    float night_luminance;   /* kcd/m^2: scale of the night sky background       */
+    float night_luminance;   /* kcd/m^2: the moonless or moonlit night sky's zenith
+                                (airglow, zodiacal light, the floor, light
+                                pollution): what the exposure adapts to     */
+    float night_floor[3];    /* zenith kcd/m^2 of what no layer draws: the stars
+                                fainter than the star map, the moonlit air  */
+    float artificial_glow[3];/* zenith kcd/m^2 of light pollution (cfg.bortle)  */
+    float night_depth[3], night_shell[3]; /* the air's zenith optical depths and
+                                the shell of Mueller eq. 11 (observer radius,
+                                top, thickness, km): the night glows' extinction */
     float moonlight;         /* 0..25: the moon's brightening of the night sky    */
     float ambient_rgb[3];    /* sky irradiance on an upward surface, klx         */
     float fog_rgb[3];        /* horizon luminance, kcd/m^2                       */
@@ -195,22 +223,14 @@ typedef struct sky_frame {
     float flicker_phase;     /* flicker time in rate units, wrapped             */
     float flicker_point_max; /* the largest point size the context draws         */
     float star_luminance;    /* kcd/m^2 of a full-intensity star texel; 0: off   */
-    /* catalogue stars (stars.c) */
-    float star_rot[16], star_aberration[3], star_pressure[3];
-    struct {                 /* u_star_size (Mueller eq. 9), pixels            */
-        float q, glare_ck, max_radius, control_magnitude;
-    } star_size;
-    float star_flux_scale, star_extinction[3], star_shell[3], star_seed;
-    float star_occulter[4];  /* the moon's true direction and the cosine of its
-                                drawn radius (2: no moon): stars behind it go */
-    /* planets (planets.c): the same uniforms as the catalogue stars, their
-     * places already apparent in the horizon frame */
-    float planet_rot[16], planet_aberration[3], planet_pressure[3];
-    struct {
-        float q, glare_ck, max_radius, control_magnitude;
-    } planet_size;
-    float planet_flux_scale, planet_extinction[3], planet_shell[3], planet_seed;
-    float planet_occulter[4];
+    /* catalogue stars (stars.c) and planets (planets.c): each its own
+     * copy of stars.vert's uniforms (sky_point_frame) */
+    sky_point_frame stars, planets;
+    /* airglow (airglow.c): rgb zenith kcd/m^2 above the air, a: (R/(R+h))^2 */
+    float airglow[4];
+    /* zodiacal light (zodiacal.c) */
+    float zodiacal_rot[16];  /* horizon -> ecliptic of date, +x at the sun    */
+    float zodiacal[4];       /* rgb: kcd/m^2 at the encoding's 0; a: ln range  */
     /* star map (starmap.c) */
     float starmap_rot[16], starmap_scale;
     /* moon (moon.c) */
@@ -226,10 +246,25 @@ typedef struct sky_frame {
 } sky_frame;
 /* The uniform table reads each packed vec4 above as four floats in a row. */
 _Static_assert(sizeof(((sky_frame *)0)->moon_terms) == 4 * sizeof(float), "moon_terms is a vec4");
-_Static_assert(sizeof(((sky_frame *)0)->star_size) == 4 * sizeof(float), "star_size is a vec4");
-_Static_assert(sizeof(((sky_frame *)0)->planet_size) == 4 * sizeof(float), "planet_size is a vec4");
+_Static_assert(sizeof(((sky_point_frame *)0)->size) == 4 * sizeof(float), "a point's size is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->hl_misc) == 4 * sizeof(float), "hl_misc is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "eclipse_sun is a vec4");
+
+/* Illuminance of a V = 0 source above the atmosphere, 2.54e-6 lux (Allen's
+ * Astrophysical Quantities), in klx: the one zero point the stars and the
+ * moon's magnitude share. */
+#define SKY_V0_ILLUMINANCE_KLX 2.54e-9
+/* A surface brightness in V mag/arcsec^2 as luminance (kcd/m^2) and back,
+ * from that zero point: 0 mag/arcsec^2 is 108 kcd/m^2, 22 is 0.17 mcd/m^2. */
+#define SKY_ARCSEC2_SR 2.35044305391e-11
+static inline double sky_mag_arcsec2_to_kcd(double mag)
+{
+    return SKY_V0_ILLUMINANCE_KLX / SKY_ARCSEC2_SR * pow(10.0, -0.4 * mag);
+}
+static inline double sky_kcd_to_mag_arcsec2(double kcd)
+{
+    return -2.5 * log10(kcd > 1e-30 ? kcd * SKY_ARCSEC2_SR / SKY_V0_ILLUMINANCE_KLX : 1e-30);
+}
 
 /* ---- the shared context ---------------------------------------------------
  * What every room may read: the configuration, the GL functions and

@@ -6,6 +6,18 @@
 
 #include <math.h>
 
+double sky_naked_eye_limit(double b_kcd)
+{
+    /* the threshold illuminance I = c1 (1 + sqrt(c2 B))^2 in foot-candles
+     * for a sky of B nanolamberts (1 nL = 3.183e-6 cd/m^2), with the rods'
+     * constants below 1500 nL and the cones' above; V = -16.57 - 2.5 log I
+     * (Schaefer's conversion: V = 0 is 2.54e-6 lux) */
+    double b = fmax(b_kcd, 0.0) * 1000.0 / 3.183e-6;
+    double c1 = b < 1500.0 ? pow(10.0, -9.8) : pow(10.0, -8.35), c2 = b < 1500.0 ? pow(10.0, -1.9) : pow(10.0, -5.9);
+    double root = 1.0 + sqrt(c2 * b);
+    return -16.57 - 2.5 * log10(c1 * root * root);
+}
+
 void sky_exposure_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
@@ -21,13 +33,18 @@ void sky_exposure_frame(sky_core *s)
     f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
     /* Automatic exposure from the scene's own brightness: the day sky's
      * scale maps to the filmic curve's shoulder (common.glsl); at night a
-     * floor 75 times the night sky (moonlit or not) keeps the sky dark blue
-     * and the stars bright. */
-    double adapt = f->sky_luminance * withheld + 75.0 * f->night_luminance;
+     * floor 110 times the night sky's zenith (moonlit or not) keeps the sky
+     * dark and the stars bright. The eye adapts no further than to a
+     * natural dark sky (21.9 mag/arcsec^2, Benn & Ellison 1998): a scene
+     * that leaves the airglow out is darker, not exposed up to the same
+     * grey. */
+    double night = fmax(f->night_luminance, sky_mag_arcsec2_to_kcd(21.9));
+    double adapt = f->sky_luminance * withheld + 110.0 * night;
     f->exposure = (float)(pow(2.0, s->exposure_bias) / adapt);
     /* Night vision: the adaptation luminance (what the exposure maps to
      * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
      * cd/m^2, on a log scale; the shift is at most 60 % (the moon and
      * stars keep a little colour in the eye of a game player). */
     f->night_shift = (float)(0.6 * sky_smoothstep(log10(3e-3), log10(1e-5), log10(adapt)));
+
 }

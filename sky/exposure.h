@@ -1,7 +1,8 @@
 /*
  * The exposure room: after the atmosphere, before the layers. The
  * automatic exposure from the scene's own brightness, the night vision
- * shift of the tone map, and the stars' local gain during a solar eclipse.
+ * shift of the tone map, the stars' local gain during a solar eclipse,
+ * and the naked eye's limiting magnitude against the sky.
  */
 #ifndef SKY_EXPOSURE_H
 #define SKY_EXPOSURE_H
@@ -9,5 +10,8 @@
 #include "core.h"
 
 void sky_exposure_frame(sky_core *s);
+/* Schaefer (1990, PASP 102, 212): the V magnitude of the faintest point
+ * the naked eye sees against a sky of luminance b (kcd/m^2). */
+double sky_naked_eye_limit(double b_kcd);
 
 #endif /* SKY_EXPOSURE_H */

@@ -63,6 +63,8 @@ extern const sky_layer_class sky_stars_layer;
 extern const sky_layer_class sky_moon_layer;
 extern const sky_layer_class sky_sun_layer;
 extern const sky_layer_class sky_planets_layer;
+extern const sky_layer_class sky_airglow_layer;
+extern const sky_layer_class sky_zodiacal_layer;
 
 /* The dome snippets of the enabled layers, by role (sky.c fills them from
  * the table before any layer is created): the dome composes its programs
@@ -105,24 +107,39 @@ void sky_star_color(double bv, float rgb[3]);
 double sky_stars_clock(const void *stars_state);
 struct sky_catalog *sky_stars_catalog(void *stars_state);
 void sky_stars_reload(void *stars_state);
-/* stars.c: what every point source (catalogue stars, planets) draws with
- * through stars.vert: the sizes of Mueller eq. 9 (q, glare c_k, largest
- * radius in pixels, control magnitude), the refraction's pressure factor,
- * the peak luminance of a V = 0 point on its PSF before any fade (eq. 10,
- * kcd/m^2), the zenith optical depths and the shell of eq. 11, and the
- * moon's disc that hides them. For the view being drawn. */
-typedef struct sky_point_uniforms {
-    float size[4], pressure[3];
-    double peak;
-    float extinction[3], shell[3], occulter[4];
-} sky_point_uniforms;
-void sky_point_view(sky_core *s, float point_max, sky_point_uniforms *u);
+/* stars.c: stars.vert's uniform rows for a set of points in the frame's
+ * sky_point_frame `member` (stars, planets). */
+#define SKY_POINT_UNIFORMS(member)                                                                       \
+    SKY_UF("u_star_rot", SKY_U_M4, member.rot), SKY_UF("u_star_aberration", SKY_U_F3, member.aberration), \
+        SKY_UF("u_star_size", SKY_U_F4, member.size), SKY_UF("u_star_pressure", SKY_U_F3, member.pressure), \
+        SKY_UF("u_star_flux_scale", SKY_U_F1, member.flux_scale),                                         \
+        SKY_UF("u_star_extinction", SKY_U_F3, member.extinction), SKY_UF("u_star_shell", SKY_U_F3, member.shell), \
+        SKY_UF("u_star_seed", SKY_U_F1, member.seed), SKY_UF("u_star_occulter", SKY_U_F4, member.occulter)
+/* stars.c: for the view being drawn, what every set of points shares: the
+ * sizes of Mueller eq. 9 (q, glare c_k, largest radius in pixels, control
+ * magnitude), the refraction's pressure factor and the faintest V drawn,
+ * the peak luminance of a V = 0 point on its PSF (eq. 10, kcd/m^2), the
+ * zenith optical depths and the shell of eq. 11, and the moon's disc that
+ * hides them. Leaves rot, aberration and seed, which are the set's own. */
+void sky_point_view(sky_core *s, float point_max, sky_point_frame *p);
+/* stars.c: draws count points of stars.vert's vertex layout (a_pos 2, a_dir
+ * 3, a_color 4 floats) from buffer with program. */
+void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int count);
+/* stars.c: the faintest V a point source is drawn at: the naked eye's
+ * limit against the zenith's sky (Schaefer 1990). Whatever the view's
+ * field: Mueller's PSF already gives a zoomed view's points more
+ * contrast, as binoculars do, but not the points the eye would not see. */
+double sky_point_limit(const sky_core *s);
 /* planets.c: the planets' places of the last frame (SKY_ASTRO_PLANETS). */
 const sky_astro_planet *sky_planets_places(const void *planets_state);
-/* Illuminance of a V = 0 source above the atmosphere, 2.54e-6 lux (Allen's
- * Astrophysical Quantities), in klx: the one zero point the stars and the
- * moon's magnitude share. */
-#define SKY_V0_ILLUMINANCE_KLX 2.54e-9
+/* airglow.c: the airglow's zenith luminance above the air (kcd/m^2, rgb)
+ * for the frame's date and cfg (0 without SKY_AIRGLOW); its light from
+ * direction d before the air below it dims it (after the layer's frame).
+ * zodiacal.c: the same for the zodiacal light (0 without SKY_ZODIACAL). */
+void sky_airglow_zenith(const sky_core *s, double rgb[3]);
+void sky_airglow_at(const sky_core *s, const double d[3], double rgb[3]);
+void sky_zodiacal_zenith(const sky_core *s, double rgb[3]);
+void sky_zodiacal_at(const sky_core *s, const double d[3], double rgb[3]);
 
 /* sun.c: the sunlight above the atmosphere that the drawn disc sums to,
  * klx (1 / r^2 with the sun's distance). */

@@ -41,17 +41,7 @@ typedef struct planets_state {
     int dirty; /* vertices changed since the last upload */
 } planets_state;
 
-static const sky_uniform_desc planet_uniforms[] = {
-    SKY_UF("u_star_rot", SKY_U_M4, planet_rot),
-    SKY_UF("u_star_aberration", SKY_U_F3, planet_aberration),
-    SKY_UF("u_star_size", SKY_U_F4, planet_size),
-    SKY_UF("u_star_pressure", SKY_U_F3, planet_pressure),
-    SKY_UF("u_star_flux_scale", SKY_U_F1, planet_flux_scale),
-    SKY_UF("u_star_extinction", SKY_U_F3, planet_extinction),
-    SKY_UF("u_star_shell", SKY_U_F3, planet_shell),
-    SKY_UF("u_star_seed", SKY_U_F1, planet_seed),
-    SKY_UF("u_star_occulter", SKY_U_F4, planet_occulter),
-};
+static const sky_uniform_desc planet_uniforms[] = {SKY_POINT_UNIFORMS(planets)};
 static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms), NULL};
 
 static const size_t planet_bytes = sizeof(float) * SKY_ASTRO_PLANETS * PLANET_FLOATS;
@@ -138,9 +128,9 @@ static void planets_frame(sky_core *s, void *state)
     }
     st->dirty = 1;
     /* the places are apparent in the horizon frame already */
-    memset(f->planet_rot, 0, sizeof f->planet_rot);
-    f->planet_rot[0] = f->planet_rot[5] = f->planet_rot[10] = f->planet_rot[15] = 1.0f;
-    f->planet_aberration[0] = f->planet_aberration[1] = f->planet_aberration[2] = 0.0f;
+    memset(f->planets.rot, 0, sizeof f->planets.rot);
+    f->planets.rot[0] = f->planets.rot[5] = f->planets.rot[10] = f->planets.rot[15] = 1.0f;
+    f->planets.aberration[0] = f->planets.aberration[1] = f->planets.aberration[2] = 0.0f;
 }
 
 static void planets_view(sky_core *s, void *state)
@@ -151,55 +141,28 @@ static void planets_view(sky_core *s, void *state)
         sky_buffer_update(s, GL_ARRAY_BUFFER, st->buffer, st->vertices, planet_bytes, GL_DYNAMIC_DRAW);
         st->dirty = 0;
     }
-    sky_point_uniforms u;
-    sky_point_view(s, st->point_max, &u);
-    f->planet_size.q = u.size[0];
-    f->planet_size.glare_ck = u.size[1];
-    f->planet_size.max_radius = u.size[2];
-    f->planet_size.control_magnitude = u.size[3];
-    for (int i = 0; i < 3; i++) {
-        f->planet_pressure[i] = u.pressure[i];
-        f->planet_extinction[i] = u.extinction[i];
-        f->planet_shell[i] = u.shell[i];
-    }
-    for (int i = 0; i < 4; i++) f->planet_occulter[i] = u.occulter[i];
-    /* No day-night fade: the planets' light is added to the sky as it is,
-     * and the day sky's own brightness is what hides them (Venus at -4.5
-     * adds some 1 % to a blue sky through a 1.4-pixel PSF at 60 degrees of
-     * view, 15 % through a 5-degree one). */
-    f->planet_flux_scale = (float)(u.peak * f->star_local_gain);
-    f->planet_seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
+    sky_point_view(s, st->point_max, &f->planets);
+    f->planets.seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
 }
 
-/* Drawn when the brightest planet above the horizon would add at least a
- * quarter of an 8-bit step at the exposure (the stars' rule). */
+/* Drawn when the brightest planet above the horizon is within the naked
+ * eye's limit and would add at least a quarter of an 8-bit step at the
+ * exposure (the stars' rule). */
 static int planets_visible(const sky_core *s, const void *state)
 {
     const planets_state *st = state;
     const sky_frame *f = &s->frame;
-    double brightest = 0.0;
+    double brightest = 99.0;
     for (int p = 0; p < SKY_ASTRO_PLANETS; p++)
-        if (st->places[p].body.alt > -0.01) brightest = fmax(brightest, pow(2.512, -st->places[p].vmag));
-    return f->planet_flux_scale * brightest * f->exposure >= 1.0 / 1024.0;
+        if (st->places[p].body.alt > -0.01) brightest = fmin(brightest, st->places[p].vmag);
+    return f->planets.flux_scale * pow(2.512, -brightest) * f->exposure >= 1.0 / 1024.0 &&
+           brightest < f->planets.pressure[1] + 0.25;
 }
 
 static int planets_draw(sky_core *s, void *state)
 {
     planets_state *st = state;
-    const sky_gl *gl = &s->gl;
-    sky_program_apply(s, &st->program);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, st->buffer);
-    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, PLANET_FLOATS * sizeof(float), (const void *)0);
-    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, PLANET_FLOATS * sizeof(float),
-                              (const void *)(2 * sizeof(float)));
-    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, PLANET_FLOATS * sizeof(float),
-                              (const void *)(5 * sizeof(float)));
-    gl->glEnableVertexAttribArray(0);
-    gl->glEnableVertexAttribArray(1);
-    gl->glEnableVertexAttribArray(2);
-    sky_gl_program_point_size(s, 1);
-    gl->glDrawArrays(GL_POINTS, 0, SKY_ASTRO_PLANETS);
-    sky_gl_program_point_size(s, 0);
+    sky_points_draw(s, &st->program, st->buffer, SKY_ASTRO_PLANETS);
     return 1;
 }
 

@@ -20,7 +20,8 @@
  * program and draw nothing themselves. */
 static const sky_layer_class *const layer_table[] = {
     &sky_dome_layer, &sky_clouds_layer, &sky_flicker_layer, &sky_starmap_layer,
-    &sky_stars_layer, &sky_planets_layer, &sky_moon_layer, &sky_sun_layer,
+    &sky_airglow_layer, &sky_zodiacal_layer, &sky_stars_layer, &sky_planets_layer,
+    &sky_moon_layer, &sky_sun_layer,
 };
 #define LAYER_COUNT ((int)(sizeof layer_table / sizeof layer_table[0]))
 
@@ -55,7 +56,8 @@ unsigned sky_version(void)
 const char *sky_layer_name(sky_layer layer)
 {
     static const char *const names[SKY_LAYER_COUNT] = {"starmap", "stars", "flicker", "moon",
-                                                       "atmosphere", "sun", "clouds", "planets"};
+                                                       "atmosphere", "sun", "clouds", "planets",
+                                                       "airglow",    "zodiacal"};
     return (unsigned)layer < SKY_LAYER_COUNT ? names[layer] : "unknown";
 }
 
@@ -187,6 +189,21 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         (cfg->star_control_magnitude != 0.0f && (cfg->star_control_magnitude < 1.0f || cfg->star_control_magnitude > 10.0f))) {
         sky_format(err, err_len, "sky_create: star_control_magnitude %g is out of range (0 = default, or 1..10)",
                    (double)cfg->star_control_magnitude);
+        return NULL;
+    }
+    if (cfg->solar_activity_manual != 0 && cfg->solar_activity_manual != 1) {
+        sky_format(err, err_len, "sky_create: solar_activity_manual %d is neither 0 (from the date) nor 1",
+                   cfg->solar_activity_manual);
+        return NULL;
+    }
+    if (cfg->solar_activity_manual && !(cfg->solar_activity >= 0.0f && cfg->solar_activity <= 1.0f)) {
+        sky_format(err, err_len, "sky_create: solar_activity %g is out of range (0 = minimum .. 1 = maximum)",
+                   (double)cfg->solar_activity);
+        return NULL;
+    }
+    if (!(cfg->bortle == 0.0f || (cfg->bortle >= 1.0f && cfg->bortle <= 9.0f))) {
+        sky_format(err, err_len, "sky_create: bortle %g is out of range (0 = no light pollution, or 1..9)",
+                   (double)cfg->bortle);
         return NULL;
     }
     unsigned features = cfg->features == 0 ? SKY_FEATURES_DEFAULT

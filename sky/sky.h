@@ -114,19 +114,24 @@ typedef enum sky_feature {
                                     are apart. It creates no resource: left
                                     out, the sun's and the sky's shaders
                                     read "no eclipse"                      */
-    SKY_PLANETS       = 1u << 8  /* Mercury, Venus, Mars, Jupiter, Saturn as
+    SKY_PLANETS       = 1u << 8, /* Mercury, Venus, Mars, Jupiter, Saturn as
                                     points like the catalogue stars        */
+    SKY_AIRGLOW       = 1u << 9, /* the upper atmosphere's own faint light:
+                                    most of a moonless night's sky       */
+    SKY_ZODIACAL      = 1u << 10 /* sunlight scattered by interplanetary
+                                    dust (Leinert et al. 1998): the false
+                                    dawn, the gegenschein                */
 } sky_feature;
 /* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
  * to fit an int. */
 #define SKY_FEATURES_NONE 0x80000000u
 
-#define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE)
+#define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE | SKY_AIRGLOW)
 /* The features this build can render; asking for others is
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
-     SKY_SOLAR_ECLIPSE | SKY_PLANETS)
+     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
@@ -355,6 +360,18 @@ typedef struct sky_config {
      * SKY_ATMOSPHERE_PREETHAM (its turbidity is cfg.turbidity). sky_create
      * rejects any other path. Ignored by the other paths. */
     sky_atmosphere_path blend_partner;
+    /* SKY_AIRGLOW: the airglow follows the sun's 11-year cycle, brighter
+     * by 1.6 at its maximum. 0 = the date's place in the cycle (minima
+     * at 2008.9 and 2019.9, 11 years apart); 1 = solar_activity, 0
+     * (minimum) .. 1 (maximum; sky_create rejects anything else). */
+    int solar_activity_manual;
+    float solar_activity;
+    /* Light pollution: the artificial sky glow of a Bortle class, 1 (an
+     * excellent dark site) .. 9 (an inner city), fractions allowed; its
+     * zenith brightness is the class's published one (README, "The night
+     * sky") less the natural sky's, rising toward the horizon. 0 = none;
+     * sky_create rejects anything else. */
+    float bortle;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,
@@ -527,6 +544,8 @@ typedef enum sky_layer {
     SKY_LAYER_SUN,
     SKY_LAYER_CLOUDS,
     SKY_LAYER_PLANETS,
+    SKY_LAYER_AIRGLOW,
+    SKY_LAYER_ZODIACAL,
     SKY_LAYER_COUNT
 } sky_layer;
 SKY_API const char *sky_layer_name(sky_layer layer); /* "starmap", "stars", ... */

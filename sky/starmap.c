@@ -93,7 +93,12 @@ static void starmap_view(sky_core *s, void *state)
     sky_frame *f = &s->frame;
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
     double fov = f->pixel_angle > 0.0f ? sqrt(STARMAP_REF_PIXEL_ANGLE / f->pixel_angle) : 1.0;
-    double scale = STARMAP_PEAK * pow(2.512, m_a - 4.0) * fov * s->astro.star_visibility * f->star_local_gain;
+    /* it fades with the naked eye's limit, from the limit a dark site's
+     * catalogue reaches (6.5) to that of Bortle's classes 7-8 (4.75),
+     * where the Milky Way is gone: it is the faint stars and the glow of
+     * the Milky Way, which a brighter sky drowns first */
+    double seen = sky_smoothstep(4.75, 6.5, sky_point_limit(s));
+    double scale = STARMAP_PEAK * pow(2.512, m_a - 4.0) * fov * seen * f->star_local_gain;
     /* nothing a quarter of an 8-bit step could show at the automatic
      * exposure: off (for HDR output too, as for the stars) */
     f->starmap_scale = scale * f->exposure < 1.0 / 1024.0 ? 0.0f : (float)scale;

@@ -6,6 +6,7 @@
  * extinction (eq. 11-12) and scintillation. Shaders: stars.vert/.frag.
  */
 #include "catalog.h"
+#include "exposure.h"
 #include "layer.h"
 #include "atmosphere/atmosphere.h"
 
@@ -39,17 +40,7 @@ typedef struct stars_state {
     double scintillation;     /* the clock's phase, wrapped                */
 } stars_state;
 
-static const sky_uniform_desc star_uniforms[] = {
-    SKY_UF("u_star_rot", SKY_U_M4, star_rot),
-    SKY_UF("u_star_aberration", SKY_U_F3, star_aberration),
-    SKY_UF("u_star_size", SKY_U_F4, star_size),
-    SKY_UF("u_star_pressure", SKY_U_F3, star_pressure),
-    SKY_UF("u_star_flux_scale", SKY_U_F1, star_flux_scale),
-    SKY_UF("u_star_extinction", SKY_U_F3, star_extinction),
-    SKY_UF("u_star_shell", SKY_U_F3, star_shell),
-    SKY_UF("u_star_seed", SKY_U_F1, star_seed),
-    SKY_UF("u_star_occulter", SKY_U_F4, star_occulter),
-};
+static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars)};
 static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL};
 
 /* B-V to linear sRGB of unit luminance: temperature after Ballesteros
@@ -156,43 +147,73 @@ static void stars_reset(void *state) { ((stars_state *)state)->scintillation = 0
 static void stars_frame(sky_core *s, void *state)
 {
     (void)state;
-    sky_j2000_to_horizon_mat4(&s->astro, 0, s->frame.star_rot);
+    sky_j2000_to_horizon_mat4(&s->astro, 0, s->frame.stars.rot);
 }
 
-void sky_point_view(sky_core *s, float point_max, sky_point_uniforms *u)
+double sky_point_limit(const sky_core *s)
+{
+    /* the sky at the zenith as the paths' CPU twin has it (after every
+     * layer's frame: eclipse, light pollution and night glows included) */
+    const double up[3] = {0.0, 1.0, 0.0};
+    double z[3];
+    sky_atmosphere_radiance(s, up, z);
+    return sky_naked_eye_limit(0.2126 * z[0] + 0.7152 * z[1] + 0.0722 * z[2]);
+}
+
+void sky_point_view(sky_core *s, float point_max, sky_point_frame *p)
 {
     const sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
-    u->size[0] = (float)STAR_Q_PX;
-    u->size[1] = (float)STAR_GLARE_CK_PX;
-    u->size[2] = 0.5f * point_max - 1.0f;
-    u->size[3] = m_a;
-    u->pressure[0] = (float)a->pressure_factor;
-    u->pressure[1] = u->pressure[2] = 0.0f;
-    /* eq. 10 in physical units: peak luminance of a V = 0 star on a PSF of
-     * radius q pixels (pixel_angle radians each) */
+    p->size.q = (float)STAR_Q_PX;
+    p->size.glare_ck = (float)STAR_GLARE_CK_PX;
+    p->size.max_radius = 0.5f * point_max - 1.0f;
+    p->size.control_magnitude = m_a;
+    p->pressure[0] = (float)a->pressure_factor;
+    p->pressure[1] = (float)sky_point_limit(s);
+    p->pressure[2] = 0.0f;
+    /* eq. 10 in physical units: peak luminance of a V = 0 point on a PSF
+     * of radius q pixels (pixel_angle radians each). No day-night fade:
+     * a point's light is added to the sky as it is, and what the naked eye
+     * would not see against the sky is left out (pressure[1]). */
     double r = STAR_Q_PX * f->pixel_angle;
-    u->peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
+    double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
+    p->flux_scale = (float)(peak * f->star_local_gain);
     /* the atmosphere's zenith optical depths above the observer */
     double depth[3];
     sky_atmosphere_zenith_depth(s, depth);
-    for (int i = 0; i < 3; i++) u->extinction[i] = (float)depth[i];
     const double re = 6371.0, te = 8.0;
     double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
-    u->shell[0] = (float)(re + h);
-    u->shell[1] = (float)(re + te);
-    u->shell[2] = (float)(te - h);
+    for (int i = 0; i < 3; i++) p->extinction[i] = (float)depth[i];
+    p->shell[0] = (float)(re + h);
+    p->shell[1] = (float)(re + te);
+    p->shell[2] = (float)(te - h);
     /* The moon hides what is behind its disc, whatever the sky's
      * brightness (the disc itself only adds light by day, moon.c, so it
      * cannot hide them): the test is in true directions, at the disc's
      * drawn size. */
-    u->occulter[0] = u->occulter[1] = u->occulter[2] = 0.0f;
-    u->occulter[3] = 2.0f;
+    p->occulter[0] = p->occulter[1] = p->occulter[2] = 0.0f;
+    p->occulter[3] = 2.0f;
     if (s->features & SKY_MOON) {
-        for (int i = 0; i < 3; i++) u->occulter[i] = (float)a->moon.dir_geometric[i];
-        u->occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
+        for (int i = 0; i < 3; i++) p->occulter[i] = (float)a->moon.dir_geometric[i];
+        p->occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
     }
+}
+
+void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int count)
+{
+    const sky_gl *gl = &s->gl;
+    sky_program_apply(s, program);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)0);
+    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(2 * sizeof(float)));
+    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(5 * sizeof(float)));
+    gl->glEnableVertexAttribArray(0);
+    gl->glEnableVertexAttribArray(1);
+    gl->glEnableVertexAttribArray(2);
+    sky_gl_program_point_size(s, 1);
+    gl->glDrawArrays(GL_POINTS, 0, count);
+    sky_gl_program_point_size(s, 0);
 }
 
 /* Per draw, from the observer's astronomy and the camera. */
@@ -204,52 +225,30 @@ static void stars_view(sky_core *s, void *state)
     /* proper motion moves Arcturus 0.1" a month: refresh past half a year */
     if (fabs(a->years_since_j2000 - st->epoch) > 0.5) upload_stars(s, st, a->years_since_j2000, NULL, 0);
     for (int i = 0; i < 3; i++)
-        f->star_aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
+        f->stars.aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
                                         a->horizon[i * 3 + 2] * a->aberration[2]);
-    sky_point_uniforms u;
-    sky_point_view(s, st->point_max, &u);
-    f->star_size.q = u.size[0];
-    f->star_size.glare_ck = u.size[1];
-    f->star_size.max_radius = u.size[2];
-    f->star_size.control_magnitude = u.size[3];
-    for (int i = 0; i < 3; i++) {
-        f->star_pressure[i] = u.pressure[i];
-        f->star_extinction[i] = u.extinction[i];
-        f->star_shell[i] = u.shell[i];
-    }
-    for (int i = 0; i < 4; i++) f->star_occulter[i] = u.occulter[i];
-    f->star_flux_scale = (float)(u.peak * f->star_local_gain);
+    sky_point_view(s, st->point_max, &f->stars);
     /* the scintillation clock, in random values */
-    f->star_seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
+    f->stars.seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
 }
 
-/* The brightest star (Sirius, V -1.46) would add less than a quarter of
- * an 8-bit step at the automatic exposure: skip the draw (by day, that is
- * always). The same rule holds for HDR output, so a host doing its own
- * tone mapping does no star work at noon either. */
+/* The brightest star (Sirius, V -1.46) is past the naked eye's limit, or
+ * would add less than a quarter of an 8-bit step at the automatic
+ * exposure: skip the draw (by day, that is always). The same rule holds
+ * for HDR output, so a host doing its own tone mapping does no star work
+ * at noon either. */
 static int stars_visible(const sky_core *s, const void *state)
 {
     const stars_state *st = state;
     if (!st->buffer) return 0;
     const sky_frame *f = &s->frame;
-    return f->star_flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0;
+    return f->stars.flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0 && -1.46 < f->stars.pressure[1] + 0.25;
 }
 
 static int stars_draw(sky_core *s, void *state)
 {
     stars_state *st = state;
-    const sky_gl *gl = &s->gl;
-    sky_program_apply(s, &st->program);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, st->buffer);
-    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)0);
-    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(2 * sizeof(float)));
-    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(5 * sizeof(float)));
-    gl->glEnableVertexAttribArray(0);
-    gl->glEnableVertexAttribArray(1);
-    gl->glEnableVertexAttribArray(2);
-    sky_gl_program_point_size(s, 1);
-    gl->glDrawArrays(GL_POINTS, 0, st->catalog.count);
-    sky_gl_program_point_size(s, 0);
+    sky_points_draw(s, &st->program, st->buffer, st->catalog.count);
     return 1;
 }
 

@@ -113,6 +113,12 @@ int test_skipped;
     X(planets_venus_in_the_afternoon)            \
     X(planets_layer_costs)                       \
     X(planets_layer_follows_the_clock)           \
+    X(nightglow_dark_site_zenith)                \
+    X(nightglow_bortle_classes)                  \
+    X(nightglow_zodiacal_follows_the_table)      \
+    X(nightglow_cpu_matches_render)              \
+    X(nightglow_layer_costs)                     \
+    X(nightglow_naked_eye_limit)                 \
     X(stars_where_astronomy_puts_them)           \
     X(stars_control_magnitude_and_twilight)      \
     X(stars_colour_follows_bv)                   \

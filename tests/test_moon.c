@@ -310,29 +310,42 @@ void test_moon_rising_is_flattened(void)
 
 void test_moon_hides_the_stars_behind_it(void)
 {
-    /* A crescent in a bright twilight (2024-06-08 20:30 UT, 45 N 10 E),
-     * where the disc only adds light: a star stands behind its dark side.
-     * With the catalogue on, nothing may change inside the disc, while
-     * stars still show around it. */
-    sky_observer o = {sky_julian_day(2024, 6, 8, 20, 30, 0.0), 45.0, 10.0, 0.0, 0};
-    closeup with, without;
-    if (moon_closeup(&o, SKY_MOON | SKY_STARS, 2.5f, 1, &with) || moon_closeup(&o, SKY_MOON, 2.5f, 1, &without)) {
+    /* A crescent at the end of twilight (2024-06-08 21:30 UT, 45 N 10 E,
+     * the sun 17.6 degrees down), where the disc only adds light: HIP
+     * 35253 (V 6.38) stands behind its dark side, 0.4 of its drawn radius
+     * from the centre, and stars of V 5.75 around it. With the catalogue
+     * on, nothing may change inside the disc, while stars still show
+     * around it; without the moon, that star shows there (within the
+     * naked eye's limit, which the moonless sky raises a little). */
+    sky_observer o = {sky_julian_day(2024, 6, 8, 21, 30, 0.0), 45.0, 10.0, 0.0, 0};
+    closeup with, without, stars_only, none;
+    if (moon_closeup(&o, SKY_MOON | SKY_STARS, 2.5f, 1, &with) || moon_closeup(&o, SKY_MOON, 2.5f, 1, &without) ||
+        moon_closeup(&o, SKY_STARS, 2.5f, 1, &stars_only) || moon_closeup(&o, SKY_FEATURES_NONE, 2.5f, 1, &none)) {
         CHECK(0, "render failed");
         return;
     }
-    double inside = 0.0, outside = 0.0;
+    double inside = 0.0, outside = 0.0, unhidden = 0.0;
     for (int y = 0; y < 256; y++)
         for (int x = 0; x < 256; x++) {
             double r = hypot(x + 0.5 - with.cx, y + 0.5 - with.cy) / with.radius_px;
             double added = image_luminance(&with.im, x, y) - image_luminance(&without.im, x, y);
-            if (r < 0.97) inside = fmax(inside, added);
-            else if (r > 1.1) outside = fmax(outside, added);
+            double bare = image_luminance(&stars_only.im, x, y) - image_luminance(&none.im, x, y);
+            if (r < 0.97) {
+                inside = fmax(inside, added);
+                unhidden = fmax(unhidden, bare);
+            } else if (r > 1.1) {
+                outside = fmax(outside, added);
+            }
         }
-    NOTE("largest luminance the stars add: %.3g kcd/m^2 on the disc, %.3g around it", inside, outside);
+    NOTE("largest luminance the stars add: %.3g kcd/m^2 on the disc, %.3g around it; %.3g there without the moon",
+         inside, outside, unhidden);
     CHECK(inside <= 1e-9, "a star shows through the moon (%.3g kcd/m^2)", inside);
     CHECK(outside > 1e-6, "no star around the moon either (%.3g): the test sees nothing", outside);
+    CHECK(unhidden > 1e-9, "no star behind the disc to hide (%.3g): the test proves nothing", unhidden);
     image_free(&with.im);
     image_free(&without.im);
+    image_free(&stars_only.im);
+    image_free(&none.im);
 }
 
 /* ---- photometry: the drawn disc against the moonlight ---------------------- */

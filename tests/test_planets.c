@@ -180,17 +180,24 @@ static sky_observer observer_at(int y, int mo, int d, int h, int mi)
     return o;
 }
 
+/* The observer of that instant (observer_at) and its astronomy; 0, or -1
+ * with a failed check. */
+static int astronomy_at(int y, int mo, int d, int h, int mi, sky_observer *o, sky_astronomy *a)
+{
+    *o = observer_at(y, mo, d, h, mi);
+    int rc = sky_compute_astronomy(o, 0.0f, NULL, 0, NULL, a, NULL, 0) == SKY_OK ? 0 : -1;
+    CHECK(rc == 0, "sky_compute_astronomy");
+    return rc;
+}
+
 /* Venus and Jupiter half a degree apart in the evening twilight of
  * 2023-03-01 (Munich, sun 8.8 degrees down): each drawn where the
  * astronomy puts it, and nothing there without SKY_PLANETS. */
 void test_planets_drawn_where_astronomy_puts_them(void)
 {
-    sky_observer o = observer_at(2023, 3, 1, 17, 45);
+    sky_observer o;
     sky_astronomy a;
-    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
-        CHECK(0, "sky_compute_astronomy");
-        return;
-    }
+    if (astronomy_at(2023, 3, 1, 17, 45, &o, &a)) return;
     const sky_planet_place *venus = &a.planets[SKY_PLANET_VENUS], *jupiter = &a.planets[SKY_PLANET_JUPITER];
     scene sc = scene_default();
     sc.cfg.features = SKY_PLANETS;
@@ -240,12 +247,9 @@ void test_planets_drawn_where_astronomy_puts_them(void)
  * glare of 63 px, which carries 84 % of its light). */
 void test_planets_light_sums_to_magnitude(void)
 {
-    sky_observer o = observer_at(2023, 6, 4, 20, 40);
+    sky_observer o;
     sky_astronomy a;
-    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
-        CHECK(0, "sky_compute_astronomy");
-        return;
-    }
+    if (astronomy_at(2023, 6, 4, 20, 40, &o, &a)) return;
     const sky_planet_place *v = &a.planets[SKY_PLANET_VENUS];
     const int n = 256, radius = 70;
     const float m_a = 4.0f;
@@ -281,11 +285,11 @@ void test_planets_light_sums_to_magnitude(void)
     double got = (sums[0] - sums[1]) * fr.pixel_angle * fr.pixel_angle;
     float rgb[3];
     sky_star_color(0.82, rgb);
-    double cos_t = sin(v->place.alt_deg * DEG), sa = fr.planet_shell[0], sb = fr.planet_shell[1];
-    double airmass = (sqrt(sb * sb - sa * sa * (1.0 - cos_t * cos_t)) - sa * cos_t) / fr.planet_shell[2];
+    double cos_t = sin(v->place.alt_deg * DEG), sa = fr.planets.shell[0], sb = fr.planets.shell[1];
+    double airmass = (sqrt(sb * sb - sa * sa * (1.0 - cos_t * cos_t)) - sa * cos_t) / fr.planets.shell[2];
     static const double w[3] = {0.2126, 0.7152, 0.0722};
     double ext = 0.0;
-    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr.planet_extinction[c] * airmass);
+    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr.planets.extinction[c] * airmass);
     double expect = 2.54e-9 * pow(2.512, m_a - 4.0 - v->vmag) * ext;
     NOTE("Venus V %.2f at %.1f deg sums to %.4g lx, physical %.4g lx (%+.1f %%)", v->vmag, v->place.alt_deg,
          got * 1e3, expect * 1e3, 100.0 * (got / expect - 1.0));
@@ -300,12 +304,9 @@ void test_planets_light_sums_to_magnitude(void)
  * pixels its light spreads over 14' and it is gone. */
 void test_planets_venus_in_the_afternoon(void)
 {
-    sky_observer o = observer_at(2023, 6, 4, 15, 0);
+    sky_observer o;
     sky_astronomy a;
-    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
-        CHECK(0, "sky_compute_astronomy");
-        return;
-    }
+    if (astronomy_at(2023, 6, 4, 15, 0, &o, &a)) return;
     const sky_planet_place *v = &a.planets[SKY_PLANET_VENUS];
     CHECK(a.sun.alt_deg > 30.0 && v->place.alt_deg > 30.0, "sun %.1f, Venus %.1f degrees up", a.sun.alt_deg,
           v->place.alt_deg);

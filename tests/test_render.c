@@ -250,7 +250,8 @@ void test_render_no_star_work_at_noon(void)
 
 void test_render_flicker_changes_with_seconds(void)
 {
-    scene a_sc = sky_only(SKY_FLICKER_STARS), b_sc;
+    /* the default night: the flicker stars over the airglow */
+    scene a_sc = sky_only(SKY_FLICKER_STARS | SKY_AIRGLOW), b_sc;
     a_sc.params.time = 0.0f;
     a_sc.params.cover = 0.0f;
     b_sc = a_sc;

@@ -276,7 +276,9 @@ sky_atmo_hemisphere *sky_atmo_hemisphere_create(const sky_config *base, char *er
     }
     sky_config cfg = *base;
     cfg.output = SKY_OUTPUT_HDR;
-    cfg.features = (base->features & SKY_CLOUDS) ? SKY_CLOUDS : SKY_FEATURES_NONE;
+    /* the dome and what it holds of the base's: clouds, the night glows */
+    unsigned keep = base->features & (SKY_CLOUDS | SKY_AIRGLOW | SKY_ZODIACAL);
+    cfg.features = keep ? keep : SKY_FEATURES_NONE;
     cfg.get_proc_address = sky_osmesa_loader();
     h->s = sky_create(&cfg, err, err_len);
     int ok = h->s != NULL;

@@ -4,7 +4,8 @@
  * the cheapest thing a sky could possibly be.
  *
  *   sky-bench [--json] [--size WxH] [--frames N] [--rounds R] [--reference FILE]
- *             [--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting]
+ *             [--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting |
+ *              --only-night]
  *             [--tone-map NAME] [--plot FILE.png]
  *   sky-bench --stability [--json]
  *   sky-bench --make-reference FILE [--paths N]
@@ -800,21 +801,26 @@ static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, 
     return rc;
 }
 
-/* Mueller's night layers on their own: the frame with the layer minus the
- * frame without it. Stars and star map on an August night with the Milky
- * Way up; the moon (full, 2024-06-22, looked at) at c_d 3 and 30. */
-enum { NIGHT_NONE, NIGHT_STARS, NIGHT_STARMAP, NIGHT_MOON_NONE, NIGHT_MOON3, NIGHT_MOON30, NIGHT_COUNT };
-/* the stars and the moon are draws of their own: their GPU time is
- * measured directly; the star map lives in the dome pass: by difference */
+/* The night layers on their own: the frame with the layer minus the
+ * frame without it. Stars, planets, star map, airglow and zodiacal light
+ * on an August night with the Milky Way up; the moon (full, 2024-06-22,
+ * looked at) at c_d 3 and 30. */
+enum { NIGHT_NONE, NIGHT_STARS, NIGHT_STARMAP, NIGHT_PLANETS, NIGHT_AIRGLOW, NIGHT_ZODIACAL, NIGHT_MOON_NONE,
+       NIGHT_MOON3, NIGHT_MOON30, NIGHT_COUNT };
+/* the stars, the planets and the moon are draws of their own: their GPU
+ * time is measured directly; the star map, airglow and zodiacal light live
+ * in the dome pass: by difference */
 static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_ms[NIGHT_COUNT])
 {
-    static const char *features[3] = {"none", "stars", "starmap"};
+    static const char *features[6] = {"none", "stars", "starmap", "planets", "airglow", "zodiacal"};
     row r;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 6; i++) {
         char *argv[] = {"sky-bench", "--features", (char *)features[i], "--date", "2024-08-10T21:00:00Z",
                         "--lat", "45", "--yaw", "180", "--pitch", "30", NULL};
         if (bench_args(11, argv, features[i], gl, w, h, frames, &r)) return -1;
-        out_ms[i] = i == 1 ? r.layer_ms[SKY_LAYER_STARS] : r.frame_ms;
+        out_ms[i] = i == NIGHT_STARS ? r.layer_ms[SKY_LAYER_STARS]
+                    : i == NIGHT_PLANETS ? r.layer_ms[SKY_LAYER_PLANETS]
+                                         : r.frame_ms;
     }
     static const char *moon_features[3] = {"none", "moon", "moon"}, *scales[3] = {"3", "3", "30"};
     for (int i = 0; i < 3; i++) {
@@ -1583,7 +1589,8 @@ static void bench_usage(FILE *out)
 {
     fprintf(out,
             "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
-            "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting]\n"
+            "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting\n"
+            "       | --only-night]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
             "       sky-bench --stability [--json]\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
@@ -1591,10 +1598,29 @@ static void bench_usage(FILE *out)
             MAX_ROUNDS);
 }
 
+/* The night layers' table (bench_night), against the presets' baseline. */
+static void print_night_table(double night[2][NIGHT_COUNT], const double base[2])
+{
+    printf("\nThe night layers: the stars', the planets' and the moon's own draw (GPU time around it), the star\n"
+           "map, the airglow and the zodiacal light as what each adds to an atmosphere-only night frame (measured\n"
+           "once, not in rounds):\n\n");
+    printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
+    static const char *names[NIGHT_COUNT] = {"", "8874 catalogue stars", "star map", "5 planets", "airglow",
+                                             "zodiacal light", "", "moon, c_d 3", "moon, c_d 30"};
+    /* -1: measured directly, else the frame it is the difference from */
+    static const int from[NIGHT_COUNT] = {0, -1, NIGHT_NONE, -1, NIGHT_NONE, NIGHT_NONE, 0, -1, -1};
+    for (int prof = 0; prof < 2; prof++)
+        for (int k = 0; k < NIGHT_COUNT; k++) {
+            if (!names[k][0]) continue;
+            double ms = from[k] < 0 ? night[prof][k] : night[prof][k] - night[prof][from[k]];
+            printf("| %s | %s | %.2f | %.2f |\n", names[k], prof ? "compat" : "core", ms, ms / base[prof]);
+        }
+}
+
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, soak = 0;
+        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, only_night = 0, soak = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL,
                *plot_phot = NULL;
@@ -1615,6 +1641,8 @@ int main(int argc, char **argv)
             only_photometry = 1;
         else if (!strcmp(argv[i], "--only-lighting"))
             only_lighting = 1;
+        else if (!strcmp(argv[i], "--only-night"))
+            only_night = 1;
         else if (!strcmp(argv[i], "--soak") && i + 1 < argc && (soak = atoi(argv[i + 1])) >= 1000 && soak <= 50000)
             i++;
         else if (!strcmp(argv[i], "--tone-map") && i + 1 < argc &&
@@ -1703,7 +1731,7 @@ int main(int argc, char **argv)
         return 0;
     }
     static sky_atmo_reference ref;
-    if (!only_presets) {
+    if (!only_presets && !only_night) {
         char ref_err[512];
         if (sky_atmo_reference_load(reference, &ref, ref_err, sizeof ref_err)) {
             fprintf(stderr, "sky-bench: %s\n", ref_err);
@@ -1738,6 +1766,7 @@ int main(int argc, char **argv)
         }
         if (only_presets) continue;
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
+        if (only_night) continue;
         if (bench_atmosphere(gl, w, h, frames, rounds, &atmo[natmo], &base_atmo[prof], &ainfo[prof])) return 1;
         /* with no context current: each measurement makes its own */
         for (int a = 0; a < ATMO_SETTINGS; a++)
@@ -1756,6 +1785,11 @@ int main(int argc, char **argv)
         print_baseline("", w, h, frames, base, pinfo);
         printf("\n");
         print_preset_table(rows, nrows);
+        return 0;
+    }
+    if (only_night) {
+        print_baseline("", w, h, frames, base, pinfo);
+        print_night_table(night, base);
         return 0;
     }
     if (only_atmosphere) {
@@ -1780,10 +1814,12 @@ int main(int argc, char **argv)
         print_presets_json(rows, nrows);
         printf(",\n \"night_layers\": [\n");
         for (int prof = 0; prof < 2; prof++)
-            printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"starmap_ms\":%.4f, \"moon_cd3_ms\":%.4f, "
-                   "\"moon_cd30_ms\":%.4f}%s\n",
+            printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"starmap_ms\":%.4f, \"planets_ms\":%.4f, "
+                   "\"airglow_ms\":%.4f, \"zodiacal_ms\":%.4f, \"moon_cd3_ms\":%.4f, \"moon_cd30_ms\":%.4f}%s\n",
                    prof ? "compat" : "core", night[prof][NIGHT_STARS], night[prof][NIGHT_STARMAP] - night[prof][NIGHT_NONE],
-                   night[prof][NIGHT_MOON3], night[prof][NIGHT_MOON30], prof ? "" : ",");
+                   night[prof][NIGHT_PLANETS], night[prof][NIGHT_AIRGLOW] - night[prof][NIGHT_NONE],
+                   night[prof][NIGHT_ZODIACAL] - night[prof][NIGHT_NONE], night[prof][NIGHT_MOON3],
+                   night[prof][NIGHT_MOON30], prof ? "" : ",");
         printf(" ],\n \"reference\": {\"method\":\"spectral, 16 wavelengths; single scattering by quadrature, orders >= 2 "
                "by Monte Carlo\", \"paths\":%d, \"std_err\":%.6g},\n \"rows\": [\n",
                ref.paths, reference_rel_std_err(&ref));
@@ -1814,18 +1850,7 @@ int main(int argc, char **argv)
     print_baseline(" in the preset rounds", w, h, frames, base, pinfo);
     printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n\n", astro);
     print_preset_table(rows, nrows);
-    printf("\nMueller's night layers: the stars' and the moon's own draw (GPU time around it), the star map as\n"
-           "what it adds to an atmosphere-only night frame (measured once, not in rounds):\n\n");
-    printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
-    static const char *names[NIGHT_COUNT] = {"", "8874 catalogue stars", "star map", "", "moon, c_d 3", "moon, c_d 30"};
-    /* -1: measured directly, else the frame it is the difference from */
-    static const int from[NIGHT_COUNT] = {0, -1, NIGHT_NONE, 0, -1, -1};
-    for (int prof = 0; prof < 2; prof++)
-        for (int k = 0; k < NIGHT_COUNT; k++) {
-            if (!names[k][0]) continue;
-            double ms = from[k] < 0 ? night[prof][k] : night[prof][k] - night[prof][from[k]];
-            printf("| %s | %s | %.2f | %.2f |\n", names[k], prof ? "compat" : "core", ms, ms / base[prof]);
-        }
+    print_night_table(night, base);
     printf("\n");
     print_baseline(" in the atmosphere rounds", w, h, frames, base_atmo, ainfo);
     print_atmosphere_table(atmo, natmo, &ref);

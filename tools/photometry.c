@@ -172,6 +172,8 @@ sky_config sky_photometry_config(sky_atmosphere_path path)
     memset(&cfg, 0, sizeof cfg);
     cfg.gl_profile = SKY_GL_CORE33;
     cfg.atmosphere = path;
+    /* the night's own light: the night zenith is measured with it */
+    cfg.features = SKY_AIRGLOW | SKY_ZODIACAL;
     return cfg;
 }
 

@@ -16,7 +16,14 @@ $r --size 640x360 --preset minimal --pitch 25 --out $out/minimal-compat.png
 $r --size 640x360 --preset moonlit --out $out/moonlit.png
 # the planets (Night sky II): Venus and Jupiter half a degree apart in the
 # evening twilight of 2023-03-01 over Munich
-$r --size 640x400 --date 2023-03-01T17:45:00Z --lat 48.1 --lon 11.6 --features clouds,stars,starmap,planets --cover 0.1 --yaw 254 --pitch 15 --fov 40 --out $out/venus-jupiter.png
+$r --size 640x400 --date 2023-03-01T17:45:00Z --lat 48.1 --lon 11.6 --features clouds,stars,starmap,planets,airglow,zodiacal --cover 0.1 --yaw 254 --pitch 15 --fov 40 --out $out/venus-jupiter.png
+# the zodiacal light before dawn (35 N, 2023-10-15, new moon, the sun 18
+# degrees down; without the planets, as Venus's glare stands in its
+# cone); and one August night under Bortle 1, 4 and 8
+$r --size 640x400 --date 2023-10-15T04:40:00Z --lat 35 --lon 0 --features stars,starmap,airglow,zodiacal --cover 0 --yaw 95 --pitch 22 --fov 100 --out $out/zodiacal-dawn.png
+for b in 1 4 8; do
+    $r --size 960x540 --date 2024-08-10T21:30:00Z --lat 45 --lon 10 --features stars,starmap,planets,airglow,zodiacal --cover 0 --bortle $b --yaw 180 --pitch 35 --fov 60 --out $out/bortle-$b.png
+done
 # the atmosphere paths (issue 6): a clear morning at 40 N on the 2026
 # equinox, looking east toward the sun: day (sun 27 deg), sunrise (1.6
 # deg) and civil twilight (-4 deg)

@@ -14,7 +14,10 @@
 #include <string.h>
 
 static const sky_uniform_desc atmosphere_uniforms[] = {
-    SKY_UF("u_night_luminance", SKY_U_F1, night_luminance),
+    SKY_UF("u_night_floor", SKY_U_F3, night_floor),
+    SKY_UF("u_artificial_glow", SKY_U_F3, artificial_glow),
+    SKY_UF("u_night_depth", SKY_U_F3, night_depth),
+    SKY_UF("u_night_shell", SKY_U_F3, night_shell),
     SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
     SKY_UF("u_ground", SKY_U_F3, ground_rgb),
     SKY_UF("u_horizon", SKY_U_F3, fog_rgb),
@@ -110,11 +113,45 @@ int sky_atmosphere_snippets(sky_atmosphere_path path, sky_atmosphere_path blend_
     return n;
 }
 
-/* The night sky (atmosphere.glsl's floor). A dark, moonless sky: about
- * 0.2 mcd/m^2 (21.6 mag/arcsec^2). With the moon in the scene, its light
- * scattered by the air brightens the night: some 25 times at full moon
- * high in the sky (a moonlit sky of about 5 mcd/m^2), falling faster than
- * the phase (the opposition surge) and fading as the moon sets. */
+/* The night sky. Its light above the air comes from the layers that draw
+ * it (airglow.c, zodiacal.c); what no layer draws is atmosphere.glsl's
+ * floor:
+ * - the stars fainter than the star map's V 8 and the diffuse galactic
+ *   light, about 25 S10 at high galactic latitude (Leinert et al. 1998,
+ *   sec. 5; Roach & Gordon 1973), in the stars' mean colour (B - V 0.7);
+ * - with the moon in the scene, its light scattered by the air: some 5
+ *   mcd/m^2 at full moon high in the sky, falling faster than the phase
+ *   (the opposition surge) and fading as the moon sets, blue;
+ * and the artificial glow of light pollution (cfg.bortle): the zenith of
+ * the class's published brightness less a natural dark sky's 22.0
+ * mag/arcsec^2 (what airglow.c and zodiacal.c give at solar minimum far
+ * from the ecliptic; Benn & Ellison 1998 measured 21.9), rising toward the horizon as
+ * (1.15 / (sin h + 0.15))^0.7, about 4 times the zenith's at the horizon
+ * (Garstang's models of a site among its lights give 3 to 6), in the warm
+ * white of a mix of sodium and LED lighting (B - V 1.0).
+ * night_luminance is the whole night sky's zenith, these and the layers'
+ * glows through the air: what the exposure adapts to. */
+#define FAINT_STARS_S10 25.0
+#define FAINT_STARS_BV 0.7
+#define DARK_SKY_ZENITH_MAG 22.0
+#define ARTIFICIAL_BV 1.0
+/* the zenith's brightness of each Bortle class, V mag/arcsec^2: the middle
+ * of the sky-quality ranges tabulated with Bortle's classes (Bortle 2001,
+ * Sky & Telescope 101(2), 126; the SQM chart that goes with it: 1
+ * 21.99-22.00, 2 21.89-21.99, 3 21.69-21.89, 4 20.49-21.69, 5
+ * 19.50-20.49, 6 18.94-19.50, 7 18.38-18.94, 8 below 18.38, taken as
+ * 17.80-18.38, and 9 brighter still, taken as 17.0-17.8) */
+static const double bortle_zenith_mag[9] = {21.995, 21.94, 21.79, 21.09, 19.995, 19.22, 18.66, 18.09, 17.4};
+
+double sky_bortle_zenith_mag(double bortle)
+{
+    double b = sky_clampd(bortle, 1.0, 9.0) - 1.0;
+    int i = (int)b < 8 ? (int)b : 7;
+    return bortle_zenith_mag[i] + (b - i) * (bortle_zenith_mag[i + 1] - bortle_zenith_mag[i]);
+}
+
+static double luminance(const double rgb[3]) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
 static void night_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
@@ -123,8 +160,35 @@ static void night_frame(sky_core *s)
         double up = sky_smoothstep(-2.0, 15.0, s->astro.moon.alt * 180.0 / SKY_PI);
         moonlight = 25.0 * pow(sky_clampd(s->astro.moon_illuminated, 0.0, 1.0), 2.0) * up;
     }
-    f->night_luminance = (float)(2.0e-7 * (1.0 + moonlight));
     f->moonlight = (float)moonlight;
+    static const double moon_tint[3] = {0.55, 0.7, 1.0};
+    float stars[3], glow[3];
+    sky_star_color(FAINT_STARS_BV, stars);
+    double faint = FAINT_STARS_S10 * sky_mag_arcsec2_to_kcd(27.78);
+    for (int i = 0; i < 3; i++) f->night_floor[i] = (float)(faint * stars[i] + 2.0e-7 * moonlight * moon_tint[i]);
+    /* the air between the observer and the glowing layers */
+    double depth[3];
+    sky_atmosphere_zenith_depth(s, depth);
+    const double re = 6371.0, te = 8.0;
+    double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
+    for (int i = 0; i < 3; i++) f->night_depth[i] = (float)depth[i];
+    f->night_shell[0] = (float)(re + h);
+    f->night_shell[1] = (float)(re + te);
+    f->night_shell[2] = (float)(te - h);
+    double artificial = 0.0;
+    if (s->cfg.bortle > 0.0f)
+        artificial = fmax(sky_mag_arcsec2_to_kcd(sky_bortle_zenith_mag(s->cfg.bortle)) -
+                              sky_mag_arcsec2_to_kcd(DARK_SKY_ZENITH_MAG), 0.0);
+    sky_star_color(ARTIFICIAL_BV, glow);
+    for (int i = 0; i < 3; i++) f->artificial_glow[i] = (float)(artificial * glow[i]);
+    double airglow[3], zodiacal[3], floor_rgb[3] = {f->night_floor[0], f->night_floor[1], f->night_floor[2]};
+    sky_airglow_zenith(s, airglow);
+    sky_zodiacal_zenith(s, zodiacal);
+    double above = 0.0;
+    double through[3];
+    for (int i = 0; i < 3; i++) through[i] = (airglow[i] + zodiacal[i]) * exp(-depth[i]);
+    above = luminance(through);
+    f->night_luminance = (float)(luminance(floor_rgb) + above + artificial);
 }
 
 /* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
@@ -181,12 +245,26 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
     case SKY_ATMOSPHERE_BLEND: eval_blend(s, d, rgb); break;
     default: eval_gradient(s, d, rgb); break;
     }
-    /* sky_eclipse_dim and sky_night_floor */
-    static const double floor_tint[3] = {0.55, 0.7, 1.0};
+    /* sky_eclipse_dim and sky_night_floor, then what the night layers add
+     * through the air (dome.frag) */
     double e = 1.0 - sky_clampd(d[1], 0.0, 1.0), e8 = pow(e, 8.0);
+    double y = 1.0 - e, artificial = pow(1.15 / (y + 0.15), 0.7);
+    double glow[3], zodiacal[3], t[3];
+    sky_airglow_at(s, d, glow);
+    sky_zodiacal_at(s, d, zodiacal);
+    sky_night_extinction(s, d, t);
     for (int i = 0; i < 3; i++)
-        rgb[i] = rgb[i] * (f->eclipse_sky[0] + f->eclipse_sky[1 + i] * e8) +
-                 f->night_luminance * floor_tint[i] * (2.0 - (1.0 - e));
+        rgb[i] = rgb[i] * (f->eclipse_sky[0] + f->eclipse_sky[1 + i] * e8) + f->night_floor[i] * (2.0 - y) +
+                 f->artificial_glow[i] * artificial + (glow[i] + zodiacal[i]) * t[i];
+}
+
+void sky_night_extinction(const sky_core *s, const double d[3], double t[3])
+{
+    const sky_frame *f = &s->frame;
+    double a = f->night_shell[0], b = f->night_shell[1], c = sky_clampd(d[1], -1.0, 1.0);
+    double path = sqrt(fmax(b * b - a * a * (1.0 - c * c), 0.0)) - a * c;
+    double airmass = path / fmax(f->night_shell[2], 1e-3);
+    for (int i = 0; i < 3; i++) t[i] = exp(-f->night_depth[i] * airmass);
 }
 
 /* A physical path's sky summarised from its own CPU twin: Gauss-Legendre
@@ -273,7 +351,6 @@ void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3])
 void sky_atmosphere_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
-    night_frame(s);
     /* The direct beam (the sun disc, sunlight on clouds and the host's
      * scene): the physical paths send it through their own description
      * (rayleigh.c's closed-form extinction, which Hillaire's and the
@@ -284,6 +361,9 @@ void sky_atmosphere_frame(sky_core *s)
     } else {
         sky_sun_transmittance(f->sun_altitude, f->sun_transmittance);
     }
+    /* after the path's columns (sky_rayleigh_frame), which dim the glows,
+     * and before the summary, which adds the night sky */
+    night_frame(s);
     struct sky_atmosphere_state *st = s->atmosphere_state;
     switch (s->atmosphere) {
     case SKY_ATMOSPHERE_PREETHAM:

@@ -32,6 +32,13 @@ sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested);
  * description's for the physical paths, the sun model's otherwise; what
  * dims the stars and the moon (Mueller sec. 5). */
 void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3]);
+/* What the air leaves of light from above it (the night glows) seen in
+ * direction d, per channel: the zenith depths over the shell's path
+ * (atmosphere.glsl's sky_night_extinction). */
+void sky_night_extinction(const sky_core *s, const double d[3], double t[3]);
+/* The zenith brightness of a Bortle class (1..9, fractions between), V
+ * mag/arcsec^2. */
+double sky_bortle_zenith_mag(double bortle);
 /* The CPU twin of what the atmosphere draws in direction d (horizon
  * frame, unit), kcd/m^2: the path's sky with its eclipse dimming and the
  * night floor above the horizon, the ground below it (atmosphere.glsl's

@@ -1,7 +1,11 @@
 /* atmosphere.glsl: what every atmosphere path shares: the night sky's own
  * light, the darkening below the horizon, and the air-mass extinction the
  * non-physical paths use for light from behind the atmosphere. */
-uniform float u_night_luminance;  /* kcd/m^2 of the night sky (moonlit or not) */
+uniform vec3 u_night_floor;      /* zenith kcd/m^2 of the stars fainter than the
+                                    star map and the moonlit air (atmosphere.c) */
+uniform vec3 u_artificial_glow;  /* zenith kcd/m^2 of light pollution          */
+uniform vec3 u_night_depth;      /* the air's zenith optical depths             */
+uniform vec3 u_night_shell;      /* observer radius, shell top, thickness (km)  */
 uniform vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light left,
                                      yzw the extra left at the horizon (rgb) */
 uniform vec3 u_ground;            /* kcd/m^2: the ground lit by sun and sky     */
@@ -20,11 +24,24 @@ vec3 sky_eclipse_dim(vec3 d)
     return vec3(u_eclipse_sky.x) + u_eclipse_sky.yzw * (e4 * e4);
 }
 
-/* The night sky's airglow and scattered moonlight: bluish, brighter toward
- * the horizon where the path through the glowing layer is longer. */
+/* What no night layer draws (atmosphere.c): the faint stars and the
+ * moonlit air, brighter toward the horizon, and light pollution's glow,
+ * about four times the zenith's at the horizon. */
 vec3 sky_night_floor(vec3 d)
 {
-    return u_night_luminance * vec3(0.55, 0.7, 1.0) * (2.0 - clamp(d.y, 0.0, 1.0));
+    float y = clamp(d.y, 0.0, 1.0);
+    return u_night_floor * (2.0 - y) + u_artificial_glow * pow(1.15 / (y + 0.15), 0.7);
+}
+
+/* What the air leaves of light from above it seen along d, per channel:
+ * the zenith depths over the path through a shell (Mueller eq. 11 in a
+ * form finite at the zenith, as stars.vert has it). */
+vec3 sky_night_extinction(vec3 d)
+{
+    float a = u_night_shell.x, b = u_night_shell.y;
+    float c = clamp(d.y, -1.0, 1.0);
+    float path = sqrt(max(b * b - a * a * (1.0 - c * c), 0.0)) - a * c;
+    return exp(-u_night_depth * (path / max(u_night_shell.z, 1e-3)));
 }
 
 /* One rule below the horizon for every path (atmosphere.c): a Lambertian

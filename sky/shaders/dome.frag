@@ -52,6 +52,17 @@ void main()
 #ifdef SKY_HAS_STARMAP
     L += sky_starmap(d) * night_t;
 #endif
+    /* the night's glows above the air, dimmed by it per channel */
+#if defined(SKY_HAS_AIRGLOW) || defined(SKY_HAS_ZODIACAL)
+    vec3 glow = vec3(0.0);
+#ifdef SKY_HAS_AIRGLOW
+    glow += sky_airglow(d);
+#endif
+#ifdef SKY_HAS_ZODIACAL
+    glow += sky_zodiacal(d);
+#endif
+    L += glow * sky_night_extinction(d);
+#endif
     float cover = 0.0;
 #ifdef SKY_HAS_CLOUDS
     vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade);

@@ -15,7 +15,8 @@ uniform float u_star_seed;        /* scintillation clock, 10 per second, wrapped
 uniform mat4 u_star_rot;          /* J2000 -> horizon (precession, nutation, sidereal) */
 uniform vec3 u_star_aberration;   /* annual aberration, horizon frame          */
 uniform vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
-uniform vec3 u_star_pressure;     /* refraction pressure factor, -, -          */
+uniform vec3 u_star_pressure;     /* refraction pressure factor, the faintest V
+                                     drawn (sky_point_limit), -             */
 uniform vec4 u_star_occulter;     /* moon's true direction, cos of its drawn radius */
 SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed); y: the
                                      share of the twinkle a disc averages away
@@ -67,7 +68,10 @@ vec3 sky_star_light(vec3 d, float index)
     float twinkle = min(0.02 / max(n, 1e-4), 1.0) * (1.0 - a_pos.y);
     vec3 beta = vec3(0.16, 0.37, 0.91) / 0.91;
     vec3 scint = vec3(1.0) - min(0.25 * (airmass - 1.0), 0.8) * twinkle * beta;
-    return u_star_flux_scale * flux * a_color.rgb * extinction * scint;
+    /* what the naked eye would not see against this sky is not drawn:
+     * full a quarter magnitude above the limit, gone a quarter below */
+    float seen = clamp(2.0 * (u_star_pressure.y - a_color.a) + 0.5, 0.0, 1.0);
+    return u_star_flux_scale * flux * a_color.rgb * extinction * scint * seen;
 }
 
 void main()
