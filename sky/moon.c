@@ -77,17 +77,8 @@ static double moon_sun_from_moon(const sky_astro *a, double l[3])
 
 /* Extinction over the moon's air mass, per channel, as for the stars
  * (the spherical shell of stars.vert over the atmosphere's zenith optical
- * depth): the disc and the moonlight dim alike. */
-static void moon_extinction(const sky_core *s, double ext[3])
-{
-    double depth[3];
-    sky_atmosphere_zenith_depth(s, depth);
-    double cos_t = sky_clampd(s->astro.moon.dir[1], -1.0, 1.0), re = 6371.0, te = 8.0;
-    double hkm = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
-    double ash = re + hkm, bsh = re + te;
-    double airmass = (sqrt(fmax(bsh * bsh - ash * ash * (1.0 - cos_t * cos_t), 0.0)) - ash * cos_t) / (te - hkm);
-    for (int i = 0; i < 3; i++) ext[i] = exp(-depth[i] * airmass);
-}
+ * depth, sky_night_extinction): the disc and the moonlight dim alike. */
+static void moon_extinction(const sky_core *s, double ext[3]) { sky_night_extinction(s, s->astro.moon.dir, ext); }
 
 /* Mueller's c_i: how much a total eclipse is brightened in LDR output, as
  * a photographer would lengthen the exposure */

@@ -179,15 +179,11 @@ void sky_point_view(sky_core *s, float point_max, sky_point_frame *p)
     double r = STAR_Q_PX * f->pixel_angle;
     double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
     p->flux_scale = (float)(peak * f->star_local_gain);
-    /* the atmosphere's zenith optical depths above the observer */
-    double depth[3];
-    sky_atmosphere_zenith_depth(s, depth);
-    const double re = 6371.0, te = 8.0;
-    double h = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, te - 0.5);
-    for (int i = 0; i < 3; i++) p->extinction[i] = (float)depth[i];
-    p->shell[0] = (float)(re + h);
-    p->shell[1] = (float)(re + te);
-    p->shell[2] = (float)(te - h);
+    /* the air above the observer, as the atmosphere stage has it */
+    for (int i = 0; i < 3; i++) {
+        p->extinction[i] = f->night_depth[i];
+        p->shell[i] = f->night_shell[i];
+    }
     /* The moon hides what is behind its disc, whatever the sky's
      * brightness (the disc itself only adds light by day, moon.c, so it
      * cannot hide them): the test is in true directions, at the disc's

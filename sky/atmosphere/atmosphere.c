@@ -166,7 +166,9 @@ static void night_frame(sky_core *s)
     sky_star_color(FAINT_STARS_BV, stars);
     double faint = FAINT_STARS_S10 * sky_mag_arcsec2_to_kcd(27.78);
     for (int i = 0; i < 3; i++) f->night_floor[i] = (float)(faint * stars[i] + 2.0e-7 * moonlight * moon_tint[i]);
-    /* the air between the observer and the glowing layers */
+    /* the air between the observer and what shines above it (the night
+     * glows here, the stars and planets in stars.vert): Mueller eq. 11's
+     * shell of 8 km */
     double depth[3];
     sky_atmosphere_zenith_depth(s, depth);
     const double re = 6371.0, te = 8.0;
@@ -184,11 +186,9 @@ static void night_frame(sky_core *s)
     double airglow[3], zodiacal[3], floor_rgb[3] = {f->night_floor[0], f->night_floor[1], f->night_floor[2]};
     sky_airglow_zenith(s, airglow);
     sky_zodiacal_zenith(s, zodiacal);
-    double above = 0.0;
     double through[3];
     for (int i = 0; i < 3; i++) through[i] = (airglow[i] + zodiacal[i]) * exp(-depth[i]);
-    above = luminance(through);
-    f->night_luminance = (float)(luminance(floor_rgb) + above + artificial);
+    f->night_luminance = (float)(luminance(floor_rgb) + luminance(through) + artificial);
 }
 
 /* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
