@@ -274,6 +274,7 @@ static inline double sky_kcd_to_mag_arcsec2(double kcd)
  * struct, which sky.c allocates and hands back to it. */
 struct sky_atmosphere_state; /* atmosphere/atmosphere.c */
 struct sky_dome_snippets;    /* layer.h */
+#define SKY_ZODIACAL_TEXELS (64 * 32)
 typedef struct sky_core {
     sky_config cfg;               /* texture_dir: during sky_create only        */
     unsigned features;            /* resolved: never 0                          */
@@ -294,6 +295,9 @@ typedef struct sky_core {
     sky_atmosphere_params atm_rgb;   /* atm averaged over the sRGB channels     */
     double sun_irradiance_klx[3];    /* sky_sun_irradiance_rgb, once            */
     struct sky_atmosphere_state *atmosphere_state; /* atmosphere.c's own      */
+    unsigned char zodiacal_texels[SKY_ZODIACAL_TEXELS]; /* the zodiacal light's
+                                     table as its texture holds it, for its CPU
+                                     twin (zodiacal.c, at create)            */
     unsigned char gradient_texels[256 * 4]; /* the day gradient (gradient.png),
                                      for the gradient path's CPU twin (dome.c) */
 

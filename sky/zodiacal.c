@@ -8,7 +8,9 @@
  * ecliptic after dusk and before dawn is the "false dawn"; the bump at 180
  * degrees the gegenschein. The table has no values within about 15
  * degrees of the sun (its 1e6 entries), where it is day or twilight for
- * any observer: they take the table's brightest value, 11 500.
+ * any observer: they take the table's brightest value, 11 500. The
+ * numbers were checked against the copy the EXOSIMS project distributes
+ * (Leinert98_table17.txt).
  *
  * One S10 (a tenth-magnitude solar-type star per square degree) is 1.28
  * table units at 500 nm (Leinert et al. sec. 2), and the table's 77 at
@@ -30,6 +32,7 @@
  * and the sine of the latitude, 0..1, down. */
 #define ZODI_TEX_W 64
 #define ZODI_TEX_H 32
+_Static_assert(ZODI_TEX_W * ZODI_TEX_H == SKY_ZODIACAL_TEXELS, "the core keeps the texture's texels");
 #define ZODI_UNITS_PER_S10 1.28
 #define ZODI_FLOOR 60.0   /* the encoding's 0 */
 #define ZODI_RANGE 200.0  /* and its 255: 12 000 */
@@ -80,12 +83,10 @@ static double table_at(double lon, double lat)
 /* Texel (i, j) of the texture: the table where the pixel's u = (i + 1/2)
  * / W and sine of the latitude (j + 1/2) / H, as an 8-bit logarithm over
  * the encoding's range. The pixel's x (= cos latitude cos lambda) comes
- * back as 2 u^2 - 1. The CPU twin reads these same bytes, so it sees what
- * the GPU interpolates. */
-static unsigned char texel(int i, int j)
+ * back as 2 u^2 - 1. Made once at create into the core, whose copy the CPU
+ * twin reads: it sees what the GPU interpolates. */
+static unsigned char make_texel(int i, int j)
 {
-    i = i < 0 ? 0 : (i >= ZODI_TEX_W ? ZODI_TEX_W - 1 : i);
-    j = j < 0 ? 0 : (j >= ZODI_TEX_H ? ZODI_TEX_H - 1 : j);
     double u = (i + 0.5) / ZODI_TEX_W, sb = (j + 0.5) / ZODI_TEX_H, cx = 2.0 * u * u - 1.0;
     double cb = sqrt(fmax(1.0 - sb * sb, 0.0));
     double lon = acos(sky_clampd(cb > 1e-9 ? cx / cb : 1.0, -1.0, 1.0)) * 180.0 / SKY_PI;
@@ -124,15 +125,23 @@ static void unit_colour(double rgb[3])
     for (int i = 0; i < 3; i++) rgb[i] = per_unit * colour[i];
 }
 
+/* The core's copy of texel (i, j), clamped to the edges as GL does. */
+static double texel(const sky_core *s, int i, int j)
+{
+    i = i < 0 ? 0 : (i >= ZODI_TEX_W ? ZODI_TEX_W - 1 : i);
+    j = j < 0 ? 0 : (j >= ZODI_TEX_H ? ZODI_TEX_H - 1 : j);
+    return s->zodiacal_texels[j * ZODI_TEX_W + i];
+}
+
 /* The texture for a pixel's x and |z| in the frame, as GL's bilinear
  * filter with clamped edges reads it. */
-static double texture_at(double cx, double sb)
+static double texture_at(const sky_core *s, double cx, double sb)
 {
     double x = sqrt(fmax(0.5 + 0.5 * cx, 0.0)) * ZODI_TEX_W - 0.5, y = sb * ZODI_TEX_H - 0.5;
     int i0 = (int)floor(x), j0 = (int)floor(y);
     double fx = x - i0, fy = y - j0;
-    double v = (texel(i0, j0) * (1 - fx) + texel(i0 + 1, j0) * fx) * (1 - fy) +
-               (texel(i0, j0 + 1) * (1 - fx) + texel(i0 + 1, j0 + 1) * fx) * fy;
+    double v = (texel(s, i0, j0) * (1 - fx) + texel(s, i0 + 1, j0) * fx) * (1 - fy) +
+               (texel(s, i0, j0 + 1) * (1 - fx) + texel(s, i0 + 1, j0 + 1) * fx) * fy;
     return ZODI_FLOOR * exp(v / 255.0 * log(ZODI_RANGE));
 }
 
@@ -142,7 +151,7 @@ static void zodiacal_in(const sky_core *s, const double m[9], const double d[3],
     if (!(s->features & SKY_ZODIACAL) || d[1] <= 0.0) return;
     double e[3];
     for (int r = 0; r < 3; r++) e[r] = m[r * 3] * d[0] + m[r * 3 + 1] * d[1] + m[r * 3 + 2] * d[2];
-    double units = texture_at(sky_clampd(e[0], -1.0, 1.0), sky_clampd(fabs(e[2]), 0.0, 1.0)), colour[3];
+    double units = texture_at(s, sky_clampd(e[0], -1.0, 1.0), sky_clampd(fabs(e[2]), 0.0, 1.0)), colour[3];
     unit_colour(colour);
     for (int i = 0; i < 3; i++) rgb[i] = units * colour[i];
 }
@@ -171,7 +180,8 @@ static int zodiacal_create(sky_core *s, void *state, char *err, size_t err_len)
     unsigned char texels[ZODI_TEX_W * ZODI_TEX_H * 4];
     for (int row = 0; row < ZODI_TEX_H; row++)
         for (int col = 0; col < ZODI_TEX_W; col++) {
-            unsigned char v = texel(col, row);
+            unsigned char v = make_texel(col, row);
+            s->zodiacal_texels[row * ZODI_TEX_W + col] = v;
             unsigned char *p = texels + 4 * (row * ZODI_TEX_W + col);
             p[0] = p[1] = p[2] = v;
             p[3] = 255;

@@ -247,12 +247,13 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
     }
     /* sky_eclipse_dim and sky_night_floor, then what the night layers add
      * through the air (dome.frag) */
-    double e = 1.0 - sky_clampd(d[1], 0.0, 1.0), e8 = pow(e, 8.0);
-    double y = 1.0 - e, artificial = pow(1.15 / (y + 0.15), 0.7);
-    double glow[3], zodiacal[3], t[3];
+    double e = 1.0 - sky_clampd(d[1], 0.0, 1.0), e8 = pow(e, 8.0), y = 1.0 - e;
+    int polluted = f->artificial_glow[0] > 0.0f || f->artificial_glow[1] > 0.0f || f->artificial_glow[2] > 0.0f;
+    double artificial = polluted ? pow(1.15 / (y + 0.15), 0.7) : 0.0;
+    double glow[3], zodiacal[3], t[3] = {0.0, 0.0, 0.0};
     sky_airglow_at(s, d, glow);
     sky_zodiacal_at(s, d, zodiacal);
-    sky_night_extinction(s, d, t);
+    if (glow[0] + glow[1] + glow[2] + zodiacal[0] + zodiacal[1] + zodiacal[2] > 0.0) sky_night_extinction(s, d, t);
     for (int i = 0; i < 3; i++)
         rgb[i] = rgb[i] * (f->eclipse_sky[0] + f->eclipse_sky[1 + i] * e8) + f->night_floor[i] * (2.0 - y) +
                  f->artificial_glow[i] * artificial + (glow[i] + zodiacal[i]) * t[i];
