@@ -47,15 +47,24 @@ void test_validation_config_fields_named(void)
         CHECK(0, "%s", err);
         return;
     }
+    /* each refused by every field: moon_scale, star_control_magnitude,
+     * bortle (0 or 1..9), solar_activity (0..1 with solar_activity_manual) */
     const float values[5] = {NAN, INFINITY, -1.0f, 1e30f, 0.2f};
-    for (int field = 0; field < 2; field++)
+    static const char *const names[4] = {"moon_scale", "star_control_magnitude", "bortle", "solar_activity"};
+    for (int field = 0; field < 4; field++)
         for (int i = 0; i < 5; i++) {
+            if (field == 3 && values[i] == 0.2f) continue; /* a fine activity */
             sky_config cfg;
             memset(&cfg, 0, sizeof cfg);
             cfg.get_proc_address = sky_osmesa_loader();
             if (field == 0) cfg.moon_scale = values[i];
-            else cfg.star_control_magnitude = values[i];
-            const char *name = field ? "star_control_magnitude" : "moon_scale";
+            else if (field == 1) cfg.star_control_magnitude = values[i];
+            else if (field == 2) cfg.bortle = values[i];
+            else {
+                cfg.solar_activity_manual = 1;
+                cfg.solar_activity = values[i];
+            }
+            const char *name = names[field];
             sky *s = sky_create(&cfg, err, sizeof err);
             CHECK(s == NULL && strstr(err, name), "%s = %g is refused by name: %s", name, (double)values[i], err);
             sky_destroy(s);
@@ -70,6 +79,19 @@ void test_validation_config_fields_named(void)
     cfg.features = SKY_FEATURES_NONE;
     s = sky_create(&cfg, err, sizeof err);
     CHECK(s != NULL, "SKY_FEATURES_NONE alone is the empty sky: %s", err);
+    sky_destroy(s);
+    /* solar_activity_manual is 0 or 1; bortle 1..9 and a manual activity
+     * of 0 (solar minimum) are accepted */
+    cfg.features = 0;
+    cfg.solar_activity_manual = 2;
+    s = sky_create(&cfg, err, sizeof err);
+    CHECK(s == NULL && strstr(err, "solar_activity_manual"), "solar_activity_manual 2 is refused: %s", err);
+    sky_destroy(s);
+    cfg.solar_activity_manual = 1;
+    cfg.solar_activity = 0.0f;
+    cfg.bortle = 9.0f;
+    s = sky_create(&cfg, err, sizeof err);
+    CHECK(s != NULL, "Bortle 9 at solar minimum is accepted: %s", err);
     sky_destroy(s);
     sky_osmesa_destroy(&ctx);
 }
