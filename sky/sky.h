@@ -67,7 +67,7 @@ extern "C" {
 #endif
 
 #define SKY_VERSION_MAJOR 0
-#define SKY_VERSION_MINOR 3
+#define SKY_VERSION_MINOR 4
 #define SKY_VERSION_PATCH 0
 
 /* Symbols the shared library exports; everything else stays hidden. */
