@@ -127,6 +127,9 @@ typedef struct sky_frame {
     float moon_dir[3];       /* horizon frame, unit, refracted                   */
     float sun_altitude;      /* radians, apparent                                */
     float daylight;          /* R-P "amount of sunlight", 0..1                   */
+    float naked_eye_limit;   /* V of the faintest point the eye sees against the
+                                zenith's sky (sky_point_limit; sky.c, after
+                                the layers' frames)                          */
     float night;             /* visibility of night layers, 0..1                 */
     float refraction_pressure; /* Saemundsson's scale at the observer (astro.c)  */
     float output_hdr;        /* 1 = linear out, 0 = tone mapped                 */

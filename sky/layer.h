@@ -120,15 +120,23 @@ void sky_stars_reload(void *stars_state);
  * magnitude), the refraction's pressure factor and the faintest V drawn,
  * the peak luminance of a V = 0 point on its PSF (eq. 10, kcd/m^2), the
  * zenith optical depths and the shell of eq. 11, and the moon's disc that
- * hides them. Leaves rot, aberration and seed, which are the set's own. */
-void sky_point_view(sky_core *s, float point_max, sky_point_frame *p);
-/* stars.c: draws count points of stars.vert's vertex layout (a_pos 2, a_dir
- * 3, a_color 4 floats) from buffer with program. */
+ * hides them, and the seed of the set's scintillation clock (its phase,
+ * sky_scintillation_advance). Leaves rot and aberration, the set's own. */
+void sky_point_view(sky_core *s, float point_max, double scintillation, sky_point_frame *p);
+/* A point's vertex for stars.vert: a_pos (scintillation seed, the share of
+ * the twinkle a disc averages away), a_dir (3), a_color (rgb, V). */
+#define SKY_POINT_FLOATS 9
+/* stars.c: a set of points' scintillation clock, a phase wrapped in 0..1,
+ * moved on by dt seconds. */
+double sky_scintillation_advance(double phase, double dt);
+/* stars.c: draws count points of that layout from buffer with program. */
 void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int count);
 /* stars.c: the faintest V a point source is drawn at: the naked eye's
- * limit against the zenith's sky (Schaefer 1990). Whatever the view's
- * field: Mueller's PSF already gives a zoomed view's points more
- * contrast, as binoculars do, but not the points the eye would not see. */
+ * limit against the zenith's sky (Schaefer 1990), as the finished frame
+ * has it (sky.c keeps it in frame.naked_eye_limit after every layer's
+ * frame). Whatever the view's field: Mueller's PSF already gives a zoomed
+ * view's points more contrast, as binoculars do, but not the points the
+ * eye would not see. */
 double sky_point_limit(const sky_core *s);
 /* planets.c: the planets' places of the last frame (SKY_ASTRO_PLANETS). */
 const sky_astro_planet *sky_planets_places(const void *planets_state);

@@ -22,9 +22,7 @@
 #include <math.h>
 #include <string.h>
 
-#define PLANET_FLOATS 9 /* a_pos (seed, twinkle removed), a_dir (3), a_color (rgb, V) */
-#define SCINTILLATION_RATE 10.0
-#define SCINTILLATION_PERIOD 997.0
+#define PLANET_FLOATS SKY_POINT_FLOATS
 #define DISC_TWINKLE_ARCSEC 5.0
 #define GEOCENTRIC_DAYS 0.0005 /* 43 s */
 
@@ -98,7 +96,7 @@ static void planets_advance(sky_core *s, void *state, double dt)
 {
     planets_state *st = state;
     (void)s;
-    st->scintillation = sky_phase_advance(st->scintillation, SCINTILLATION_RATE / SCINTILLATION_PERIOD, dt);
+    st->scintillation = sky_scintillation_advance(st->scintillation, dt);
 }
 
 static void planets_reset(void *state) { ((planets_state *)state)->scintillation = 0.0; }
@@ -141,8 +139,7 @@ static void planets_view(sky_core *s, void *state)
         sky_buffer_update(s, GL_ARRAY_BUFFER, st->buffer, st->vertices, planet_bytes, GL_DYNAMIC_DRAW);
         st->dirty = 0;
     }
-    sky_point_view(s, st->point_max, &f->planets);
-    f->planets.seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
+    sky_point_view(s, st->point_max, st->scintillation, &f->planets);
 }
 
 /* Drawn when the brightest planet above the horizon is within the naked

@@ -106,6 +106,9 @@ static void compute_frame(sky *s)
     FOR_EACH_LAYER(s, L, state) {
         if (L->frame) L->frame(c, state);
     }
+    /* the naked eye's limit against the finished sky (the layers' glows
+     * in it), once a frame for every set of points and the star map */
+    f->naked_eye_limit = (float)sky_point_limit(c);
 }
 
 /* ---- lifecycle ------------------------------------------------------------- */

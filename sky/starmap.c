@@ -97,7 +97,7 @@ static void starmap_view(sky_core *s, void *state)
      * catalogue reaches (6.5) to that of Bortle's classes 7-8 (4.75),
      * where the Milky Way is gone: it is the faint stars and the glow of
      * the Milky Way, which a brighter sky drowns first */
-    double seen = sky_smoothstep(4.75, 6.5, sky_point_limit(s));
+    double seen = sky_smoothstep(4.75, 6.5, f->naked_eye_limit);
     double scale = STARMAP_PEAK * pow(2.512, m_a - 4.0) * fov * seen * f->star_local_gain;
     /* nothing a quarter of an 8-bit step could show at the automatic
      * exposure: off (for HDR output too, as for the stars) */

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define STAR_FLOATS 9 /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
+#define STAR_FLOATS SKY_POINT_FLOATS /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
 /* Illuminance of a V = 0 star (layer.h), in klx so that luminance comes
  * out in kcd/m^2. */
 #define STAR_E0_KLX SKY_V0_ILLUMINANCE_KLX
@@ -134,11 +134,16 @@ static void stars_destroy(sky_core *s, void *state)
     sky_catalog_free(&st->catalog);
 }
 
+double sky_scintillation_advance(double phase, double dt)
+{
+    return sky_phase_advance(phase, SCINTILLATION_RATE / SCINTILLATION_PERIOD, dt);
+}
+
 static void stars_advance(sky_core *s, void *state, double dt)
 {
     stars_state *st = state;
     (void)s;
-    st->scintillation = sky_phase_advance(st->scintillation, SCINTILLATION_RATE / SCINTILLATION_PERIOD, dt);
+    st->scintillation = sky_scintillation_advance(st->scintillation, dt);
 }
 
 static void stars_reset(void *state) { ((stars_state *)state)->scintillation = 0.0; }
@@ -160,7 +165,7 @@ double sky_point_limit(const sky_core *s)
     return sky_naked_eye_limit(0.2126 * z[0] + 0.7152 * z[1] + 0.0722 * z[2]);
 }
 
-void sky_point_view(sky_core *s, float point_max, sky_point_frame *p)
+void sky_point_view(sky_core *s, float point_max, double scintillation, sky_point_frame *p)
 {
     const sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
@@ -170,7 +175,7 @@ void sky_point_view(sky_core *s, float point_max, sky_point_frame *p)
     p->size.max_radius = 0.5f * point_max - 1.0f;
     p->size.control_magnitude = m_a;
     p->pressure[0] = (float)a->pressure_factor;
-    p->pressure[1] = (float)sky_point_limit(s);
+    p->pressure[1] = f->naked_eye_limit;
     p->pressure[2] = 0.0f;
     /* eq. 10 in physical units: peak luminance of a V = 0 point on a PSF
      * of radius q pixels (pixel_angle radians each). No day-night fade:
@@ -194,6 +199,8 @@ void sky_point_view(sky_core *s, float point_max, sky_point_frame *p)
         for (int i = 0; i < 3; i++) p->occulter[i] = (float)a->moon.dir_geometric[i];
         p->occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
     }
+    /* the scintillation clock, in random values */
+    p->seed = (float)(SCINTILLATION_PERIOD * scintillation);
 }
 
 void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int count)
@@ -223,9 +230,7 @@ static void stars_view(sky_core *s, void *state)
     for (int i = 0; i < 3; i++)
         f->stars.aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
                                         a->horizon[i * 3 + 2] * a->aberration[2]);
-    sky_point_view(s, st->point_max, &f->stars);
-    /* the scintillation clock, in random values */
-    f->stars.seed = (float)(SCINTILLATION_PERIOD * st->scintillation);
+    sky_point_view(s, st->point_max, st->scintillation, &f->stars);
 }
 
 /* The brightest star (Sirius, V -1.46) is past the naked eye's limit, or

@@ -116,13 +116,14 @@ static void ecliptic_frame(const sky_astro *a, double m[9])
     sky_mat3_mul(turn, t, m);
 }
 
-/* kcd/m^2 per table unit, the sun's colour */
-static void unit_colour(double rgb[3])
+/* kcd/m^2 at the encoding's 0 (ZODI_FLOOR table units), the sun's colour:
+ * the frame's u_zodiacal */
+static void floor_colour(double rgb[3])
 {
     float colour[3];
     sky_star_color(ZODI_SUN_BV, colour);
     double per_unit = sky_mag_arcsec2_to_kcd(27.78) / ZODI_UNITS_PER_S10; /* one S10 is 27.78 mag/arcsec^2 */
-    for (int i = 0; i < 3; i++) rgb[i] = per_unit * colour[i];
+    for (int i = 0; i < 3; i++) rgb[i] = per_unit * colour[i] * ZODI_FLOOR;
 }
 
 /* The core's copy of texel (i, j), clamped to the edges as GL does. */
@@ -134,7 +135,8 @@ static double texel(const sky_core *s, int i, int j)
 }
 
 /* The texture for a pixel's x and |z| in the frame, as GL's bilinear
- * filter with clamped edges reads it. */
+ * filter with clamped edges reads it, decoded: the light over the
+ * encoding's 0. */
 static double texture_at(const sky_core *s, double cx, double sb)
 {
     double x = sqrt(fmax(0.5 + 0.5 * cx, 0.0)) * ZODI_TEX_W - 0.5, y = sb * ZODI_TEX_H - 0.5;
@@ -142,36 +144,40 @@ static double texture_at(const sky_core *s, double cx, double sb)
     double fx = x - i0, fy = y - j0;
     double v = (texel(s, i0, j0) * (1 - fx) + texel(s, i0 + 1, j0) * fx) * (1 - fy) +
                (texel(s, i0, j0 + 1) * (1 - fx) + texel(s, i0 + 1, j0 + 1) * fx) * fy;
-    return ZODI_FLOOR * exp(v / 255.0 * log(ZODI_RANGE));
+    return exp(v / 255.0 * log(ZODI_RANGE));
 }
 
-static void zodiacal_in(const sky_core *s, const double m[9], const double d[3], double rgb[3])
+/* zodiacal.glsl's sky_zodiacal: the light from direction d for a
+ * rotation m (row-major) and the light at the encoding's 0. */
+static void zodiacal_in(const sky_core *s, const double m[9], const double floor_rgb[3], const double d[3],
+                        double rgb[3])
 {
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     if (!(s->features & SKY_ZODIACAL) || d[1] <= 0.0) return;
     double e[3];
     for (int r = 0; r < 3; r++) e[r] = m[r * 3] * d[0] + m[r * 3 + 1] * d[1] + m[r * 3 + 2] * d[2];
-    double units = texture_at(s, sky_clampd(e[0], -1.0, 1.0), sky_clampd(fabs(e[2]), 0.0, 1.0)), colour[3];
-    unit_colour(colour);
-    for (int i = 0; i < 3; i++) rgb[i] = units * colour[i];
+    double over = texture_at(s, sky_clampd(e[0], -1.0, 1.0), sky_clampd(fabs(e[2]), 0.0, 1.0));
+    for (int i = 0; i < 3; i++) rgb[i] = over * floor_rgb[i];
 }
 
+/* For the atmosphere stage, before this layer's frame: from the astronomy. */
 void sky_zodiacal_zenith(const sky_core *s, double rgb[3])
 {
-    double m[9];
+    double m[9], floor_rgb[3];
     ecliptic_frame(&s->astro, m);
+    floor_colour(floor_rgb);
     const double up[3] = {0.0, 1.0, 0.0};
-    zodiacal_in(s, m, up, rgb);
+    zodiacal_in(s, m, floor_rgb, up, rgb);
 }
 
+/* After it: the frame's rotation and scale, as the shader has them. */
 void sky_zodiacal_at(const sky_core *s, const double d[3], double rgb[3])
 {
-    /* the frame's rotation, as the shader has it (column-major mat4) */
-    const float *r = s->frame.zodiacal_rot;
-    double m[9];
+    const sky_frame *f = &s->frame;
+    double m[9], floor_rgb[3] = {f->zodiacal[0], f->zodiacal[1], f->zodiacal[2]};
     for (int row = 0; row < 3; row++)
-        for (int c = 0; c < 3; c++) m[row * 3 + c] = r[c * 4 + row];
-    zodiacal_in(s, m, d, rgb);
+        for (int c = 0; c < 3; c++) m[row * 3 + c] = f->zodiacal_rot[c * 4 + row]; /* column-major mat4 */
+    zodiacal_in(s, m, floor_rgb, d, rgb);
 }
 
 static int zodiacal_create(sky_core *s, void *state, char *err, size_t err_len)
@@ -194,14 +200,14 @@ static void zodiacal_frame(sky_core *s, void *state)
 {
     (void)state;
     sky_frame *f = &s->frame;
-    double m[9], colour[3];
+    double m[9], floor_rgb[3];
     ecliptic_frame(&s->astro, m);
     memset(f->zodiacal_rot, 0, sizeof f->zodiacal_rot);
     for (int row = 0; row < 3; row++)
         for (int c = 0; c < 3; c++) f->zodiacal_rot[c * 4 + row] = (float)m[row * 3 + c];
     f->zodiacal_rot[15] = 1.0f;
-    unit_colour(colour);
-    for (int i = 0; i < 3; i++) f->zodiacal[i] = (float)(colour[i] * ZODI_FLOOR);
+    floor_colour(floor_rgb);
+    for (int i = 0; i < 3; i++) f->zodiacal[i] = (float)floor_rgb[i];
     f->zodiacal[3] = (float)log(ZODI_RANGE);
 }
 
