@@ -10,6 +10,8 @@ WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototyp
 CFLAGS  ?= -O2 -g
 ALL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -Isky -I$(BUILD)/gen
 LDLIBS_M := -lm
+# the headless contexts (demo/osmesa_ctx.c): OSMesa, and EGL for ES 2.0
+HEADLESS_LIBS := -lOSMesa -lEGL
 
 SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/planets.c sky/airglow.c sky/zodiacal.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
@@ -78,19 +80,19 @@ STAB_HDR := tools/stability.h tools/atmo_error.h tools/colour.h tools/photometry
 
 $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ demo/render.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/render.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
 
 $(BIN)/sky-demo: demo/demo.c demo/ui.c demo/ui.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c demo/ui.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/demo.c demo/ui.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL $(HEADLESS_LIBS) $(LDLIBS_M)
 
 $(BIN)/sky-game: demo/game.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ demo/game.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ demo/game.c $(CLI_SRC) $(LIB)/libsky.a -lglfw -lGL $(HEADLESS_LIBS) $(LDLIBS_M)
 
 $(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a -lOSMesa -lpthread $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) -lpthread $(LDLIBS_M)
 
 bench: all
 	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png
@@ -114,7 +116,7 @@ run: deps all
 TEST_SRC := $(wildcard tests/*.c)
 $(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(SKY_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) -lerfa -lpthread $(LDLIBS_M)
 
 # The sanitized programs are linked from objects compiled once per
 # sanitizer, each in a tree of its own. -MMD -MP write each object's
@@ -143,11 +145,11 @@ $(SAN_DIR)/%.o: %.c
 
 $(BUILD)/asan/sky-tests: $(SAN_TEST_OBJ) $(SAN_SKY_OBJ)
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -o $@ $^ -lOSMesa -lerfa -lpthread $(LDLIBS_M)
+	$(CC) $(SAN_FLAGS) -o $@ $^ $(HEADLESS_LIBS) -lerfa -lpthread $(LDLIBS_M)
 
 $(BIN)/sky-leaks: $(SAN_LEAKS_OBJ) $(SAN_SKY_OBJ)
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -o $@ $^ -lOSMesa $(LDLIBS_M)
+	$(CC) $(SAN_FLAGS) -o $@ $^ $(HEADLESS_LIBS) $(LDLIBS_M)
 
 # libFuzzer harnesses (clang with compiler-rt); built only where that links.
 # The library is compiled once with fuzzer-no-link (coverage without
@@ -222,7 +224,7 @@ $(EX)/sky-irrlicht: examples/irrlicht.cpp sky/sky.h $(LIB)/libsky.a
 # of the library's
 $(EX)/example-tests: tests/examples/test_examples.c tests/test_main.c tests/test.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -DSKY_EXAMPLE_TESTS -Itests -o $@ tests/examples/test_examples.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a -lOSMesa $(LDLIBS_M)
+	$(CC) $(DEMO_CFLAGS) -DSKY_EXAMPLE_TESTS -Itests -o $@ tests/examples/test_examples.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
 
 test-examples: examples $(EX)/example-tests
 	@SKY_EXAMPLES=$(EX) xvfb-run -a -s '-screen 0 1280x720x24' $(EX)/example-tests

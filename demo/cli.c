@@ -168,7 +168,8 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
             "                           solar-eclipse,planets,airglow,zodiacal (or none); eclipse = the lunar one\n"
-            "  --gl auto|core|compat    GL profile\n"
+            "  --gl auto|core|compat|es20\n"
+            "                           GL profile (es20: OpenGL ES 2.0, headless through EGL)\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
             "  --moon-scale C           draw the moon C times its true size (0.5..50; default 2.5)\n"
@@ -458,8 +459,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                 cli->gl = SKY_GL_CORE33;
             else if (val && !strcmp(val, "compat"))
                 cli->gl = SKY_GL_COMPAT20;
+            else if (val && !strcmp(val, "es20"))
+                cli->gl = SKY_GL_ES20;
             else
-                return fail(err, len, "--gl: expected auto, core or compat, got '%s'", val ? val : "(nothing)");
+                return fail(err, len, "--gl: expected auto, core, compat or es20, got '%s'", val ? val : "(nothing)");
             given[1] = 1;
         } else if (!strcmp(opt, "--atmosphere")) {
             if (val && !strcmp(val, "gradient"))
@@ -660,7 +663,10 @@ void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place
             a->moon_visibility);
 }
 
-static const char *profile_name(sky_gl_profile p) { return p == SKY_GL_CORE33 ? "core" : "compat"; }
+static const char *profile_name(sky_gl_profile p)
+{
+    return p == SKY_GL_CORE33 ? "core" : p == SKY_GL_ES20 ? "es20" : "compat";
+}
 
 void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
 {

@@ -1,5 +1,5 @@
 /*
- * sky-demo: the sky in a GLFW window (OpenGL 3.3 core, else 2.0), steered
+ * sky-demo: the sky in a GLFW window (OpenGL 3.3 core, else 2.0; or ES 2.0 with --gl es20), steered
  * by Roden & Parberry's six sliders drawn over it (drag them, or 1-6 and
  * Up/Down). Space runs the time of day, +/- its speed; C U M K T P E
  * toggle the layers, A the atmosphere path, G the GL profile; right-drag
@@ -28,7 +28,7 @@ static int headless(const sky_cli *cli, const char *out)
         fprintf(stderr, "sky-demo: %s\n", err);
         return 1;
     }
-    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    sky_config cfg = sky_cli_config(cli, sky_headless_loader(&ctx));
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         fprintf(stderr, "sky-demo: %s\n", err);
@@ -354,13 +354,24 @@ static int save_screenshot(int width, int height, const char *path)
     return rc;
 }
 
-static GLFWwindow *open_window(demo *d, int core)
+static sky_gl_profile profile_of(int kind)
+{
+    return kind == UI_CORE33 ? SKY_GL_CORE33 : kind == UI_ES20 ? SKY_GL_ES20 : SKY_GL_COMPAT20;
+}
+
+/* kind: UI_GL20 an OpenGL 2.0 context, UI_CORE33 a 3.3 core one,
+ * UI_ES20 an OpenGL ES 2.0 one */
+static GLFWwindow *open_window(demo *d, int kind)
 {
     glfwDefaultWindowHints();
-    if (core) {
+    if (kind == UI_CORE33) {
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
         glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    } else if (kind == UI_ES20) {
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
     } else {
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
@@ -482,15 +493,19 @@ int main(int argc, char **argv)
     }
     d.features = d.cli.features ? d.cli.features : (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP);
     if (d.features & SKY_FEATURES_NONE) d.features = SKY_FEATURES_NONE;
-    int core = d.cli.gl != SKY_GL_COMPAT20;
-    GLFWwindow *win = open_window(&d, core);
-    if (!win && core) win = open_window(&d, core = 0);
+    int kind = d.cli.gl == SKY_GL_ES20 ? UI_ES20 : d.cli.gl == SKY_GL_COMPAT20 ? UI_GL20 : UI_CORE33;
+    GLFWwindow *win = open_window(&d, kind);
+    if (!win && kind != UI_GL20) {
+        fprintf(stderr, "sky-demo: no %s window; trying OpenGL 2.0\n", kind == UI_ES20 ? "OpenGL ES 2.0" : "3.3 core");
+        win = open_window(&d, kind = UI_GL20);
+    }
     if (!win) {
         fprintf(stderr, "sky-demo: no GL window could be created\n");
         glfwTerminate();
         return headless(&d.cli, out);
     }
-    d.overlay = ui_create(core);
+    d.cli.gl = profile_of(kind);
+    d.overlay = ui_create(kind);
     timer_init(&d.timer, win);
     d.elapsed = d.cli.seconds;
     d.s = make_sky(&d, err, sizeof err);
@@ -517,15 +532,15 @@ int main(int argc, char **argv)
             ui_destroy(d.overlay);
             timer_destroy(&d.timer);
             glfwDestroyWindow(win);
-            win = open_window(&d, core = !core);
-            if (!win) win = open_window(&d, core = !core);
+            /* the next kind of context that opens: core, 2.0, ES 2.0 */
+            for (int tries = 0; tries < 3 && !win; tries++) win = open_window(&d, kind = (kind + 1) % 3);
             if (!win) {
-                fprintf(stderr, "sky-demo: no GL window for either profile\n");
+                fprintf(stderr, "sky-demo: no GL window for any profile\n");
                 glfwTerminate();
                 return 1;
             }
-            d.cli.gl = core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
-            d.overlay = ui_create(core);
+            d.cli.gl = profile_of(kind);
+            d.overlay = ui_create(kind);
             timer_init(&d.timer, win);
             d.recreate = 1;
             d.s = NULL;
@@ -584,7 +599,7 @@ int main(int argc, char **argv)
                              100 * a.solar_obscuration, a.solar_magnitude, 0);
         static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
         used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  atmosphere %s  tone map %s%c",
-                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : "GL 2.0", atmosphere_name(d.atmosphere),
+                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : st.profile == SKY_GL_ES20 ? "GL ES 2.0" : "GL 2.0", atmosphere_name(d.atmosphere),
                          tone_maps[d.cli.tone_map], 0);
         used += snprintf(lines + used, sizeof lines - (size_t)used, "fov %.0f  time %s x%.0f%c", d.cli.fov,
                          d.running ? "running" : "paused", d.time_rate * 86400.0, 0);

@@ -1,7 +1,10 @@
 /*
  * A headless GL context through OSMesa (Mesa's llvmpipe, or softpipe with
  * GALLIUM_DRIVER=softpipe): what sky-render, the tests and a display-less
- * sky-demo draw into.
+ * sky-demo draw into. For the ES20 profile, an OpenGL ES 2.0 context
+ * through EGL instead (Mesa's surfaceless platform, a pbuffer): set
+ * MESA_GLES_VERSION_OVERRIDE=2.0 for the version string of real ES 2.0
+ * hardware (Mesa offers ES 3.2 otherwise).
  */
 #ifndef SKY_OSMESA_CTX_H
 #define SKY_OSMESA_CTX_H
@@ -12,21 +15,30 @@
 #include <stdio.h>
 
 typedef struct sky_osmesa {
-    void *ctx;       /* OSMesaContext */
-    void *pixels;    /* w*h RGBA, bottom row first; bytes or floats */
+    void *ctx;       /* OSMesaContext, or EGLContext when is_es */
+    void *pixels;    /* w*h RGBA, bottom row first; bytes or floats (EGL:
+                        read back by sky_osmesa_finish) */
     int width, height;
     int is_float;
     int is_core;     /* the context is a 3.3 core profile */
+    int is_es;       /* an OpenGL ES context through EGL */
+    void *egl_display, *egl_surface;
+    unsigned es_fbo, es_color; /* is_es && is_float: the float target it draws into */
 } sky_osmesa;
 
 /* want: SKY_GL_CORE33 asks for a 3.3 core context, SKY_GL_COMPAT20 for a
- * legacy one, SKY_GL_AUTO tries core first. is_float: a float RGBA colour
- * buffer (for linear HDR output). Returns 0, or -1 with err. */
+ * legacy one, SKY_GL_AUTO tries core first, SKY_GL_ES20 an ES 2.0 context
+ * through EGL. is_float: a float RGBA colour buffer (for linear HDR
+ * output); with EGL, an RGBA32F texture bound as the draw framebuffer,
+ * which needs an ES 3.0 context with EXT_color_buffer_float (not one
+ * under MESA_GLES_VERSION_OVERRIDE=2.0). Returns 0, or -1 with err. */
 int sky_osmesa_create(sky_osmesa *o, int width, int height, sky_gl_profile want, int is_float, char *err,
                       size_t err_len);
 void sky_osmesa_destroy(sky_osmesa *o);
 sky_get_proc_address_fn sky_osmesa_loader(void);
-/* Waits for rendering to finish. */
+/* The loader for o's kind of context (OSMesa's, or EGL's). */
+sky_get_proc_address_fn sky_headless_loader(const sky_osmesa *o);
+/* Waits for rendering to finish (and with EGL reads the pixels back). */
 void sky_osmesa_finish(sky_osmesa *o);
 
 /* The writers below put the image in a temporary file beside path and

@@ -35,7 +35,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         fprintf(stderr, "sky-render: %s\n", err);
         return 1;
     }
-    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    sky_config cfg = sky_cli_config(cli, sky_headless_loader(&ctx));
     cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
     cfg.profile_layers = cli->stats;
     sky *s = sky_create(&cfg, err, sizeof err);
@@ -108,12 +108,17 @@ static int render_capture(const sky_cli *cli)
     static const int cell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}}; /* +X -X +Y -Y +Z -Z */
     int n = cli->capture, w = 4 * n, h = 3 * n;
     char err[512];
+    if (cli->gl == SKY_GL_ES20) { /* the faces are read back with glGetTexImage */
+        fprintf(stderr, "sky-render: --capture with --gl es20: OpenGL ES 2.0 cannot read a cube map back "
+                "(no glGetTexImage); use --gl core or compat\n");
+        return 2;
+    }
     sky_osmesa ctx;
     if (sky_osmesa_create(&ctx, w, h, cli->gl, 0, err, sizeof err)) {
         fprintf(stderr, "sky-render: %s\n", err);
         return 1;
     }
-    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    sky_config cfg = sky_cli_config(cli, sky_headless_loader(&ctx));
     sky *s = sky_create(&cfg, err, sizeof err);
     int rc = 0;
     unsigned char *face = malloc((size_t)n * (size_t)n * 4);

@@ -58,20 +58,25 @@ static void text(ui *u, float x, float y, const char *s, const float c[4])
     }
 }
 
-ui *ui_create(int core)
+ui *ui_create(int kind)
 {
     ui *u = calloc(1, sizeof *u);
     if (!u) return NULL;
-    u->core = core;
-    const char *vs = core ? "#version 330 core\nin vec2 p;\nin vec4 c;\nout vec4 vc;\nuniform vec2 size;\n"
-                            "void main(){vc=c;gl_Position=vec4(p/size*vec2(2.0,-2.0)+vec2(-1.0,1.0),0.0,1.0);}\n"
-                          : "#version 110\nattribute vec2 p;\nattribute vec4 c;\nvarying vec4 vc;\nuniform vec2 size;\n"
-                            "void main(){vc=c;gl_Position=vec4(p/size*vec2(2.0,-2.0)+vec2(-1.0,1.0),0.0,1.0);}\n";
-    const char *fs = core ? "#version 330 core\nin vec4 vc;\nout vec4 o;\nvoid main(){o=vc;}\n"
-                          : "#version 110\nvarying vec4 vc;\nvoid main(){gl_FragColor=vc;}\n";
+    int core = u->core = kind == UI_CORE33;
+    static const char *const versions[3][2] = {
+        {"#version 110\n", "#version 110\n"},
+        {"#version 330 core\n", "#version 330 core\n"},
+        {"#version 100\n", "#version 100\nprecision mediump float;\n"}};
+    const char *vs_body = core ? "in vec2 p;\nin vec4 c;\nout vec4 vc;\nuniform vec2 size;\n"
+                                 "void main(){vc=c;gl_Position=vec4(p/size*vec2(2.0,-2.0)+vec2(-1.0,1.0),0.0,1.0);}\n"
+                               : "attribute vec2 p;\nattribute vec4 c;\nvarying vec4 vc;\nuniform vec2 size;\n"
+                                 "void main(){vc=c;gl_Position=vec4(p/size*vec2(2.0,-2.0)+vec2(-1.0,1.0),0.0,1.0);}\n";
+    const char *fs_body = core ? "in vec4 vc;\nout vec4 o;\nvoid main(){o=vc;}\n"
+                               : "varying vec4 vc;\nvoid main(){gl_FragColor=vc;}\n";
+    const char *vs[2] = {versions[kind][0], vs_body}, *fs[2] = {versions[kind][1], fs_body};
     GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER);
-    glShaderSource(v, 1, &vs, NULL);
-    glShaderSource(f, 1, &fs, NULL);
+    glShaderSource(v, 2, vs, NULL);
+    glShaderSource(f, 2, fs, NULL);
     glCompileShader(v);
     glCompileShader(f);
     u->prog = glCreateProgram();

@@ -11,7 +11,10 @@
 
 typedef struct ui ui;
 
-ui *ui_create(int core_profile);
+/* The overlay's context: OpenGL 2.0 (GLSL 1.10), 3.3 core (GLSL 330, a
+ * VAO of its own) or OpenGL ES 2.0 (GLSL ES 1.00). */
+enum { UI_GL20 = 0, UI_CORE33 = 1, UI_ES20 = 2 };
+ui *ui_create(int kind);
 void ui_destroy(ui *u);
 
 /* Slider geometry, in window pixels from the top left. */

@@ -31,6 +31,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UF("u_sunset", SKY_U_F1, sunset),
     SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
     SKY_UF("u_cloud_texels_per_step", SKY_U_F1, cloud_texels_per_step),
+    SKY_UF("u_dome_step_pixels", SKY_U_F1, dome_step_pixels),
     SKY_UF("u_cloud_offset0", SKY_U_F2, cloud_offset0),
     SKY_UF("u_cloud_offset1", SKY_U_F2, cloud_offset1),
     SKY_UF("u_cloud_offset_upper", SKY_U_F2, cloud_offset_upper),
@@ -196,7 +197,8 @@ static void clouds_frame(sky_core *s, void *state)
     f->cloud_uv_scale = (float)(0.15 * pow(4.0, p->height));
     /* the fade of detail a pixel cannot hold is judged in the viewport's
      * pixels: a step in the dome's image spans dome_divisor of them */
-    f->cloud_texels_per_step = (float)SKY_CLOUD_TEXTURE_SIZE / (float)(s->dome_divisor ? s->dome_divisor : 1);
+    f->dome_step_pixels = (float)(s->dome_divisor ? s->dome_divisor : 1);
+    f->cloud_texels_per_step = (float)SKY_CLOUD_TEXTURE_SIZE / f->dome_step_pixels;
     float *offsets[SKY_CLOUD_LAYERS] = {f->cloud_offset0, f->cloud_offset1, f->cloud_offset_upper};
     for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
         for (int i = 0; i < 2; i++) offsets[l][i] = (float)st->offsets[l][i];

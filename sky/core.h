@@ -212,6 +212,7 @@ typedef struct sky_frame {
     float cloud_uv_scale;    /* from height                                      */
     float cloud_texels_per_step; /* texels per unit of coordinate over the pixels
                                     of the viewport one fragment step spans  */
+    float dome_step_pixels;  /* the viewport pixels a step in the dome's image spans */
     float cloud_offset0[2], cloud_offset1[2], cloud_offset_upper[2];
     float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
     /* the aerial-perspective froxels (hillaire.c, sky_aerial_froxels) */

@@ -31,7 +31,6 @@ static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow
                                          SKY_UNIFORM_COUNT(glow_uniforms), NULL};
 static const sky_uniform_desc point_uniforms[] = {
     SKY_UF("u_flicker_phase", SKY_U_F1, flicker_phase),
-    SKY_UF("u_pixel_angle", SKY_U_F1, pixel_angle),
     SKY_UF("u_point_max", SKY_U_F1, flicker_point_max),
 };
 static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL};

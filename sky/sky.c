@@ -124,7 +124,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         sky_format(err, err_len, "sky_create: get_proc_address is NULL; pass the host's GL loader");
         return NULL;
     }
-    if ((unsigned)cfg->atmosphere > SKY_ATMOSPHERE_BLEND || (unsigned)cfg->gl_profile > SKY_GL_COMPAT20 ||
+    if ((unsigned)cfg->atmosphere > SKY_ATMOSPHERE_BLEND || (unsigned)cfg->gl_profile > SKY_GL_ES20 ||
         (unsigned)cfg->output > SKY_OUTPUT_HDR) {
         sky_format(err, err_len, "sky_create: atmosphere %d, gl_profile %d or output %d is out of range",
                    (int)cfg->atmosphere, (int)cfg->gl_profile, (int)cfg->output);
@@ -582,8 +582,9 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
     if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: no GL context is current");
     int hdr = c->cfg.output == SKY_OUTPUT_HDR;
     if (hdr && c->profile != SKY_GL_CORE33 && !cube_texture)
-        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: HDR output in COMPAT20 is captured into "
-                        "the host's float cube map only (the library's textures there are 8-bit)");
+        return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_capture_environment: HDR output in %s is captured into "
+                        "the host's float cube map only (the library's textures there are 8-bit)",
+                        c->profile == SKY_GL_ES20 ? "ES20" : "COMPAT20");
     GLint limit = 0;
     gl->glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &limit);
     if (limit > 0 && face_size > limit)
@@ -614,7 +615,7 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
             return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: %s", why);
         }
         tex = own->id;
-    } else {
+    } else if (!c->caps.es) { /* (ES 2.0 cannot ask a texture its size: sky.h) */
         GLint w = 0;
         gl->glActiveTexture(GL_TEXTURE0);
         gl->glBindTexture(GL_TEXTURE_CUBE_MAP, tex);

@@ -149,9 +149,30 @@ typedef enum sky_atmosphere_path {
 } sky_atmosphere_path;
 
 typedef enum sky_gl_profile {
-    SKY_GL_AUTO = 0,   /* CORE33 when the context offers it, else COMPAT20 */
+    SKY_GL_AUTO = 0,   /* CORE33 when the context offers it, else COMPAT20;
+                          ES20 on an OpenGL ES context                      */
     SKY_GL_CORE33,     /* OpenGL 3.3 core, GLSL 330                         */
-    SKY_GL_COMPAT20    /* OpenGL 2.0, GLSL 110, RGBA8 power-of-two only     */
+    SKY_GL_COMPAT20,   /* OpenGL 2.0, GLSL 110, RGBA8 power-of-two only     */
+    SKY_GL_ES20        /* OpenGL ES 2.0 / WebGL 1, GLSL ES 1.00: COMPAT20's
+                          resources on an ES 2.0 (or later) context. What it
+                          needs of the context: 4 texture units, and
+                          nothing else. What it uses when offered:
+                          OES_standard_derivatives (the clouds' footprint
+                          fade and the sun's edge; without it an estimate
+                          from the pixel's angular size), framebuffer
+                          objects (ES 2.0 core: the dome at a fraction of
+                          the resolution, capture), highp in the fragment
+                          stage (GL_FRAGMENT_PRECISION_HIGH; without it the
+                          shaders compile at mediump, where the sun's disc,
+                          past 2^14 kcd/m^2, is not yet scaled down and
+                          clips: untested). HDR output stops at 65504
+                          kcd/m^2 there (gl_FragColor is mediump in GLSL
+                          ES 1.00): the sun's disc saturates. No VAO, float texture, texture LOD or
+                          desktop-only entry point (glPolygonMode,
+                          glGetTexImage, glGetTexLevelParameteriv) is
+                          used. sky_capture_environment into the host's
+                          cube map cannot check its size there (ES 2.0
+                          has no query): it must be face_size.           */
 } sky_gl_profile;
 
 /* How LDR output turns the sky's light into 8-bit colour (HDR output is

@@ -28,6 +28,7 @@ void test_game_fog_grows_with_distance(void);
 void test_game_walls_seen_at_night(void);
 void test_demo_rebuild_keeps_the_clock(void);
 void test_demo_atmosphere_key(void);
+void test_demo_es20_window(void);
 void test_headless_out_must_be_png(void);
 
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
@@ -572,4 +573,27 @@ void test_headless_out_must_be_png(void)
         CHECK(rc == 1 && strstr(log, "cannot write"), "%s --out X.PNG is taken (then cannot be written): exit %d: %s",
               progs[p], rc, log);
     }
+}
+
+/* --gl es20 opens an OpenGL ES 2.0 window (GLX's ES profile under Xvfb)
+ * and the sky in it is COMPAT20's. */
+void test_demo_es20_window(void)
+{
+    if (!have_xvfb()) {
+        SKIP("xvfb-run is not installed");
+        return;
+    }
+    char log[4096];
+    image es, gl2;
+    if (demo_sky("--gl es20 --time 0.45 --cover 0.4", &es, log, sizeof log)) return;
+    CHECK(strstr(log, "trying OpenGL 2.0") == NULL, "an ES 2.0 window opened: %s", log);
+    if (demo_sky("--gl compat --time 0.45 --cover 0.4", &gl2, log, sizeof log)) {
+        image_free(&es);
+        return;
+    }
+    double d = mean_abs_diff(&es, &gl2);
+    NOTE("the ES 2.0 window's sky differs from the OpenGL 2.0 window's by %.5f", d);
+    CHECK(d < 1.0 / 255.0, "the same sky in both windows (%.5f)", d);
+    image_free(&es);
+    image_free(&gl2);
 }

@@ -26,12 +26,13 @@ void test_hostile_core_context_names_what_it_lacks(void);
 /* The wrapping loaders' settings: a loader is a bare function pointer, so
  * what it drops or fakes lives here (test program state, not library). */
 static const char *hidden_name;
+static sky_get_proc_address_fn hiding_from; /* the context's own loader */
 static long lost_calls;
 
 static sky_gl_proc loader_hiding_one(const char *name)
 {
     if (hidden_name && !strcmp(name, hidden_name)) return NULL;
-    return sky_osmesa_loader()(name);
+    return hiding_from(name);
 }
 
 /* GL_CONTEXT_LOST forever, as a lost context reports it; after a million
@@ -45,25 +46,31 @@ static GLenum fake_get_error_lost(void)
 static sky_gl_proc loader_context_lost(const char *name)
 {
     if (!strcmp(name, "glGetError")) return (sky_gl_proc)fake_get_error_lost;
-    return sky_osmesa_loader()(name);
+    return hiding_from(name);
 }
 
 void test_hostile_missing_gl_entry_point(void)
 {
-    /* every name sky_gl_init requires, in its loading order */
+    /* every name sky_gl_init requires, in its loading order: an ES
+     * context needs all but desktop GL's own */
 #define NAME_OF(ret, name, params) #name,
-    static const char *const required[] = {SKY_GL_FUNCS_20(NAME_OF)};
+    static const char *const required[] = {SKY_GL_FUNCS_20(NAME_OF) SKY_GL_FUNCS_DESKTOP(NAME_OF)};
+    static const char *const desktop_only[] = {SKY_GL_FUNCS_DESKTOP(NAME_OF)};
 #undef NAME_OF
-    static const sky_gl_profile kinds[2] = {SKY_GL_CORE33, SKY_GL_COMPAT20};
+    static const sky_gl_profile kinds[3] = {SKY_GL_CORE33, SKY_GL_COMPAT20, SKY_GL_ES20};
+    static const char *const kind_names[3] = {"core", "compat", "es20"};
     char err[512];
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 3; k++) {
         sky_osmesa ctx;
         if (sky_osmesa_create(&ctx, 16, 16, kinds[k], 0, err, sizeof err)) {
             CHECK(0, "%s", err);
             return;
         }
+        hiding_from = sky_headless_loader(&ctx);
+        size_t count = sizeof required / sizeof required[0];
+        if (kinds[k] == SKY_GL_ES20) count -= sizeof desktop_only / sizeof desktop_only[0];
         int bad = 0;
-        for (size_t i = 0; i < sizeof required / sizeof required[0]; i++) {
+        for (size_t i = 0; i < count; i++) {
             hidden_name = required[i];
             sky_config cfg;
             memset(&cfg, 0, sizeof cfg);
@@ -71,37 +78,40 @@ void test_hostile_missing_gl_entry_point(void)
             err[0] = '\0';
             sky *s = sky_create(&cfg, err, sizeof err);
             if (s || !strstr(err, required[i])) bad++;
-            CHECK(s == NULL && strstr(err, required[i]), "%s context without %s: %s", k ? "compat" : "core",
-                  required[i], s ? "created" : err);
+            CHECK(s == NULL && strstr(err, required[i]), "%s context without %s: %s", kind_names[k], required[i],
+                  s ? "created" : err);
             sky_destroy(s);
         }
         hidden_name = NULL;
-        NOTE("%s context: %zu loaders each missing one entry point: %d wrong", k ? "compat" : "core",
-             sizeof required / sizeof required[0], bad);
+        NOTE("%s context: %zu loaders each missing one entry point: %d wrong", kind_names[k], count, bad);
         sky_osmesa_destroy(&ctx);
     }
 }
 
 void test_hostile_context_lost(void)
 {
-    char err[512];
-    sky_osmesa ctx;
-    if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_AUTO, 0, err, sizeof err)) {
-        CHECK(0, "%s", err);
-        return;
+    static const sky_gl_profile kinds[2] = {SKY_GL_AUTO, SKY_GL_ES20};
+    for (int k = 0; k < 2; k++) {
+        char err[512];
+        sky_osmesa ctx;
+        if (sky_osmesa_create(&ctx, 16, 16, kinds[k], 0, err, sizeof err)) {
+            CHECK(0, "%s", err);
+            return;
+        }
+        hiding_from = sky_headless_loader(&ctx);
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.get_proc_address = loader_context_lost;
+        lost_calls = 0;
+        err[0] = '\0';
+        sky *s = sky_create(&cfg, err, sizeof err);
+        NOTE("%s: glGetError called %ld times -> %s", k ? "ES" : "desktop", lost_calls, s ? "created?!" : err);
+        CHECK(s == NULL, "a context whose errors never drain is refused");
+        CHECK(strstr(err, "0x0507") != NULL, "the message names the error: %s", err);
+        CHECK(lost_calls <= 1000, "glGetError is asked a bounded number of times, not %ld", lost_calls);
+        sky_destroy(s);
+        sky_osmesa_destroy(&ctx);
     }
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.get_proc_address = loader_context_lost;
-    lost_calls = 0;
-    err[0] = '\0';
-    sky *s = sky_create(&cfg, err, sizeof err);
-    NOTE("glGetError called %ld times -> %s", lost_calls, s ? "created?!" : err);
-    CHECK(s == NULL, "a context whose errors never drain is refused");
-    CHECK(strstr(err, "0x0507") != NULL, "the message names the error: %s", err);
-    CHECK(lost_calls <= 1000, "glGetError is asked a bounded number of times, not %ld", lost_calls);
-    sky_destroy(s);
-    sky_osmesa_destroy(&ctx);
 }
 
 /* sky_create with texture_dir = dir; returns the sky (NULL on failure,
@@ -304,6 +314,7 @@ void test_hostile_core_context_names_what_it_lacks(void)
         CHECK(0, "%s", err);
         return;
     }
+    hiding_from = sky_headless_loader(&ctx);
     for (int i = 0; i < 2; i++) {
         hidden_name = names[i];
         sky_config cfg;

@@ -43,6 +43,11 @@ int test_skipped;
     X(api_leaks_1000_cycles)                     \
     X(gl_state_restored_core)                    \
     X(gl_state_restored_compat)                  \
+    X(es20_state_restored)                       \
+    X(es20_profile_mismatch_is_an_error)         \
+    X(es20_presets_match_compat20)               \
+    X(es20_without_optional_extensions)          \
+    X(es20_every_path_with_every_layer)          \
     X(gl_host_raster_state_ignored)              \
     X(gl_errors_left_to_host_and_contexts_checked) \
     X(header_compiles_pedantic)                  \
@@ -150,6 +155,7 @@ int test_skipped;
     X(game_walls_seen_at_night)                  \
     X(demo_rebuild_keeps_the_clock)              \
     X(demo_atmosphere_key)                       \
+    X(demo_es20_window)                          \
     X(headless_out_must_be_png)                  \
     X(reliability_hostile_override_textures)     \
     X(reliability_two_skies_are_independent)     \
@@ -174,6 +180,7 @@ int test_skipped;
     X(atmosphere_turbidity_and_presets)          \
     X(atmosphere_blend_partner_preetham)         \
     X(stability_suite)                           \
+    X(stability_suite_es20)                      \
     X(stability_clocks_survive_any_step)         \
     X(reference_spectrum_and_units)              \
     X(reference_single_scattering_vs_quadrature) \

@@ -326,13 +326,14 @@ static double worst_pixel(sky_osmesa *ctx, sky *s, const sky_params *p, double s
     return frame_worst(ctx);
 }
 
-/* A sky with every feature in a fresh float context. */
-static sky *open_sky(sky_osmesa *ctx, char *err, size_t err_len)
+/* A sky with every feature in a fresh float context of that profile. */
+static sky *open_sky(sky_osmesa *ctx, sky_gl_profile gl, char *err, size_t err_len)
 {
-    if (sky_osmesa_create(ctx, 48, 32, SKY_GL_AUTO, 1, err, err_len)) return NULL;
+    if (sky_osmesa_create(ctx, 48, 32, gl, 1, err, err_len)) return NULL;
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.get_proc_address = sky_osmesa_loader();
+    cfg.gl_profile = gl;
+    cfg.get_proc_address = sky_headless_loader(ctx);
     cfg.output = SKY_OUTPUT_HDR;
     cfg.features = SKY_FEATURES_AVAILABLE;
     sky *s = sky_create(&cfg, err, err_len);
@@ -710,6 +711,31 @@ static void case_preetham_fit(suite *st)
     finish(r);
 }
 
+/* The render cases on a context of profile gl. */
+static int run_render(suite *st, sky_gl_profile gl, char *err, size_t err_len)
+{
+    sky_osmesa ctx;
+    sky *s = open_sky(&ctx, gl, err, err_len);
+    if (!s) return -1;
+    case_slider_corners(st, s, &ctx);
+    case_sun_at_horizon(st, s, &ctx);
+    case_long_elapsed(st, s, &ctx);
+    case_huge_steps(st, s, &ctx);
+    case_sunset_light(st, s);
+    case_camera_extremes(st, s, &ctx);
+    case_star_extremes(st, s, &ctx);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+    return st->count;
+}
+
+int sky_stability_run_render(sky_gl_profile gl, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err,
+                             size_t err_len)
+{
+    suite st = {rows, 0, {0}};
+    return run_render(&st, gl, err, err_len);
+}
+
 int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err, size_t err_len)
 {
     suite st = {rows, 0, {0}};
@@ -725,21 +751,7 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
     case_grazing_transmittance(&st);
     case_stiff_tables(&st);
     case_preetham_fit(&st);
-    if (gpu) {
-        sky_osmesa ctx;
-        sky *s = open_sky(&ctx, err, err_len);
-        if (!s) return -1;
-        case_slider_corners(&st, s, &ctx);
-        case_sun_at_horizon(&st, s, &ctx);
-        case_long_elapsed(&st, s, &ctx);
-        case_huge_steps(&st, s, &ctx);
-        case_sunset_light(&st, s);
-        case_camera_extremes(&st, s, &ctx);
-        case_star_extremes(&st, s, &ctx);
-        sky_destroy(s);
-        sky_osmesa_destroy(&ctx);
-    }
-    return st.count;
+    return gpu ? run_render(&st, SKY_GL_AUTO, err, err_len) : st.count;
 }
 
 long sky_rss_kib(void)

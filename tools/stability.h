@@ -7,6 +7,8 @@
 #ifndef SKY_STABILITY_H
 #define SKY_STABILITY_H
 
+#include "sky.h"
+
 #include <stddef.h>
 
 typedef struct sky_stability_row {
@@ -25,6 +27,11 @@ enum { SKY_STABILITY_MAX_ROWS = 24 };
  * in fresh OSMesa float contexts. Fills rows, returns how many (or -1
  * when a context cannot be made; err says why). */
 int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err, size_t err_len);
+/* The render cases alone, on a fresh float context of profile gl (ES20:
+ * an ES 3 context drawing into an RGBA32F target, the one way an ES
+ * context shows a NaN). */
+int sky_stability_run_render(sky_gl_profile gl, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], char *err,
+                             size_t err_len);
 
 /* Resident memory of this process in KiB (Linux /proc), or -1: the soaks'
  * measure (sky-bench --soak, the tests' soak). */

@@ -74,9 +74,26 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
     memset(caps, 0, sizeof *caps);
     if (s->profile == SKY_GL_CORE33) {
         caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = caps->pixel_buffers = 1;
-        caps->framebuffer_srgb = 1;
+        caps->framebuffer_srgb = caps->unpack_rows = caps->rasterizer_discard = caps->derivatives = 1;
         return GL_NO_ERROR;
     }
+    if (s->profile == SKY_GL_ES20) {
+        /* ES 2.0 has framebuffer objects in its core. Its spec allows
+         * non-power-of-two textures clamped, linear and without mipmaps
+         * (what the render images are), but Mesa without
+         * OES_texture_npot samples them black: only ES 3.0 or the
+         * extension is trusted with them. The rest arrived with ES 3.0. */
+        caps->es = 1;
+        caps->render_to_rgba8 = gl->glGenFramebuffers && gl->glDeleteFramebuffers && gl->glBindFramebuffer &&
+                                gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus;
+        caps->npot = gl_ver >= 30 || has_extension(gl, "GL_OES_texture_npot");
+        caps->separate_framebuffers = caps->pixel_buffers = caps->unpack_rows = caps->rasterizer_discard =
+            gl_ver >= 30;
+        caps->derivatives = has_extension(gl, "GL_OES_standard_derivatives");
+        return drain_errors(gl);
+    }
+    caps->unpack_rows = caps->derivatives = 1;
+    caps->rasterizer_discard = gl_ver >= 30;
     caps->pixel_buffers = gl_ver >= 21 || has_extension(gl, "GL_ARB_pixel_buffer_object");
     caps->framebuffer_srgb = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_sRGB") ||
                              has_extension(gl, "GL_EXT_framebuffer_sRGB");
@@ -99,6 +116,22 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
     return drain_errors(gl);
 }
 
+/* Settles the profile and what the context offers it. */
+static int choose_profile(sky_core *s, sky_gl_profile profile, int gl_ver, char *err, size_t err_len)
+{
+    if (profile != SKY_GL_CORE33) {
+        GLint units = 0;
+        s->gl.glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+        if (units < 4) {
+            sky_format(err, err_len, "the context has %d texture units; libsky needs 4", (int)units);
+            return -1;
+        }
+    }
+    s->profile = profile;
+    GLenum e = detect_caps(s, gl_ver);
+    return e == GL_NO_ERROR ? 0 : undrained(e, err, err_len);
+}
+
 int sky_gl_init(sky_core *s, char *err, size_t err_len)
 {
     sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
@@ -111,7 +144,6 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
         return -1;                                                                       \
     }
     SKY_GL_FUNCS_20(SKY_GL_LOAD)
-#undef SKY_GL_LOAD
 #define SKY_GL_LOAD_OPT(ret, name, params) s->gl.name = (ret(SKY_APIENTRY *) params)gpa(#name);
     SKY_GL_FUNCS_30(SKY_GL_LOAD_OPT)
 #undef SKY_GL_LOAD_OPT
@@ -130,6 +162,25 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
         return -1;
     }
     snprintf(s->gl_version, sizeof s->gl_version, "%s", version);
+    /* ES says so at the start of its version string ("OpenGL ES 2.0 Mesa",
+     * WebGL's "OpenGL ES 2.0 (WebGL 1.0 ...)"), and then runs ES20 alone */
+    int is_es = strncmp(version, "OpenGL ES", 9) == 0;
+    sky_gl_profile want = s->cfg.gl_profile;
+    if (is_es || want == SKY_GL_ES20) {
+        if (!is_es) {
+            sky_format(err, err_len, "ES20 asked for, but the context is desktop OpenGL %s (ES20 needs an OpenGL ES "
+                       "2.0 or later context)", version);
+            return -1;
+        }
+        if (want != SKY_GL_AUTO && want != SKY_GL_ES20) {
+            sky_format(err, err_len, "%s asked for, but the context is %s: an ES context runs the ES20 profile",
+                       want == SKY_GL_CORE33 ? "CORE33" : "COMPAT20", version);
+            return -1;
+        }
+        return choose_profile(s, SKY_GL_ES20, gl_ver, err, err_len);
+    }
+    SKY_GL_FUNCS_DESKTOP(SKY_GL_LOAD)
+#undef SKY_GL_LOAD
     /* Only a 3.3 context can run GLSL 330, so below that the string is not
      * asked for (Mesa under version overrides complains on stderr when it
      * is). Some drivers without GLSL return NULL: treated as GLSL 1.10. */
@@ -147,7 +198,6 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
                    gl->glDeleteVertexArrays && gl->glGenFramebuffers && gl->glBindFramebuffer &&
                    gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus && gl->glDeleteFramebuffers;
 
-    sky_gl_profile want = s->cfg.gl_profile;
     if (want == SKY_GL_AUTO) want = can_core ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
     if (want == SKY_GL_CORE33 && !can_core) {
         sky_format(err, err_len, "CORE33 asked for, but the context offers OpenGL %s with GLSL %d.%d", version,
@@ -170,17 +220,7 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
             sky_format(err, err_len, "COMPAT20 needs a compatibility context; this one is a %s core profile", version);
         return -1;
     }
-    if (want == SKY_GL_COMPAT20) {
-        GLint units = 0;
-        gl->glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
-        if (units < 4) {
-            sky_format(err, err_len, "the context has %d texture units; libsky needs 4", (int)units);
-            return -1;
-        }
-    }
-    s->profile = want;
-    if ((e = detect_caps(s, gl_ver)) != GL_NO_ERROR) return undrained(e, err, err_len);
-    return 0;
+    return choose_profile(s, want, gl_ver, err, err_len);
 }
 
 /* ---- programs ------------------------------------------------------------ */
@@ -193,6 +233,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
     SKY_UF("u_view_proj", SKY_U_M4, view_proj),
     SKY_UF("u_viewport", SKY_U_F4, viewport),
+    SKY_UF("u_pixel_angle", SKY_U_F1, pixel_angle),
     SKY_UF("u_far_z", SKY_U_F1, far_z),
     SKY_UF("u_night_shift", SKY_U_F1, night_shift),
     SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
@@ -201,9 +242,24 @@ const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
                                         SKY_UNIFORM_COUNT(common_uniforms), NULL};
 
 
-/* The version prologue: one GLSL source per stage serves both profiles. */
+/* The version prologue: one GLSL source per stage serves every profile.
+ * GLSL ES 1.00 wants a default float precision in the fragment stage:
+ * highp where the stage has it (the sky's light spans far more than
+ * mediump's 2^14), and its fwidth through OES_standard_derivatives. */
+#define SKY_ES_MACROS "#define SKY_ES 1\n#define SKY_TEX2D texture2D\n#define SKY_TEXCUBE textureCube\n"
+#define SKY_ES_PRECISION                                                                       \
+    "#ifdef GL_FRAGMENT_PRECISION_HIGH\nprecision highp float;\n#else\nprecision mediump float;\n#endif\n"
 static const char *prologue(const sky_core *s, int fragment)
 {
+    if (s->profile == SKY_GL_ES20) {
+        if (!fragment) return "#version 100\nprecision highp float;\n" SKY_ES_MACROS
+                              "#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
+        return s->caps.derivatives
+                   ? "#version 100\n#extension GL_OES_standard_derivatives : enable\n" SKY_ES_PRECISION SKY_ES_MACROS
+                     "#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_FRAG_COLOR gl_FragColor\n"
+                   : "#version 100\n" SKY_ES_PRECISION SKY_ES_MACROS "#define SKY_NO_DERIVATIVES 1\n"
+                     "#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_FRAG_COLOR gl_FragColor\n";
+    }
     if (s->profile == SKY_GL_CORE33)
         return fragment ? "#version 330 core\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
                           "#define SKY_TEX2D texture\n#define SKY_TEXCUBE texture\nout vec4 sky_frag_color;\n"
@@ -380,7 +436,9 @@ static int finish_texture(sky_core *s, sky_texture *t, GLenum target, GLint filt
                           size_t bytes, sky_layer owner, const char *what, int check, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
-    gl->glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
+    /* (ES 2.0 has no MAX_LEVEL: a texture without mipmaps filtered by
+     * GL_LINEAR or GL_NEAREST is complete there anyway) */
+    if (!s->caps.es) gl->glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
     gl->glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
     gl->glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
     gl->glTexParameteri(target, GL_TEXTURE_WRAP_S, wrap);
@@ -410,10 +468,13 @@ typedef struct unpack_state {
 static const GLenum unpack_names[4] = {GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS,
                                        GL_UNPACK_SKIP_PIXELS};
 
+/* (ES 2.0 has the alignment alone) */
+static int unpack_count(const sky_core *s) { return s->caps.unpack_rows ? 4 : 1; }
+
 static void unpack_begin(sky_core *s, unpack_state *u)
 {
     const sky_gl *gl = &s->gl;
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < unpack_count(s); i++) {
         gl->glGetIntegerv(unpack_names[i], &u->store[i]);
         gl->glPixelStorei(unpack_names[i], i == 0 ? 1 : 0);
     }
@@ -427,8 +488,17 @@ static void unpack_begin(sky_core *s, unpack_state *u)
 static void unpack_end(sky_core *s, const unpack_state *u)
 {
     const sky_gl *gl = &s->gl;
-    for (int i = 0; i < 4; i++) gl->glPixelStorei(unpack_names[i], u->store[i]);
+    for (int i = 0; i < unpack_count(s); i++) gl->glPixelStorei(unpack_names[i], u->store[i]);
     if (s->caps.pixel_buffers) gl->glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)u->buffer);
+}
+
+/* The internal format of an 8-bit texture of fmt (GL_RGB or GL_RGBA):
+ * sized on desktop GL, the format itself on ES (ES 2.0 takes nothing
+ * else, and ES 3.0 maps it to the sized one). */
+static GLint internal_8bit(const sky_core *s, GLenum fmt)
+{
+    if (s->caps.es) return (GLint)fmt;
+    return fmt == GL_RGB ? GL_RGB8 : GL_RGBA8;
 }
 
 /* A new texture name for id, bound to target on unit 0 (where every
@@ -450,8 +520,8 @@ static int create_2d(sky_core *s, sky_texture_id id, sky_layer owner, const unsi
     sky_texture *t = new_texture(s, id, GL_TEXTURE_2D);
     unpack_state unpack;
     unpack_begin(s, &unpack);
-    gl->glTexImage2D(GL_TEXTURE_2D, 0, channels == 3 ? GL_RGB8 : GL_RGBA8, w, h, 0, channels == 3 ? GL_RGB : GL_RGBA,
-                     GL_UNSIGNED_BYTE, pixels);
+    GLenum fmt = channels == 3 ? GL_RGB : GL_RGBA;
+    gl->glTexImage2D(GL_TEXTURE_2D, 0, internal_8bit(s, fmt), w, h, 0, fmt, GL_UNSIGNED_BYTE, pixels);
     unpack_end(s, &unpack);
     return finish_texture(s, t, GL_TEXTURE_2D, GL_LINEAR, wrap, w, h, (size_t)w * (size_t)h * (size_t)channels,
                           owner, what, check, err, err_len);
@@ -504,7 +574,7 @@ int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, con
     unpack_begin(s, &unpack);
     size_t face_bytes = (size_t)size * (size_t)size * (is_float ? 16u : 4u);
     for (int f = 0; f < 6; f++)
-        gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_float ? GL_RGBA32F : GL_RGBA8, size, size, 0,
+        gl->glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, is_float ? GL_RGBA32F : internal_8bit(s, GL_RGBA), size, size, 0,
                          GL_RGBA, is_float ? GL_FLOAT : GL_UNSIGNED_BYTE,
                          faces ? faces + (size_t)f * face_bytes : NULL);
     unpack_end(s, &unpack);
@@ -648,7 +718,7 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
     if (is_float)
         gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
     else
-        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, internal_8bit(s, GL_RGBA), w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     unpack_end(s, &unpack);
     /* an encoded table is decoded before it is blended: no filtering */
     return finish_texture(s, t, GL_TEXTURE_2D, is_float ? GL_LINEAR : GL_NEAREST, GL_CLAMP_TO_EDGE, w, h,
@@ -763,9 +833,11 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
     st->cull_face = gl->glIsEnabled(GL_CULL_FACE);
     st->scissor_test = gl->glIsEnabled(GL_SCISSOR_TEST);
     st->stencil_test = gl->glIsEnabled(GL_STENCIL_TEST);
-    st->program_point_size = gl->glIsEnabled(GL_PROGRAM_POINT_SIZE);
+    if (!s->caps.es) {
+        st->program_point_size = gl->glIsEnabled(GL_PROGRAM_POINT_SIZE);
+        gl->glGetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
+    }
     if (s->caps.framebuffer_srgb) st->framebuffer_srgb = gl->glIsEnabled(GL_FRAMEBUFFER_SRGB);
-    gl->glGetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
     gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
     gl->glGetBooleanv(GL_COLOR_WRITEMASK, st->color_mask);
     gl->glGetIntegerv(GL_BLEND_SRC_RGB, &st->blend_src_rgb);
@@ -775,8 +847,9 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
     gl->glGetIntegerv(GL_BLEND_EQUATION_RGB, &st->blend_eq_rgb);
     gl->glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &st->blend_eq_alpha);
     gl->glGetIntegerv(GL_DEPTH_FUNC, &st->depth_func);
-    if (s->profile == SKY_GL_COMPAT20) {
-        /* No VAO: the attribute arrays we use are global state. */
+    if (s->profile != SKY_GL_CORE33) {
+        /* No VAO of ours: the attribute arrays we use are global state (or
+         * the state of a host's VAO left bound, put back into it). */
         gl->glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &st->element_buffer);
         for (GLuint i = 0; i < SKY_ATTRIBS; i++) {
             gl->glGetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &st->attrib_enabled[i]);
@@ -801,13 +874,13 @@ static void set_cap(const sky_gl *gl, GLenum cap, GLboolean on)
 void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
 {
     const sky_gl *gl = &s->gl;
-    if (s->profile == SKY_GL_COMPAT20) {
+    if (s->profile != SKY_GL_CORE33) {
         gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, (GLuint)st->element_buffer);
         for (GLuint i = 0; i < SKY_ATTRIBS; i++) {
             gl->glBindBuffer(GL_ARRAY_BUFFER, (GLuint)st->attrib_buffer[i]);
             /* A pointer set while no buffer was bound is a client-memory
-             * pointer; GL accepts it back only in compatibility contexts,
-             * which is the only place this path runs. */
+             * pointer; GL accepts it back in compatibility and ES 2.0
+             * contexts, which are where this path runs. */
             gl->glVertexAttribPointer(i, st->attrib_size[i], (GLenum)st->attrib_type[i],
                                       (GLboolean)st->attrib_norm[i], st->attrib_stride[i], st->attrib_pointer[i]);
             if (st->attrib_enabled[i])
@@ -839,13 +912,17 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
     set_cap(gl, GL_CULL_FACE, st->cull_face);
     set_cap(gl, GL_SCISSOR_TEST, st->scissor_test);
     set_cap(gl, GL_STENCIL_TEST, st->stencil_test);
-    set_cap(gl, GL_PROGRAM_POINT_SIZE, st->program_point_size);
     if (s->caps.framebuffer_srgb) set_cap(gl, GL_FRAMEBUFFER_SRGB, st->framebuffer_srgb);
-    if (st->polygon_mode[0] == st->polygon_mode[1] || s->profile == SKY_GL_CORE33) {
-        gl->glPolygonMode(GL_FRONT_AND_BACK, (GLenum)st->polygon_mode[0]);
-    } else { /* a compatibility context may draw the two faces apart */
-        gl->glPolygonMode(GL_FRONT, (GLenum)st->polygon_mode[0]);
-        gl->glPolygonMode(GL_BACK, (GLenum)st->polygon_mode[1]);
+    /* (ES has neither switch: points are always sized by the shader, and
+     * polygons always filled) */
+    if (!s->caps.es) {
+        set_cap(gl, GL_PROGRAM_POINT_SIZE, st->program_point_size);
+        if (st->polygon_mode[0] == st->polygon_mode[1] || s->profile == SKY_GL_CORE33) {
+            gl->glPolygonMode(GL_FRONT_AND_BACK, (GLenum)st->polygon_mode[0]);
+        } else { /* a compatibility context may draw the two faces apart */
+            gl->glPolygonMode(GL_FRONT, (GLenum)st->polygon_mode[0]);
+            gl->glPolygonMode(GL_BACK, (GLenum)st->polygon_mode[1]);
+        }
     }
     gl->glDepthMask(st->depth_mask);
     gl->glDepthFunc((GLenum)st->depth_func);
@@ -886,7 +963,7 @@ void sky_gl_frame_begin(sky_core *s, GLuint vao)
     gl->glDepthMask(GL_FALSE);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->glDisable(GL_BLEND);
-    gl->glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    if (!s->caps.es) gl->glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     if (s->caps.framebuffer_srgb) gl->glDisable(GL_FRAMEBUFFER_SRGB);
     if (vao) gl->glBindVertexArray(vao);
 }
@@ -905,6 +982,7 @@ void sky_gl_blend(sky_core *s, sky_blend mode)
 
 void sky_gl_program_point_size(sky_core *s, int on)
 {
+    if (s->caps.es) return; /* always on there */
     if (on)
         s->gl.glEnable(GL_PROGRAM_POINT_SIZE);
     else
@@ -969,7 +1047,7 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
     gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
     t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
     t->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
-    t->discard = gl->glIsEnabled(GL_RASTERIZER_DISCARD);
+    t->discard = s->caps.rasterizer_discard && gl->glIsEnabled(GL_RASTERIZER_DISCARD);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     if (s->textures[target].target == GL_TEXTURE_2D_ARRAY || s->textures[target].target == GL_TEXTURE_3D)
         /* its first layer (CORE33) */
@@ -978,7 +1056,7 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
         gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->textures[target].id, 0);
     gl->glViewport(0, 0, w, h);
     gl->glDisable(GL_SCISSOR_TEST);
-    gl->glDisable(GL_RASTERIZER_DISCARD);
+    if (s->caps.rasterizer_discard) gl->glDisable(GL_RASTERIZER_DISCARD);
     gl->glDisable(GL_BLEND);
     gl->glDisable(GL_DEPTH_TEST);
     gl->glDisable(GL_STENCIL_TEST);

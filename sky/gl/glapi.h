@@ -163,11 +163,9 @@ typedef ptrdiff_t GLintptr;
 #define SKY_GL_FUNCS_20(X)                                                                    \
     X(GLenum, glGetError, (void))                                                             \
     X(const GLubyte *, glGetString, (GLenum name))                                            \
-    X(void, glPolygonMode, (GLenum face, GLenum mode))                                        \
     X(void, glGetIntegerv, (GLenum pname, GLint *data))                                       \
     X(void, glGetBooleanv, (GLenum pname, GLboolean *data))                                   \
     X(GLboolean, glIsEnabled, (GLenum cap))                                                   \
-    X(void, glGetTexLevelParameteriv, (GLenum target, GLint level, GLenum pname, GLint *v))    \
     X(void, glEnable, (GLenum cap))                                                           \
     X(void, glDisable, (GLenum cap))                                                          \
     X(void, glBlendFunc, (GLenum s, GLenum d))                                                \
@@ -233,6 +231,12 @@ typedef ptrdiff_t GLintptr;
     X(void, glUniform3fv, (GLint loc, GLsizei n, const GLfloat *v))                           \
     X(void, glUniformMatrix4fv, (GLint loc, GLsizei n, GLboolean tr, const GLfloat *v))
 
+/* Desktop GL's, absent from OpenGL ES 2.0: required on desktop contexts,
+ * never called on ES ones. */
+#define SKY_GL_FUNCS_DESKTOP(X)                                                               \
+    X(void, glPolygonMode, (GLenum face, GLenum mode))                                        \
+    X(void, glGetTexLevelParameteriv, (GLenum target, GLint level, GLenum pname, GLint *v))
+
 #define SKY_GL_FUNCS_30(X)                                                                    \
     X(const GLubyte *, glGetStringi, (GLenum name, GLuint i))                                 \
     X(void, glGenVertexArrays, (GLsizei n, GLuint *a))                                        \
@@ -254,6 +258,7 @@ typedef ptrdiff_t GLintptr;
 typedef struct sky_gl {
 #define SKY_GL_MEMBER(ret, name, params) ret(SKY_APIENTRY *name) params;
     SKY_GL_FUNCS_20(SKY_GL_MEMBER)
+    SKY_GL_FUNCS_DESKTOP(SKY_GL_MEMBER)
     SKY_GL_FUNCS_30(SKY_GL_MEMBER)
 #undef SKY_GL_MEMBER
 } sky_gl;
@@ -265,6 +270,14 @@ typedef struct sky_gl_caps {
     int npot;                  /* non-power-of-two textures (3.0 or ARB)   */
     int pixel_buffers;         /* PIXEL_UNPACK_BUFFER exists (2.1 or ARB)  */
     int framebuffer_srgb;      /* GL_FRAMEBUFFER_SRGB exists (3.0 or ARB/EXT) */
+    int es;                    /* an OpenGL ES context (the ES20 profile):
+                                  no polygon mode, no program-point-size
+                                  switch (always on), unsized texture
+                                  formats below ES 3.0                      */
+    int unpack_rows;           /* UNPACK_ROW_LENGTH and the skips (desktop, ES 3.0) */
+    int rasterizer_discard;    /* GL_RASTERIZER_DISCARD (3.0, ES 3.0)       */
+    int derivatives;           /* fwidth in fragment shaders (desktop; ES
+                                  through OES_standard_derivatives)         */
 } sky_gl_caps;
 
 #endif /* SKY_GLAPI_H */

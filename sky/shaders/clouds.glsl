@@ -11,6 +11,7 @@ uniform float u_cover, u_density, u_sunset;
 uniform float u_cloud_uv_scale;      /* from the height slider               */
 uniform float u_cloud_texels_per_step; /* 512 over the viewport pixels a
                                         fragment step spans (clouds.c)      */
+uniform float u_dome_step_pixels;    /* those pixels in the dome's image    */
 uniform vec2 u_cloud_offset0, u_cloud_offset1, u_cloud_offset_upper;
 uniform vec3 u_cloud_light;          /* kcd/m^2 of a white cloud: R-P's
                                         amount_sunlight, tinted             */
@@ -102,15 +103,53 @@ float sky_cloud_footprint_fade(vec2 fw)
     return 1.0 - 0.8 * smoothstep(2.0, 10.0, footprint);
 }
 
-/* The dome's clouds from its interpolated coordinates (sky_clouds_vertex):
- * three fetches. */
-vec4 sky_clouds_at(vec4 layers, vec3 upper, vec2 shade)
+#ifdef SKY_NO_DERIVATIVES
+/* GLSL ES 1.00 without OES_standard_derivatives has no fwidth: the first
+ * layer's coordinate change across a fragment step is found from the
+ * directions one step right of and above d, as fwidth sums the changes
+ * along the screen's two axes. A perspective view's axes are the rows of
+ * u_view_proj (x: right, y: up, w: forward), and its pixels lie evenly on
+ * the plane at distance 1 in front: the step there is the pixel angle at
+ * the centre. The all-sky image steps toward the horizon and across. */
+#ifdef SKY_DOME_INTO_IMAGE
+#define SKY_CLOUD_STEP_ANGLE (u_pixel_angle * u_dome_step_pixels)
+#else
+#define SKY_CLOUD_STEP_ANGLE u_pixel_angle
+#endif
+vec2 sky_cloud_step(vec3 d)
+{
+    vec3 right, up, on_plane = d;
+    if (u_fisheye > 0.5) {
+        up = vec3(0.0, 1.0, 0.0) - d * d.y;
+        float n = length(up);
+        up = n > 1e-6 ? up / n : vec3(1.0, 0.0, 0.0);
+        right = cross(d, up);
+    } else {
+        right = normalize(vec3(u_view_proj[0][0], u_view_proj[1][0], u_view_proj[2][0]));
+        up = normalize(vec3(u_view_proj[0][1], u_view_proj[1][1], u_view_proj[2][1]));
+        vec3 forward = normalize(vec3(u_view_proj[0][3], u_view_proj[1][3], u_view_proj[2][3]));
+        on_plane = d / max(dot(d, forward), 1e-3);
+    }
+    vec3 h0 = sky_cloud_plane_h(d);
+    vec3 hx = sky_cloud_plane_h(normalize(on_plane + right * SKY_CLOUD_STEP_ANGLE));
+    vec3 hy = sky_cloud_plane_h(normalize(on_plane + up * SKY_CLOUD_STEP_ANGLE));
+    vec2 p0 = h0.xy / h0.z;
+    return abs(hx.xy / hx.z - p0) + abs(hy.xy / hy.z - p0);
+}
+#define SKY_CLOUD_STEP(tc, d) sky_cloud_step(d)
+#else
+#define SKY_CLOUD_STEP(tc, d) fwidth(tc)
+#endif
+
+/* The dome's clouds in direction d from its interpolated coordinates
+ * (sky_clouds_vertex): three fetches. */
+vec4 sky_clouds_at(vec4 layers, vec3 upper, vec2 shade, vec3 d)
 {
     float iw = 1.0 / upper.z;
     vec2 tc0 = layers.xy * iw;
     vec2 ga = sky_cloud_grey(SKY_TEX2D(u_clouds_tex, tc0), SKY_TEX2D(u_clouds_tex, layers.zw * iw).g,
                              SKY_TEX2D(u_clouds_tex, upper.xy * iw).g);
-    return vec4(sky_cloud_colour(ga.x, shade.x), ga.y * sky_cloud_footprint_fade(fwidth(tc0)) * shade.y);
+    return vec4(sky_cloud_colour(ga.x, shade.x), ga.y * sky_cloud_footprint_fade(SKY_CLOUD_STEP(tc0, d)) * shade.y);
 }
 
 /* The clouds in front of direction d, all per pixel (the sun's, moon's and
@@ -121,7 +160,7 @@ vec4 sky_clouds(vec3 d)
     vec3 h = sky_cloud_plane_h(d);
     vec2 p = h.xy / h.z;
     vec4 tc = sky_cloud_layers(p, 1.0);
-    vec2 fw = fwidth(tc.xy);
+    vec2 fw = SKY_CLOUD_STEP(tc.xy, d);
     if (d.y <= 0.0 || u_cover <= 0.0) return vec4(0.0);
     float sunset_amount = 0.0;
     if (u_sunset > 0.0) /* uniform: no fetch when the slider is at 0 */

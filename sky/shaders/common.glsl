@@ -1,6 +1,8 @@
 /* common.glsl: shared by every libsky program (both stages). The version
  * prologue before it defines SKY_IN/SKY_OUT/SKY_ATTR, SKY_TEX2D and
- * SKY_FRAG_COLOR so one source serves GLSL 110 and GLSL 330. */
+ * SKY_FRAG_COLOR so one source serves GLSL 110, GLSL 330 and GLSL ES 1.00
+ * (which also gets its precision there, and SKY_NO_DERIVATIVES where the
+ * context has no OES_standard_derivatives). */
 uniform float u_exposure;    /* LDR: scale from kcd/m^2 to tone-map input       */
 uniform float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither    */
 uniform float u_fisheye;     /* 1: equidistant all-sky mapping                   */
@@ -9,6 +11,7 @@ uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south         
 uniform float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
 uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 uniform vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
+uniform float u_pixel_angle; /* radians per pixel at the view centre             */
 uniform float u_far_z;       /* clip z / w of the host's far plane: 1, or for
                                 reversed-Z -1 (or 0 with a 0..1 clip range) */
 uniform float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
@@ -156,10 +159,16 @@ float sky_hash(vec2 p)
 vec3 sky_dither(vec3 display) { return clamp(display + (sky_hash(gl_FragCoord.xy) - 0.5) / 255.0, 0.0, 1.0); }
 
 /* Linear luminance (kcd/m^2) to the output: linear for HDR hosts; else
- * tone mapped and dithered. */
+ * tone mapped and dithered. GLSL ES 1.00's gl_FragColor is mediump: a
+ * value past its 65504 arrives as infinity (Mesa writes it so), so HDR
+ * output there stops at that (only the sun's disc is brighter). */
 vec4 sky_output(vec3 L, float alpha)
 {
+#ifdef SKY_ES
+    if (u_output_hdr > 0.5) return vec4(clamp(L, vec3(0.0), vec3(65504.0)), alpha);
+#else
     if (u_output_hdr > 0.5) return vec4(max(L, vec3(0.0)), alpha);
+#endif
     return vec4(sky_dither(sky_tonemap(L)), alpha);
 }
 #endif /* SKY_FRAGMENT */

@@ -65,7 +65,7 @@ void main()
 #endif
     float cover = 0.0;
 #ifdef SKY_HAS_CLOUDS
-    vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade);
+    vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade, d);
     L = mix(L, c.rgb, c.a);
     cover = c.a;
 #endif

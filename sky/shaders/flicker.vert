@@ -8,7 +8,6 @@
  * side, in pixels. */
 uniform float u_star_luminance;  /* kcd/m^2 of a texel of intensity 1 (flicker.c) */
 uniform float u_flicker_phase;   /* 255 * (rate_max * t / 255 mod 1), see flicker.c */
-uniform float u_pixel_angle;     /* radians per pixel at the view centre        */
 uniform float u_point_max;       /* the largest point size drawn               */
 SKY_ATTR vec2 a_pos;
 SKY_ATTR vec4 a_color;

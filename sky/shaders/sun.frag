@@ -28,7 +28,11 @@ void main()
      * true disc, so a total eclipse leaves no partly lit pixel at the
      * sun's limb */
     float to_moon = dot(d, u_eclipse_moon_dir) > 0.0 ? length(cross(d, u_eclipse_moon_dir)) : 1.0;
+#ifdef SKY_NO_DERIVATIVES
+    float edge = max(u_pixel_angle, 1e-7); /* to_moon changes by about the pixel's angle across it */
+#else
     float edge = max(fwidth(to_moon), 1e-7);
+#endif
     float behind_moon = 1.0 - smoothstep(u_eclipse_sun.x, u_eclipse_sun.x + 1.5 * edge, to_moon);
     disc *= 1.0 - behind_moon;
     /* Glare: falls off with the square of the distance from the limb and is

@@ -1,0 +1,409 @@
+/*
+ * The ES20 profile (OpenGL ES 2.0 / WebGL 1) on a native ES 2.0 context:
+ * Mesa's surfaceless EGL with MESA_GLES_VERSION_OVERRIDE=2.0, so the
+ * context says "OpenGL ES 2.0" and GLSL ES 1.00 as real ES 2.0 hardware
+ * does. Every preset's picture against COMPAT20's, with the optional
+ * extensions offered and withheld (a WebGL 1 device lacks what llvmpipe
+ * offers); every atmosphere path under every layer; the host's state, set
+ * by a client outside the library, the same after every public call.
+ */
+#include "test.h"
+#include "cli.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void test_es20_presets_match_compat20(void);
+void test_es20_without_optional_extensions(void);
+void test_es20_every_path_with_every_layer(void);
+void test_es20_state_restored(void);
+void test_es20_profile_mismatch_is_an_error(void);
+
+double image_psnr(const image *a, const image *b);
+
+/* A native ES 2.0 context, and one without any of the extensions the
+ * profile can use (Mesa cannot withhold OES_vertex_array_object, which the
+ * profile does not use). */
+#define ES2 "MESA_GLES_VERSION_OVERRIDE=2.0 "
+#define ES2_BARE                                                                                   \
+    ES2 "MESA_EXTENSION_OVERRIDE='-GL_OES_standard_derivatives -GL_OES_texture_npot "             \
+        "-GL_OES_texture_float -GL_OES_texture_float_linear -GL_OES_texture_half_float "          \
+        "-GL_EXT_shader_texture_lod -GL_OES_element_index_uint' "
+
+static const char *const scenes[] = {"--preset noon",     "--preset sunset --yaw 270 --pitch 10",
+                                     "--preset starry",   "--preset overcast",
+                                     "--preset moonlit",  "--preset eclipse",
+                                     "--preset solar-eclipse", "--preset minimal"};
+
+static const char *tmp_path(const char *name, char *buf, size_t len)
+{
+    const char *dir = getenv("TMPDIR");
+    snprintf(buf, len, "%s/sky-test-%d-es-%s", dir ? dir : "/tmp", (int)getpid(), name);
+    return buf;
+}
+
+/* Renders the arguments' scene through env and --gl gl into png; returns the exit status
+ * with the output (stats included) in out. */
+static int render(const char *env, const char *gl, const char *args, const char *png, char *out, size_t out_len)
+{
+    char bin[512], cmd[2048];
+    bin_path("sky-render", bin, sizeof bin);
+    snprintf(cmd, sizeof cmd, "%s%s --size 320x180 %s --gl %s --out %s --stats 2>&1", env, bin, args, gl, png);
+    return run_command(cmd, out, out_len);
+}
+
+/* PSNR of the arguments' scene under env + es20 against COMPAT20; -1 when a render or a
+ * read failed (reported). */
+static double es_against_compat(const char *env, const char *args, const char *what)
+{
+    char es_png[512], compat_png[512], out[8192];
+    tmp_path("es.png", es_png, sizeof es_png);
+    tmp_path("compat.png", compat_png, sizeof compat_png);
+    int rc1 = render("", "compat", args, compat_png, out, sizeof out);
+    CHECK(rc1 == 0, "%s: COMPAT20 render exits 0: %s", args, out);
+    int rc2 = render(env, "es20", args, es_png, out, sizeof out);
+    CHECK(rc2 == 0, "%s (%s): ES20 render exits 0: %s", args, what, out);
+    CHECK(strstr(out, "\"profile\":\"es20\"") != NULL, "--stats reports the profile: %.200s", out);
+    CHECK(strstr(out, "\"gl_version\":\"OpenGL ES 2.0") != NULL, "the context is ES 2.0: %.120s", out);
+    double psnr = -1.0;
+    image a, b;
+    if (rc1 == 0 && rc2 == 0 && !image_load_png(es_png, &a)) {
+        if (!image_load_png(compat_png, &b)) {
+            psnr = image_psnr(&a, &b);
+            image_free(&b);
+        }
+        image_free(&a);
+    }
+    remove(es_png);
+    remove(compat_png);
+    return psnr;
+}
+
+void test_es20_presets_match_compat20(void)
+{
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
+        double psnr = es_against_compat(ES2, scenes[k], "every extension");
+        NOTE("%s: ES20 vs COMPAT20 PSNR %.1f dB", scenes[k], psnr);
+        CHECK(psnr >= 40.0, "%s: ES20 must match COMPAT20 within PSNR 40 dB (%.1f)", scenes[k], psnr);
+    }
+}
+
+/* Without OES_standard_derivatives the clouds' footprint fade and the
+ * sun's edge use an estimate from the pixel's angle; without
+ * OES_texture_npot the dome's image is a power of two. */
+void test_es20_without_optional_extensions(void)
+{
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
+        double psnr = es_against_compat(ES2_BARE, scenes[k], "no extensions");
+        NOTE("%s: bare ES20 vs COMPAT20 PSNR %.1f dB", scenes[k], psnr);
+        CHECK(psnr >= 40.0, "%s: bare ES20 must match COMPAT20 within PSNR 40 dB (%.1f)", scenes[k], psnr);
+    }
+}
+
+/* Every path's programs with every layer build and draw under GLSL ES
+ * 1.00, with and without the extensions, and agree with COMPAT20. */
+void test_es20_every_path_with_every_layer(void)
+{
+    static const char *const paths[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend",
+                                        "blend --blend-partner preetham"};
+    char args[512];
+    for (size_t p = 0; p < sizeof paths / sizeof paths[0]; p++)
+        for (int bare = 0; bare < 2; bare++) {
+            snprintf(args, sizeof args,
+                     "--time 0.3 --cover 0.5 --atmosphere %s --features "
+                     "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal",
+                     paths[p]);
+            double psnr = es_against_compat(bare ? ES2_BARE : ES2, args, bare ? "no extensions" : "every extension");
+            NOTE("--atmosphere %s%s: ES20 vs COMPAT20 PSNR %.1f dB", paths[p], bare ? " (no extensions)" : "", psnr);
+            CHECK(psnr >= 40.0, "--atmosphere %s%s: PSNR %.1f dB", paths[p], bare ? " without extensions" : "", psnr);
+        }
+}
+
+/* ---- the host's state, from a client outside the library ---------------------------- */
+
+/* The ES 2.0 entry points the client uses, through EGL. */
+typedef struct es_api {
+    void (*GetIntegerv)(GLenum, GLint *);
+    void (*GetFloatv)(GLenum, GLfloat *);
+    void (*GetBooleanv)(GLenum, GLboolean *);
+    GLboolean (*IsEnabled)(GLenum);
+    void (*Enable)(GLenum);
+    void (*ActiveTexture)(GLenum);
+    void (*GenTextures)(GLsizei, GLuint *);
+    void (*BindTexture)(GLenum, GLuint);
+    void (*TexImage2D)(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void *);
+    void (*GenBuffers)(GLsizei, GLuint *);
+    void (*BindBuffer)(GLenum, GLuint);
+    void (*BufferData)(GLenum, GLsizeiptr, const void *, GLenum);
+    void (*VertexAttribPointer)(GLuint, GLint, GLenum, GLboolean, GLsizei, const void *);
+    void (*EnableVertexAttribArray)(GLuint);
+    void (*GetVertexAttribiv)(GLuint, GLenum, GLint *);
+    void (*GetVertexAttribPointerv)(GLuint, GLenum, void **);
+    void (*GenFramebuffers)(GLsizei, GLuint *);
+    void (*BindFramebuffer)(GLenum, GLuint);
+    void (*FramebufferTexture2D)(GLenum, GLenum, GLenum, GLuint, GLint);
+    void (*Viewport)(GLint, GLint, GLsizei, GLsizei);
+    void (*Scissor)(GLint, GLint, GLsizei, GLsizei);
+    void (*ClearColor)(GLfloat, GLfloat, GLfloat, GLfloat);
+    void (*BlendFuncSeparate)(GLenum, GLenum, GLenum, GLenum);
+    void (*BlendEquation)(GLenum);
+    void (*DepthFunc)(GLenum);
+    void (*DepthMask)(GLboolean);
+    void (*ColorMask)(GLboolean, GLboolean, GLboolean, GLboolean);
+    void (*PixelStorei)(GLenum, GLint);
+    void (*UseProgram)(GLuint);
+    GLuint (*CreateProgram)(void);
+    GLuint (*CreateShader)(GLenum);
+    void (*ShaderSource)(GLuint, GLsizei, const char *const *, const GLint *);
+    void (*CompileShader)(GLuint);
+    void (*AttachShader)(GLuint, GLuint);
+    void (*LinkProgram)(GLuint);
+    GLenum (*GetError)(void);
+} es_api;
+
+/* Stores gpa's pointer into the member of its own type (the two are the
+ * same size: sky.h's sky_gl_proc is a function pointer). */
+static int load_one(void *member, sky_get_proc_address_fn gpa, const char *name)
+{
+    sky_gl_proc p = gpa(name);
+    memcpy(member, &p, sizeof p);
+    return p != NULL;
+}
+
+static int es_load(es_api *gl, sky_get_proc_address_fn gpa)
+{
+#define LOAD(name) load_one(&gl->name, gpa, "gl" #name)
+    return LOAD(GetIntegerv) && LOAD(GetFloatv) && LOAD(GetBooleanv) && LOAD(IsEnabled) && LOAD(Enable) &&
+           LOAD(ActiveTexture) && LOAD(GenTextures) && LOAD(BindTexture) && LOAD(TexImage2D) && LOAD(GenBuffers) &&
+           LOAD(BindBuffer) && LOAD(BufferData) && LOAD(VertexAttribPointer) && LOAD(EnableVertexAttribArray) &&
+           LOAD(GetVertexAttribiv) && LOAD(GetVertexAttribPointerv) && LOAD(GenFramebuffers) &&
+           LOAD(BindFramebuffer) && LOAD(FramebufferTexture2D) && LOAD(Viewport) && LOAD(Scissor) &&
+           LOAD(ClearColor) && LOAD(BlendFuncSeparate) && LOAD(BlendEquation) && LOAD(DepthFunc) &&
+           LOAD(DepthMask) && LOAD(ColorMask) && LOAD(PixelStorei) && LOAD(UseProgram) && LOAD(CreateProgram) &&
+           LOAD(CreateShader) && LOAD(ShaderSource) && LOAD(CompileShader) && LOAD(AttachShader) &&
+           LOAD(LinkProgram) && LOAD(GetError);
+#undef LOAD
+}
+
+/* What ES 2.0 lets a host set that sky_draw touches. */
+typedef struct es_snapshot {
+    GLint program, active, array_buffer, element_buffer, framebuffer, viewport[4], scissor_box[4], tex[4], cube[4];
+    GLfloat clear_color[4];
+    GLboolean blend, depth, cull, scissor, stencil, depth_mask, color_mask[4];
+    GLint bsrc, bdst, bsrca, bdsta, beq, beqa, depth_func, unpack_alignment, pack_alignment;
+    GLint attrib_enabled[3], attrib_size[3], attrib_stride[3], attrib_buffer[3];
+    void *attrib_pointer[3];
+} es_snapshot;
+
+static void es_snap(const es_api *gl, es_snapshot *g)
+{
+    memset(g, 0, sizeof *g);
+    gl->GetIntegerv(GL_CURRENT_PROGRAM, &g->program);
+    gl->GetIntegerv(GL_ACTIVE_TEXTURE, &g->active);
+    gl->GetIntegerv(GL_ARRAY_BUFFER_BINDING, &g->array_buffer);
+    gl->GetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &g->element_buffer);
+    gl->GetIntegerv(GL_FRAMEBUFFER_BINDING, &g->framebuffer);
+    gl->GetIntegerv(GL_VIEWPORT, g->viewport);
+    gl->GetIntegerv(GL_SCISSOR_BOX, g->scissor_box);
+    gl->GetFloatv(GL_COLOR_CLEAR_VALUE, g->clear_color);
+    for (int i = 0; i < 4; i++) {
+        gl->ActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        gl->GetIntegerv(GL_TEXTURE_BINDING_2D, &g->tex[i]);
+        gl->GetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &g->cube[i]);
+    }
+    gl->ActiveTexture((GLenum)g->active);
+    g->blend = gl->IsEnabled(GL_BLEND);
+    g->depth = gl->IsEnabled(GL_DEPTH_TEST);
+    g->cull = gl->IsEnabled(GL_CULL_FACE);
+    g->scissor = gl->IsEnabled(GL_SCISSOR_TEST);
+    g->stencil = gl->IsEnabled(GL_STENCIL_TEST);
+    gl->GetBooleanv(GL_DEPTH_WRITEMASK, &g->depth_mask);
+    gl->GetBooleanv(GL_COLOR_WRITEMASK, g->color_mask);
+    gl->GetIntegerv(GL_BLEND_SRC_RGB, &g->bsrc);
+    gl->GetIntegerv(GL_BLEND_DST_RGB, &g->bdst);
+    gl->GetIntegerv(GL_BLEND_SRC_ALPHA, &g->bsrca);
+    gl->GetIntegerv(GL_BLEND_DST_ALPHA, &g->bdsta);
+    gl->GetIntegerv(GL_BLEND_EQUATION_RGB, &g->beq);
+    gl->GetIntegerv(GL_BLEND_EQUATION_ALPHA, &g->beqa);
+    gl->GetIntegerv(GL_DEPTH_FUNC, &g->depth_func);
+    gl->GetIntegerv(GL_UNPACK_ALIGNMENT, &g->unpack_alignment);
+    gl->GetIntegerv(GL_PACK_ALIGNMENT, &g->pack_alignment);
+    for (GLuint i = 0; i < 3; i++) {
+        gl->GetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &g->attrib_enabled[i]);
+        gl->GetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_SIZE, &g->attrib_size[i]);
+        gl->GetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_STRIDE, &g->attrib_stride[i]);
+        gl->GetVertexAttribiv(i, GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING, &g->attrib_buffer[i]);
+        gl->GetVertexAttribPointerv(i, GL_VERTEX_ATTRIB_ARRAY_POINTER, &g->attrib_pointer[i]);
+    }
+}
+
+static int es_same(const es_snapshot *a, const es_snapshot *b, const char *when)
+{
+    if (!memcmp(a, b, sizeof *a)) return 1;
+    const unsigned char *x = (const unsigned char *)a, *y = (const unsigned char *)b;
+    for (size_t i = 0; i + 4 <= sizeof *a; i += 4)
+        if (memcmp(x + i, y + i, 4)) NOTE("%s: bytes %zu..%zu differ", when, i, i + 3);
+    return 0;
+}
+
+/* A client with its own framebuffer, program, textures on four units,
+ * buffers, a client-memory vertex array (ES 2.0 has them), blending,
+ * depth, culling, masks and pixel store: every value the same after
+ * sky_create, sky_draw (twice: the tables uploaded, the image made),
+ * sky_draw_fisheye, a capture and sky_destroy, on the Hillaire path. */
+void test_es20_state_restored(void)
+{
+    /* an ES 2.0 context, as on real ES 2.0 hardware (Mesa reads this when
+     * the display is initialised) */
+    const char *override = "MESA_GLES_VERSION_OVERRIDE";
+    char *old = getenv(override) ? strdup(getenv(override)) : NULL;
+    setenv(override, "2.0", 1);
+    char err[256];
+    sky_osmesa ctx;
+    int made = sky_osmesa_create(&ctx, 64, 64, SKY_GL_ES20, 0, err, sizeof err) == 0;
+    if (old)
+        setenv(override, old, 1);
+    else
+        unsetenv(override);
+    free(old);
+    if (!made) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    es_api gl;
+    if (!es_load(&gl, sky_headless_loader(&ctx))) {
+        CHECK(0, "the client's ES 2.0 entry points load through EGL");
+        sky_osmesa_destroy(&ctx);
+        return;
+    }
+    GLuint fbo, color, tex[4], cube, buf, ebo;
+    gl.GenTextures(1, &color);
+    gl.BindTexture(GL_TEXTURE_2D, color);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    gl.GenFramebuffers(1, &fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color, 0);
+    static const char *const sources[2] = {"attribute vec4 p;\nvoid main() { gl_Position = p; }\n",
+                                           "void main() { gl_FragColor = vec4(1.0); }\n"};
+    GLuint prog = gl.CreateProgram();
+    for (int i = 0; i < 2; i++) {
+        GLuint sh = gl.CreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
+        gl.ShaderSource(sh, 1, &sources[i], NULL);
+        gl.CompileShader(sh);
+        gl.AttachShader(prog, sh);
+    }
+    gl.LinkProgram(prog);
+    gl.GenTextures(4, tex);
+    gl.GenTextures(1, &cube);
+    for (int i = 0; i < 4; i++) {
+        gl.ActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        gl.BindTexture(GL_TEXTURE_2D, tex[i]);
+    }
+    gl.BindTexture(GL_TEXTURE_CUBE_MAP, cube);
+    gl.ActiveTexture(GL_TEXTURE2);
+    gl.GenBuffers(1, &buf);
+    gl.BindBuffer(GL_ARRAY_BUFFER, buf);
+    gl.BufferData(GL_ARRAY_BUFFER, 64, NULL, GL_STATIC_DRAW);
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, (const void *)0);
+    gl.EnableVertexAttribArray(0);
+    gl.BindBuffer(GL_ARRAY_BUFFER, 0);
+    static const float client_array[16];
+    gl.VertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 8, client_array);
+    gl.EnableVertexAttribArray(1);
+    gl.BindBuffer(GL_ARRAY_BUFFER, buf);
+    gl.GenBuffers(1, &ebo);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
+    gl.Viewport(3, 4, 50, 40);
+    gl.Scissor(1, 2, 30, 20);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.ClearColor(0.25f, 0.5f, 0.75f, 0.125f);
+    gl.Enable(GL_BLEND);
+    gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
+    gl.BlendEquation(0x800B /* GL_FUNC_REVERSE_SUBTRACT */);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(0x0204 /* GL_GREATER */);
+    gl.DepthMask(GL_TRUE);
+    gl.Enable(GL_CULL_FACE);
+    gl.ColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 8);
+    gl.UseProgram(prog);
+    CHECK(gl.GetError() == GL_NO_ERROR, "the client's own setup is valid ES 2.0");
+    es_snapshot before, after;
+    es_snap(&gl, &before);
+
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    cfg.features = SKY_FEATURES_AVAILABLE;
+    cfg.check_gl_errors = 1;
+    cfg.get_proc_address = sky_headless_loader(&ctx);
+    sky *s = sky_create(&cfg, err, sizeof err);
+    CHECK(s != NULL, "sky_create: %s", err);
+    es_snap(&gl, &after);
+    CHECK(es_same(&before, &after, "sky_create"), "ES state differs after sky_create");
+    if (s) {
+        sky_stats st;
+        CHECK(sky_get_stats(s, &st) == SKY_OK && st.profile == SKY_GL_ES20, "AUTO picks ES20 on an ES context");
+        float view[16], proj[16];
+        sky_cli_camera_at(0.0, 10.0, 60.0, 64, 64, view, proj);
+        for (int k = 0; k < 2; k++) {
+            CHECK(sky_draw(s, view, proj) == SKY_OK, "draw: %s", sky_last_error(s));
+            es_snap(&gl, &after);
+            CHECK(es_same(&before, &after, "sky_draw"), "ES state differs after sky_draw");
+        }
+        CHECK(sky_draw_fisheye(s) == SKY_OK, "fisheye: %s", sky_last_error(s));
+        es_snap(&gl, &after);
+        CHECK(es_same(&before, &after, "sky_draw_fisheye"), "ES state differs after sky_draw_fisheye");
+        CHECK(sky_capture_environment(s, 0, 16, SKY_CAPTURE_ALL_FACES, 0) == SKY_OK, "capture: %s",
+              sky_last_error(s));
+        es_snap(&gl, &after);
+        CHECK(es_same(&before, &after, "sky_capture_environment"), "ES state differs after a capture");
+        sky_destroy(s);
+        es_snap(&gl, &after);
+        CHECK(es_same(&before, &after, "sky_destroy"), "ES state differs after sky_destroy");
+    }
+    CHECK(gl.GetError() == GL_NO_ERROR, "no GL error");
+    sky_osmesa_destroy(&ctx);
+}
+
+/* An ES context runs ES20 alone, and ES20 needs one: each mismatch is an
+ * error that says so, before anything is created. */
+void test_es20_profile_mismatch_is_an_error(void)
+{
+    char err[256];
+    sky_osmesa ctx;
+    if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_ES20, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    static const sky_gl_profile desktop[2] = {SKY_GL_CORE33, SKY_GL_COMPAT20};
+    for (int k = 0; k < 2; k++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.gl_profile = desktop[k];
+        cfg.get_proc_address = sky_headless_loader(&ctx);
+        err[0] = '\0';
+        sky *s = sky_create(&cfg, err, sizeof err);
+        CHECK(s == NULL && strstr(err, "ES20"), "%s on an ES context is refused, naming ES20: %s",
+              k ? "COMPAT20" : "CORE33", s ? "created" : err);
+        sky_destroy(s);
+    }
+    sky_osmesa_destroy(&ctx);
+    if (sky_osmesa_create(&ctx, 16, 16, SKY_GL_COMPAT20, 0, err, sizeof err)) {
+        CHECK(0, "%s", err);
+        return;
+    }
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.gl_profile = SKY_GL_ES20;
+    cfg.get_proc_address = sky_headless_loader(&ctx);
+    sky *s = sky_create(&cfg, err, sizeof err);
+    CHECK(s == NULL && strstr(err, "ES20") && strstr(err, "desktop"), "ES20 on a desktop context is refused: %s",
+          s ? "created" : err);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+}
