@@ -182,6 +182,15 @@ void sky_osmesa_destroy(sky_osmesa *o)
 static sky_gl_proc loader(const char *name) { return (sky_gl_proc)OSMesaGetProcAddress(name); }
 sky_get_proc_address_fn sky_osmesa_loader(void) { return loader; }
 
+void sky_osmesa_make_current(const sky_osmesa *o)
+{
+    if (o->is_es)
+        eglMakeCurrent(o->egl_display, o->egl_surface, o->egl_surface, o->ctx);
+    else
+        OSMesaMakeCurrent((OSMesaContext)o->ctx, o->pixels, o->is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, o->width,
+                          o->height);
+}
+
 sky_get_proc_address_fn sky_headless_loader(const sky_osmesa *o) { return o->is_es ? egl_loader : loader; }
 
 /* glFinish through OSMesa's own table: a program that also links -lGL

@@ -36,6 +36,8 @@ int sky_osmesa_create(sky_osmesa *o, int width, int height, sky_gl_profile want,
                       size_t err_len);
 void sky_osmesa_destroy(sky_osmesa *o);
 sky_get_proc_address_fn sky_osmesa_loader(void);
+/* Makes o's context current again (after another one was). */
+void sky_osmesa_make_current(const sky_osmesa *o);
 /* The loader for o's kind of context (OSMesa's, or EGL's). */
 sky_get_proc_address_fn sky_headless_loader(const sky_osmesa *o);
 /* Waits for rendering to finish (and with EGL reads the pixels back). */

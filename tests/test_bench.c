@@ -10,6 +10,7 @@
 
 void test_bench_preset_table_in_rounds(void);
 void test_bench_rejects_bad_rounds(void);
+void test_bench_es20_presets(void);
 
 /* The number after "key": within [from, end), or NAN-like -1e300 if absent. */
 static double field(const char *from, const char *end, const char *key)
@@ -106,4 +107,37 @@ void test_bench_rejects_bad_rounds(void)
         CHECK(rc == 2 && strstr(out, "--rounds"), "--rounds %s is a usage error naming the option (exit %d): %.200s",
               bad[i], rc, out);
     }
+}
+
+/* --gl es20 runs the preset table on ES 2.0 contexts: its own baseline
+ * ("es20_frame_ms", per round) and every preset's row marked es20; the
+ * tables that need a desktop context refuse it with a message. */
+void test_bench_es20_presets(void)
+{
+    char path[512], cmd[1024];
+    static char out[32768];
+    snprintf(cmd, sizeof cmd, "%s --only-presets --gl es20 --json --rounds 2 --frames 3 --size 64x36 2>&1",
+             bin_path("sky-bench", path, sizeof path));
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "sky-bench --only-presets --gl es20 exits 0 (exit %d): %.300s", rc, out);
+    if (rc) return;
+    int pos;
+    CHECK(positive_list(out, "es20_rounds_ms", &pos) == 2 && pos, "the ES20 baseline has 2 positive round figures");
+    CHECK(strstr(out, "\"compat_frame_ms\"") == NULL, "only the profile asked for runs");
+    int rows = 0, es = 0;
+    for (const char *r = strstr(out, "{\"preset\":"); r; r = strstr(r + 1, "{\"preset\":")) {
+        const char *end = strchr(r, '}');
+        if (!end) break;
+        rows++;
+        const char *p = strstr(r, "\"profile\":\"es20\"");
+        es += p && p < end;
+        CHECK(field(r, end, "ratio") > 0.0, "an ES20 row has its ratio: %.80s", r);
+    }
+    CHECK(rows > 8 && es == rows, "%d of %d rows are ES20's", es, rows);
+    snprintf(cmd, sizeof cmd, "%s --gl es20 --frames 3 2>&1", bin_path("sky-bench", path, sizeof path));
+    rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 2 && strstr(out, "--gl es20"), "the full run with --gl es20 is refused (exit %d): %.200s", rc, out);
+    snprintf(cmd, sizeof cmd, "%s --only-presets --gl core,metal 2>&1", bin_path("sky-bench", path, sizeof path));
+    rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 2, "an unknown profile is a bad argument (exit %d)", rc);
 }

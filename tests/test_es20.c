@@ -12,6 +12,7 @@
 
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -21,6 +22,7 @@ void test_es20_without_optional_extensions(void);
 void test_es20_every_path_with_every_layer(void);
 void test_es20_state_restored(void);
 void test_es20_profile_mismatch_is_an_error(void);
+void test_es20_aerial_snippet(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -161,6 +163,16 @@ typedef struct es_api {
     void (*CompileShader)(GLuint);
     void (*AttachShader)(GLuint, GLuint);
     void (*LinkProgram)(GLuint);
+    void (*GetShaderiv)(GLuint, GLenum, GLint *);
+    void (*GetShaderInfoLog)(GLuint, GLsizei, GLsizei *, char *);
+    void (*GetProgramiv)(GLuint, GLenum, GLint *);
+    GLint (*GetUniformLocation)(GLuint, const char *);
+    void (*Uniform1f)(GLint, GLfloat);
+    void (*Uniform3fv)(GLint, GLsizei, const GLfloat *);
+    void (*BindAttribLocation)(GLuint, GLuint, const char *);
+    void (*DrawArrays)(GLenum, GLint, GLsizei);
+    void (*Disable)(GLenum);
+    void (*ReadPixels)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *);
     GLenum (*GetError)(void);
 } es_api;
 
@@ -184,7 +196,9 @@ static int es_load(es_api *gl, sky_get_proc_address_fn gpa)
            LOAD(ClearColor) && LOAD(BlendFuncSeparate) && LOAD(BlendEquation) && LOAD(DepthFunc) &&
            LOAD(DepthMask) && LOAD(ColorMask) && LOAD(PixelStorei) && LOAD(UseProgram) && LOAD(CreateProgram) &&
            LOAD(CreateShader) && LOAD(ShaderSource) && LOAD(CompileShader) && LOAD(AttachShader) &&
-           LOAD(LinkProgram) && LOAD(GetError);
+           LOAD(LinkProgram) && LOAD(GetShaderiv) && LOAD(GetShaderInfoLog) && LOAD(GetProgramiv) &&
+           LOAD(GetUniformLocation) && LOAD(Uniform1f) && LOAD(Uniform3fv) && LOAD(BindAttribLocation) &&
+           LOAD(DrawArrays) && LOAD(Disable) && LOAD(ReadPixels) && LOAD(GetError);
 #undef LOAD
 }
 
@@ -249,21 +263,16 @@ static int es_same(const es_snapshot *a, const es_snapshot *b, const char *when)
     return 0;
 }
 
-/* A client with its own framebuffer, program, textures on four units,
- * buffers, a client-memory vertex array (ES 2.0 has them), blending,
- * depth, culling, masks and pixel store: every value the same after
- * sky_create, sky_draw (twice: the tables uploaded, the image made),
- * sky_draw_fisheye, a capture and sky_destroy, on the Hillaire path. */
-void test_es20_state_restored(void)
+/* An ES 2.0 context (as on real ES 2.0 hardware: Mesa reads the override
+ * when the display is initialised) and its entry points. Returns 0, or -1
+ * after a failed CHECK. */
+static int es2_open(sky_osmesa *ctx, int w, int h, es_api *gl)
 {
-    /* an ES 2.0 context, as on real ES 2.0 hardware (Mesa reads this when
-     * the display is initialised) */
     const char *override = "MESA_GLES_VERSION_OVERRIDE";
     char *old = getenv(override) ? strdup(getenv(override)) : NULL;
     setenv(override, "2.0", 1);
     char err[256];
-    sky_osmesa ctx;
-    int made = sky_osmesa_create(&ctx, 64, 64, SKY_GL_ES20, 0, err, sizeof err) == 0;
+    int made = sky_osmesa_create(ctx, w, h, SKY_GL_ES20, 0, err, sizeof err) == 0;
     if (old)
         setenv(override, old, 1);
     else
@@ -271,14 +280,27 @@ void test_es20_state_restored(void)
     free(old);
     if (!made) {
         CHECK(0, "%s", err);
-        return;
+        return -1;
     }
-    es_api gl;
-    if (!es_load(&gl, sky_headless_loader(&ctx))) {
+    if (!es_load(gl, sky_headless_loader(ctx))) {
         CHECK(0, "the client's ES 2.0 entry points load through EGL");
-        sky_osmesa_destroy(&ctx);
-        return;
+        sky_osmesa_destroy(ctx);
+        return -1;
     }
+    return 0;
+}
+
+/* A client with its own framebuffer, program, textures on four units,
+ * buffers, a client-memory vertex array (ES 2.0 has them), blending,
+ * depth, culling, masks and pixel store: every value the same after
+ * sky_create, sky_draw (twice: the tables uploaded, the image made),
+ * sky_draw_fisheye, a capture and sky_destroy, on the Hillaire path. */
+void test_es20_state_restored(void)
+{
+    char err[256];
+    sky_osmesa ctx;
+    es_api gl;
+    if (es2_open(&ctx, 64, 64, &gl)) return;
     GLuint fbo, color, tex[4], cube, buf, ebo;
     gl.GenTextures(1, &color);
     gl.BindTexture(GL_TEXTURE_2D, color);
@@ -404,6 +426,107 @@ void test_es20_profile_mismatch_is_an_error(void)
     sky *s = sky_create(&cfg, err, sizeof err);
     CHECK(s == NULL && strstr(err, "ES20") && strstr(err, "desktop"), "ES20 on a desktop context is refused: %s",
           s ? "created" : err);
+    sky_destroy(s);
+    sky_osmesa_destroy(&ctx);
+}
+
+/* The host's aerial perspective on ES 2.0 (ISSUE-NOTES: the CPU function
+ * and the GLSL snippet there): sky_aerial_glsl() compiles in a GLSL ES
+ * 1.00 shader with the host's highp, sky_aerial_bind binds it, and what it
+ * draws (8-bit: transmittance, and the light over the brightest) is the
+ * CPU function's within 2 levels plus 2 %. */
+void test_es20_aerial_snippet(void)
+{
+    enum { DIRS = 8, DISTS = 5 };
+    sky_osmesa ctx;
+    es_api gl;
+    if (es2_open(&ctx, DIRS * DISTS, 2, &gl)) return;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
+    cfg.get_proc_address = sky_headless_loader(&ctx);
+    char err[256];
+    sky *s = sky_create(&cfg, err, sizeof err);
+    if (!s) {
+        CHECK(0, "sky_create: %s", err);
+        sky_osmesa_destroy(&ctx);
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.time = 0.3f;
+    sky_set_params(s, &p);
+    sky_update(s, 0.0);
+    const char *vs = "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n";
+    const char *fs[3] = {"#version 100\nprecision highp float;\n", sky_aerial_glsl(),
+                         "uniform vec3 dir;\nuniform float dist, scale;\nvoid main() {\n  vec3 t, l;\n"
+                         "  sky_aerial(dir, dist, t, l);\n"
+                         "  gl_FragColor = vec4(gl_FragCoord.y < 1.0 ? t : l / scale, 1.0);\n}\n"};
+    GLuint v = gl.CreateShader(GL_VERTEX_SHADER), f = gl.CreateShader(GL_FRAGMENT_SHADER), prog = gl.CreateProgram();
+    gl.ShaderSource(v, 1, &vs, NULL);
+    gl.ShaderSource(f, 3, fs, NULL);
+    gl.CompileShader(v);
+    gl.CompileShader(f);
+    GLint ok = 0;
+    gl.GetShaderiv(f, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        gl.GetShaderInfoLog(f, sizeof log, NULL, log);
+        CHECK(0, "the snippet does not compile as GLSL ES 1.00: %s", log);
+    }
+    gl.AttachShader(prog, v);
+    gl.AttachShader(prog, f);
+    gl.BindAttribLocation(prog, 0, "p");
+    gl.LinkProgram(prog);
+    gl.GetProgramiv(prog, GL_LINK_STATUS, &ok);
+    CHECK(ok, "the snippet's program links");
+    static const float tri[6] = {-1, -1, 3, -1, -1, 3};
+    gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, tri); /* a client array: ES 2.0 has them */
+    gl.EnableVertexAttribArray(0);
+    CHECK(sky_aerial_bind(s, prog, 3) == SKY_OK, "bind: %s", sky_last_error(s));
+    gl.UseProgram(prog);
+    static const float dists[DISTS] = {400.0f, 2500.0f, 9000.0f, 30000.0f, 4e5f};
+    float cpu[DIRS * DISTS][6], brightest = 0.0f;
+    /* views 1 and 20 degrees up, toward four azimuths; the CPU's first, for
+     * the light's scale */
+    float dirs[DIRS][3];
+    for (int k = 0; k < DIRS; k++) {
+        double el = (k < 4 ? 1.0 : 20.0) * M_PI / 180.0, az = (k % 4) * M_PI / 2.0;
+        dirs[k][0] = (float)(cos(el) * sin(az));
+        dirs[k][1] = (float)sin(el);
+        dirs[k][2] = (float)(-cos(el) * cos(az));
+    }
+    for (int i = 0; i < DIRS * DISTS; i++) {
+        sky_aerial a;
+        sky_get_aerial_perspective(s, dirs[i / DISTS], dists[i % DISTS], &a);
+        for (int c = 0; c < 3; c++) {
+            cpu[i][c] = a.transmittance[c];
+            cpu[i][3 + c] = a.inscatter[c];
+            if (a.inscatter[c] > brightest) brightest = a.inscatter[c];
+        }
+    }
+    gl.Uniform1f(gl.GetUniformLocation(prog, "scale"), brightest);
+    for (int i = 0; i < DIRS * DISTS; i++) {
+        const float *d = dirs[i / DISTS];
+        gl.Uniform3fv(gl.GetUniformLocation(prog, "dir"), 1, d);
+        gl.Uniform1f(gl.GetUniformLocation(prog, "dist"), dists[i % DISTS]);
+        gl.Viewport(i, 0, 1, 2);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    unsigned char px[2][DIRS * DISTS][4];
+    gl.ReadPixels(0, 0, DIRS * DISTS, 2, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    double worst_t = 0.0, worst_l = 0.0;
+    for (int i = 0; i < DIRS * DISTS; i++)
+        for (int c = 0; c < 3; c++) {
+            double t = px[0][i][c] / 255.0, l = px[1][i][c] / 255.0 * brightest;
+            worst_t = fmax(worst_t, fabs(t - cpu[i][c]));
+            worst_l = fmax(worst_l, fabs(l - cpu[i][3 + c]) / brightest);
+            CHECK(fabs(t - cpu[i][c]) <= 2.0 / 255.0 + 0.02 && fabs(l - cpu[i][3 + c]) <= (2.0 / 255.0 + 0.02) * brightest,
+                  "view %d at %.0f m, channel %d: shader T %.3f light %.4g, CPU T %.3f light %.4g", i / DISTS,
+                  (double)dists[i % DISTS], c, t, l, (double)cpu[i][c], (double)cpu[i][3 + c]);
+        }
+    NOTE("ES 2.0 snippet against the CPU: transmittance within %.4f, light within %.4f of the brightest", worst_t,
+         worst_l);
+    CHECK(gl.GetError() == GL_NO_ERROR, "no GL error");
     sky_destroy(s);
     sky_osmesa_destroy(&ctx);
 }

@@ -45,6 +45,7 @@ int test_skipped;
     X(gl_state_restored_compat)                  \
     X(es20_state_restored)                       \
     X(es20_profile_mismatch_is_an_error)         \
+    X(es20_aerial_snippet)                       \
     X(es20_presets_match_compat20)               \
     X(es20_without_optional_extensions)          \
     X(es20_every_path_with_every_layer)          \
@@ -145,6 +146,7 @@ int test_skipped;
     X(demo_readout_is_gpu_frame_time)            \
     X(bench_preset_table_in_rounds)              \
     X(bench_rejects_bad_rounds)                  \
+    X(bench_es20_presets)                        \
     X(game_lit_by_the_sky)                       \
     X(headless_frames_are_rendered)              \
     X(headless_demo_writes_where_asked)          \

@@ -52,14 +52,123 @@
 
 enum { MAX_ROUNDS = 50, MAX_SUBJECTS = 24 };
 
+/* ---- the GL calls of sky-bench's own drawing ---------------------------------------------------
+ * They go through the current context's loader, as the library's do:
+ * OSMesa's exported symbols serve only OSMesa's contexts, and an ES 2.0
+ * context comes through EGL. bench_gl_use switches the table with the
+ * context (make_current does it). */
+#define BENCH_GL_FUNCS(X)                                                                                  \
+    X(void, ActiveTexture, (GLenum))                                                                       \
+    X(void, AttachShader, (GLuint, GLuint))                                                                \
+    X(void, BindAttribLocation, (GLuint, GLuint, const GLchar *))                                          \
+    X(void, BindBuffer, (GLenum, GLuint))                                                                  \
+    X(void, BindTexture, (GLenum, GLuint))                                                                 \
+    X(void, BindVertexArray, (GLuint))                                                                     \
+    X(void, BufferData, (GLenum, GLsizeiptr, const void *, GLenum))                                        \
+    X(void, Clear, (GLbitfield))                                                                           \
+    X(void, CompileShader, (GLuint))                                                                       \
+    X(GLuint, CreateProgram, (void))                                                                       \
+    X(GLuint, CreateShader, (GLenum))                                                                      \
+    X(void, DeleteBuffers, (GLsizei, const GLuint *))                                                      \
+    X(void, DeleteProgram, (GLuint))                                                                       \
+    X(void, DeleteShader, (GLuint))                                                                        \
+    X(void, DeleteTextures, (GLsizei, const GLuint *))                                                     \
+    X(void, DeleteVertexArrays, (GLsizei, const GLuint *))                                                 \
+    X(void, DepthFunc, (GLenum))                                                                           \
+    X(void, DepthMask, (GLboolean))                                                                        \
+    X(void, Disable, (GLenum))                                                                             \
+    X(void, DrawArrays, (GLenum, GLint, GLsizei))                                                          \
+    X(void, Enable, (GLenum))                                                                              \
+    X(void, EnableVertexAttribArray, (GLuint))                                                             \
+    X(void, Finish, (void))                                                                                \
+    X(void, GenBuffers, (GLsizei, GLuint *))                                                               \
+    X(void, GenTextures, (GLsizei, GLuint *))                                                              \
+    X(void, GenVertexArrays, (GLsizei, GLuint *))                                                          \
+    X(void, GetProgramiv, (GLuint, GLenum, GLint *))                                                       \
+    X(void, GetShaderInfoLog, (GLuint, GLsizei, GLsizei *, GLchar *))                                      \
+    X(void, GetShaderiv, (GLuint, GLenum, GLint *))                                                        \
+    X(GLint, GetUniformLocation, (GLuint, const GLchar *))                                                 \
+    X(void, LinkProgram, (GLuint))                                                                         \
+    X(void, ShaderSource, (GLuint, GLsizei, const GLchar *const *, const GLint *))                         \
+    X(void, TexImage2D, (GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void *))     \
+    X(void, TexParameteri, (GLenum, GLenum, GLint))                                                        \
+    X(void, Uniform1f, (GLint, GLfloat))                                                                   \
+    X(void, Uniform1i, (GLint, GLint))                                                                     \
+    X(void, UseProgram, (GLuint))                                                                          \
+    X(void, VertexAttribPointer, (GLuint, GLint, GLenum, GLboolean, GLsizei, const void *))
+
+#define BENCH_GL_MEMBER(ret, name, params) ret(*name) params;
+static struct bench_gl {
+    BENCH_GL_FUNCS(BENCH_GL_MEMBER)
+} bench_gl;
+#undef BENCH_GL_MEMBER
+
+static void bench_gl_use(const sky_osmesa *o)
+{
+    sky_get_proc_address_fn gpa = sky_headless_loader(o);
+#define BENCH_GL_LOAD(ret, name, params)                                                                   \
+    {                                                                                                      \
+        sky_gl_proc p = gpa("gl" #name);                                                                   \
+        memcpy(&bench_gl.name, &p, sizeof p);                                                              \
+    }
+    BENCH_GL_FUNCS(BENCH_GL_LOAD)
+#undef BENCH_GL_LOAD
+}
+
+/* The calls below are the table's. */
+#define glActiveTexture bench_gl.ActiveTexture
+#define glAttachShader bench_gl.AttachShader
+#define glBindAttribLocation bench_gl.BindAttribLocation
+#define glBindBuffer bench_gl.BindBuffer
+#define glBindTexture bench_gl.BindTexture
+#define glBindVertexArray bench_gl.BindVertexArray
+#define glBufferData bench_gl.BufferData
+#define glClear bench_gl.Clear
+#define glCompileShader bench_gl.CompileShader
+#define glCreateProgram bench_gl.CreateProgram
+#define glCreateShader bench_gl.CreateShader
+#define glDeleteBuffers bench_gl.DeleteBuffers
+#define glDeleteProgram bench_gl.DeleteProgram
+#define glDeleteShader bench_gl.DeleteShader
+#define glDeleteTextures bench_gl.DeleteTextures
+#define glDeleteVertexArrays bench_gl.DeleteVertexArrays
+#define glDepthFunc bench_gl.DepthFunc
+#define glDepthMask bench_gl.DepthMask
+#define glDisable bench_gl.Disable
+#define glDrawArrays bench_gl.DrawArrays
+#define glEnable bench_gl.Enable
+#define glEnableVertexAttribArray bench_gl.EnableVertexAttribArray
+#define glFinish bench_gl.Finish
+#define glGenBuffers bench_gl.GenBuffers
+#define glGenTextures bench_gl.GenTextures
+#define glGenVertexArrays bench_gl.GenVertexArrays
+#define glGetProgramiv bench_gl.GetProgramiv
+#define glGetShaderInfoLog bench_gl.GetShaderInfoLog
+#define glGetShaderiv bench_gl.GetShaderiv
+#define glGetUniformLocation bench_gl.GetUniformLocation
+#define glLinkProgram bench_gl.LinkProgram
+#define glShaderSource bench_gl.ShaderSource
+#define glTexImage2D bench_gl.TexImage2D
+#define glTexParameteri bench_gl.TexParameteri
+#define glUniform1f bench_gl.Uniform1f
+#define glUniform1i bench_gl.Uniform1i
+#define glUseProgram bench_gl.UseProgram
+#define glVertexAttribPointer bench_gl.VertexAttribPointer
+
 /* ---- full-screen draws of our own: the baseline and Roden & Parberry's shader ---------------- */
 
 /* One full-screen triangle strip with its program, textures and vertices,
  * kept in a context of its own across the rounds (so nothing else changes
  * its state between them). */
+/* What a quad's context is: OpenGL 2.0 (GLSL 1.10), 3.3 core (GLSL 330, a
+ * VAO) or ES 2.0 (GLSL ES 1.00, unsized formats). */
+enum { KIND_GL20, KIND_CORE, KIND_ES, KINDS };
+static int kind_of(sky_gl_profile gl) { return gl == SKY_GL_CORE33 ? KIND_CORE : gl == SKY_GL_ES20 ? KIND_ES : KIND_GL20; }
+static const char *const kind_names[KINDS] = {"compat", "core", "es20"};
+
 typedef struct quad {
     GLuint prog, buf, vao, tex[4];
-    int ntex, core;
+    int ntex, core, es;
     size_t bytes; /* textures and vertices */
 } quad;
 
@@ -101,17 +210,17 @@ static GLuint program(const char *const *vs, int nvs, const char *const *fs, int
 
 /* A 512x512 RGBA8 texture, linear, repeating, no mipmaps (as the
  * library's and the baseline's). */
-static GLuint texture_512(const unsigned char *texels)
+static GLuint texture_512(const unsigned char *texels, int es)
 {
     GLuint tex;
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 512, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    glTexImage2D(GL_TEXTURE_2D, 0, es ? GL_RGBA : GL_RGBA8, 512, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    if (!es) glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0); /* (no such thing in ES 2.0) */
     return tex;
 }
 
@@ -147,27 +256,30 @@ static void quad_destroy(quad *q)
 /* The baseline: one full-screen triangle strip, one RGBA8 512x512 texture
  * fetch per pixel, written straight out. What it draws is fixed: every
  * ratio that sky-bench has ever printed divides by it. */
-static int baseline_create(quad *q, int core, int at_far)
+static int baseline_create(quad *q, int kind, int at_far)
 {
     /* at_far: the same quad on the far plane (z = w), for drawing it after
      * a scene with the depth test, as an engine draws its sky */
-    const char *vs[3] = {core ? "#version 330 core\nin vec2 p;\nout vec2 uv;\n"
-                              : "#version 110\nattribute vec2 p;\nvarying vec2 uv;\n",
-                         at_far ? "const float z = 1.0;\n" : "const float z = 0.0;\n",
+    static const char *const vs_head[KINDS] = {"#version 110\nattribute vec2 p;\nvarying vec2 uv;\n",
+                                               "#version 330 core\nin vec2 p;\nout vec2 uv;\n",
+                                               "#version 100\nattribute vec2 p;\nvarying vec2 uv;\n"};
+    static const char *const fs[KINDS] = {
+        "#version 110\nvarying vec2 uv;\nuniform sampler2D t;\nvoid main(){gl_FragColor=texture2D(t,uv*3.0);}\n",
+        "#version 330 core\nin vec2 uv;\nuniform sampler2D t;\nout vec4 c;\nvoid main(){c=texture(t,uv*3.0);}\n",
+        ("#version 100\nprecision highp float;\nvarying vec2 uv;\nuniform sampler2D t;\n"
+         "void main(){gl_FragColor=texture2D(t,uv*3.0);}\n")};
+    const char *vs[3] = {vs_head[kind], at_far ? "const float z = 1.0;\n" : "const float z = 0.0;\n",
                          "void main(){uv=p*0.5+0.5;gl_Position=vec4(p,z,1.0);}\n"};
-    const char *fs = core ? "#version 330 core\nin vec2 uv;\nuniform sampler2D t;\nout vec4 c;\n"
-                            "void main(){c=texture(t,uv*3.0);}\n"
-                          : "#version 110\nvarying vec2 uv;\nuniform sampler2D t;\n"
-                            "void main(){gl_FragColor=texture2D(t,uv*3.0);}\n";
     static const char *const attribs[1] = {"p"};
     memset(q, 0, sizeof *q);
-    q->core = core;
-    q->prog = program(vs, 3, &fs, 1, attribs, 1);
+    q->core = kind == KIND_CORE;
+    q->es = kind == KIND_ES;
+    q->prog = program(vs, 3, &fs[kind], 1, attribs, 1);
     if (!q->prog) return -1;
     unsigned char *texels = malloc(512 * 512 * 4);
     if (!texels) return -1;
     for (int i = 0; i < 512 * 512 * 4; i++) texels[i] = (unsigned char)(i * 2654435761u >> 24);
-    q->tex[q->ntex++] = texture_512(texels);
+    q->tex[q->ntex++] = texture_512(texels, q->es);
     q->bytes += 512 * 512 * 4;
     free(texels);
     static const float strip[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
@@ -212,12 +324,14 @@ static const char rp_maths[] =
     "    return vec4(pow(x, vec3(1.0 / 2.2)), 1.0);\n"
     "}\n";
 
-/* One source per stage serves GLSL 1.10 and 3.30 core through these. */
-static const char *const rp_vs_prologue[2] = {"#version 110\n#define ATTR attribute\n#define VARY varying\n",
-                                              "#version 330 core\n#define ATTR in\n#define VARY out\n"};
-static const char *const rp_fs_prologue[2] = {
+/* One source per stage serves GLSL 1.10, 3.30 core and ES 1.00 through these. */
+static const char *const rp_vs_prologue[KINDS] = {"#version 110\n#define ATTR attribute\n#define VARY varying\n",
+                                                  "#version 330 core\n#define ATTR in\n#define VARY out\n",
+                                                  "#version 100\n#define ATTR attribute\n#define VARY varying\n"};
+static const char *const rp_fs_prologue[KINDS] = {
     "#version 110\n#define VARY varying\n#define TEX texture2D\n#define FRAG gl_FragColor\n",
-    "#version 330 core\n#define VARY in\n#define TEX texture\nout vec4 frag_out;\n#define FRAG frag_out\n"};
+    "#version 330 core\n#define VARY in\n#define TEX texture\nout vec4 frag_out;\n#define FRAG frag_out\n",
+    "#version 100\nprecision highp float;\n#define VARY varying\n#define TEX texture2D\n#define FRAG gl_FragColor\n"};
 
 /* As printed: four textures at four coordinates, all computed per vertex
  * by the application. */
@@ -322,12 +436,13 @@ static void rp_vertices(int packed, float *v)
 }
 
 /* The cloud shader's row: as printed (four textures) or packed (one). */
-static int rp_create(quad *q, int core, int packed)
+static int rp_create(quad *q, int kind, int packed)
 {
     memset(q, 0, sizeof *q);
-    q->core = core;
-    const char *vs[3] = {rp_vs_prologue[core], packed ? rp_packed_vs : rp_printed_vs};
-    const char *fs[3] = {rp_fs_prologue[core], rp_maths, packed ? rp_packed_fs : rp_printed_fs};
+    q->core = kind == KIND_CORE;
+    q->es = kind == KIND_ES;
+    const char *vs[3] = {rp_vs_prologue[kind], packed ? rp_packed_vs : rp_printed_vs};
+    const char *fs[3] = {rp_fs_prologue[kind], rp_maths, packed ? rp_packed_fs : rp_printed_fs};
     static const char *const printed_attribs[6] = {"p", "sky", "a_tc0", "a_tc1", "a_tc2", "a_tc3"};
     static const char *const packed_attribs[5] = {"p", "sky", "a_tc0", "a_tc1", "sunset"};
     q->prog = program(vs, 2, fs, 3, packed ? packed_attribs : printed_attribs, packed ? 5 : 6);
@@ -345,7 +460,7 @@ static int rp_create(quad *q, int core, int packed)
         for (int i = 0; i < 512 * 512; i++)
             rgba[4 * i] = photo[i], rgba[4 * i + 1] = noise[i], rgba[4 * i + 2] = detail[i],
             rgba[4 * i + 3] = sunset[4 * i + 3];
-        q->tex[q->ntex++] = texture_512(rgba);
+        q->tex[q->ntex++] = texture_512(rgba, q->es);
         glUniform1i(glGetUniformLocation(q->prog, "clouds_tex"), 0);
     } else {
         const unsigned char *mono[3] = {photo, noise, detail};
@@ -356,7 +471,7 @@ static int rp_create(quad *q, int core, int packed)
             else
                 for (int i = 0; i < 512 * 512; i++) memset(rgba + 4 * i, mono[t < 2 ? t : 2][i], 4);
             glActiveTexture(GL_TEXTURE0 + (GLenum)t);
-            q->tex[q->ntex++] = texture_512(rgba);
+            q->tex[q->ntex++] = texture_512(rgba, q->es);
             glUniform1i(glGetUniformLocation(q->prog, names[t]), t);
         }
         glActiveTexture(GL_TEXTURE0);
@@ -425,8 +540,8 @@ typedef struct subject {
 
 static void make_current(const sky_osmesa *o)
 {
-    OSMesaMakeCurrent((OSMesaContext)o->ctx, o->pixels, o->is_float ? GL_FLOAT : GL_UNSIGNED_BYTE, o->width,
-                      o->height);
+    sky_osmesa_make_current(o);
+    bench_gl_use(o);
 }
 
 /* A sky described by command-line style options, in a new context. With
@@ -435,23 +550,25 @@ static void make_current(const sky_osmesa *o)
 /* A host's opaque scene over the left half of the frame: depth 0.75
  * (clip z 0.5), written once; the sky never writes depth, so it stays for
  * every frame timed after it. */
-static void cover_left_half(int core)
+static void cover_left_half(int kind)
 {
-    static const char *const vs[2] = {"#version 110\nattribute vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n",
-                                      "#version 330 core\nin vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n"};
-    static const char *const fs[2] = {"#version 110\nvoid main(){gl_FragColor=vec4(0.2);}\n",
-                                      "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(0.2);}\n"};
+    static const char *const vs[KINDS] = {
+        "#version 110\nattribute vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n",
+        "#version 330 core\nin vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n",
+        "#version 100\nattribute vec2 p;\nvoid main(){gl_Position=vec4(p,0.5,1.0);}\n"};
+    static const char *const fs[KINDS] = {"#version 110\nvoid main(){gl_FragColor=vec4(0.2);}\n",
+                                          "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(0.2);}\n",
+                                          "#version 100\nvoid main(){gl_FragColor=vec4(0.2);}\n"};
     static const char *const attribs[1] = {"p"};
     quad q;
     memset(&q, 0, sizeof q);
-    q.core = core;
-    q.prog = program(&vs[core], 1, &fs[core], 1, attribs, 1);
+    q.core = kind == KIND_CORE;
+    q.prog = program(&vs[kind], 1, &fs[kind], 1, attribs, 1);
     if (!q.prog) return;
     static const float v[8] = {-1, -1, 0, -1, -1, 1, 0, 1};
     static const int sizes[1] = {2};
     quad_vertices(&q, v, 2, sizes, 1);
     glUseProgram(q.prog);
-    glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -487,12 +604,13 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
         fprintf(stderr, "sky-bench: %s\n", err);
         return -1;
     }
+    bench_gl_use(&sub->ctx);
     sky_cli *cli = &sub->cli;
     cli->gl = gl;
     cli->width = w;
     cli->height = h;
     sky_cli_camera(cli, sub->view, sub->proj);
-    sky_config cfg = sky_cli_config(cli, sky_osmesa_loader());
+    sky_config cfg = sky_cli_config(cli, sky_headless_loader(&sub->ctx));
     cfg.depth = depth;
     for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
     out->update_us = -1.0;
@@ -541,7 +659,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     }
     sky_set_params(sub->s, &cli->params);
     sky_set_observer(sub->s, &cli->observer);
-    if (covered) cover_left_half(gl == SKY_GL_CORE33);
+    if (covered) cover_left_half(kind_of(gl));
     sky_draw(sub->s, sub->view, sub->proj); /* shader JIT */
     glFinish();
     /* lookup tables: what creation built (reported by the first draw) */
@@ -549,7 +667,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     sky_get_stats(sub->s, &first);
     out->lut_start_ms = first.lut_ms;
     out->preset = name;
-    out->profile = gl == SKY_GL_CORE33 ? "core" : "compat";
+    out->profile = kind_names[kind_of(gl)];
     return 0;
 }
 
@@ -571,16 +689,17 @@ static int subject_quad(subject *sub, int kind, sky_gl_profile gl, int w, int h)
         fprintf(stderr, "sky-bench: %s\n", err);
         return -1;
     }
-    int core = gl == SKY_GL_CORE33;
-    if (kind == QUAD_BASELINE_AFTER) cover_left_half(core);
-    if (kind == QUAD_RP_PRINTED || kind == QUAD_RP_PACKED ? rp_create(&sub->q, core, kind == QUAD_RP_PACKED)
-                               : baseline_create(&sub->q, core, kind == QUAD_BASELINE_AFTER)) {
+    bench_gl_use(&sub->ctx);
+    int ctx_kind = kind_of(gl);
+    if (kind == QUAD_BASELINE_AFTER) cover_left_half(ctx_kind);
+    if (kind == QUAD_RP_PRINTED || kind == QUAD_RP_PACKED ? rp_create(&sub->q, ctx_kind, kind == QUAD_RP_PACKED)
+                               : baseline_create(&sub->q, ctx_kind, kind == QUAD_BASELINE_AFTER)) {
         fprintf(stderr, "sky-bench: the %s shader failed\n", names[kind]);
         return -1;
     }
     row *r = &sub->r;
     r->preset = names[kind];
-    r->profile = core ? "core" : "compat";
+    r->profile = kind_names[ctx_kind];
     r->update_us = -1.0;
     r->fetches = kind == QUAD_RP_PRINTED ? 4 : kind == QUAD_RP_PACKED ? 2 : 1;
     if (kind == QUAD_BASELINE_AFTER) { /* the sky's way of drawing after a scene (sky_depth FAR_ONE) */
@@ -1048,13 +1167,23 @@ static void print_preset_table(const row *rows, int nrows)
 /* The baseline's medians over the rounds, then per round its figure and
  * the CPUs that other processes were using meanwhile (a figure near 1 on
  * two cores: llvmpipe had one of them). */
-static void print_baseline(const char *what, int w, int h, int frames, const double base[2], const rounds_info info[2])
+/* The profiles the preset and night tables run on (--gl), in order. */
+enum { MAX_PROFS = 3 };
+typedef struct profiles {
+    int n;
+    sky_gl_profile gl[MAX_PROFS];
+} profiles;
+
+static const char *prof_name(const profiles *pr, int i) { return kind_names[kind_of(pr->gl[i])]; }
+
+static void print_baseline(const char *what, int w, int h, int frames, const profiles *pr, const double *base,
+                           const rounds_info *info)
 {
-    printf("baseline (one-texture full-screen quad, %dx%d)%s: core %.2f ms, compat %.2f ms, medians of %d interleaved "
-           "rounds of %d frames\n",
-           w, h, what, base[0], base[1], info[0].n, frames);
-    for (int prof = 0; prof < 2; prof++) {
-        printf("  %s, per round: ms", prof ? "compat" : "core");
+    printf("baseline (one-texture full-screen quad, %dx%d)%s:", w, h, what);
+    for (int prof = 0; prof < pr->n; prof++) printf("%s %s %.2f ms", prof ? "," : "", prof_name(pr, prof), base[prof]);
+    printf(", medians of %d interleaved rounds of %d frames\n", info[0].n, frames);
+    for (int prof = 0; prof < pr->n; prof++) {
+        printf("  %s, per round: ms", prof_name(pr, prof));
         for (int k = 0; k < info[prof].n; k++) printf(" %.2f", info[prof].base_ms[k]);
         printf("; other processes' CPUs");
         for (int k = 0; k < info[prof].n; k++) printf(" %.1f", info[prof].others_cpus[k]);
@@ -1101,16 +1230,21 @@ static void print_json_list(const char *name, const double *v, int n)
 }
 
 /* "frame_ms" and "compat_frame_ms" as before, then the rounds. */
-static void print_baseline_json(const char *key, const double base[2], const rounds_info info[2])
+/* Keys by profile: core's bare ("frame_ms", as it always was), the
+ * others' prefixed ("compat_frame_ms", "es20_frame_ms"). */
+static void print_baseline_json(const char *key, const profiles *pr, const double *base, const rounds_info *info)
 {
-    printf(" \"%s\": {\"frame_ms\":%.4f, \"compat_frame_ms\":%.4f, ", key, base[0], base[1]);
-    print_json_list("rounds_ms", info[0].base_ms, info[0].n);
-    printf(", ");
-    print_json_list("compat_rounds_ms", info[1].base_ms, info[1].n);
-    printf(", ");
-    print_json_list("others_cpus", info[0].others_cpus, info[0].n);
-    printf(", ");
-    print_json_list("compat_others_cpus", info[1].others_cpus, info[1].n);
+    printf(" \"%s\": {", key);
+    for (int prof = 0; prof < pr->n; prof++) {
+        char prefix[16] = "", name[48];
+        if (pr->gl[prof] != SKY_GL_CORE33) snprintf(prefix, sizeof prefix, "%s_", prof_name(pr, prof));
+        printf("%s\"%sframe_ms\":%.4f, ", prof ? ", " : "", prefix, base[prof]);
+        snprintf(name, sizeof name, "%srounds_ms", prefix);
+        print_json_list(name, info[prof].base_ms, info[prof].n);
+        printf(", ");
+        snprintf(name, sizeof name, "%sothers_cpus", prefix);
+        print_json_list(name, info[prof].others_cpus, info[prof].n);
+    }
     printf("}");
 }
 
@@ -1133,9 +1267,10 @@ static int soak_table(int frames, sky_gl_profile gl)
             fprintf(stderr, "sky-bench: %s\n", err);
             return 1;
         }
+        bench_gl_use(&ctx);
         sky_config cfg;
         memset(&cfg, 0, sizeof cfg);
-        cfg.get_proc_address = sky_osmesa_loader();
+        cfg.get_proc_address = sky_headless_loader(&ctx);
         cfg.gl_profile = gl;
         sky *s = sky_create(&cfg, err, sizeof err);
         if (!s) {
@@ -1493,6 +1628,7 @@ static int capture_costs(int w, int h, int n, capture_cost *out)
         fprintf(stderr, "sky-bench: capture: %s\n", err);
         return -1;
     }
+    bench_gl_use(&ctx);
     sky_cli cli;
     char *argv[] = {"sky-bench", "--preset", "noon", NULL};
     if (sky_cli_parse(&cli, 3, argv, 0, err, sizeof err)) {
@@ -1500,7 +1636,7 @@ static int capture_costs(int w, int h, int n, capture_cost *out)
         sky_osmesa_destroy(&ctx);
         return -1;
     }
-    sky_config cfg = sky_cli_config(&cli, sky_osmesa_loader());
+    sky_config cfg = sky_cli_config(&cli, sky_headless_loader(&ctx));
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         fprintf(stderr, "sky-bench: capture: %s\n", err);
@@ -1585,12 +1721,32 @@ static void print_lighting_json(const lighting_row r[PHOT_PATHS], const capture_
     printf(" ]");
 }
 
+/* --gl: a comma list of core, compat and es20, each once. Returns 0 or -1. */
+static int parse_profiles(const char *list, profiles *pr)
+{
+    profiles p = {0, {SKY_GL_AUTO}};
+    char buf[64];
+    snprintf(buf, sizeof buf, "%s", list);
+    for (char *save = NULL, *w = strtok_r(buf, ",", &save); w; w = strtok_r(NULL, ",", &save)) {
+        sky_gl_profile gl = !strcmp(w, "core") ? SKY_GL_CORE33 : !strcmp(w, "compat") ? SKY_GL_COMPAT20
+                            : !strcmp(w, "es20") ? SKY_GL_ES20 : SKY_GL_AUTO;
+        if (gl == SKY_GL_AUTO || p.n == MAX_PROFS) return -1;
+        for (int i = 0; i < p.n; i++)
+            if (p.gl[i] == gl) return -1;
+        p.gl[p.n++] = gl;
+    }
+    if (!p.n) return -1;
+    *pr = p;
+    return 0;
+}
+
 static void bench_usage(FILE *out)
 {
     fprintf(out,
             "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
             "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting\n"
-            "       | --only-night]\n"
+            "       | --only-night] [--gl LIST of core,compat,es20 (default core,compat; es20 with --only-presets\n"
+            "       or --only-night)]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
             "       sky-bench --stability [--json]\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
@@ -1599,7 +1755,7 @@ static void bench_usage(FILE *out)
 }
 
 /* The night layers' table (bench_night), against the presets' baseline. */
-static void print_night_table(double night[2][NIGHT_COUNT], const double base[2])
+static void print_night_table(const profiles *pr, double night[MAX_PROFS][NIGHT_COUNT], const double *base)
 {
     printf("\nThe night layers: the stars', the planets' and the moon's own draw (GPU time around it), the star\n"
            "map, the airglow and the zodiacal light as what each adds to an atmosphere-only night frame (measured\n"
@@ -1609,11 +1765,11 @@ static void print_night_table(double night[2][NIGHT_COUNT], const double base[2]
                                              "zodiacal light", "", "moon, c_d 3", "moon, c_d 30"};
     /* -1: measured directly, else the frame it is the difference from */
     static const int from[NIGHT_COUNT] = {0, -1, NIGHT_NONE, -1, NIGHT_NONE, NIGHT_NONE, 0, -1, -1};
-    for (int prof = 0; prof < 2; prof++)
+    for (int prof = 0; prof < pr->n; prof++)
         for (int k = 0; k < NIGHT_COUNT; k++) {
             if (!names[k][0]) continue;
             double ms = from[k] < 0 ? night[prof][k] : night[prof][k] - night[prof][from[k]];
-            printf("| %s | %s | %.2f | %.2f |\n", names[k], prof ? "compat" : "core", ms, ms / base[prof]);
+            printf("| %s | %s | %.2f | %.2f |\n", names[k], prof_name(pr, prof), ms, ms / base[prof]);
         }
 }
 
@@ -1624,6 +1780,7 @@ int main(int argc, char **argv)
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL,
                *plot_phot = NULL;
+    profiles pr = {2, {SKY_GL_CORE33, SKY_GL_COMPAT20}};
     for (int i = 1; i < argc; i++) {
         /* asking for the usage is not a mistake: stdout, exit 0 */
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -1670,6 +1827,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--rounds") && i + 1 < argc && (rounds = atoi(argv[i + 1])) >= 1 &&
                  rounds <= MAX_ROUNDS)
             i++;
+        else if (!strcmp(argv[i], "--gl") && i + 1 < argc && !parse_profiles(argv[i + 1], &pr))
+            i++;
         else {
             fprintf(stderr, "sky-bench: bad argument '%s'\n", argv[i]);
             bench_usage(stderr);
@@ -1677,6 +1836,16 @@ int main(int argc, char **argv)
         }
     }
     if (stability) return stability_table(json);
+    int es = 0;
+    for (int p = 0; p < pr.n; p++) es |= pr.gl[p] == SKY_GL_ES20;
+    if (es && !only_presets && !only_night) {
+        fprintf(stderr, "sky-bench: --gl es20 times the presets (--only-presets) or the night layers (--only-night); "
+                "the other tables need a desktop context\n");
+        return 2;
+    }
+    /* ES20 on what an ES 2.0 device reports (Mesa offers ES 3.2 otherwise);
+     * a value the user set stands */
+    if (es) setenv("MESA_GLES_VERSION_OVERRIDE", "2.0", 0);
     if (soak) return soak_table(soak, SKY_GL_CORE33);
     static sky_colour_row colour[COLOUR_ROWS];
     sky_photometry phot[PHOT_PATHS];
@@ -1751,14 +1920,14 @@ int main(int argc, char **argv)
                                           "noon --dome-divisor 1 + scene over half, sky first",
                                           "noon --dome-divisor 1 + scene over half, sky after"};
     enum { NP = sizeof presets / sizeof presets[0] };
-    static row rows[2 * (NP + QUAD_KINDS - 1)]; /* (static: gcc cannot see the loops fill it) */
+    static row rows[MAX_PROFS * (NP + QUAD_KINDS - 1)]; /* (static: gcc cannot see the loops fill it) */
     /* the baseline's medians over the rounds of the preset table and of
      * the atmosphere table, and its per-round figures in the first */
-    double base[2] = {0, 0}, base_atmo[2] = {0, 0}, night[2][NIGHT_COUNT];
-    static rounds_info pinfo[2], ainfo[2];
+    double base[MAX_PROFS] = {0}, base_atmo[MAX_PROFS] = {0}, night[MAX_PROFS][NIGHT_COUNT];
+    static rounds_info pinfo[MAX_PROFS], ainfo[MAX_PROFS];
     int nrows = 0;
-    for (int prof = 0; prof < 2; prof++) {
-        sky_gl_profile gl = prof == 0 ? SKY_GL_CORE33 : SKY_GL_COMPAT20;
+    for (int prof = 0; prof < pr.n; prof++) {
+        sky_gl_profile gl = pr.gl[prof];
         if (!only_atmosphere) {
             if (bench_presets(presets, NP, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
                 return 1;
@@ -1775,26 +1944,26 @@ int main(int argc, char **argv)
     }
     if (only_presets && json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d,\n", w, h, frames, rounds);
-        print_baseline_json("baseline", base, pinfo);
+        print_baseline_json("baseline", &pr, base, pinfo);
         printf(",\n");
         print_presets_json(rows, nrows);
         printf("}\n");
         return 0;
     }
     if (only_presets) {
-        print_baseline("", w, h, frames, base, pinfo);
+        print_baseline("", w, h, frames, &pr, base, pinfo);
         printf("\n");
         print_preset_table(rows, nrows);
         return 0;
     }
     if (only_night) {
-        print_baseline("", w, h, frames, base, pinfo);
-        print_night_table(night, base);
+        print_baseline("", w, h, frames, &pr, base, pinfo);
+        print_night_table(&pr, night, base);
         return 0;
     }
     if (only_atmosphere) {
         if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
-        print_baseline("", w, h, frames, base_atmo, ainfo);
+        print_baseline("", w, h, frames, &pr, base_atmo, ainfo);
         print_atmosphere_table(atmo, natmo, &ref);
         return 0;
     }
@@ -1807,19 +1976,19 @@ int main(int argc, char **argv)
     if (json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d, \"astro_update_us\":%.2f,\n", w, h, frames,
                rounds, astro);
-        print_baseline_json("baseline", base, pinfo);
+        print_baseline_json("baseline", &pr, base, pinfo);
         printf(",\n");
-        print_baseline_json("atmosphere_baseline", base_atmo, ainfo);
+        print_baseline_json("atmosphere_baseline", &pr, base_atmo, ainfo);
         printf(",\n");
         print_presets_json(rows, nrows);
         printf(",\n \"night_layers\": [\n");
-        for (int prof = 0; prof < 2; prof++)
+        for (int prof = 0; prof < pr.n; prof++)
             printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"starmap_ms\":%.4f, \"planets_ms\":%.4f, "
                    "\"airglow_ms\":%.4f, \"zodiacal_ms\":%.4f, \"moon_cd3_ms\":%.4f, \"moon_cd30_ms\":%.4f}%s\n",
-                   prof ? "compat" : "core", night[prof][NIGHT_STARS], night[prof][NIGHT_STARMAP] - night[prof][NIGHT_NONE],
+                   prof_name(&pr, prof), night[prof][NIGHT_STARS], night[prof][NIGHT_STARMAP] - night[prof][NIGHT_NONE],
                    night[prof][NIGHT_PLANETS], night[prof][NIGHT_AIRGLOW] - night[prof][NIGHT_NONE],
                    night[prof][NIGHT_ZODIACAL] - night[prof][NIGHT_NONE], night[prof][NIGHT_MOON3],
-                   night[prof][NIGHT_MOON30], prof ? "" : ",");
+                   night[prof][NIGHT_MOON30], prof + 1 < pr.n ? "," : "");
         printf(" ],\n \"reference\": {\"method\":\"spectral, 16 wavelengths; single scattering by quadrature, orders >= 2 "
                "by Monte Carlo\", \"paths\":%d, \"std_err\":%.6g},\n \"rows\": [\n",
                ref.paths, reference_rel_std_err(&ref));
@@ -1847,12 +2016,12 @@ int main(int argc, char **argv)
     printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then each\n"
            "row; a row's figures are medians over the rounds), llvmpipe or whatever GL OSMesa provides\n",
            w, h, frames, rounds);
-    print_baseline(" in the preset rounds", w, h, frames, base, pinfo);
+    print_baseline(" in the preset rounds", w, h, frames, &pr, base, pinfo);
     printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n\n", astro);
     print_preset_table(rows, nrows);
-    print_night_table(night, base);
+    print_night_table(&pr, night, base);
     printf("\n");
-    print_baseline(" in the atmosphere rounds", w, h, frames, base_atmo, ainfo);
+    print_baseline(" in the atmosphere rounds", w, h, frames, &pr, base_atmo, ainfo);
     print_atmosphere_table(atmo, natmo, &ref);
     printf("\nColour: what the 8-bit output (tone map %s) keeps of the sky's own, per pixel against the HDR\n"
            "frame (the atmosphere and the sun):\n\n",
