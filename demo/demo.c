@@ -247,6 +247,12 @@ typedef struct demo {
     float values[6];  /* the six sliders, in sky_params order */
     char message[200]; /* the last error, shown in the readout */
     frame_timer timer; /* the sky's GPU frame time and the frame rate */
+    GLFWwindow *win;
+    int kind;          /* the window's context: UI_GL20, UI_CORE33, UI_ES20 */
+    int automated;     /* --screenshot: save after --frames and leave */
+    const char *keys;  /* --keys: pressed after the first frame */
+    int frame, status;
+    double last;       /* the clock at the last frame */
 } demo;
 
 static void values_from_params(float v[6], const sky_params *p)
@@ -432,14 +438,157 @@ static int simulate_drag(demo *d, const char *spec)
     return -1;
 }
 
-int main(int argc, char **argv)
+/* One frame of the window: input hooks, a rebuilt sky or context when
+ * asked, the sky, the overlay and its readout. Returns 1 to go on, 0 when
+ * the demo is done (d->status says how). */
+static int demo_frame(demo *d)
 {
-    demo d;
-    memset(&d, 0, sizeof d);
-    d.time_rate = 1.0 / 120.0; /* a day in two minutes */
+    char err[512];
+    double now = glfwGetTime();
+    double dt = d->automated ? 1.0 / 30.0 : now - d->last;
+    d->last = now;
+    int frame = d->frame++;
+    if (d->keys && frame == 1) /* the --keys test hook, through the same handler as the keyboard */
+        for (const char *k = d->keys; *k; k++) on_key(d->win, toupper((unsigned char)*k), 0, GLFW_PRESS, 0);
+    if (d->switch_profile) { /* a new context: the sky and overlay go with the old one */
+        d->switch_profile = 0;
+        sky_destroy(d->s);
+        ui_destroy(d->overlay);
+        timer_destroy(&d->timer);
+        glfwDestroyWindow(d->win);
+        d->win = NULL;
+        /* the next kind of context that opens: core, ES 2.0, 2.0 */
+        for (int tries = 0; tries < 3 && !d->win; tries++) d->win = open_window(d, d->kind = (d->kind + 1) % 3);
+        if (!d->win) {
+            fprintf(stderr, "sky-demo: no GL window for any profile\n");
+            d->s = NULL;
+            d->overlay = NULL;
+            d->status = 1;
+            return 0;
+        }
+        d->cli.gl = profile_of(d->kind);
+        d->overlay = ui_create(d->kind);
+        timer_init(&d->timer, d->win);
+        d->recreate = 1;
+        d->s = NULL;
+    }
+    if (d->recreate) {
+        d->recreate = 0;
+        sky *s = make_sky(d, err, sizeof err);
+        if (s) {
+            sky_destroy(d->s);
+            d->s = s;
+            d->message[0] = '\0';
+            timer_reset(&d->timer);
+        } else {
+            /* keep the sky that works and say why */
+            fprintf(stderr, "sky-demo: %s\n", err);
+            snprintf(d->message, sizeof d->message, "%.180s", err);
+            if (!d->s) {
+                d->status = 1;
+                return 0;
+            }
+        }
+    }
+    if (d->running) {
+        double t = d->values[5] + dt * d->time_rate;
+        d->values[5] = (float)(t - (long)t);
+    }
+    d->cli.params = params_from_values(d->values);
+    sky_set_params(d->s, &d->cli.params);
+    sky_update(d->s, dt);
+    d->elapsed += dt;
+    int fw, fh;
+    glfwGetFramebufferSize(d->win, &fw, &fh);
+    glViewport(0, 0, fw, fh);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    d->cli.width = fw > 0 ? fw : 1;
+    d->cli.height = fh > 0 ? fh : 1;
+    float view[16], proj[16];
+    sky_cli_camera(&d->cli, view, proj);
+    timer_begin(&d->timer);
+    int drawn = d->cli.fisheye ? sky_draw_fisheye(d->s) : sky_draw(d->s, view, proj);
+    timer_end(&d->timer);
+    if (drawn < 0) fprintf(stderr, "sky-demo: %s\n", sky_last_error(d->s));
+    /* the readout: where, when, cost */
+    sky_stats st;
+    sky_astronomy a;
+    sky_get_stats(d->s, &st);
+    sky_get_astronomy(d->s, &a);
+    int y, m, dd;
+    double frac;
+    sky_calendar(a.julian_day_ut, &y, &m, &dd, &frac);
+    char lines[1024];
+    int used = snprintf(lines, sizeof lines, "%04d-%02d-%02d %02d:%02d UTC  lat %.1f lon %.1f%c", y, m, dd,
+                        (int)(frac * 24), (int)(frac * 1440) % 60, d->cli.observer.latitude_deg,
+                        d->cli.observer.longitude_deg, 0);
+    used += snprintf(lines + used, sizeof lines - (size_t)used, "sun %.1f deg  moon %.1f deg, %.0f %% lit%c",
+                     a.sun.alt_deg, a.moon.alt_deg, 100 * a.moon_illuminated_fraction, 0);
+    if (a.solar_obscuration > 0.0)
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
+                         100 * a.solar_obscuration, a.solar_magnitude, 0);
+    static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
+    used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  atmosphere %s  tone map %s%c",
+                     st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : st.profile == SKY_GL_ES20 ? "GL ES 2.0" : "GL 2.0", atmosphere_name(d->atmosphere),
+                     tone_maps[d->cli.tone_map], 0);
+    used += snprintf(lines + used, sizeof lines - (size_t)used, "fov %.0f  time %s x%.0f%c", d->cli.fov,
+                     d->running ? "running" : "paused", d->time_rate * 86400.0, 0);
+    /* the cost: the sky's GPU frame time as sky-bench measures it, and
+     * the frame rate of the window */
+    double gpu_ms = timer_ms(&d->timer), fps = timer_fps(&d->timer);
+    char ms_text[32] = "--", fps_text[32] = "--"; /* nothing measured yet */
+    if (gpu_ms >= 0.0) snprintf(ms_text, sizeof ms_text, "%.2f", gpu_ms);
+    if (fps > 0.0) snprintf(fps_text, sizeof fps_text, "%.0f", fps);
+    used += snprintf(lines + used, sizeof lines - (size_t)used, "sky %s ms GPU (%s)  %s fps%c", ms_text,
+                     timer_method(&d->timer), fps_text, 0);
+    used += snprintf(lines + used, sizeof lines - (size_t)used, "%zu KiB GPU memory  %d draws%c",
+                     st.gpu_bytes / 1024, st.draws_per_frame, 0);
+    for (int l = 0; l < SKY_LAYER_COUNT && used < 900; l++)
+        if (st.layers[l].enabled)
+            used += snprintf(lines + used, sizeof lines - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
+                             st.layers[l].ms >= 0 ? (snprintf(err, sizeof err, "%.2f ms", st.layers[l].ms), err)
+                                                  : (st.layers[l].drawn ? "on" : "idle"), 0);
+    if (d->message[0] && used < 900)
+        used += snprintf(lines + used, sizeof lines - (size_t)used, "%.100s%c", d->message, 0);
+    lines[used] = '\0';
+    ui_draw(d->overlay, fw, fh, d->values, d->slider, lines);
+    if (d->save || (d->automated && frame + 1 >= d->cli.frames)) {
+        const char *path = d->automated ? d->cli.screenshot : "sky-demo.png";
+        int saved = save_screenshot(fw, fh, path) == 0;
+        d->save = 0;
+        if (d->automated) {
+            printf("sky-demo: sky %.2f ms GPU (%s, median of %d frames), %.1f fps\n", gpu_ms,
+                   timer_method(&d->timer), d->timer.count, fps);
+            printf("sky-demo: atmosphere %s\n", atmosphere_name(d->atmosphere)); /* as the readout says */
+            d->status = saved ? 0 : 1; /* a script must see that its image is missing */
+            return 0;
+        }
+        if (!saved) snprintf(d->message, sizeof d->message, "cannot write %.160s", path);
+    }
+    glfwSwapBuffers(d->win);
+    timer_tick(&d->timer);
+    glfwPollEvents();
+    return !glfwWindowShouldClose(d->win);
+}
+
+/* What the window leaves behind. */
+static void demo_stop(demo *d)
+{
+    sky_destroy(d->s);
+    ui_destroy(d->overlay);
+    timer_destroy(&d->timer);
+    if (d->win) glfwDestroyWindow(d->win);
+    glfwTerminate();
+}
+
+/* Options, window, overlay and first sky. Returns -1 when the window is
+ * open and the frames can run, else the exit status. */
+static int demo_start(demo *d, int argc, char **argv)
+{
+    d->time_rate = 1.0 / 120.0; /* a day in two minutes */
     /* --drag, --keys and --out are sky-demo's own options: take them out
      * before the shared parse */
-    const char *drag = NULL, *keys = NULL, *out = NULL;
+    const char *drag = NULL, *out = NULL;
     char *args[64];
     int n = 0;
     for (int i = 0; i < argc && n < 64; i++) {
@@ -448,9 +597,9 @@ int main(int argc, char **argv)
             continue;
         }
         if (!strcmp(argv[i], "--keys") && i + 1 < argc) {
-            keys = argv[++i];
-            if (strspn(keys, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789") != strlen(keys)) {
-                fprintf(stderr, "sky-demo: --keys: expected letters and digits, e.g. CC, got '%s'\n", keys);
+            d->keys = argv[++i];
+            if (strspn(d->keys, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789") != strlen(d->keys)) {
+                fprintf(stderr, "sky-demo: --keys: expected letters and digits, e.g. CC, got '%s'\n", d->keys);
                 return 2;
             }
             continue;
@@ -461,7 +610,7 @@ int main(int argc, char **argv)
         args[n++] = argv[i];
     }
     char err[512];
-    int rc = sky_cli_parse(&d.cli, n, args, 1, err, sizeof err);
+    int rc = sky_cli_parse(&d->cli, n, args, 1, err, sizeof err);
     if (rc == SKY_CLI_HELP) {
         sky_cli_usage(stdout, "sky-demo", 1);
         printf("  --out FILE.png           without a display: the image rendered headless (default\n"
@@ -480,169 +629,56 @@ int main(int argc, char **argv)
         fprintf(stderr, "sky-demo: %s\n", err);
         return 2;
     }
-    int automated = d.cli.screenshot != NULL;
-    values_from_params(d.values, &d.cli.params);
-    if (!out) out = d.cli.screenshot ? d.cli.screenshot : "sky.png";
+    d->automated = d->cli.screenshot != NULL;
+    values_from_params(d->values, &d->cli.params);
+    if (!out) out = d->cli.screenshot ? d->cli.screenshot : "sky.png";
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
         fprintf(stderr, "sky-demo: no display found (DISPLAY is unset)\n");
-        return headless(&d.cli, out);
+        return headless(&d->cli, out);
     }
     if (!glfwInit()) {
         fprintf(stderr, "sky-demo: GLFW cannot open the display\n");
-        return headless(&d.cli, out);
+        return headless(&d->cli, out);
     }
-    d.features = d.cli.features ? d.cli.features : (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP);
-    if (d.features & SKY_FEATURES_NONE) d.features = SKY_FEATURES_NONE;
-    int kind = d.cli.gl == SKY_GL_ES20 ? UI_ES20 : d.cli.gl == SKY_GL_COMPAT20 ? UI_GL20 : UI_CORE33;
-    GLFWwindow *win = open_window(&d, kind);
-    if (!win && kind != UI_GL20) {
-        fprintf(stderr, "sky-demo: no %s window; trying OpenGL 2.0\n", kind == UI_ES20 ? "OpenGL ES 2.0" : "3.3 core");
-        win = open_window(&d, kind = UI_GL20);
+    d->features = d->cli.features ? d->cli.features : (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP);
+    if (d->features & SKY_FEATURES_NONE) d->features = SKY_FEATURES_NONE;
+    d->kind = d->cli.gl == SKY_GL_ES20 ? UI_ES20 : d->cli.gl == SKY_GL_COMPAT20 ? UI_GL20 : UI_CORE33;
+    d->win = open_window(d, d->kind);
+    if (!d->win && d->kind != UI_GL20) {
+        fprintf(stderr, "sky-demo: no %s window; trying OpenGL 2.0\n", d->kind == UI_ES20 ? "OpenGL ES 2.0" : "3.3 core");
+        d->win = open_window(d, d->kind = UI_GL20);
     }
-    if (!win) {
+    if (!d->win) {
         fprintf(stderr, "sky-demo: no GL window could be created\n");
         glfwTerminate();
-        return headless(&d.cli, out);
+        return headless(&d->cli, out);
     }
-    d.cli.gl = profile_of(kind);
-    d.overlay = ui_create(kind);
-    timer_init(&d.timer, win);
-    d.elapsed = d.cli.seconds;
-    d.s = make_sky(&d, err, sizeof err);
-    if (!d.s) {
+    d->cli.gl = profile_of(d->kind);
+    d->overlay = ui_create(d->kind);
+    timer_init(&d->timer, d->win);
+    d->elapsed = d->cli.seconds;
+    d->s = make_sky(d, err, sizeof err);
+    if (!d->s) {
         fprintf(stderr, "sky-demo: %s\n", err);
         glfwTerminate();
         return 1;
     }
-    if (drag && simulate_drag(&d, drag)) {
+    if (drag && simulate_drag(d, drag)) {
         fprintf(stderr, "sky-demo: --drag: expected SLIDER:FROM:TO, e.g. cover:0.1:0.9\n");
         return 2;
     }
-    double last = glfwGetTime();
-    int status = 0;
-    for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
-        double now = glfwGetTime();
-        double dt = automated ? 1.0 / 30.0 : now - last;
-        last = now;
-        if (keys && frame == 1) /* the --keys test hook, through the same handler as the keyboard */
-            for (const char *k = keys; *k; k++) on_key(win, toupper((unsigned char)*k), 0, GLFW_PRESS, 0);
-        if (d.switch_profile) { /* a new context: the sky and overlay go with the old one */
-            d.switch_profile = 0;
-            sky_destroy(d.s);
-            ui_destroy(d.overlay);
-            timer_destroy(&d.timer);
-            glfwDestroyWindow(win);
-            /* the next kind of context that opens: core, 2.0, ES 2.0 */
-            for (int tries = 0; tries < 3 && !win; tries++) win = open_window(&d, kind = (kind + 1) % 3);
-            if (!win) {
-                fprintf(stderr, "sky-demo: no GL window for any profile\n");
-                glfwTerminate();
-                return 1;
-            }
-            d.cli.gl = profile_of(kind);
-            d.overlay = ui_create(kind);
-            timer_init(&d.timer, win);
-            d.recreate = 1;
-            d.s = NULL;
-        }
-        if (d.recreate) {
-            d.recreate = 0;
-            sky *s = make_sky(&d, err, sizeof err);
-            if (s) {
-                sky_destroy(d.s);
-                d.s = s;
-                d.message[0] = '\0';
-                timer_reset(&d.timer);
-            } else {
-                /* keep the sky that works and say why */
-                fprintf(stderr, "sky-demo: %s\n", err);
-                snprintf(d.message, sizeof d.message, "%.180s", err);
-                if (!d.s) break;
-            }
-        }
-        if (d.running) {
-            double t = d.values[5] + dt * d.time_rate;
-            d.values[5] = (float)(t - (long)t);
-        }
-        d.cli.params = params_from_values(d.values);
-        sky_set_params(d.s, &d.cli.params);
-        sky_update(d.s, dt);
-        d.elapsed += dt;
-        int fw, fh;
-        glfwGetFramebufferSize(win, &fw, &fh);
-        glViewport(0, 0, fw, fh);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        d.cli.width = fw > 0 ? fw : 1;
-        d.cli.height = fh > 0 ? fh : 1;
-        float view[16], proj[16];
-        sky_cli_camera(&d.cli, view, proj);
-        timer_begin(&d.timer);
-        int drawn = d.cli.fisheye ? sky_draw_fisheye(d.s) : sky_draw(d.s, view, proj);
-        timer_end(&d.timer);
-        if (drawn < 0) fprintf(stderr, "sky-demo: %s\n", sky_last_error(d.s));
-        /* the readout: where, when, cost */
-        sky_stats st;
-        sky_astronomy a;
-        sky_get_stats(d.s, &st);
-        sky_get_astronomy(d.s, &a);
-        int y, m, dd;
-        double frac;
-        sky_calendar(a.julian_day_ut, &y, &m, &dd, &frac);
-        char lines[1024];
-        int used = snprintf(lines, sizeof lines, "%04d-%02d-%02d %02d:%02d UTC  lat %.1f lon %.1f%c", y, m, dd,
-                            (int)(frac * 24), (int)(frac * 1440) % 60, d.cli.observer.latitude_deg,
-                            d.cli.observer.longitude_deg, 0);
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "sun %.1f deg  moon %.1f deg, %.0f %% lit%c",
-                         a.sun.alt_deg, a.moon.alt_deg, 100 * a.moon_illuminated_fraction, 0);
-        if (a.solar_obscuration > 0.0)
-            used += snprintf(lines + used, sizeof lines - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
-                             100 * a.solar_obscuration, a.solar_magnitude, 0);
-        static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  atmosphere %s  tone map %s%c",
-                         st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : st.profile == SKY_GL_ES20 ? "GL ES 2.0" : "GL 2.0", atmosphere_name(d.atmosphere),
-                         tone_maps[d.cli.tone_map], 0);
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "fov %.0f  time %s x%.0f%c", d.cli.fov,
-                         d.running ? "running" : "paused", d.time_rate * 86400.0, 0);
-        /* the cost: the sky's GPU frame time as sky-bench measures it, and
-         * the frame rate of the window */
-        double gpu_ms = timer_ms(&d.timer), fps = timer_fps(&d.timer);
-        char ms_text[32] = "--", fps_text[32] = "--"; /* nothing measured yet */
-        if (gpu_ms >= 0.0) snprintf(ms_text, sizeof ms_text, "%.2f", gpu_ms);
-        if (fps > 0.0) snprintf(fps_text, sizeof fps_text, "%.0f", fps);
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "sky %s ms GPU (%s)  %s fps%c", ms_text,
-                         timer_method(&d.timer), fps_text, 0);
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "%zu KiB GPU memory  %d draws%c",
-                         st.gpu_bytes / 1024, st.draws_per_frame, 0);
-        for (int l = 0; l < SKY_LAYER_COUNT && used < 900; l++)
-            if (st.layers[l].enabled)
-                used += snprintf(lines + used, sizeof lines - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
-                                 st.layers[l].ms >= 0 ? (snprintf(err, sizeof err, "%.2f ms", st.layers[l].ms), err)
-                                                      : (st.layers[l].drawn ? "on" : "idle"), 0);
-        if (d.message[0] && used < 900)
-            used += snprintf(lines + used, sizeof lines - (size_t)used, "%.100s%c", d.message, 0);
-        lines[used] = '\0';
-        ui_draw(d.overlay, fw, fh, d.values, d.slider, lines);
-        if (d.save || (automated && frame + 1 >= d.cli.frames)) {
-            const char *path = automated ? d.cli.screenshot : "sky-demo.png";
-            int saved = save_screenshot(fw, fh, path) == 0;
-            d.save = 0;
-            if (automated) {
-                printf("sky-demo: sky %.2f ms GPU (%s, median of %d frames), %.1f fps\n", gpu_ms,
-                       timer_method(&d.timer), d.timer.count, fps);
-                printf("sky-demo: atmosphere %s\n", atmosphere_name(d.atmosphere)); /* as the readout says */
-                status = saved ? 0 : 1; /* a script must see that its image is missing */
-                break;
-            }
-            if (!saved) snprintf(d.message, sizeof d.message, "cannot write %.160s", path);
-        }
-        glfwSwapBuffers(win);
-        timer_tick(&d.timer);
-        glfwPollEvents();
+    d->last = glfwGetTime();
+    return -1;
+}
+
+int main(int argc, char **argv)
+{
+    demo d;
+    memset(&d, 0, sizeof d);
+    int rc = demo_start(&d, argc, argv);
+    if (rc >= 0) return rc;
+    while (demo_frame(&d)) {
     }
-    sky_destroy(d.s);
-    ui_destroy(d.overlay);
-    timer_destroy(&d.timer);
-    glfwDestroyWindow(win);
-    glfwTerminate();
-    return status;
+    demo_stop(&d);
+    return d.status;
 }
