@@ -28,7 +28,8 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples
+.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples \
+	web test-web
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -228,6 +229,37 @@ $(EX)/example-tests: tests/examples/test_examples.c tests/test_main.c tests/test
 
 test-examples: examples $(EX)/example-tests
 	@SKY_EXAMPLES=$(EX) xvfb-run -a -s '-screen 0 1280x720x24' $(EX)/example-tests
+
+# ---- the browser: make web, make test-web ---------------------------------------------
+# The library and sky-demo through Debian's Emscripten (GLFW is its own
+# port, in JavaScript; WebGL 1), the shaders and textures embedded as in
+# every build, into build/web/index.html with its .js and .wasm beside it.
+# Debian's Emscripten keeps a frozen cache (EM_CACHE stays unset) and finds
+# acorn through NODE_PATH. stb comes from libstb-dev through a directory of
+# its own, so that the system's other headers stay out of the build.
+WEB := $(BUILD)/web
+WEB_PACKAGES := emscripten chromium-headless-shell python3
+WEB_SRC := $(SKY_SRC) $(BUILD)/gen/sky_blobs.c demo/demo.c demo/ui.c demo/cli.c
+WEB_FLAGS := -std=c11 $(WARN) -O2 -D_DEFAULT_SOURCE -Isky -Idemo -I$(BUILD)/gen -I$(WEB)/include \
+	-sUSE_GLFW=3 -sMIN_WEBGL_VERSION=1 -sMAX_WEBGL_VERSION=1 -sALLOW_MEMORY_GROWTH=1 \
+	-sEXPORTED_FUNCTIONS=_main,_sky_demo_preset -sEXPORTED_RUNTIME_METHODS=ccall -sMINIFY_HTML=0
+
+web: $(BUILD)/gen/sky_blobs.c
+	@sh tools/deps.sh $(WEB_PACKAGES)
+	@$(MAKE) --no-print-directory $(WEB)/index.html
+
+$(WEB)/index.html: $(WEB_SRC) $(SKY_HDR) demo/cli.h demo/ui.h web/shell.html
+	@mkdir -p $(WEB)/include && ln -sfn /usr/include/stb $(WEB)/include/stb
+	NODE_PATH=/usr/share/nodejs emcc $(WEB_FLAGS) --shell-file web/shell.html -o $@ $(WEB_SRC)
+
+# The page in headless Chromium (WebGL 1 through SwiftShader): the runner
+# is the test harness built natively with tests/web/.
+$(WEB)/web-tests: tests/web/test_web.c tests/test_main.c tests/test.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -DSKY_WEB_TESTS -Itests -o $@ tests/web/test_web.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
+
+test-web: web $(WEB)/web-tests
+	@SKY_WEB=$(WEB) $(WEB)/web-tests
 
 # ---- install ----------------------------------------------------------------------
 install: all

@@ -6,9 +6,14 @@
  * looks around, Left/Right turn, the wheel zooms; L times each layer; S
  * saves sky-demo.png. --help lists it all.
  * Without a display it says so and renders headless through OSMesa.
+ * Built with Emscripten (make web) it runs in a browser's WebGL 1 canvas,
+ * a frame each time the browser asks (demo_frame), with no files: the
+ * page (web/shell.html) passes its options and picks presets.
  */
 #include "cli.h"
+#ifndef __EMSCRIPTEN__
 #include "osmesa_ctx.h"
+#endif
 #include "ui.h"
 
 #define GLFW_INCLUDE_GLEXT /* the query entry points' types and enums */
@@ -17,7 +22,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+#endif
 
+#ifndef __EMSCRIPTEN__
 /* out: the PNG to write (relative to the current directory, so an
  * installed sky-demo works anywhere). */
 static int headless(const sky_cli *cli, const char *out)
@@ -59,6 +68,15 @@ static int headless(const sky_cli *cli, const char *out)
     sky_osmesa_destroy(&ctx);
     return rc;
 }
+#else
+/* A browser always has its canvas. */
+static int headless(const sky_cli *cli, const char *out)
+{
+    (void)cli;
+    fprintf(stderr, "sky-demo: no WebGL canvas for %s\n", out);
+    return 1;
+}
+#endif
 
 /* ---- the readout's frame time: the GPU time of the sky's frame ---------------------------------
  *
@@ -284,7 +302,9 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     if (key == GLFW_KEY_F) d->cli.fisheye = !d->cli.fisheye;
     if (key == GLFW_KEY_S) d->save = 1;
     if (key == GLFW_KEY_L) d->profiling = !d->profiling, d->recreate = 1;
-    if (key == GLFW_KEY_G) d->switch_profile = 1;
+#ifndef __EMSCRIPTEN__
+    if (key == GLFW_KEY_G) d->switch_profile = 1; /* (a page has its one WebGL context) */
+#endif
     if (key == GLFW_KEY_O) { /* the next tone map */
         d->cli.tone_map = d->cli.tone_map >= SKY_TONE_MAP_NEUTRAL ? SKY_TONE_MAP_HUE : d->cli.tone_map + 1;
         d->recreate = 1;
@@ -340,6 +360,14 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 }
 
 /* Returns 0, or -1 after saying why. */
+#ifdef __EMSCRIPTEN__
+static int save_screenshot(int width, int height, const char *path)
+{
+    (void)width, (void)height;
+    printf("sky-demo: a page has no files for %s; the browser saves the canvas\n", path);
+    return -1;
+}
+#else
 static int save_screenshot(int width, int height, const char *path)
 {
     sky_osmesa shot = {0};
@@ -359,6 +387,7 @@ static int save_screenshot(int width, int height, const char *path)
     free(shot.pixels);
     return rc;
 }
+#endif
 
 static sky_gl_profile profile_of(int kind)
 {
@@ -632,10 +661,14 @@ static int demo_start(demo *d, int argc, char **argv)
     d->automated = d->cli.screenshot != NULL;
     values_from_params(d->values, &d->cli.params);
     if (!out) out = d->cli.screenshot ? d->cli.screenshot : "sky.png";
+#ifndef __EMSCRIPTEN__
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
         fprintf(stderr, "sky-demo: no display found (DISPLAY is unset)\n");
         return headless(&d->cli, out);
     }
+#else
+    d->cli.gl = SKY_GL_ES20; /* WebGL 1 is OpenGL ES 2.0 */
+#endif
     if (!glfwInit()) {
         fprintf(stderr, "sky-demo: GLFW cannot open the display\n");
         return headless(&d->cli, out);
@@ -671,6 +704,60 @@ static int demo_start(demo *d, int argc, char **argv)
     return -1;
 }
 
+#ifdef __EMSCRIPTEN__
+/* The page's demo: the browser calls back with no user pointer of its
+ * own for the preset menu, so the one demo of the page lives here. */
+static demo web_demo;
+
+int sky_demo_preset(const char *name); /* the page's, by ccall */
+
+/* The preset menu (web/shell.html): that preset's sliders, features,
+ * atmosphere and date, in a new sky. Returns 0, or -1 for an unknown
+ * name. */
+EMSCRIPTEN_KEEPALIVE int sky_demo_preset(const char *name)
+{
+    demo *d = &web_demo;
+    sky_cli parsed;
+    char err[256];
+    char *args[4] = {"sky-demo", "--preset", (char *)name, NULL};
+    if (sky_cli_parse(&parsed, 3, args, 1, err, sizeof err)) {
+        fprintf(stderr, "sky-demo: %s\n", err);
+        return -1;
+    }
+    parsed.gl = d->cli.gl;
+    parsed.width = d->cli.width;
+    parsed.height = d->cli.height;
+    d->cli = parsed;
+    d->features = parsed.features ? parsed.features : d->features;
+    values_from_params(d->values, &parsed.params);
+    d->recreate = 1;
+    printf("sky-demo: preset %s\n", name);
+    return 0;
+}
+
+/* A frame for the browser; the page logs the cost once it is measured. */
+static void web_frame(void *arg)
+{
+    demo *d = arg;
+    if (!demo_frame(d)) {
+        emscripten_cancel_main_loop();
+        demo_stop(d);
+        return;
+    }
+    if (d->frame == 30)
+        printf("sky-demo: sky %.2f ms GPU (%s), %.1f fps\n", timer_ms(&d->timer), timer_method(&d->timer),
+               timer_fps(&d->timer));
+}
+
+int main(int argc, char **argv)
+{
+    int rc = demo_start(&web_demo, argc, argv);
+    if (rc >= 0) return rc;
+    printf("sky-demo: running in %s\n", (const char *)glGetString(GL_VERSION));
+    emscripten_set_main_loop_arg(web_frame, &web_demo, 0, 1);
+    return 0;
+}
+#else
 int main(int argc, char **argv)
 {
     demo d;
@@ -682,3 +769,4 @@ int main(int argc, char **argv)
     demo_stop(&d);
     return d.status;
 }
+#endif

@@ -19,7 +19,13 @@
 int test_failures;
 int test_skipped;
 
-#ifdef SKY_EXAMPLE_TESTS
+#if defined(SKY_WEB_TESTS)
+/* the browser build's runner (make test-web): tests/web/ */
+#define TESTS(X)                        \
+    X(web_page_shows_a_sky)             \
+    X(web_drag_changes_the_frame)       \
+    X(web_preset_switch)
+#elif defined(SKY_EXAMPLE_TESTS)
 /* the engine examples' runner (make test-examples): the same harness, its
  * own tests (tests/examples/) */
 #define TESTS(X)                                 \

@@ -104,3 +104,8 @@ else
     echo "screenshots: the examples are not built (make examples): their pictures left as they are"
 fi
 echo "screenshots: $(ls $out | tr '\n' ' ')"
+# the browser build's page in headless Chromium, as make test-web sees it
+# (when Emscripten and Chromium are installed: make web installs them)
+if command -v emcc >/dev/null 2>&1 && command -v chromium-headless-shell >/dev/null 2>&1; then
+    SKY_WEB_SHOT=$out/web.png make --no-print-directory test-web
+fi
