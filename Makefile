@@ -29,7 +29,7 @@ LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
 .PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples \
-	web test-web
+	web test-web bench-web
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -238,6 +238,7 @@ test-examples: examples $(EX)/example-tests
 # acorn through NODE_PATH. stb comes from libstb-dev through a directory of
 # its own, so that the system's other headers stay out of the build.
 WEB := $(BUILD)/web
+comma := ,
 WEB_PACKAGES := emscripten chromium-headless-shell python3
 WEB_SRC := $(SKY_SRC) $(BUILD)/gen/sky_blobs.c demo/demo.c demo/ui.c demo/cli.c
 WEB_FLAGS := -std=c11 $(WARN) -O2 -D_DEFAULT_SOURCE -Isky -Idemo -I$(BUILD)/gen -I$(WEB)/include \
@@ -251,6 +252,19 @@ web: $(BUILD)/gen/sky_blobs.c
 $(WEB)/index.html: $(WEB_SRC) $(SKY_HDR) demo/cli.h demo/ui.h web/shell.html
 	@mkdir -p $(WEB)/include && ln -sfn /usr/include/stb $(WEB)/include/stb
 	NODE_PATH=/usr/share/nodejs emcc $(WEB_FLAGS) --shell-file web/shell.html -o $@ $(WEB_SRC)
+
+# The browser's timing page (web/bench.c, web/bench.html) and its run in
+# headless Chromium with three.js's Sky beside libsky (tools/bench-web.sh).
+WEB_BENCH_SRC := $(SKY_SRC) $(BUILD)/gen/sky_blobs.c web/bench.c demo/cli.c
+$(WEB)/bench.html: $(WEB_BENCH_SRC) $(SKY_HDR) demo/cli.h web/bench.html
+	@mkdir -p $(WEB)/include && ln -sfn /usr/include/stb $(WEB)/include/stb
+	NODE_PATH=/usr/share/nodejs emcc $(subst _main$(comma)_sky_demo_preset,_main$(comma)_web_bench_open$(comma)_web_bench_quad$(comma)_web_bench_preset,$(WEB_FLAGS)) \
+		--shell-file web/bench.html -o $@ $(WEB_BENCH_SRC)
+
+bench-web: web
+	@sh tools/deps.sh npm
+	@$(MAKE) --no-print-directory $(WEB)/bench.html
+	@sh tools/bench-web.sh
 
 # The page in headless Chromium (WebGL 1 through SwiftShader): the runner
 # is the test harness built natively with tests/web/.

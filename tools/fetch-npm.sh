@@ -4,6 +4,7 @@
 # already there. The packages the assets and tables come from:
 #   d3-celestial 0.7.35 (BSD-3): star data (textures/README.md)
 #   astronomia 4.2.0 (MIT): the VSOP87 series (sky/planet_tables.c)
+#   three 0.162.0 (MIT): three.js's Sky, timed beside libsky (make bench-web)
 set -e
 name=${1:?usage: fetch-npm.sh NAME VERSION DIR FILE}
 version=${2:?usage: fetch-npm.sh NAME VERSION DIR FILE}
@@ -13,6 +14,6 @@ if [ -f "$dest/$file" ]; then exit 0; fi
 command -v npm >/dev/null 2>&1 || { echo "fetch-npm: npm is needed (apt-get install npm)" >&2; exit 1; }
 mkdir -p "$dest"
 cd "$dest"
-npm pack "$name@$version" >/dev/null
+npm pack --silent "$name@$version" >/dev/null
 tar xzf "$name-$version.tgz"
 rm -f "$name-$version.tgz"
