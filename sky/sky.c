@@ -280,7 +280,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
      * store, the VAO) is the host's again when sky_create returns */
     sky_gl_state_save(c, &host);
     saved = 1;
-    if (c->profile == SKY_GL_CORE33) s->vao = sky_gl_vertex_array_create(c);
+    if (c->caps.vertex_arrays) s->vao = sky_gl_vertex_array_create(c);
     c->dome_divisor = sky_dome_divisor_for(c);
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
     if (sky_atmosphere_create(c, err, err_len)) goto fail;

@@ -75,21 +75,35 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
     if (s->profile == SKY_GL_CORE33) {
         caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = caps->pixel_buffers = 1;
         caps->framebuffer_srgb = caps->unpack_rows = caps->rasterizer_discard = caps->derivatives = 1;
+        caps->vertex_arrays = 1;
         return GL_NO_ERROR;
     }
     if (s->profile == SKY_GL_ES20) {
         /* ES 2.0 has framebuffer objects in its core. Its spec allows
          * non-power-of-two textures clamped, linear and without mipmaps
          * (what the render images are), but Mesa without
-         * OES_texture_npot samples them black: only ES 3.0 or the
-         * extension is trusted with them. The rest arrived with ES 3.0. */
+         * OES_texture_npot samples them black: only ES 3.0, the
+         * extension, or WebGL (whose conformance tests hold browsers to
+         * them) is trusted with them. The rest arrived with ES 3.0. */
         caps->es = 1;
         caps->render_to_rgba8 = gl->glGenFramebuffers && gl->glDeleteFramebuffers && gl->glBindFramebuffer &&
                                 gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus;
-        caps->npot = gl_ver >= 30 || has_extension(gl, "GL_OES_texture_npot");
+        caps->npot = gl_ver >= 30 || has_extension(gl, "GL_OES_texture_npot") || strstr(s->gl_version, "WebGL");
         caps->separate_framebuffers = caps->pixel_buffers = caps->unpack_rows = caps->rasterizer_discard =
             gl_ver >= 30;
         caps->derivatives = has_extension(gl, "GL_OES_standard_derivatives");
+        /* (a loader may hand out a stub for any name, so the version or
+         * the extension says whether the entry points work) */
+        if (gl_ver < 30 && has_extension(gl, "GL_OES_vertex_array_object")) {
+            sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
+            gl->glGenVertexArrays = (void(SKY_APIENTRY *)(GLsizei, GLuint *))gpa("glGenVertexArraysOES");
+            gl->glDeleteVertexArrays = (void(SKY_APIENTRY *)(GLsizei, const GLuint *))gpa("glDeleteVertexArraysOES");
+            gl->glBindVertexArray = (void(SKY_APIENTRY *)(GLuint))gpa("glBindVertexArrayOES");
+            caps->vertex_arrays = 1;
+        }
+        if (gl_ver >= 30) caps->vertex_arrays = 1;
+        caps->vertex_arrays = caps->vertex_arrays && gl->glGenVertexArrays && gl->glDeleteVertexArrays &&
+                              gl->glBindVertexArray;
         return drain_errors(gl);
     }
     caps->unpack_rows = caps->derivatives = 1;
@@ -824,10 +838,8 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
         if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &st->array_textures[i]);
     }
     gl->glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &st->array_buffer);
-    if (s->profile == SKY_GL_CORE33) gl->glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
+    if (s->caps.vertex_arrays) gl->glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &st->vao);
     gl->glGetIntegerv(GL_VIEWPORT, st->viewport);
-    gl->glGetIntegerv(GL_SCISSOR_BOX, st->scissor_box);
-    gl->glGetFloatv(GL_COLOR_CLEAR_VALUE, st->clear_color);
     st->blend = gl->glIsEnabled(GL_BLEND);
     st->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
     st->cull_face = gl->glIsEnabled(GL_CULL_FACE);
@@ -838,7 +850,16 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
         gl->glGetIntegerv(GL_POLYGON_MODE, st->polygon_mode);
     }
     if (s->caps.framebuffer_srgb) st->framebuffer_srgb = gl->glIsEnabled(GL_FRAMEBUFFER_SRGB);
-    gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
+    /* Queries a browser answers only by a round trip to its GPU process
+     * (about 0.1 ms each in Chromium) are made only for state the frame
+     * changes: the depth mask and function only where the sky is drawn
+     * with the depth test (without it no depth is written); the scissor
+     * box and clear colour in sky_gl_clear_viewport, their one user. */
+    st->depth_saved = s->cfg.depth != SKY_DEPTH_NONE;
+    if (st->depth_saved) {
+        gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
+        gl->glGetIntegerv(GL_DEPTH_FUNC, &st->depth_func);
+    }
     gl->glGetBooleanv(GL_COLOR_WRITEMASK, st->color_mask);
     gl->glGetIntegerv(GL_BLEND_SRC_RGB, &st->blend_src_rgb);
     gl->glGetIntegerv(GL_BLEND_DST_RGB, &st->blend_dst_rgb);
@@ -846,8 +867,7 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
     gl->glGetIntegerv(GL_BLEND_DST_ALPHA, &st->blend_dst_alpha);
     gl->glGetIntegerv(GL_BLEND_EQUATION_RGB, &st->blend_eq_rgb);
     gl->glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &st->blend_eq_alpha);
-    gl->glGetIntegerv(GL_DEPTH_FUNC, &st->depth_func);
-    if (s->profile != SKY_GL_CORE33) {
+    if (!s->caps.vertex_arrays) {
         /* No VAO of ours: the attribute arrays we use are global state (or
          * the state of a host's VAO left bound, put back into it). */
         gl->glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &st->element_buffer);
@@ -874,7 +894,7 @@ static void set_cap(const sky_gl *gl, GLenum cap, GLboolean on)
 void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
 {
     const sky_gl *gl = &s->gl;
-    if (s->profile != SKY_GL_CORE33) {
+    if (!s->caps.vertex_arrays) {
         gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, (GLuint)st->element_buffer);
         for (GLuint i = 0; i < SKY_ATTRIBS; i++) {
             gl->glBindBuffer(GL_ARRAY_BUFFER, (GLuint)st->attrib_buffer[i]);
@@ -905,8 +925,6 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
      * itself leaves then. */
     gl->glUseProgram(st->program && gl->glIsProgram((GLuint)st->program) ? (GLuint)st->program : 0u);
     gl->glViewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
-    gl->glScissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
-    gl->glClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);
     set_cap(gl, GL_BLEND, st->blend);
     set_cap(gl, GL_DEPTH_TEST, st->depth_test);
     set_cap(gl, GL_CULL_FACE, st->cull_face);
@@ -924,8 +942,10 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
             gl->glPolygonMode(GL_BACK, (GLenum)st->polygon_mode[1]);
         }
     }
-    gl->glDepthMask(st->depth_mask);
-    gl->glDepthFunc((GLenum)st->depth_func);
+    if (st->depth_saved) {
+        gl->glDepthMask(st->depth_mask);
+        gl->glDepthFunc((GLenum)st->depth_func);
+    }
     gl->glColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
     gl->glBlendFuncSeparate((GLenum)st->blend_src_rgb, (GLenum)st->blend_dst_rgb, (GLenum)st->blend_src_alpha,
                             (GLenum)st->blend_dst_alpha);
@@ -944,7 +964,7 @@ GLuint sky_gl_vertex_array_create(sky_core *s)
 
 void sky_gl_vertex_array_bind(sky_core *s, GLuint vao)
 {
-    if (s->profile == SKY_GL_CORE33) s->gl.glBindVertexArray(vao);
+    if (s->caps.vertex_arrays) s->gl.glBindVertexArray(vao);
 }
 
 void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao) { s->gl.glDeleteVertexArrays(1, &vao); }
@@ -953,14 +973,14 @@ void sky_gl_frame_begin(sky_core *s, GLuint vao)
 {
     const sky_gl *gl = &s->gl;
     if (s->cfg.depth == SKY_DEPTH_NONE) {
-        gl->glDisable(GL_DEPTH_TEST);
+        gl->glDisable(GL_DEPTH_TEST); /* (and so no depth written: the mask may stay the host's) */
     } else {
         gl->glEnable(GL_DEPTH_TEST);
         gl->glDepthFunc(s->cfg.depth == SKY_DEPTH_FAR_ONE ? GL_LEQUAL : GL_GEQUAL);
+        gl->glDepthMask(GL_FALSE);
     }
     gl->glDisable(GL_CULL_FACE);
     gl->glDisable(GL_STENCIL_TEST);
-    gl->glDepthMask(GL_FALSE);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->glDisable(GL_BLEND);
     if (!s->caps.es) gl->glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -999,12 +1019,18 @@ float sky_gl_point_size_max(sky_core *s)
 void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4])
 {
     const sky_gl *gl = &s->gl;
+    GLint box[4];
+    GLfloat colour[4];
+    gl->glGetIntegerv(GL_SCISSOR_BOX, box);
+    gl->glGetFloatv(GL_COLOR_CLEAR_VALUE, colour);
     gl->glEnable(GL_SCISSOR_TEST);
     gl->glScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     gl->glClear(GL_COLOR_BUFFER_BIT);
     gl->glDisable(GL_SCISSOR_TEST);
+    gl->glScissor(box[0], box[1], box[2], box[3]);
+    gl->glClearColor(colour[0], colour[1], colour[2], colour[3]);
 }
 
 void sky_gl_finish(sky_core *s) { s->gl.glFinish(); }

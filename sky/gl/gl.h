@@ -124,8 +124,8 @@ void sky_buffers_destroy(sky_core *s, const GLuint *buffers, const size_t *bytes
 /* Host GL state that sky_draw changes, saved and restored around it. */
 #define SKY_ATTRIBS 3 /* a_pos, a_dir, a_color */
 typedef struct sky_gl_state {
-    GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4], scissor_box[4];
-    GLfloat clear_color[4];
+    GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4];
+    int depth_saved; /* the depth mask and function: only with cfg.depth */
     GLint textures[4], cube_textures[4]; /* units 0..3: 2D and cube map bindings */
     GLint array_textures[4];             /* and 2D-array ones (CORE33)          */
     GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
@@ -140,16 +140,19 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st);
 void sky_gl_state_restore(sky_core *s, const sky_gl_state *st);
 
 /* ---- what a frame sets ------------------------------------------------------ */
-/* CORE33's vertex array (created bound), its binding, its release. */
+/* The sky's vertex array where the context has them (caps.vertex_arrays:
+ * CORE33, ES 3.0 or OES_vertex_array_object; created bound), its binding,
+ * its release. */
 GLuint sky_gl_vertex_array_create(sky_core *s);
 void sky_gl_vertex_array_bind(sky_core *s, GLuint vao);
 void sky_gl_vertex_array_destroy(sky_core *s, GLuint vao);
-/* The sky's own state for drawing: no depth write, and a depth test only
- * when it is drawn after the scene (cfg.depth: LEQUAL against a far plane
- * at 1, GEQUAL at 0), no culling or stencil, all colour channels, no blending, filled polygons, no sRGB
+/* The sky's own state for drawing: no depth write (no depth test; or,
+ * when it is drawn after the scene, cfg.depth's test, LEQUAL against a far
+ * plane at 1 or GEQUAL at 0, with the depth mask off), no culling or
+ * stencil, all colour channels, no blending, filled polygons, no sRGB
  * conversion by the framebuffer (LDR output is sRGB-encoded by the sky
- * itself, HDR output is linear), its vertex array (vao: CORE33's, 0 in
- * COMPAT20). */
+ * itself, HDR output is linear), its vertex array (vao: 0 where the
+ * context has none). */
 void sky_gl_frame_begin(sky_core *s, GLuint vao);
 /* How a layer's fragments combine with what is under them. */
 typedef enum sky_blend {
@@ -163,7 +166,8 @@ void sky_gl_blend(sky_core *s, sky_blend mode);
 void sky_gl_program_point_size(sky_core *s, int on);
 /* The largest point size the context draws (at least 1). */
 float sky_gl_point_size_max(sky_core *s);
-/* Clears the viewport's rectangle to black (the all-sky image's margin). */
+/* Clears the viewport's rectangle to black (the all-sky image's margin),
+ * the host's scissor box and clear colour put back after it. */
 void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4]);
 /* Waits for the GPU: per-layer timings, only when the host asked for them. */
 void sky_gl_finish(sky_core *s);

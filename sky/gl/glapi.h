@@ -278,6 +278,11 @@ typedef struct sky_gl_caps {
     int rasterizer_discard;    /* GL_RASTERIZER_DISCARD (3.0, ES 3.0)       */
     int derivatives;           /* fwidth in fragment shaders (desktop; ES
                                   through OES_standard_derivatives)         */
+    int vertex_arrays;         /* a VAO of the sky's own (CORE33; ES 3.0 or
+                                  OES_vertex_array_object): the host's
+                                  attribute state is then one binding to
+                                  save, not 21 queries (in a browser each
+                                  one costs)                               */
 } sky_gl_caps;
 
 #endif /* SKY_GLAPI_H */
