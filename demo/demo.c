@@ -467,6 +467,53 @@ static int simulate_drag(demo *d, const char *spec)
     return -1;
 }
 
+/* The readout's lines (each ended by a NUL, the last by two): where,
+ * when, the profile and path, the cost, the layers, the last error. */
+static void readout(demo *d, char *lines, size_t len)
+{
+    char layer_ms[32];
+    size_t room = len > 124 ? len - 124 : 0; /* what the last lines may need */
+    sky_stats st;
+    sky_astronomy a;
+    sky_get_stats(d->s, &st);
+    sky_get_astronomy(d->s, &a);
+    int y, m, dd;
+    double frac;
+    sky_calendar(a.julian_day_ut, &y, &m, &dd, &frac);
+    int used = snprintf(lines, len, "%04d-%02d-%02d %02d:%02d UTC  lat %.1f lon %.1f%c", y, m, dd,
+                        (int)(frac * 24), (int)(frac * 1440) % 60, d->cli.observer.latitude_deg,
+                        d->cli.observer.longitude_deg, 0);
+    used += snprintf(lines + used, len - (size_t)used, "sun %.1f deg  moon %.1f deg, %.0f %% lit%c",
+                     a.sun.alt_deg, a.moon.alt_deg, 100 * a.moon_illuminated_fraction, 0);
+    if (a.solar_obscuration > 0.0)
+        used += snprintf(lines + used, len - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
+                         100 * a.solar_obscuration, a.solar_magnitude, 0);
+    static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
+    used += snprintf(lines + used, len - (size_t)used, "%s  atmosphere %s  tone map %s%c",
+                     st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : st.profile == SKY_GL_ES20 ? "GL ES 2.0" : "GL 2.0",
+                     atmosphere_name(d->atmosphere), tone_maps[d->cli.tone_map], 0);
+    used += snprintf(lines + used, len - (size_t)used, "fov %.0f  time %s x%.0f%c", d->cli.fov,
+                     d->running ? "running" : "paused", d->time_rate * 86400.0, 0);
+    /* the cost: the sky's GPU frame time as sky-bench measures it, and
+     * the frame rate of the window */
+    double gpu_ms = timer_ms(&d->timer), fps = timer_fps(&d->timer);
+    char ms_text[32] = "--", fps_text[32] = "--"; /* nothing measured yet */
+    if (gpu_ms >= 0.0) snprintf(ms_text, sizeof ms_text, "%.2f", gpu_ms);
+    if (fps > 0.0) snprintf(fps_text, sizeof fps_text, "%.0f", fps);
+    used += snprintf(lines + used, len - (size_t)used, "sky %s ms GPU (%s)  %s fps%c", ms_text,
+                     timer_method(&d->timer), fps_text, 0);
+    used += snprintf(lines + used, len - (size_t)used, "%zu KiB GPU memory  %d draws%c",
+                     st.gpu_bytes / 1024, st.draws_per_frame, 0);
+    for (int l = 0; l < SKY_LAYER_COUNT && (size_t)used < room; l++)
+        if (st.layers[l].enabled)
+            used += snprintf(lines + used, len - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
+                             st.layers[l].ms >= 0 ? (snprintf(layer_ms, sizeof layer_ms, "%.2f ms", st.layers[l].ms), layer_ms)
+                                                  : (st.layers[l].drawn ? "on" : "idle"), 0);
+    if (d->message[0] && (size_t)used < room)
+        used += snprintf(lines + used, len - (size_t)used, "%.100s%c", d->message, 0);
+    lines[used] = '\0';
+}
+
 /* One frame of the window: input hooks, a rebuilt sky or context when
  * asked, the sky, the overlay and its readout. Returns 1 to go on, 0 when
  * the demo is done (d->status says how). */
@@ -539,47 +586,9 @@ static int demo_frame(demo *d)
     int drawn = d->cli.fisheye ? sky_draw_fisheye(d->s) : sky_draw(d->s, view, proj);
     timer_end(&d->timer);
     if (drawn < 0) fprintf(stderr, "sky-demo: %s\n", sky_last_error(d->s));
-    /* the readout: where, when, cost */
-    sky_stats st;
-    sky_astronomy a;
-    sky_get_stats(d->s, &st);
-    sky_get_astronomy(d->s, &a);
-    int y, m, dd;
-    double frac;
-    sky_calendar(a.julian_day_ut, &y, &m, &dd, &frac);
     char lines[1024];
-    int used = snprintf(lines, sizeof lines, "%04d-%02d-%02d %02d:%02d UTC  lat %.1f lon %.1f%c", y, m, dd,
-                        (int)(frac * 24), (int)(frac * 1440) % 60, d->cli.observer.latitude_deg,
-                        d->cli.observer.longitude_deg, 0);
-    used += snprintf(lines + used, sizeof lines - (size_t)used, "sun %.1f deg  moon %.1f deg, %.0f %% lit%c",
-                     a.sun.alt_deg, a.moon.alt_deg, 100 * a.moon_illuminated_fraction, 0);
-    if (a.solar_obscuration > 0.0)
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "solar eclipse: %.1f %% covered, magnitude %.3f%c",
-                         100 * a.solar_obscuration, a.solar_magnitude, 0);
-    static const char *const tone_maps[3] = {"hue", "filmic", "neutral"};
-    used += snprintf(lines + used, sizeof lines - (size_t)used, "%s  atmosphere %s  tone map %s%c",
-                     st.profile == SKY_GL_CORE33 ? "GL 3.3 core" : st.profile == SKY_GL_ES20 ? "GL ES 2.0" : "GL 2.0", atmosphere_name(d->atmosphere),
-                     tone_maps[d->cli.tone_map], 0);
-    used += snprintf(lines + used, sizeof lines - (size_t)used, "fov %.0f  time %s x%.0f%c", d->cli.fov,
-                     d->running ? "running" : "paused", d->time_rate * 86400.0, 0);
-    /* the cost: the sky's GPU frame time as sky-bench measures it, and
-     * the frame rate of the window */
+    readout(d, lines, sizeof lines);
     double gpu_ms = timer_ms(&d->timer), fps = timer_fps(&d->timer);
-    char ms_text[32] = "--", fps_text[32] = "--"; /* nothing measured yet */
-    if (gpu_ms >= 0.0) snprintf(ms_text, sizeof ms_text, "%.2f", gpu_ms);
-    if (fps > 0.0) snprintf(fps_text, sizeof fps_text, "%.0f", fps);
-    used += snprintf(lines + used, sizeof lines - (size_t)used, "sky %s ms GPU (%s)  %s fps%c", ms_text,
-                     timer_method(&d->timer), fps_text, 0);
-    used += snprintf(lines + used, sizeof lines - (size_t)used, "%zu KiB GPU memory  %d draws%c",
-                     st.gpu_bytes / 1024, st.draws_per_frame, 0);
-    for (int l = 0; l < SKY_LAYER_COUNT && used < 900; l++)
-        if (st.layers[l].enabled)
-            used += snprintf(lines + used, sizeof lines - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
-                             st.layers[l].ms >= 0 ? (snprintf(err, sizeof err, "%.2f ms", st.layers[l].ms), err)
-                                                  : (st.layers[l].drawn ? "on" : "idle"), 0);
-    if (d->message[0] && used < 900)
-        used += snprintf(lines + used, sizeof lines - (size_t)used, "%.100s%c", d->message, 0);
-    lines[used] = '\0';
     ui_draw(d->overlay, fw, fh, d->values, d->slider, lines);
     if (d->save || (d->automated && frame + 1 >= d->cli.frames)) {
         const char *path = d->automated ? d->cli.screenshot : "sky-demo.png";
