@@ -34,8 +34,8 @@ static OSMesaContext make_context(int core)
     return OSMesaCreateContextAttribs(attribs, NULL);
 }
 
-/* An OpenGL ES 2 context on Mesa's surfaceless EGL platform, drawing into
- * a pbuffer of the image's size. */
+/* GL's entry points in an EGL context (core names included, as Mesa's
+ * EGL gives them). */
 static sky_gl_proc egl_loader(const char *name) { return (sky_gl_proc)eglGetProcAddress(name); }
 
 /* ES's float colour target: an RGBA32F texture behind a framebuffer,
@@ -74,6 +74,8 @@ static const char *egl_float_target(sky_osmesa *o)
     return NULL;
 }
 
+/* An OpenGL ES 2 context on Mesa's surfaceless EGL platform, drawing into
+ * a pbuffer of the image's size (or, is_float, the float target). */
 static int egl_create(sky_osmesa *o, int width, int height, int is_float, char *err, size_t err_len)
 {
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
