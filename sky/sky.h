@@ -161,18 +161,24 @@ typedef enum sky_gl_profile {
                           fade and the sun's edge; without it an estimate
                           from the pixel's angular size), framebuffer
                           objects (ES 2.0 core: the dome at a fraction of
-                          the resolution, capture), highp in the fragment
+                          the resolution, capture), OES_texture_npot (or
+                          ES 3.0, or WebGL: that image at its own size),
+                          OES_vertex_array_object (or ES 3.0: a VAO of
+                          its own, so the host's attribute arrays need
+                          not be saved one by one), highp in the fragment
                           stage (GL_FRAGMENT_PRECISION_HIGH; without it the
                           shaders compile at mediump, where the sun's disc,
                           past 2^14 kcd/m^2, is not yet scaled down and
-                          clips: untested). HDR output stops at 65504
+                          clips, and a night below 2^-14 kcd/m^2 may go
+                          black: untested). HDR output stops at 65504
                           kcd/m^2 there (gl_FragColor is mediump in GLSL
-                          ES 1.00): the sun's disc saturates. No VAO, float texture, texture LOD or
-                          desktop-only entry point (glPolygonMode,
-                          glGetTexImage, glGetTexLevelParameteriv) is
-                          used. sky_capture_environment into the host's
-                          cube map cannot check its size there (ES 2.0
-                          has no query): it must be face_size.           */
+                          ES 1.00): the sun's disc saturates. No float
+                          texture, texture LOD or desktop-only entry point
+                          (glPolygonMode, glGetTexImage,
+                          glGetTexLevelParameteriv) is used.
+                          sky_capture_environment into the host's cube map
+                          cannot check its size there (ES 2.0 has no
+                          query): it must be face_size.                  */
 } sky_gl_profile;
 
 /* How LDR output turns the sky's light into 8-bit colour (HDR output is
