@@ -103,16 +103,39 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
  * back face by face into a 4N x 3N cross, written as one PNG: +Y above
  * +Z; -X, +Z, +X, -Z across; -Y below; each face with its first row (GL's
  * t = 0) at the top, so that neighbouring faces meet edge to edge. */
+/* ES 2.0 has no glGetTexImage: face f of cube map tex is read through a
+ * framebuffer it is attached to (rows from t = 0, as glGetTexImage gives
+ * them). The entry points come from the context's loader: the EGL
+ * context's are not the symbols this program links. Returns 0 or -1. */
+static int read_face_es(const sky_osmesa *ctx, unsigned tex, int f, int n, unsigned char *face)
+{
+    sky_get_proc_address_fn gpa = sky_headless_loader(ctx);
+    void (*gen)(GLsizei, GLuint *) = (void (*)(GLsizei, GLuint *))gpa("glGenFramebuffers");
+    void (*del)(GLsizei, const GLuint *) = (void (*)(GLsizei, const GLuint *))gpa("glDeleteFramebuffers");
+    void (*bind)(GLenum, GLuint) = (void (*)(GLenum, GLuint))gpa("glBindFramebuffer");
+    void (*attach)(GLenum, GLenum, GLenum, GLuint, GLint) =
+        (void (*)(GLenum, GLenum, GLenum, GLuint, GLint))gpa("glFramebufferTexture2D");
+    void (*pack)(GLenum, GLint) = (void (*)(GLenum, GLint))gpa("glPixelStorei");
+    void (*read)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *) =
+        (void (*)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *))gpa("glReadPixels");
+    GLenum (*error)(void) = (GLenum(*)(void))gpa("glGetError");
+    if (!gen || !del || !bind || !attach || !pack || !read || !error) return -1;
+    GLuint fbo = 0;
+    gen(1, &fbo);
+    bind(0x8D40 /* GL_FRAMEBUFFER */, fbo);
+    attach(0x8D40, 0x8CE0 /* GL_COLOR_ATTACHMENT0 */, GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, tex, 0);
+    pack(GL_PACK_ALIGNMENT, 1);
+    read(0, 0, n, n, GL_RGBA, GL_UNSIGNED_BYTE, face);
+    bind(0x8D40, 0);
+    del(1, &fbo);
+    return error() == GL_NO_ERROR ? 0 : -1;
+}
+
 static int render_capture(const sky_cli *cli)
 {
     static const int cell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}}; /* +X -X +Y -Y +Z -Z */
     int n = cli->capture, w = 4 * n, h = 3 * n;
     char err[512];
-    if (cli->gl == SKY_GL_ES20) { /* the faces are read back with glGetTexImage */
-        fprintf(stderr, "sky-render: --capture with --gl es20: OpenGL ES 2.0 cannot read a cube map back "
-                "(no glGetTexImage); use --gl core or compat\n");
-        return 2;
-    }
     sky_osmesa ctx;
     if (sky_osmesa_create(&ctx, w, h, cli->gl, 0, err, sizeof err)) {
         fprintf(stderr, "sky-render: %s\n", err);
@@ -135,18 +158,23 @@ static int render_capture(const sky_cli *cli)
     unsigned char *px = ctx.pixels; /* bottom row first */
     if (!rc) {
         memset(px, 0, (size_t)w * (size_t)h * 4);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(s));
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        for (int f = 0; f < 6; f++) {
-            glGetTexImage(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA, GL_UNSIGNED_BYTE, face);
+        if (!ctx.is_es) {
+            glBindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(s));
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        }
+        for (int f = 0; f < 6 && !rc; f++) {
+            if (ctx.is_es)
+                rc = read_face_es(&ctx, sky_environment_texture(s), f, n, face);
+            else
+                glGetTexImage(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)f, 0, GL_RGBA, GL_UNSIGNED_BYTE, face);
             for (int t = 0; t < n; t++) {
                 int row = h - 1 - (cell[f][1] * n + t);
                 memcpy(px + ((size_t)row * (size_t)w + (size_t)cell[f][0] * (size_t)n) * 4, face + (size_t)t * n * 4,
                        (size_t)n * 4);
             }
         }
-        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
-        if (glGetError() != GL_NO_ERROR) {
+        if (!ctx.is_es) glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+        if (rc || (!ctx.is_es && glGetError() != GL_NO_ERROR)) {
             fprintf(stderr, "sky-render: reading the cube map back failed\n");
             rc = 1;
         }

@@ -23,6 +23,7 @@ void test_es20_every_path_with_every_layer(void);
 void test_es20_state_restored(void);
 void test_es20_profile_mismatch_is_an_error(void);
 void test_es20_aerial_snippet(void);
+void test_es20_capture_cross(void);
 
 double image_psnr(const image *a, const image *b);
 
@@ -546,4 +547,31 @@ void test_es20_aerial_snippet(void)
     CHECK(gl.GetError() == GL_NO_ERROR, "no GL error");
     sky_destroy(s);
     sky_osmesa_destroy(&ctx);
+}
+
+/* sky-render --capture under ES20: the faces read back through a
+ * framebuffer (ES 2.0 has no glGetTexImage), the cross COMPAT20's. */
+void test_es20_capture_cross(void)
+{
+    char bin[512], es_png[512], compat_png[512], cmd[2048], out[4096];
+    bin_path("sky-render", bin, sizeof bin);
+    tmp_path("cross-es.png", es_png, sizeof es_png);
+    tmp_path("cross-compat.png", compat_png, sizeof compat_png);
+    snprintf(cmd, sizeof cmd, ES2 "%s --gl es20 --capture 32 --preset sunset --time 0.7 --out %s 2>&1", bin, es_png);
+    int rc1 = run_command(cmd, out, sizeof out);
+    CHECK(rc1 == 0, "the ES20 capture exits 0: %s", out);
+    snprintf(cmd, sizeof cmd, "%s --gl compat --capture 32 --preset sunset --time 0.7 --out %s 2>&1", bin, compat_png);
+    int rc2 = run_command(cmd, out, sizeof out);
+    CHECK(rc2 == 0, "the COMPAT20 capture exits 0: %s", out);
+    image a, b;
+    if (rc1 || rc2 || image_load_png(es_png, &a)) return;
+    if (!image_load_png(compat_png, &b)) {
+        double psnr = image_psnr(&a, &b);
+        NOTE("the cube cross: ES20 against COMPAT20 PSNR %.1f dB", psnr);
+        CHECK(a.w == 128 && a.h == 96 && psnr >= 40.0, "%dx%d cross, PSNR %.1f dB", a.w, a.h, psnr);
+        image_free(&b);
+    }
+    image_free(&a);
+    remove(es_png);
+    remove(compat_png);
 }
