@@ -205,6 +205,12 @@ typedef struct sky_frame {
     float dome_scale[2];     /* the share of the texture it uses, per axis       */
     /* the sun (sun.c) */
     float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
+    float sun_disc[3];       /* the disc's centre as drawn: sun_luminance x the
+                                transmittance, kcd/m^2 (under mediump kept
+                                within its 2^14, where the disc is white
+                                anyway)                                          */
+    float sun_glare[3];      /* the glare's peak, 5e-6 of the unclamped centre
+                                x the transmittance                              */
     float sun_radius;        /* angular radius of the drawn disc, radians        */
     float sun_true_dir[3];   /* the sun's centre without refraction              */
     /* clouds (clouds.c, R-P sec. 3.1) */

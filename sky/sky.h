@@ -166,11 +166,13 @@ typedef enum sky_gl_profile {
                           OES_vertex_array_object (or ES 3.0: a VAO of
                           its own, so the host's attribute arrays need
                           not be saved one by one), highp in the fragment
-                          stage (GL_FRAGMENT_PRECISION_HIGH; without it the
-                          shaders compile at mediump, where the sun's disc,
-                          past 2^14 kcd/m^2, is not yet scaled down and
-                          clips, and a night below 2^-14 kcd/m^2 may go
-                          black: untested). HDR output stops at 65504
+                          stage (glGetShaderPrecisionFormat; without it the
+                          fragment stage runs at mediump, the uniforms both
+                          stages declare are mediump in both, and the
+                          sun's disc reaches it within mediump's 2^14: a
+                          day is drawn as with highp, a night not yet, its
+                          exposure and light being outside mediump's
+                          range). HDR output stops at 65504
                           kcd/m^2 there (gl_FragColor is mediump in GLSL
                           ES 1.00): the sun's disc saturates. No float
                           texture, texture LOD or desktop-only entry point

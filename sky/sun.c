@@ -49,7 +49,8 @@ double sky_sun_illuminance_klx(const sky_core *s)
 
 static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
-    SKY_UF("u_sun_luminance", SKY_U_F1, sun_luminance),
+    SKY_UF("u_sun_disc", SKY_U_F3, sun_disc),
+    SKY_UF("u_sun_glare", SKY_U_F3, sun_glare),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
 };
@@ -85,6 +86,16 @@ static void sun_frame(sky_core *s, void *state)
     f->sun_radius = (float)a->sun_topo_semidiameter;
     double centre = sun_centre_luminance();
     f->sun_luminance = (float)centre;
+    /* The light reaches the shader as drawn: luminance 1.6e6 kcd/m^2 is
+     * past the 2^14 of a mediump fragment stage (GLSL ES 1.00 without
+     * highp), and the glare's 5e-6 of it must not be taken from a clamped
+     * value. */
+    double most = s->caps.fragment_highp ? 3e38 : 16384.0;
+    for (int i = 0; i < 3; i++) {
+        double t = f->sun_transmittance[i];
+        f->sun_disc[i] = (float)fmin(centre * t, most);
+        f->sun_glare[i] = (float)(5e-6 * centre * t);
+    }
     /* the disc is drawn where refraction puts each of its points
      * (sun.frag): it needs the centre's true direction */
     for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)a->sun.dir_geometric[i];

@@ -53,6 +53,7 @@ int test_skipped;
     X(es20_profile_mismatch_is_an_error)         \
     X(es20_aerial_snippet)                       \
     X(es20_capture_cross)                        \
+    X(es20_mediump_fragment_stage)               \
     X(es20_presets_match_compat20)               \
     X(es20_without_optional_extensions)          \
     X(es20_every_path_with_every_layer)          \

@@ -75,7 +75,7 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
     if (s->profile == SKY_GL_CORE33) {
         caps->render_to_rgba8 = caps->npot = caps->separate_framebuffers = caps->pixel_buffers = 1;
         caps->framebuffer_srgb = caps->unpack_rows = caps->rasterizer_discard = caps->derivatives = 1;
-        caps->vertex_arrays = 1;
+        caps->vertex_arrays = caps->fragment_highp = 1;
         return GL_NO_ERROR;
     }
     if (s->profile == SKY_GL_ES20) {
@@ -92,6 +92,12 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
         caps->separate_framebuffers = caps->pixel_buffers = caps->unpack_rows = caps->rasterizer_discard =
             gl_ver >= 30;
         caps->derivatives = has_extension(gl, "GL_OES_standard_derivatives");
+        /* ES 2.0 need not have highp in the fragment stage (a Mali-400
+         * has not); its query is core there */
+        GLint range[2] = {0, 0}, bits = 0;
+        if (gl->glGetShaderPrecisionFormat)
+            gl->glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_HIGH_FLOAT, range, &bits);
+        caps->fragment_highp = !gl->glGetShaderPrecisionFormat || bits > 0;
         /* (a loader may hand out a stub for any name, so the version or
          * the extension says whether the entry points work) */
         if (gl_ver < 30 && has_extension(gl, "GL_OES_vertex_array_object")) {
@@ -106,7 +112,7 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
                               gl->glBindVertexArray;
         return drain_errors(gl);
     }
-    caps->unpack_rows = caps->derivatives = 1;
+    caps->unpack_rows = caps->derivatives = caps->fragment_highp = 1;
     caps->rasterizer_discard = gl_ver >= 30;
     caps->pixel_buffers = gl_ver >= 21 || has_extension(gl, "GL_ARB_pixel_buffer_object");
     caps->framebuffer_srgb = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_sRGB") ||
@@ -258,31 +264,41 @@ const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
 
 /* The version prologue: one GLSL source per stage serves every profile.
  * GLSL ES 1.00 wants a default float precision in the fragment stage:
- * highp where the stage has it (the sky's light spans far more than
- * mediump's 2^14), and its fwidth through OES_standard_derivatives. */
+ * highp where the stage has it (caps.fragment_highp: the sky's light spans
+ * far more than mediump's 2^14, and the uniforms are kept within it
+ * without), and its fwidth through OES_standard_derivatives. */
 #define SKY_ES_MACROS "#define SKY_ES 1\n#define SKY_TEX2D texture2D\n#define SKY_TEXCUBE textureCube\n"
-#define SKY_ES_PRECISION                                                                       \
-    "#ifdef GL_FRAGMENT_PRECISION_HIGH\nprecision highp float;\n#else\nprecision mediump float;\n#endif\n"
+#define SKY_ES_FRAGMENT "#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_FRAG_COLOR gl_FragColor\n"
+#define SKY_ES_DERIVATIVES "#extension GL_OES_standard_derivatives : enable\n"
+#define SKY_ES_HIGHP "precision highp float;\n#define SKY_UP\n"
+/* Without highp in the fragment stage the uniforms both stages declare
+ * are mediump in both (GLSL ES 1.00 links them only at one precision):
+ * SKY_UP qualifies every uniform; the vertex stage's own values stay highp. */
+#define SKY_ES_MEDIUMP "precision mediump float;\n#define SKY_MEDIUMP 1\n#define SKY_UP mediump\n"
 static const char *prologue(const sky_core *s, int fragment)
 {
     if (s->profile == SKY_GL_ES20) {
-        if (!fragment) return "#version 100\nprecision highp float;\n" SKY_ES_MACROS
-                              "#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
-        return s->caps.derivatives
-                   ? "#version 100\n#extension GL_OES_standard_derivatives : enable\n" SKY_ES_PRECISION SKY_ES_MACROS
-                     "#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_FRAG_COLOR gl_FragColor\n"
-                   : "#version 100\n" SKY_ES_PRECISION SKY_ES_MACROS "#define SKY_NO_DERIVATIVES 1\n"
-                     "#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_FRAG_COLOR gl_FragColor\n";
+        static const char *const fragment_stage[2][2] = { /* [derivatives][highp] */
+            {"#version 100\n" SKY_ES_MEDIUMP SKY_ES_MACROS "#define SKY_NO_DERIVATIVES 1\n" SKY_ES_FRAGMENT,
+             "#version 100\n" SKY_ES_HIGHP SKY_ES_MACROS "#define SKY_NO_DERIVATIVES 1\n" SKY_ES_FRAGMENT},
+            {"#version 100\n" SKY_ES_DERIVATIVES SKY_ES_MEDIUMP SKY_ES_MACROS SKY_ES_FRAGMENT,
+             "#version 100\n" SKY_ES_DERIVATIVES SKY_ES_HIGHP SKY_ES_MACROS SKY_ES_FRAGMENT}};
+        if (!fragment)
+            return s->caps.fragment_highp
+                       ? "#version 100\n" SKY_ES_HIGHP SKY_ES_MACROS "#define SKY_ATTR attribute\n#define SKY_OUT varying\n"
+                       : "#version 100\nprecision highp float;\n#define SKY_UP mediump\n" SKY_ES_MACROS
+                         "#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
+        return fragment_stage[s->caps.derivatives != 0][s->caps.fragment_highp != 0];
     }
     if (s->profile == SKY_GL_CORE33)
-        return fragment ? "#version 330 core\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
+        return fragment ? "#version 330 core\n#define SKY_UP\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
                           "#define SKY_TEX2D texture\n#define SKY_TEXCUBE texture\nout vec4 sky_frag_color;\n"
                           "#define SKY_FRAG_COLOR sky_frag_color\n"
-                        : "#version 330 core\n#define SKY_CORE 1\n#define SKY_ATTR in\n#define SKY_OUT out\n";
-    return fragment ? "#version 110\n#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_TEX2D texture2D\n"
+                        : "#version 330 core\n#define SKY_UP\n#define SKY_CORE 1\n#define SKY_ATTR in\n#define SKY_OUT out\n";
+    return fragment ? "#version 110\n#define SKY_UP\n#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_TEX2D texture2D\n"
                       "#define SKY_TEXCUBE textureCube\n"
                       "#define SKY_FRAG_COLOR gl_FragColor\n"
-                    : "#version 110\n#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
+                    : "#version 110\n#define SKY_UP\n#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
 }
 
 static GLuint compile(sky_core *s, GLenum type, const char *const *parts, int count, char *err, size_t err_len)

@@ -157,6 +157,7 @@ typedef ptrdiff_t GLintptr;
 #define GL_CONTEXT_PROFILE_MASK 0x9126
 #define GL_CONTEXT_CORE_PROFILE_BIT 0x00000001
 #define GL_COLOR_BUFFER_BIT 0x00004000
+#define GL_HIGH_FLOAT 0x8DF2
 
 /* X-macro list: return type, name, parameters. GL 2.0 entry points first;
  * the GL 3.x ones are loaded only for CORE33 (or for the host's FBO use). */
@@ -253,7 +254,8 @@ typedef ptrdiff_t GLintptr;
     X(void, glDrawBuffers, (GLsizei n, const GLenum *bufs))                                   \
     X(void, glBindFragDataLocation, (GLuint p, GLuint color, const GLchar *name))             \
     X(void, glTexImage3D, (GLenum target, GLint level, GLint ifmt, GLsizei w, GLsizei h,      \
-                           GLsizei d, GLint border, GLenum fmt, GLenum type, const void *data))
+                           GLsizei d, GLint border, GLenum fmt, GLenum type, const void *data))   \
+    X(void, glGetShaderPrecisionFormat, (GLenum stage, GLenum precision, GLint *range, GLint *bits))
 
 typedef struct sky_gl {
 #define SKY_GL_MEMBER(ret, name, params) ret(SKY_APIENTRY *name) params;
@@ -278,6 +280,10 @@ typedef struct sky_gl_caps {
     int rasterizer_discard;    /* GL_RASTERIZER_DISCARD (3.0, ES 3.0)       */
     int derivatives;           /* fwidth in fragment shaders (desktop; ES
                                   through OES_standard_derivatives)         */
+    int fragment_highp;        /* highp floats in the fragment stage (desktop
+                                  always; ES where glGetShaderPrecisionFormat
+                                  says so): without them the shaders run at
+                                  mediump, within 2^14                      */
     int vertex_arrays;         /* a VAO of the sky's own (CORE33; ES 3.0 or
                                   OES_vertex_array_object): the host's
                                   attribute state is then one binding to

@@ -1,7 +1,7 @@
 /* airglow.glsl: the upper atmosphere's own light (airglow.c), a thin
  * shell brighter toward the horizon by the van Rhijn factor; dome.frag
  * dims it by the air below (sky_night_extinction). */
-uniform vec4 u_airglow; /* rgb: zenith kcd/m^2 above the air; a: (R / (R + h))^2 */
+uniform SKY_UP vec4 u_airglow; /* rgb: zenith kcd/m^2 above the air; a: (R / (R + h))^2 */
 
 vec3 sky_airglow(vec3 d)
 {

@@ -1,15 +1,15 @@
 /* atmosphere.glsl: what every atmosphere path shares: the night sky's own
  * light, the darkening below the horizon, and the air-mass extinction the
  * non-physical paths use for light from behind the atmosphere. */
-uniform vec3 u_night_floor;      /* zenith kcd/m^2 of the stars fainter than the
+uniform SKY_UP vec3 u_night_floor;      /* zenith kcd/m^2 of the stars fainter than the
                                     star map and the moonlit air (atmosphere.c) */
-uniform vec3 u_artificial_glow;  /* zenith kcd/m^2 of light pollution          */
-uniform vec3 u_night_depth;      /* the air's zenith optical depths             */
-uniform vec3 u_night_shell;      /* observer radius, shell top, thickness (km)  */
-uniform vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light left,
+uniform SKY_UP vec3 u_artificial_glow;  /* zenith kcd/m^2 of light pollution          */
+uniform SKY_UP vec3 u_night_depth;      /* the air's zenith optical depths             */
+uniform SKY_UP vec3 u_night_shell;      /* observer radius, shell top, thickness (km)  */
+uniform SKY_UP vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light left,
                                      yzw the extra left at the horizon (rgb) */
-uniform vec3 u_ground;            /* kcd/m^2: the ground lit by sun and sky     */
-uniform vec3 u_horizon;           /* kcd/m^2: the sky just above the horizon, its
+uniform SKY_UP vec3 u_ground;            /* kcd/m^2: the ground lit by sun and sky     */
+uniform SKY_UP vec3 u_horizon;           /* kcd/m^2: the sky just above the horizon, its
                                      mean over azimuth                        */
 
 /* A solar eclipse dims the day sky by the light the moon hides (x). Around

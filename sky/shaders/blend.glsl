@@ -2,7 +2,7 @@
  * sky_config.blend_partner asks for it: atmosphere.c includes that one's
  * snippet) and Hillaire's table mixed by one weight per frame
  * (atmosphere.c): automatic from the sun's elevation, or the host's. */
-uniform float u_blend_weight; /* 0 analytic .. 1 Hillaire */
+uniform SKY_UP float u_blend_weight; /* 0 analytic .. 1 Hillaire */
 
 /* the sky around the analytic radiance already evaluated (the dome's
  * Rayleigh integrals come per vertex: rayleigh.glsl) */

@@ -7,16 +7,16 @@
  * per pixel from them (sky_clouds_at); the small quads of the sun, moon
  * and stars evaluate them per pixel from the direction (sky_clouds). */
 uniform sampler2D u_clouds_tex;
-uniform float u_cover, u_density, u_sunset;
-uniform float u_cloud_uv_scale;      /* from the height slider               */
-uniform float u_cloud_texels_per_step; /* 512 over the viewport pixels a
+uniform SKY_UP float u_cover, u_density, u_sunset;
+uniform SKY_UP float u_cloud_uv_scale;      /* from the height slider               */
+uniform SKY_UP float u_cloud_texels_per_step; /* 512 over the viewport pixels a
                                         fragment step spans (clouds.c)      */
-uniform float u_dome_step_pixels;    /* those pixels in the dome's image    */
-uniform vec2 u_cloud_offset0, u_cloud_offset1, u_cloud_offset_upper;
-uniform vec3 u_cloud_light;          /* kcd/m^2 of a white cloud: R-P's
+uniform SKY_UP float u_dome_step_pixels;    /* those pixels in the dome's image    */
+uniform SKY_UP vec2 u_cloud_offset0, u_cloud_offset1, u_cloud_offset_upper;
+uniform SKY_UP vec3 u_cloud_light;          /* kcd/m^2 of a white cloud: R-P's
                                         amount_sunlight, tinted             */
-uniform vec3 u_sunset_color;
-uniform float u_sunset_gradient[33]; /* SKY_SUNSET_SAMPLES of the alpha
+uniform SKY_UP vec3 u_sunset_color;
+uniform SKY_UP float u_sunset_gradient[33]; /* SKY_SUNSET_SAMPLES of the alpha
                                         channel across 0..1 (clouds.c)      */
 
 /* The cloud dome: a sphere of radius R (in units of the cloud height) whose

@@ -3,18 +3,18 @@
  * SKY_FRAG_COLOR so one source serves GLSL 110, GLSL 330 and GLSL ES 1.00
  * (which also gets its precision there, and SKY_NO_DERIVATIVES where the
  * context has no OES_standard_derivatives). */
-uniform float u_exposure;    /* LDR: scale from kcd/m^2 to tone-map input       */
-uniform float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither    */
-uniform float u_fisheye;     /* 1: equidistant all-sky mapping                   */
-uniform vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
-uniform vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
-uniform float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
-uniform mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
-uniform vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
-uniform float u_pixel_angle; /* radians per pixel at the view centre             */
-uniform float u_far_z;       /* clip z / w of the host's far plane: 1, or for
+uniform SKY_UP float u_exposure;    /* LDR: scale from kcd/m^2 to tone-map input       */
+uniform SKY_UP float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither    */
+uniform SKY_UP float u_fisheye;     /* 1: equidistant all-sky mapping                   */
+uniform SKY_UP vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
+uniform SKY_UP vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
+uniform SKY_UP float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
+uniform SKY_UP mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
+uniform SKY_UP vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
+uniform SKY_UP float u_pixel_angle; /* radians per pixel at the view centre             */
+uniform SKY_UP float u_far_z;       /* clip z / w of the host's far plane: 1, or for
                                 reversed-Z -1 (or 0 with a 0..1 clip range) */
-uniform float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
+uniform SKY_UP float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
 
 const float SKY_PI = 3.14159265;
 

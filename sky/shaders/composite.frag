@@ -8,8 +8,8 @@
  * one), and the rim is read from one and a half texels inside, where the
  * filter does not reach the image's black margin. */
 uniform sampler2D u_dome_tex;
-uniform vec2 u_dome_texel; /* 1 / its texture's width, height */
-uniform vec2 u_dome_scale; /* the share of the texture the image uses */
+uniform SKY_UP vec2 u_dome_texel; /* 1 / its texture's width, height */
+uniform SKY_UP vec2 u_dome_scale; /* the share of the texture the image uses */
 SKY_IN vec2 v_image;
 void main()
 {

@@ -1,7 +1,7 @@
 /* composite.vert: the dome's image (dome.c) over the whole viewport: a
  * quad of two triangles whose corners are the image's (the corner of its
  * texture it uses). */
-uniform vec2 u_dome_scale;
+uniform SKY_UP vec2 u_dome_scale;
 SKY_ATTR vec2 a_pos;
 SKY_OUT vec2 v_image;
 void main()

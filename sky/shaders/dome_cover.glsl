@@ -3,8 +3,8 @@
  * fragment's place, filtered from the image, in place of evaluating the
  * clouds again. */
 uniform sampler2D u_dome_tex;
-uniform vec2 u_dome_texel; /* 1 / its texture's width, height */
-uniform vec2 u_dome_scale; /* the share of the texture the image uses */
+uniform SKY_UP vec2 u_dome_texel; /* 1 / its texture's width, height */
+uniform SKY_UP vec2 u_dome_scale; /* the share of the texture the image uses */
 
 float sky_front_cover(vec3 d)
 {

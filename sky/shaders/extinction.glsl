@@ -2,12 +2,12 @@
  * observer to space (rayleigh.c derives it), shared by the analytic sky,
  * Hillaire's and their blend: it dims the night layers behind the
  * atmosphere (Mueller sec. 5) without a texture. */
-uniform vec3 u_tau_rayleigh;    /* vertical optical depths above the observer */
-uniform vec3 u_tau_mie_sca;
-uniform vec3 u_tau_mie_ext;
-uniform vec3 u_tau_ozone;
-uniform vec3 u_chapman_x;       /* R_obs/H_R, R_obs/H_M, (R_obs / R_ozone)^2  */
-uniform vec3 u_sun_irradiance;  /* klx per channel above the atmosphere      */
+uniform SKY_UP vec3 u_tau_rayleigh;    /* vertical optical depths above the observer */
+uniform SKY_UP vec3 u_tau_mie_sca;
+uniform SKY_UP vec3 u_tau_mie_ext;
+uniform SKY_UP vec3 u_tau_ozone;
+uniform SKY_UP vec3 u_chapman_x;       /* R_obs/H_R, R_obs/H_M, (R_obs / R_ozone)^2  */
+uniform SKY_UP vec3 u_sun_irradiance;  /* klx per channel above the atmosphere      */
 
 /* Chapman's grazing-incidence function for mu >= 0: the column along the
  * ray over the vertical one, sqrt(pi X / 2) erfcx(mu sqrt(X / 2)), with

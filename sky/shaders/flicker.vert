@@ -6,9 +6,9 @@
  * the phase, so I = R (1 + B sin(2 pi (G t + A))). The point reproduces
  * the texel as bilinear filtering drew it: a tent one texel wide on each
  * side, in pixels. */
-uniform float u_star_luminance;  /* kcd/m^2 of a texel of intensity 1 (flicker.c) */
-uniform float u_flicker_phase;   /* 255 * (rate_max * t / 255 mod 1), see flicker.c */
-uniform float u_point_max;       /* the largest point size drawn               */
+uniform SKY_UP float u_star_luminance;  /* kcd/m^2 of a texel of intensity 1 (flicker.c) */
+uniform SKY_UP float u_flicker_phase;   /* 255 * (rate_max * t / 255 mod 1), see flicker.c */
+uniform SKY_UP float u_point_max;       /* the largest point size drawn               */
 SKY_ATTR vec2 a_pos;
 SKY_ATTR vec4 a_color;
 SKY_OUT vec3 v_dir;

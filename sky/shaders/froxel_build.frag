@@ -6,9 +6,9 @@
  * slices (colour 0 and sky_froxel_1..7), the slices from u_froxel.x on;
  * it marches the slices before them too, without writing them. */
 SKY_IN vec2 v_unit;
-uniform mat4 u_froxel_clip_to_dir;     /* clip to the horizon frame (a point on the view ray) */
-uniform vec4 u_froxel;                 /* first slice of the pass, km per slice, steps per slice */
-uniform vec3 u_froxel_sun_irradiance;  /* klx above the atmosphere, per channel */
+uniform SKY_UP mat4 u_froxel_clip_to_dir;     /* clip to the horizon frame (a point on the view ray) */
+uniform SKY_UP vec4 u_froxel;                 /* first slice of the pass, km per slice, steps per slice */
+uniform SKY_UP vec3 u_froxel_sun_irradiance;  /* klx above the atmosphere, per channel */
 layout(location = 1) out vec4 sky_froxel_1;
 layout(location = 2) out vec4 sky_froxel_2;
 layout(location = 3) out vec4 sky_froxel_3;

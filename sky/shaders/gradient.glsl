@@ -2,9 +2,9 @@
  * gradient by elevation (interpolated from the dome's vertices), scaled by
  * the daylight luminance for the sun's altitude, with a forward-scattering
  * aureole tinted by the sunlight that reaches it and a faint night floor. */
-uniform float u_day_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
-uniform vec3 u_sun_transmittance;
-uniform vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient.c */
+uniform SKY_UP float u_day_luminance;    /* kcd/m^2 of a gradient texel of value 1 */
+uniform SKY_UP vec3 u_sun_transmittance;
+uniform SKY_UP vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient.c */
 
 vec3 sky_atmosphere(vec3 d, vec3 day)
 {

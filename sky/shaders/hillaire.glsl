@@ -7,9 +7,9 @@
  * COMPAT20 reads the four texels unfiltered (NEAREST) and blends the
  * decoded colours itself: 2700 levels per stop survive. */
 uniform sampler2D u_skyview;
-uniform vec4 u_skyview_map;     /* xy: table size in texels, zw: table size / texture size */
-uniform vec2 u_skyview_horizon; /* theta_h (zenith angle of the horizon), pi - theta_h */
-uniform vec3 u_skyview_decode;  /* x: 1 = 8-bit encoding, y: log2 of the dimmest value, z: stops covered */
+uniform SKY_UP vec4 u_skyview_map;     /* xy: table size in texels, zw: table size / texture size */
+uniform SKY_UP vec2 u_skyview_horizon; /* theta_h (zenith angle of the horizon), pi - theta_h */
+uniform SKY_UP vec3 u_skyview_decode;  /* x: 1 = 8-bit encoding, y: log2 of the dimmest value, z: stops covered */
 
 #ifdef SKY_HILLAIRE_ENCODED
 vec3 sky_skyview_decode(vec2 uv)

@@ -7,17 +7,17 @@
 uniform sampler2D u_transmittance_table;
 uniform sampler2D u_multiscatter_table;
 uniform sampler2DArray u_ms_moments; /* D_x, D_y, Q_xx, Q_yy (Q_xy in the alphas) */
-uniform vec3 u_hl_chi;        /* Mie's chi_1, chi_2, Rayleigh's chi_2 */
-uniform vec4 u_hl_geometry;   /* R, Rt, H = sqrt(Rt^2 - R^2), r0 (observer radius) */
-uniform vec4 u_hl_profile;    /* Rayleigh and Mie scale heights, ozone peak and half width */
-uniform vec3 u_hl_rayleigh;   /* scattering, 1/km */
-uniform vec3 u_hl_mie_sca;
-uniform vec3 u_hl_mie_ext;
-uniform vec3 u_hl_ozone;
-uniform vec3 u_hl_albedo;
-uniform vec4 u_hl_sizes;      /* sky-view w, h; transmittance w, h */
-uniform vec4 u_hl_misc;       /* multiscatter size, sun mu, sky-view steps, Mie g */
-uniform vec4 u_hl_steps;      /* transmittance steps, multiscatter directions (half), multiscatter steps */
+uniform SKY_UP vec3 u_hl_chi;        /* Mie's chi_1, chi_2, Rayleigh's chi_2 */
+uniform SKY_UP vec4 u_hl_geometry;   /* R, Rt, H = sqrt(Rt^2 - R^2), r0 (observer radius) */
+uniform SKY_UP vec4 u_hl_profile;    /* Rayleigh and Mie scale heights, ozone peak and half width */
+uniform SKY_UP vec3 u_hl_rayleigh;   /* scattering, 1/km */
+uniform SKY_UP vec3 u_hl_mie_sca;
+uniform SKY_UP vec3 u_hl_mie_ext;
+uniform SKY_UP vec3 u_hl_ozone;
+uniform SKY_UP vec3 u_hl_albedo;
+uniform SKY_UP vec4 u_hl_sizes;      /* sky-view w, h; transmittance w, h */
+uniform SKY_UP vec4 u_hl_misc;       /* multiscatter size, sun mu, sky-view steps, Mie g */
+uniform SKY_UP vec4 u_hl_steps;      /* transmittance steps, multiscatter directions (half), multiscatter steps */
 
 float hl_clamp_sqrt(float x) { return sqrt(max(x, 0.0)); }
 

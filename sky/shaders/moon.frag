@@ -10,21 +10,21 @@
  * moon is flattened like the sun; the billboard frame is centred on the
  * true moon. */
 uniform sampler2D u_moon_tex;       /* 256x128 albedo, selenographic        */
-uniform mat4 u_moon_body;           /* billboard frame -> moon body frame    */
-uniform mat4 u_moon_view;           /* billboard frame -> horizon frame      */
-uniform vec3 u_moon_light;          /* direction to the sun, billboard frame */
-uniform vec3 u_moon_color;          /* kcd/m^2 of the full moon's mean, per
+uniform SKY_UP mat4 u_moon_body;           /* billboard frame -> moon body frame    */
+uniform SKY_UP mat4 u_moon_view;           /* billboard frame -> horizon frame      */
+uniform SKY_UP vec3 u_moon_light;          /* direction to the sun, billboard frame */
+uniform SKY_UP vec3 u_moon_color;          /* kcd/m^2 of the full moon's mean, per
                                        channel, with k_lambda, extinction, fade */
-uniform vec4 u_moon_terms;          /* x: HLS phase factor, y: LDR scale of
+uniform SKY_UP vec4 u_moon_terms;          /* x: HLS phase factor, y: LDR scale of
                                        the sunlit part, z: halo, w: occlusion
                                        of what is behind                     */
-uniform vec3 u_moon_earthshine;     /* earthshine relative to full sunlight */
-uniform float u_moon_radius_tan;    /* the drawn disc's tangent-plane radius */
+uniform SKY_UP vec3 u_moon_earthshine;     /* earthshine relative to full sunlight */
+uniform SKY_UP float u_moon_radius_tan;    /* the drawn disc's tangent-plane radius */
 #ifdef SKY_HAS_ECLIPSE
 uniform sampler2D u_eclipse_tex;    /* h(t), log10-encoded: h = 10^(-5 texel) */
-uniform vec3 u_moon_center_km;      /* geocentric moon, horizon frame        */
-uniform vec3 u_shadow_axis;         /* geocentric direction to the sun       */
-uniform vec4 u_shadow;              /* umbra r, penumbra r (km), moon radius (km), i(t_m) */
+uniform SKY_UP vec3 u_moon_center_km;      /* geocentric moon, horizon frame        */
+uniform SKY_UP vec3 u_shadow_axis;         /* geocentric direction to the sun       */
+uniform SKY_UP vec4 u_shadow;              /* umbra r, penumbra r (km), moon radius (km), i(t_m) */
 #endif
 SKY_IN vec3 v_dir;
 SKY_IN vec3 v_true_dir; /* refraction undone at the grid's vertices */

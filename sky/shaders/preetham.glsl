@@ -2,8 +2,8 @@
  * luminance distribution (eq. 3) for Y and the chromaticities x and y,
  * with coefficients fitted to turbidity (appendix A.2), computed per frame
  * on the CPU (preetham.c). Pure arithmetic: no texture. */
-uniform vec3 u_perez_a, u_perez_b, u_perez_c, u_perez_d, u_perez_e; /* for (Y, x, y) */
-uniform vec3 u_perez_zenith; /* (Y_z, x_z, y_z) / F(0, theta_s), Y in kcd/m^2, Y times
+uniform SKY_UP vec3 u_perez_a, u_perez_b, u_perez_c, u_perez_d, u_perez_e; /* for (Y, x, y) */
+uniform SKY_UP vec3 u_perez_zenith; /* (Y_z, x_z, y_z) / F(0, theta_s), Y in kcd/m^2, Y times
                               the twilight scale (preetham.c: measured twilight) */
 
 /* The sky's radiance (kcd/m^2) without the night floor, also the blend's

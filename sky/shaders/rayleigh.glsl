@@ -5,11 +5,11 @@
  * texture, no ray march: six nodes along the view ray and a closed-form
  * integral over each segment between them. Compiled into both stages: the
  * dome's vertices evaluate the integrals (dome.vert). */
-uniform vec3 u_mie_phase;       /* Cornette-Shanks: k, 1 + g^2, 2 g (rayleigh.c) */
-uniform vec4 u_rl_geometry;     /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
-uniform vec3 u_rl_multiple;     /* isotropic phase of multiple scattering         */
-uniform vec3 u_rl_ozone;        /* ozone tent: peak, half width (km), 1 / column  */
-uniform vec3 u_rl_skylight;     /* the skylight's floor under ms (rayleigh.c)     */
+uniform SKY_UP vec3 u_mie_phase;       /* Cornette-Shanks: k, 1 + g^2, 2 g (rayleigh.c) */
+uniform SKY_UP vec4 u_rl_geometry;     /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
+uniform SKY_UP vec3 u_rl_multiple;     /* isotropic phase of multiple scattering         */
+uniform SKY_UP vec3 u_rl_ozone;        /* ozone tent: peak, half width (km), 1 / column  */
+uniform SKY_UP vec3 u_rl_skylight;     /* the skylight's floor under ms (rayleigh.c)     */
 
 /* The mean of e^-E over a segment whose exponent runs linearly from a
  * to b, from the nodes' exponentials ta, tb (rayleigh.c's seg_mean). */

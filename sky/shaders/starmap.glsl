@@ -5,8 +5,8 @@
  * frame's rotation (eq. 7). Brightness follows the control magnitude and the field of view
  * (c_s Delta_m / sqrt(q)), computed per frame in starmap.c. */
 uniform samplerCube u_starmap_tex; /* the map by J2000 direction (starmap.c) */
-uniform mat4 u_starmap_rot;     /* horizon -> J2000 equatorial */
-uniform float u_starmap_scale;  /* kcd/m^2 of the brightest texel, with the fade */
+uniform SKY_UP mat4 u_starmap_rot;     /* horizon -> J2000 equatorial */
+uniform SKY_UP float u_starmap_scale;  /* kcd/m^2 of the brightest texel, with the fade */
 
 vec3 sky_starmap(vec3 d)
 {

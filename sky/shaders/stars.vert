@@ -8,16 +8,16 @@
  * same across a star's point (its flux, colour, extinction, twinkle) is
  * found here, once a star rather than once a pixel, and a star too faint
  * to add anything visible is not rasterised at all. */
-uniform float u_star_flux_scale;  /* kcd/m^2 peak of a V = 0 star, incl. fade  */
-uniform vec3 u_star_extinction;   /* zenith optical depth at R, G, B           */
-uniform vec3 u_star_shell;        /* observer radius a, shell radius b, b - a (km) */
-uniform float u_star_seed;        /* scintillation clock, 10 per second, wrapped */
-uniform mat4 u_star_rot;          /* J2000 -> horizon (precession, nutation, sidereal) */
-uniform vec3 u_star_aberration;   /* annual aberration, horizon frame          */
-uniform vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
-uniform vec3 u_star_pressure;     /* refraction pressure factor, the faintest V
+uniform SKY_UP float u_star_flux_scale;  /* kcd/m^2 peak of a V = 0 star, incl. fade  */
+uniform SKY_UP vec3 u_star_extinction;   /* zenith optical depth at R, G, B           */
+uniform SKY_UP vec3 u_star_shell;        /* observer radius a, shell radius b, b - a (km) */
+uniform SKY_UP float u_star_seed;        /* scintillation clock, 10 per second, wrapped */
+uniform SKY_UP mat4 u_star_rot;          /* J2000 -> horizon (precession, nutation, sidereal) */
+uniform SKY_UP vec3 u_star_aberration;   /* annual aberration, horizon frame          */
+uniform SKY_UP vec4 u_star_size;         /* q (px), glare coefficient c_k (px), max radius (px), m_a */
+uniform SKY_UP vec3 u_star_pressure;     /* refraction pressure factor, the faintest V
                                      drawn (sky_point_limit), -             */
-uniform vec4 u_star_occulter;     /* moon's true direction, cos of its drawn radius */
+uniform SKY_UP vec4 u_star_occulter;     /* moon's true direction, cos of its drawn radius */
 SKY_ATTR vec2 a_pos;              /* x: star index (scintillation seed); y: the
                                      share of the twinkle a disc averages away
                                      (planets; 0 for a star)                 */

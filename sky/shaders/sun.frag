@@ -2,13 +2,15 @@
  * with a small glare halo, dimmed by the atmosphere, eclipsed by the
  * moon's true disc with the corona around it, and hidden by clouds. Drawn
  * additively over the dome. */
-uniform float u_sun_radius;     /* angular radius, radians                */
-uniform float u_sun_luminance;  /* kcd/m^2 at the disc centre             */
-uniform vec3 u_sun_transmittance;
-uniform vec3 u_sun_true_dir;    /* the centre without refraction         */
-uniform vec4 u_eclipse_sun;     /* x: moon's angular radius, y: the sun's
+uniform SKY_UP float u_sun_radius;     /* angular radius, radians                */
+uniform SKY_UP vec3 u_sun_disc;        /* kcd/m^2 at the disc centre, through the
+                                   air (sun.c: within mediump's range)    */
+uniform SKY_UP vec3 u_sun_glare;       /* the glare's peak, through the air      */
+uniform SKY_UP vec3 u_sun_transmittance;
+uniform SKY_UP vec3 u_sun_true_dir;    /* the centre without refraction         */
+uniform SKY_UP vec4 u_eclipse_sun;     /* x: moon's angular radius, y: the sun's
                                    light left, z: corona scale (kcd/m^2) */
-uniform vec3 u_eclipse_moon_dir; /* the moon's centre without refraction */
+uniform SKY_UP vec3 u_eclipse_moon_dir; /* the moon's centre without refraction */
 SKY_IN vec3 v_dir;
 SKY_IN vec3 v_true_dir; /* refraction undone at the grid's vertices */
 
@@ -41,15 +43,15 @@ void main()
      * sun's light the moon leaves. */
     float out_r = max(r - 1.0, 0.0);
     float window = max(1.0 - r / 16.0, 0.0);
-    float glare = 5e-6 * window * window / (1.0 + out_r * out_r) * u_eclipse_sun.y;
+    float glare = window * window / (1.0 + out_r * out_r) * u_eclipse_sun.y;
     /* the corona (Baumbach's bracket, sun.c), behind the moon */
     float corona = 0.0;
     if (u_eclipse_sun.z > 0.0) {
         float ir = 1.0 / max(r, 1.0), ir2 = ir * ir, ir7 = ir2 * ir2 * ir2 * ir;
         corona = u_eclipse_sun.z * (0.0532 * ir2 * sqrt(ir) + 1.425 * ir7 + 2.565 * ir7 * ir7 * ir2 * ir) * window *
-                 (1.0 - behind_moon) / u_sun_luminance;
+                 (1.0 - behind_moon);
     }
-    vec3 L = u_sun_luminance * (disc + glare + corona) * u_sun_transmittance;
+    vec3 L = u_sun_disc * disc + u_sun_glare * glare + corona * u_sun_transmittance;
 #if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
     L *= 1.0 - sky_front_cover(view);
 #endif

@@ -6,8 +6,8 @@
  * as a logarithm in 8 bits. dome.frag dims it by the air
  * (sky_night_extinction). */
 uniform sampler2D u_zodiacal_tex; /* 64 x 32 */
-uniform mat4 u_zodiacal_rot;      /* horizon -> ecliptic of date, +x at the sun */
-uniform vec4 u_zodiacal;          /* rgb: kcd/m^2 at the encoding's 0; a: ln of
+uniform SKY_UP mat4 u_zodiacal_rot;      /* horizon -> ecliptic of date, +x at the sun */
+uniform SKY_UP vec4 u_zodiacal;          /* rgb: kcd/m^2 at the encoding's 0; a: ln of
                                      its range */
 
 vec3 sky_zodiacal(vec3 d)
