@@ -238,12 +238,11 @@ test-examples: examples $(EX)/example-tests
 # acorn through NODE_PATH. stb comes from libstb-dev through a directory of
 # its own, so that the system's other headers stay out of the build.
 WEB := $(BUILD)/web
-comma := ,
 WEB_PACKAGES := emscripten chromium-headless-shell python3
 WEB_SRC := $(SKY_SRC) $(BUILD)/gen/sky_blobs.c demo/demo.c demo/ui.c demo/cli.c
 WEB_FLAGS := -std=c11 $(WARN) -O2 -D_DEFAULT_SOURCE -Isky -Idemo -I$(BUILD)/gen -I$(WEB)/include \
 	-sUSE_GLFW=3 -sMIN_WEBGL_VERSION=1 -sMAX_WEBGL_VERSION=1 -sALLOW_MEMORY_GROWTH=1 \
-	-sEXPORTED_FUNCTIONS=_main,_sky_demo_preset -sEXPORTED_RUNTIME_METHODS=ccall -sMINIFY_HTML=0
+	-sEXPORTED_RUNTIME_METHODS=ccall -sMINIFY_HTML=0
 
 web: $(BUILD)/gen/sky_blobs.c
 	@sh tools/deps.sh $(WEB_PACKAGES)
@@ -251,14 +250,15 @@ web: $(BUILD)/gen/sky_blobs.c
 
 $(WEB)/index.html: $(WEB_SRC) $(SKY_HDR) demo/cli.h demo/ui.h web/shell.html
 	@mkdir -p $(WEB)/include && ln -sfn /usr/include/stb $(WEB)/include/stb
-	NODE_PATH=/usr/share/nodejs emcc $(WEB_FLAGS) --shell-file web/shell.html -o $@ $(WEB_SRC)
+	NODE_PATH=/usr/share/nodejs emcc $(WEB_FLAGS) -sEXPORTED_FUNCTIONS=_main,_sky_demo_preset \
+		--shell-file web/shell.html -o $@ $(WEB_SRC)
 
 # The browser's timing page (web/bench.c, web/bench.html) and its run in
 # headless Chromium with three.js's Sky beside libsky (tools/bench-web.sh).
 WEB_BENCH_SRC := $(SKY_SRC) $(BUILD)/gen/sky_blobs.c web/bench.c demo/cli.c
 $(WEB)/bench.html: $(WEB_BENCH_SRC) $(SKY_HDR) demo/cli.h web/bench.html
 	@mkdir -p $(WEB)/include && ln -sfn /usr/include/stb $(WEB)/include/stb
-	NODE_PATH=/usr/share/nodejs emcc $(subst _main$(comma)_sky_demo_preset,_main$(comma)_web_bench_open$(comma)_web_bench_quad$(comma)_web_bench_preset,$(WEB_FLAGS)) \
+	NODE_PATH=/usr/share/nodejs emcc $(WEB_FLAGS) -sEXPORTED_FUNCTIONS=_main,_web_bench_open,_web_bench_quad,_web_bench_preset \
 		--shell-file web/bench.html -o $@ $(WEB_BENCH_SRC)
 
 bench-web: web

@@ -41,7 +41,7 @@ static sky_gl_proc egl_loader(const char *name) { return (sky_gl_proc)eglGetProc
 /* ES's float colour target: an RGBA32F texture behind a framebuffer,
  * where ES 3.0 and EXT_color_buffer_float allow it. Returns NULL or why
  * not. */
-static const char *egl_float_target(sky_osmesa *o)
+static const char *egl_float_target(const sky_osmesa *o)
 {
     const GLubyte *(*get_string)(GLenum) = (const GLubyte *(*)(GLenum))egl_loader("glGetString");
     void (*gen_textures)(GLsizei, GLuint *) = (void (*)(GLsizei, GLuint *))egl_loader("glGenTextures");
@@ -68,10 +68,8 @@ static const char *egl_float_target(sky_osmesa *o)
     gen_framebuffers(1, &fbo);
     bind_framebuffer(0x8D40 /* GL_FRAMEBUFFER */, fbo);
     attach(0x8D40, 0x8CE0 /* GL_COLOR_ATTACHMENT0 */, GL_TEXTURE_2D, tex, 0);
-    if (status(0x8D40) != 0x8CD5 /* GL_FRAMEBUFFER_COMPLETE */) return "the RGBA32F framebuffer is incomplete";
-    o->es_fbo = fbo;
-    o->es_color = tex;
-    return NULL;
+    /* (both go with the context) */
+    return status(0x8D40) == 0x8CD5 /* GL_FRAMEBUFFER_COMPLETE */ ? NULL : "the RGBA32F framebuffer is incomplete";
 }
 
 /* An OpenGL ES 2 context on Mesa's surfaceless EGL platform, drawing into

@@ -23,7 +23,6 @@ typedef struct sky_osmesa {
     int is_core;     /* the context is a 3.3 core profile */
     int is_es;       /* an OpenGL ES context through EGL */
     void *egl_display, *egl_surface;
-    unsigned es_fbo, es_color; /* is_es && is_float: the float target it draws into */
 } sky_osmesa;
 
 /* want: SKY_GL_CORE33 asks for a 3.3 core context, SKY_GL_COMPAT20 for a

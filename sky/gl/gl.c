@@ -871,8 +871,7 @@ void sky_gl_state_save(sky_core *s, sky_gl_state *st)
      * changes: the depth mask and function only where the sky is drawn
      * with the depth test (without it no depth is written); the scissor
      * box and clear colour in sky_gl_clear_viewport, their one user. */
-    st->depth_saved = s->cfg.depth != SKY_DEPTH_NONE;
-    if (st->depth_saved) {
+    if (s->cfg.depth != SKY_DEPTH_NONE) {
         gl->glGetBooleanv(GL_DEPTH_WRITEMASK, &st->depth_mask);
         gl->glGetIntegerv(GL_DEPTH_FUNC, &st->depth_func);
     }
@@ -958,7 +957,7 @@ void sky_gl_state_restore(sky_core *s, const sky_gl_state *st)
             gl->glPolygonMode(GL_BACK, (GLenum)st->polygon_mode[1]);
         }
     }
-    if (st->depth_saved) {
+    if (s->cfg.depth != SKY_DEPTH_NONE) {
         gl->glDepthMask(st->depth_mask);
         gl->glDepthFunc((GLenum)st->depth_func);
     }

@@ -125,10 +125,10 @@ void sky_buffers_destroy(sky_core *s, const GLuint *buffers, const size_t *bytes
 #define SKY_ATTRIBS 3 /* a_pos, a_dir, a_color */
 typedef struct sky_gl_state {
     GLint program, active_texture, array_buffer, element_buffer, vao, viewport[4];
-    int depth_saved; /* the depth mask and function: only with cfg.depth */
     GLint textures[4], cube_textures[4]; /* units 0..3: 2D and cube map bindings */
     GLint array_textures[4];             /* and 2D-array ones (CORE33)          */
-    GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, depth_mask, color_mask[4];
+    GLboolean blend, depth_test, cull_face, scissor_test, stencil_test, color_mask[4];
+    GLboolean depth_mask; /* with depth_func: saved only with cfg.depth set */
     GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha, depth_func;
     GLboolean program_point_size, framebuffer_srgb;
     GLint polygon_mode[2];                /* front, back                        */
