@@ -120,6 +120,8 @@ unsigned test_host_program(int core);
 
 /* Path of a built program (SKY_BIN or build/bin). */
 const char *bin_path(const char *name, char *buf, size_t len);
+/* A file name of this run's own in TMPDIR (or /tmp): sky-test-PID-name. */
+const char *tmp_path(const char *name, char *buf, size_t len);
 /* Runs a shell command, returns its exit status; output into buf. */
 int run_command(const char *cmd, char *buf, size_t len);
 /* Reads a PNG/PFM written by sky-render. */

@@ -32,12 +32,6 @@ double image_psnr(const image *a, const image *b);
     "MESA_EXTENSION_OVERRIDE='-GL_ARB_texture_float -GL_ARB_framebuffer_object "               \
     "-GL_ARB_texture_non_power_of_two' "
 
-static const char *tmp_path(const char *name, char *buf, size_t len)
-{
-    const char *dir = getenv("TMPDIR");
-    snprintf(buf, len, "%s/sky-test-%d-%s", dir ? dir : "/tmp", (int)getpid(), name);
-    return buf;
-}
 
 /* Integer value of "key":N in a JSON text, or -1. */
 static double json_number(const char *json, const char *key)

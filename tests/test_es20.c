@@ -42,12 +42,6 @@ static const char *const scenes[] = {"--preset noon",     "--preset sunset --yaw
                                      "--preset moonlit",  "--preset eclipse",
                                      "--preset solar-eclipse", "--preset minimal"};
 
-static const char *tmp_path(const char *name, char *buf, size_t len)
-{
-    const char *dir = getenv("TMPDIR");
-    snprintf(buf, len, "%s/sky-test-%d-es-%s", dir ? dir : "/tmp", (int)getpid(), name);
-    return buf;
-}
 
 /* Renders the arguments' scene through env and --gl gl into png; returns the exit status
  * with the output (stats included) in out. */

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 /* The test program's own PNG reader (the library keeps its copy private). */
 #define STB_IMAGE_IMPLEMENTATION
@@ -438,6 +439,13 @@ const char *bin_path(const char *name, char *buf, size_t len)
 {
     const char *dir = getenv("SKY_BIN");
     snprintf(buf, len, "%s/%s", dir ? dir : "build/bin", name);
+    return buf;
+}
+
+const char *tmp_path(const char *name, char *buf, size_t len)
+{
+    const char *dir = getenv("TMPDIR");
+    snprintf(buf, len, "%s/sky-test-%d-%s", dir ? dir : "/tmp", (int)getpid(), name);
     return buf;
 }
 

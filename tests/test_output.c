@@ -23,12 +23,6 @@ void test_output_png_writer_checks_every_write(void);
 void test_output_stdout_errors_exit_1(void);
 void test_output_same_file_twice_rejected(void);
 
-static const char *tmp_path(const char *name, char *buf, size_t len)
-{
-    const char *dir = getenv("TMPDIR");
-    snprintf(buf, len, "%s/sky-test-%d-%s", dir ? dir : "/tmp", (int)getpid(), name);
-    return buf;
-}
 
 /* A node with /dev/full's device numbers (every write: ENOSPC) at path;
  * 0 when made. Needs root: the tests skip without it. */

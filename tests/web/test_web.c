@@ -77,7 +77,7 @@ static int visit(const char *query, image *shot, char *console, size_t len)
     if (keep)
         snprintf(png, sizeof png, "%s.%d.tmp.png", keep, (int)getpid());
     else
-        snprintf(png, sizeof png, "%s/sky-web-%d.png", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+        tmp_path("web.png", png, sizeof png);
     remove(png);
     /* virtual time: the page's frames run until the budget is spent, then
      * the screenshot is taken */
