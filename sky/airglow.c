@@ -36,7 +36,7 @@
 #define EARTH_RADIUS_KM 6371.0
 
 static const sky_uniform_desc airglow_uniforms[] = {
-    SKY_UF("u_airglow", SKY_U_F4, airglow),
+    SKY_UL("u_airglow", SKY_U_F4, airglow, SKY_RGB),
 };
 static const sky_snippet airglow_snippet = {"SKY_HAS_AIRGLOW", "airglow.glsl", airglow_uniforms,
                                          SKY_UNIFORM_COUNT(airglow_uniforms), NULL};

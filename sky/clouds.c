@@ -35,7 +35,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UF("u_cloud_offset0", SKY_U_F2, cloud_offset0),
     SKY_UF("u_cloud_offset1", SKY_U_F2, cloud_offset1),
     SKY_UF("u_cloud_offset_upper", SKY_U_F2, cloud_offset_upper),
-    SKY_UF("u_cloud_light", SKY_U_F3, cloud_light),
+    SKY_UL("u_cloud_light", SKY_U_F3, cloud_light, SKY_RGB),
     SKY_UF("u_sunset_color", SKY_U_F3, sunset_color),
     SKY_UFV("u_sunset_gradient", sunset_gradient),
 };

@@ -150,6 +150,9 @@ typedef struct sky_frame {
     float night_depth[3], night_shell[3]; /* the air's zenith optical depths and
                                 the shell of Mueller eq. 11 (observer radius,
                                 top, thickness, km): the night glows' extinction */
+    float night_air[3];      /* that shell for the dome's pixels, in mediump's
+                                range (atmosphere.glsl): (b/a)^2 - 1, the
+                                zenith path's 2 + t/a, a/t                    */
     float moonlight;         /* 0..25: the moon's brightening of the night sky    */
     float ambient_rgb[3];    /* sky irradiance on an upward surface, klx         */
     float fog_rgb[3];        /* horizon luminance, kcd/m^2                       */
@@ -161,6 +164,9 @@ typedef struct sky_frame {
     /* analytic Rayleigh + Mie (rayleigh.c) */
     float tau_rayleigh[3], tau_mie_sca[3], tau_mie_ext[3], tau_ozone[3];
     float chapman_x[3], sun_depth[3], sun_irradiance[3], mie_phase[3];
+    float sun_irradiance_sent[3]; /* u_sun_irradiance: sun_irradiance times light_scale
+                                over 2^sun_gain_log2 (exposure.c)              */
+    float sun_gain_log2;     /* what the shaders put back                        */
     float rl_geometry[4];    /* r_obs, R_planet, H_rayleigh, H_mie (km)        */
     float rl_multiple[3];    /* isotropic phase of multiple scattering, per sr */
     float rl_skylight[3];    /* the skylight's floor on multiple scattering's
@@ -190,6 +196,11 @@ typedef struct sky_frame {
     float eclipse_moon_dir[3]; /* the moon's centre, topocentric, unrefracted   */
     /* exposure (exposure.c) */
     float exposure;          /* LDR: 1 / (kcd/m^2) scale before the tone map    */
+    float light_scale;       /* what the light rows (sky_uniform_desc.light) are
+                                multiplied by on their way to the shaders: the
+                                exposure on a fragment stage without highp
+                                (LDR), else 1                                  */
+    float shader_exposure;   /* u_exposure: exposure / light_scale             */
     float night_shift;       /* 0..0.6: scotopic blue shift in the tone map      */
     float star_local_gain;   /* LDR: the stars' gain against a sky the eye has
                                 not adapted to (a solar eclipse)               */
@@ -247,12 +258,12 @@ typedef struct sky_frame {
     float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_earthshine[3];
     struct {                 /* u_moon_terms                                   */
         float phase_factor;  /* HLS phase factor relative to full (eq. 3)      */
-        float ldr_scale;     /* LDR: the lit side's own exposure (<= 1)        */
+        float unused;        /* (the lit side's own LDR exposure is in moon_color) */
         float halo;          /* the night halo's share of the disc's light     */
         float hides;         /* 0..1: the disc hides what is behind it        */
     } moon_terms;
     float moon_radius_tan;   /* the drawn disc's radius on its tangent plane     */
-    float moon_center_km[3], shadow_axis[3], shadow[4];
+    float shadow_offset[3], shadow_axis[3], shadow[4];
 } sky_frame;
 /* The uniform table reads each packed vec4 above as four floats in a row. */
 _Static_assert(sizeof(((sky_frame *)0)->moon_terms) == 4 * sizeof(float), "moon_terms is a vec4");

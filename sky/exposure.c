@@ -41,6 +41,24 @@ void sky_exposure_frame(sky_core *s)
     double night = fmax(f->night_luminance, sky_mag_arcsec2_to_kcd(21.9));
     double adapt = f->sky_luminance * withheld + 110.0 * night;
     f->exposure = (float)(pow(2.0, s->exposure_bias) / adapt);
+    /* A fragment stage without highp holds only mediump's +-2^14 (GLSL ES
+     * 1.00), and the sky's light spans far more (the sun's disc near 2e6
+     * kcd/m^2, a moonless sky near 1e-7): in LDR it reaches the shaders
+     * already times the exposure, where a display value of 1 is white
+     * (sky_program_apply). HDR output is kcd/m^2 itself: there the range
+     * is the host's choice of context. */
+    int prescale = !s->caps.fragment_highp && s->cfg.output != SKY_OUTPUT_HDR;
+    f->light_scale = prescale ? f->exposure : 1.0f;
+    f->shader_exposure = prescale ? 1.0f : f->exposure;
+    /* The sun's irradiance times that exposure is far past 2^14 in a
+     * twilight, where the air's light per unit of it is far below 2^-14: a
+     * power of two is taken out of it, and put back where the two meet (in
+     * the highp vertex stage, rayleigh.glsl; in the exponent of a
+     * decoding, hillaire.glsl). */
+    double sun = fmax(f->sun_irradiance[0], fmax(f->sun_irradiance[1], f->sun_irradiance[2])) * f->light_scale;
+    int gain = prescale && sun > 1.0 ? (int)ceil(log2(sun)) : 0;
+    f->sun_gain_log2 = (float)gain;
+    for (int i = 0; i < 3; i++) f->sun_irradiance_sent[i] = (float)ldexp(f->sun_irradiance[i] * f->light_scale, -gain);
     /* Night vision: the adaptation luminance (what the exposure maps to
      * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
      * cd/m^2, on a log scale; the shift is at most 60 % (the moon and

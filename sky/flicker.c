@@ -25,7 +25,7 @@
 #define FLICKER_TILES 4
 
 static const sky_uniform_desc glow_uniforms[] = {
-    SKY_UF("u_star_luminance", SKY_U_F1, star_luminance),
+    SKY_UL("u_star_luminance", SKY_U_F1, star_luminance, 1u),
 };
 static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow_uniforms,
                                          SKY_UNIFORM_COUNT(glow_uniforms), NULL};

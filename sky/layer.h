@@ -112,7 +112,7 @@ void sky_stars_reload(void *stars_state);
 #define SKY_POINT_UNIFORMS(member)                                                                       \
     SKY_UF("u_star_rot", SKY_U_M4, member.rot), SKY_UF("u_star_aberration", SKY_U_F3, member.aberration), \
         SKY_UF("u_star_size", SKY_U_F4, member.size), SKY_UF("u_star_pressure", SKY_U_F3, member.pressure), \
-        SKY_UF("u_star_flux_scale", SKY_U_F1, member.flux_scale),                                         \
+        SKY_UL("u_star_flux_scale", SKY_U_F1, member.flux_scale, 1u),                                         \
         SKY_UF("u_star_extinction", SKY_U_F3, member.extinction), SKY_UF("u_star_shell", SKY_U_F3, member.shell), \
         SKY_UF("u_star_seed", SKY_U_F1, member.seed), SKY_UF("u_star_occulter", SKY_U_F4, member.occulter)
 /* stars.c: for the view being drawn, what every set of points shares: the

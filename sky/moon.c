@@ -89,7 +89,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_UF("u_moon_body", SKY_U_M4, moon_body),
     SKY_UF("u_moon_view", SKY_U_M4, moon_view),
     SKY_UF("u_moon_light", SKY_U_F3, moon_light),
-    SKY_UF("u_moon_color", SKY_U_F3, moon_color),
+    SKY_UL("u_moon_color", SKY_U_F3, moon_color, SKY_RGB),
     SKY_UF("u_moon_terms", SKY_U_F4, moon_terms),
     SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
     SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
@@ -98,7 +98,7 @@ static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_
 
 static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
-    SKY_UF("u_moon_center_km", SKY_U_F3, moon_center_km),
+    SKY_UF("u_shadow_offset", SKY_U_F3, shadow_offset),
     SKY_UF("u_shadow_axis", SKY_U_F3, shadow_axis),
     SKY_UF("u_shadow", SKY_U_F4, shadow),
 };
@@ -376,7 +376,13 @@ static void moon_frame(sky_core *s, void *state)
         if (es_mean > cap)
             for (int i = 0; i < 3; i++) f->moon_earthshine[i] *= (float)(cap / es_mean);
     }
-    f->moon_terms.ldr_scale = (float)k;
+    /* moon.frag takes k in the colour and the earthshine over it: the
+     * colour times the exposure alone is past a mediump fragment stage's
+     * 2^14 under a full moon at night (sky_frame.light_scale) */
+    for (int i = 0; i < 3; i++) {
+        f->moon_color[i] *= (float)k;
+        f->moon_earthshine[i] /= (float)k;
+    }
     /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2),
      * delta the topocentric diameter (up to 2 % larger than the
      * geocentric one with the moon high: an eclipse's totality needs it) */
@@ -389,13 +395,20 @@ static void moon_frame(sky_core *s, void *state)
         for (int i = 0; i < 3; i++) mg[i] = a->horizon[i * 3] * v[0] + a->horizon[i * 3 + 1] * v[1] + a->horizon[i * 3 + 2] * v[2];
         v[0] = cos(a->sun.dec) * cos(a->sun.ra), v[1] = cos(a->sun.dec) * sin(a->sun.ra), v[2] = sin(a->sun.dec);
         for (int i = 0; i < 3; i++) sg[i] = a->horizon[i * 3] * v[0] + a->horizon[i * 3 + 1] * v[1] + a->horizon[i * 3 + 2] * v[2];
-        for (int i = 0; i < 3; i++) f->moon_center_km[i] = (float)(mg[i] * a->moon.distance_km);
-        for (int i = 0; i < 3; i++) f->shadow_axis[i] = (float)sg[i];
-        f->shadow[0] = (float)(a->moon.distance_km * tan(a->umbra_radius));
-        f->shadow[1] = (float)(a->moon.distance_km * tan(a->penumbra_radius));
-        /* the disc as drawn is c_d times too big; the shadow test uses the
-         * true radius so the eclipse's geometry stays right */
-        f->shadow[2] = (float)MOON_RADIUS_KM;
+        /* in the moon's true radii (the disc as drawn is c_d times too big;
+         * the shadow keeps the true geometry), and across the shadow's
+         * axis: km at the moon's distance are past a mediump fragment
+         * stage's 2^14. The centre's offset from the axis; a moon on the
+         * sun's side of the earth is far from the shadow. */
+        double km = a->moon.distance_km, along = km * (mg[0] * sg[0] + mg[1] * sg[1] + mg[2] * sg[2]);
+        for (int i = 0; i < 3; i++) {
+            f->shadow_axis[i] = (float)sg[i];
+            f->shadow_offset[i] = along < 0.0 ? (float)((km * mg[i] - along * sg[i]) / MOON_RADIUS_KM) : 0.0f;
+        }
+        if (along >= 0.0) f->shadow_offset[0] = 1e3f;
+        f->shadow[0] = (float)(km * tan(a->umbra_radius) / MOON_RADIUS_KM);
+        f->shadow[1] = (float)(km * tan(a->penumbra_radius) / MOON_RADIUS_KM);
+        f->shadow[2] = f->shadow[1] - f->shadow[0];
         /* i(t_m): brighten a deep eclipse in LDR (Mueller sec. 3.2.1) */
         double tm = a->umbral_magnitude;
         double boost = 1.0 + (ECLIPSE_BOOST - 1.0) * sky_smoothstep(0.0, 1.0, tm);

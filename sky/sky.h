@@ -168,11 +168,13 @@ typedef enum sky_gl_profile {
                           not be saved one by one), highp in the fragment
                           stage (glGetShaderPrecisionFormat; without it the
                           fragment stage runs at mediump, the uniforms both
-                          stages declare are mediump in both, and the
-                          sun's disc reaches it within mediump's 2^14: a
-                          day is drawn as with highp, a night not yet, its
-                          exposure and light being outside mediump's
-                          range). HDR output stops at 65504
+                          stages declare are mediump in both, and what
+                          reaches that stage stays within mediump's 2^14:
+                          in LDR the light arrives already times the
+                          exposure, so day, twilight and night are drawn
+                          as with highp; HDR output there holds only
+                          about 6e-5..16384 kcd/m^2, so a night sky
+                          comes out black). HDR output stops at 65504
                           kcd/m^2 there (gl_FragColor is mediump in GLSL
                           ES 1.00): the sun's disc saturates. No float
                           texture, texture LOD or desktop-only entry point

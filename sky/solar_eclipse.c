@@ -6,7 +6,7 @@
 #include <math.h>
 
 static const sky_uniform_desc sun_uniforms[] = {
-    SKY_UF("u_eclipse_sun", SKY_U_F4, eclipse_sun),
+    SKY_UL("u_eclipse_sun", SKY_U_F4, eclipse_sun, 1u << 2),
     SKY_UF("u_eclipse_moon_dir", SKY_U_F3, eclipse_moon_dir),
 };
 const sky_snippet sky_solar_eclipse_sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL};

@@ -18,7 +18,7 @@
 static const sky_uniform_desc starmap_uniforms[] = {
     SKY_UT("u_starmap_tex", SKY_TEX_STARMAP),
     SKY_UF("u_starmap_rot", SKY_U_M4, starmap_rot),
-    SKY_UF("u_starmap_scale", SKY_U_F1, starmap_scale),
+    SKY_UL("u_starmap_scale", SKY_U_F1, starmap_scale, 1u),
 };
 static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
                                          SKY_UNIFORM_COUNT(starmap_uniforms), NULL};

@@ -49,8 +49,8 @@ double sky_sun_illuminance_klx(const sky_core *s)
 
 static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
-    SKY_UF("u_sun_disc", SKY_U_F3, sun_disc),
-    SKY_UF("u_sun_glare", SKY_U_F3, sun_glare),
+    SKY_UL("u_sun_disc", SKY_U_F3, sun_disc, SKY_RGB),
+    SKY_UL("u_sun_glare", SKY_U_F3, sun_glare, SKY_RGB),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
 };

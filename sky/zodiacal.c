@@ -63,7 +63,7 @@ static const double leinert_table17[ZODI_ROWS][ZODI_COLS] = {
 static const sky_uniform_desc zodiacal_uniforms[] = {
     SKY_UT("u_zodiacal_tex", SKY_TEX_ZODIACAL),
     SKY_UF("u_zodiacal_rot", SKY_U_M4, zodiacal_rot),
-    SKY_UF("u_zodiacal", SKY_U_F4, zodiacal),
+    SKY_UL("u_zodiacal", SKY_U_F4, zodiacal, SKY_RGB),
 };
 static const sky_snippet zodiacal_snippet = {"SKY_HAS_ZODIACAL", "zodiacal.glsl", zodiacal_uniforms,
                                           SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL};

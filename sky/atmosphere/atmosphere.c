@@ -14,13 +14,13 @@
 #include <string.h>
 
 static const sky_uniform_desc atmosphere_uniforms[] = {
-    SKY_UF("u_night_floor", SKY_U_F3, night_floor),
-    SKY_UF("u_artificial_glow", SKY_U_F3, artificial_glow),
+    SKY_UL("u_night_floor", SKY_U_F3, night_floor, SKY_RGB),
+    SKY_UL("u_artificial_glow", SKY_U_F3, artificial_glow, SKY_RGB),
     SKY_UF("u_night_depth", SKY_U_F3, night_depth),
-    SKY_UF("u_night_shell", SKY_U_F3, night_shell),
+    SKY_UF("u_night_air", SKY_U_F3, night_air),
     SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
-    SKY_UF("u_ground", SKY_U_F3, ground_rgb),
-    SKY_UF("u_horizon", SKY_U_F3, fog_rgb),
+    SKY_UL("u_ground", SKY_U_F3, ground_rgb, SKY_RGB),
+    SKY_UL("u_horizon", SKY_U_F3, fog_rgb, SKY_RGB),
 };
 /* in both stages: pure arithmetic, which a path evaluated per vertex needs */
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
@@ -177,6 +177,9 @@ static void night_frame(sky_core *s)
     f->night_shell[0] = (float)(re + h);
     f->night_shell[1] = (float)(re + te);
     f->night_shell[2] = (float)(te - h);
+    f->night_air[0] = (float)((te - h) * (2.0 * (re + h) + te - h) / ((re + h) * (re + h)));
+    f->night_air[1] = (float)(2.0 + (te - h) / (re + h));
+    f->night_air[2] = (float)((re + h) / (te - h));
     double artificial = 0.0;
     if (s->cfg.bortle > 0.0f)
         artificial = fmax(sky_mag_arcsec2_to_kcd(sky_bortle_zenith_mag(s->cfg.bortle)) -

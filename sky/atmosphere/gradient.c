@@ -8,7 +8,7 @@
 #include <math.h>
 
 static const sky_uniform_desc gradient_uniforms[] = {
-    SKY_UF("u_day_luminance", SKY_U_F1, day_luminance),
+    SKY_UL("u_day_luminance", SKY_U_F1, day_luminance, 1u),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
 };

@@ -28,7 +28,7 @@
 static const sky_uniform_desc preetham_uniforms[] = {
     SKY_UF("u_perez_a", SKY_U_F3, perez[0]), SKY_UF("u_perez_b", SKY_U_F3, perez[1]),
     SKY_UF("u_perez_c", SKY_U_F3, perez[2]), SKY_UF("u_perez_d", SKY_U_F3, perez[3]),
-    SKY_UF("u_perez_e", SKY_U_F3, perez[4]), SKY_UF("u_perez_zenith", SKY_U_F3, perez_zenith),
+    SKY_UF("u_perez_e", SKY_U_F3, perez[4]), SKY_UL("u_perez_zenith", SKY_U_F3, perez_zenith, 1u),
 };
 const sky_snippet sky_preetham_snippet = {"SKY_HAS_PREETHAM", "preetham.glsl", preetham_uniforms,
                                           SKY_UNIFORM_COUNT(preetham_uniforms), NULL};

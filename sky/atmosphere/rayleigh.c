@@ -47,7 +47,8 @@ static const sky_uniform_desc extinction_uniforms[] = {
     SKY_UF("u_tau_mie_ext", SKY_U_F3, tau_mie_ext),
     SKY_UF("u_tau_ozone", SKY_U_F3, tau_ozone),
     SKY_UF("u_chapman_x", SKY_U_F3, chapman_x),
-    SKY_UF("u_sun_irradiance", SKY_U_F3, sun_irradiance),
+    SKY_UF("u_sun_irradiance", SKY_U_F3, sun_irradiance_sent),
+    SKY_UF("u_sun_gain_log2", SKY_U_F1, sun_gain_log2),
 };
 /* both stages: the dome evaluates the analytic sky's integrals per vertex */
 const sky_snippet sky_extinction_snippet = {"SKY_HAS_EXTINCTION", "extinction.glsl", extinction_uniforms,

@@ -246,7 +246,7 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
 /* ---- programs ------------------------------------------------------------ */
 
 static const sky_uniform_desc common_uniforms[] = {
-    SKY_UF("u_exposure", SKY_U_F1, exposure),
+    SKY_UF("u_exposure", SKY_U_F1, shader_exposure),
     SKY_UF("u_output_hdr", SKY_U_F1, output_hdr),
     SKY_UF("u_fisheye", SKY_U_F1, fisheye),
     SKY_UF("u_aspect", SKY_U_F2, aspect),
@@ -436,6 +436,15 @@ void sky_program_apply(sky_core *s, const sky_program *p)
         GLint loc = p->locations[i];
         if (loc < 0) continue;
         const float *v = (const float *)(const void *)(base + u->offset);
+        float scaled[4];
+        if (u->light && s->frame.light_scale != 1.0f && u->type <= SKY_U_F4) {
+            /* mediump's range: the exposure brings night light up from
+             * below 2^-14, and what it takes past 2^14 is far past white
+             * (the tone map whitens from 8) */
+            for (int k = 0; k <= (int)(u->type - SKY_U_F1); k++)
+                scaled[k] = u->light & (1u << k) ? sky_clampf(v[k] * s->frame.light_scale, -16384.0f, 16384.0f) : v[k];
+            v = scaled;
+        }
         switch (u->type) {
         case SKY_U_F1: gl->glUniform1f(loc, v[0]); break;
         case SKY_U_F2: gl->glUniform2f(loc, v[0], v[1]); break;

@@ -26,11 +26,16 @@ typedef struct sky_uniform_desc {
     sky_uniform_type type;
     size_t offset;           /* into sky_frame; texture id for SKY_U_TEX      */
     int count;               /* SKY_U_F1V: elements                          */
+    unsigned light;          /* components (bit i: component i) that are light
+                                in kcd/m^2, sent times sky_frame.light_scale */
 } sky_uniform_desc;
-#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field), 1 }
-#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex), 1 }
+#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field), 1, 0 }
+/* a row whose components in mask (SKY_RGB, or 1 << i) are light */
+#define SKY_UL(name, type, field, mask) { name, type, offsetof(sky_frame, field), 1, mask }
+#define SKY_RGB 7u
+#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex), 1, 0 }
 #define SKY_UFV(name, field) \
-    { name, SKY_U_F1V, offsetof(sky_frame, field), (int)(sizeof(((sky_frame *)0)->field) / sizeof(float)) }
+    { name, SKY_U_F1V, offsetof(sky_frame, field), (int)(sizeof(((sky_frame *)0)->field) / sizeof(float)), 0 }
 #define SKY_UNIFORM_COUNT(rows) ((int)(sizeof rows / sizeof rows[0]))
 
 /* A snippet: the GLSL functions of one phenomenon plus its uniform rows.

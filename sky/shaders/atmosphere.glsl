@@ -5,7 +5,8 @@ uniform SKY_UP vec3 u_night_floor;      /* zenith kcd/m^2 of the stars fainter t
                                     star map and the moonlit air (atmosphere.c) */
 uniform SKY_UP vec3 u_artificial_glow;  /* zenith kcd/m^2 of light pollution          */
 uniform SKY_UP vec3 u_night_depth;      /* the air's zenith optical depths             */
-uniform SKY_UP vec3 u_night_shell;      /* observer radius, shell top, thickness (km)  */
+uniform SKY_UP vec3 u_night_air;        /* the shell, observer radius a, top b:
+                                    (b/a)^2 - 1, 2 + (b - a)/a, a/(b - a)      */
 uniform SKY_UP vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light left,
                                      yzw the extra left at the horizon (rgb) */
 uniform SKY_UP vec3 u_ground;            /* kcd/m^2: the ground lit by sun and sky     */
@@ -34,14 +35,17 @@ vec3 sky_night_floor(vec3 d)
 }
 
 /* What the air leaves of light from above it seen along d, per channel:
- * the zenith depths over the path through a shell (Mueller eq. 11 in a
- * form finite at the zenith, as stars.vert has it). */
+ * the zenith depths over the path through a shell (Mueller eq. 11), in
+ * units of the shell's thickness t. The path sqrt(b^2 - a^2 (1 - c^2)) -
+ * a c is a (sqrt(k + c^2) - c) with k = (b/a)^2 - 1, written above the
+ * horizon without its cancellation, a k / t (sqrt(k + c^2) + c), and
+ * without a km^2 anywhere: a fragment stage without highp holds 2^14. */
 vec3 sky_night_extinction(vec3 d)
 {
-    float a = u_night_shell.x, b = u_night_shell.y;
     float c = clamp(d.y, -1.0, 1.0);
-    float path = sqrt(max(b * b - a * a * (1.0 - c * c), 0.0)) - a * c;
-    return exp(-u_night_depth * (path / max(u_night_shell.z, 1e-3)));
+    float root = sqrt(u_night_air.x + c * c);
+    float air_mass = c >= 0.0 ? u_night_air.y / (root + c) : min(u_night_air.z * (root - c), 1e4);
+    return exp(-u_night_depth * air_mass);
 }
 
 /* One rule below the horizon for every path (atmosphere.c): a Lambertian

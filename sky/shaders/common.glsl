@@ -17,6 +17,27 @@ uniform SKY_UP float u_far_z;       /* clip z / w of the host's far plane: 1, or
 uniform SKY_UP float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
 
 const float SKY_PI = 3.14159265;
+/* the floor a division by a brightness is guarded with: a fragment stage
+ * without highp flushes 1e-8 to 0 (its smallest normal number is 2^-14),
+ * and its light arrives times the exposure, where 2^-14 is black */
+#ifdef SKY_MEDIUMP
+const float SKY_TINY = 6.2e-5;
+#else
+const float SKY_TINY = 1e-8;
+#endif
+
+/* d on the tangent plane at the unit direction c, times d . c: (d . e0,
+ * d . e1, d . c) for unit e0, e1 across c. Linear in d, so a vertex stage
+ * takes it at highp and it interpolates exactly; the fragment's xy / z is
+ * the gnomonic projection (the tangent of the angle from c), precise for
+ * the small angles of a disc where a fragment stage without highp, which
+ * holds unit vectors' components to 2^-11, could not take them from the
+ * directions (the sun's radius is 4.7e-3). */
+vec3 sky_tangent_plane(vec3 d, vec3 c)
+{
+    vec3 e0 = normalize(cross(c, abs(c.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    return vec3(dot(d, e0), dot(d, cross(c, e0)), dot(d, c));
+}
 
 /* A position on the host's far plane (sky_config.depth): the sky is
  * farther than anything, so drawn after the scene with the depth test on
@@ -134,8 +155,8 @@ vec3 sky_tonemap(vec3 L)
     /* the display value of a grey of the colour's luminance, and what the
      * largest channel then needs to keep the colour (display values carry
      * the curve's gamma of 2.2) */
-    float m = max(max(e.r, max(e.g, e.b)), 1e-8);
-    vec4 g = sky_display_power(vec4(e / m, max(y, 1e-8) / m)); /* the channels', the luminance's */
+    float m = max(max(e.r, max(e.g, e.b)), SKY_TINY);
+    vec4 g = sky_display_power(vec4(e / m, max(y, SKY_TINY) / m)); /* the channels', the luminance's */
     float top = sky_filmic(vec4(y)).x / g.w;
     /* a soft shoulder keeps that channel below white: the colour's hue and
      * saturation survive, only its brightness gives way */
@@ -152,6 +173,21 @@ float sky_hash(vec2 p)
     vec3 q = fract(vec3(p.xyx) * 0.1031);
     q += dot(q, q.yzx + 33.33);
     return fract((q.x + q.y) * q.z);
+}
+
+/* A point's fragment from the point's centre (window position, from the
+ * vertex stage) in pixels, for a point drawn size pixels wide. ES draws
+ * every point as a sprite, and gl_PointCoord gives the offset without
+ * window coordinates, which a fragment stage without highp holds only to
+ * a quarter of a pixel past 512 (a star one pixel wide then lights two,
+ * or four). */
+vec2 sky_point_offset(vec2 center, float size)
+{
+#ifdef SKY_ES
+    return (gl_PointCoord - 0.5) * size;
+#else
+    return gl_FragCoord.xy - center;
+#endif
 }
 
 /* One 8-bit step of dither, so smooth gradients do not band; kept within

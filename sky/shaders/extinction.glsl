@@ -7,7 +7,10 @@ uniform SKY_UP vec3 u_tau_mie_sca;
 uniform SKY_UP vec3 u_tau_mie_ext;
 uniform SKY_UP vec3 u_tau_ozone;
 uniform SKY_UP vec3 u_chapman_x;       /* R_obs/H_R, R_obs/H_M, (R_obs / R_ozone)^2  */
-uniform SKY_UP vec3 u_sun_irradiance;  /* klx per channel above the atmosphere      */
+uniform SKY_UP vec3 u_sun_irradiance;  /* klx per channel above the atmosphere, over
+                                    2^u_sun_gain_log2 (0 but on a fragment stage
+                                    without highp: exposure.c)                 */
+uniform SKY_UP float u_sun_gain_log2;
 
 /* Chapman's grazing-incidence function for mu >= 0: the column along the
  * ray over the vertical one, sqrt(pi X / 2) erfcx(mu sqrt(X / 2)), with

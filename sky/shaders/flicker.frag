@@ -7,7 +7,7 @@ SKY_IN float v_texel;
 void main()
 {
     /* the tent, or below a texel of a pixel the pixel the star falls in */
-    vec2 off = abs(gl_FragCoord.xy - v_center);
+    vec2 off = abs(sky_point_offset(v_center, 2.0 * max(v_texel, 0.5) + 3.0)); /* flicker.vert's size */
     vec2 t = v_texel > 0.0 ? max(1.0 - off / v_texel, 0.0) : vec2(off.x <= 0.5 && off.y <= 0.5 ? 1.0 : 0.0);
     float L = v_light * t.x * t.y * sky_atmosphere_transmittance(normalize(v_dir));
 #if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)

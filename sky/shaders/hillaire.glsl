@@ -15,8 +15,11 @@ uniform SKY_UP vec3 u_skyview_decode;  /* x: 1 = 8-bit encoding, y: log2 of the 
 vec3 sky_skyview_decode(vec2 uv)
 {
     vec4 t = SKY_TEX2D(u_skyview, uv);
-    float level = (t.r * 65280.0 + t.g * 255.0) / 65535.0;
-    float Y = level > 0.0 ? exp2(u_skyview_decode.y + level * u_skyview_decode.z) : 0.0; /* 0: black */
+    /* the 16-bit level in 0..1, its weights written out: 1 / 65535 is
+     * below mediump's smallest normal number, and a compiler that turns
+     * the division into it at mediump flushes the level to 0 */
+    float level = t.r * 0.99610895 + t.g * 0.0038910506; /* 65280 / 65535, 255 / 65535 */
+    float Y = level > 0.0 ? exp2(u_skyview_decode.y + u_sun_gain_log2 + level * u_skyview_decode.z) : 0.0; /* 0: black */
     vec3 c = vec3(t.b, t.a, 1.0 - t.b - t.a);
     return c * (Y / max(dot(c, vec3(0.2126, 0.7152, 0.0722)), 1e-4));
 }
@@ -44,8 +47,9 @@ vec3 sky_hillaire_radiance(vec3 d)
                  sky_skyview_decode((vec2(i1.x, i1.y) + 0.5) / texture_size), f.x);
     vec3 L = mix(a, b, f.y);
 #else
-    vec3 L = SKY_TEX2D(u_skyview, (p + 0.5) / texture_size).rgb;
+    vec3 L = SKY_TEX2D(u_skyview, (p + 0.5) / texture_size).rgb * exp2(u_sun_gain_log2);
 #endif
+    /* (the encoded table's decoding put the irradiance's gain back) */
     return u_sun_irradiance * L;
 }
 

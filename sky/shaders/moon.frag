@@ -14,20 +14,23 @@ uniform SKY_UP mat4 u_moon_body;           /* billboard frame -> moon body frame
 uniform SKY_UP mat4 u_moon_view;           /* billboard frame -> horizon frame      */
 uniform SKY_UP vec3 u_moon_light;          /* direction to the sun, billboard frame */
 uniform SKY_UP vec3 u_moon_color;          /* kcd/m^2 of the full moon's mean, per
-                                       channel, with k_lambda, extinction, fade */
-uniform SKY_UP vec4 u_moon_terms;          /* x: HLS phase factor, y: LDR scale of
-                                       the sunlit part, z: halo, w: occlusion
-                                       of what is behind                     */
-uniform SKY_UP vec3 u_moon_earthshine;     /* earthshine relative to full sunlight */
+                                       channel, with k_lambda, extinction, fade,
+                                       and in LDR the sunlit part's own scale */
+uniform SKY_UP vec4 u_moon_terms;          /* x: HLS phase factor, z: halo, w:
+                                       occlusion of what is behind            */
+uniform SKY_UP vec3 u_moon_earthshine;     /* earthshine relative to full sunlight,
+                                       over that scale                       */
 uniform SKY_UP float u_moon_radius_tan;    /* the drawn disc's tangent-plane radius */
 #ifdef SKY_HAS_ECLIPSE
 uniform sampler2D u_eclipse_tex;    /* h(t), log10-encoded: h = 10^(-5 texel) */
-uniform SKY_UP vec3 u_moon_center_km;      /* geocentric moon, horizon frame        */
+uniform SKY_UP vec3 u_shadow_offset;      /* the moon's centre from the shadow's axis,
+                                       horizon frame, in moon radii (moon.c) */
 uniform SKY_UP vec3 u_shadow_axis;         /* geocentric direction to the sun       */
-uniform SKY_UP vec4 u_shadow;              /* umbra r, penumbra r (km), moon radius (km), i(t_m) */
+uniform SKY_UP vec4 u_shadow;              /* umbra r, penumbra r, their difference
+                                       (moon radii), i(t_m)                  */
 #endif
 SKY_IN vec3 v_dir;
-SKY_IN vec3 v_true_dir; /* refraction undone at the grid's vertices */
+SKY_IN vec3 v_disc; /* the true direction on the billboard's axes (moon.vert) */
 
 void main()
 {
@@ -35,10 +38,8 @@ void main()
     /* nothing below the refracted horizon: there the ground is */
     if (d.y < 0.0) discard;
     /* the fragment's place on the true disc's tangent plane, in disc radii */
-    vec3 t = normalize(v_true_dir);
-    float along = dot(t, -u_moon_view[2].xyz);
-    if (along <= 0.0) discard;
-    vec2 uv = vec2(dot(t, u_moon_view[0].xyz), dot(t, u_moon_view[1].xyz)) / (along * u_moon_radius_tan);
+    if (v_disc.z <= 0.0) discard;
+    vec2 uv = v_disc.xy / (v_disc.z * u_moon_radius_tan);
     float r2 = dot(uv, uv);
     if (r2 >= 16.0) discard;
     vec3 L = vec3(0.0);
@@ -51,15 +52,15 @@ void main()
         /* Lommel-Seeliger: cos i / (cos i + cos r); its phase factor is
          * in u_moon_terms.x */
         float cos_i = max(dot(n, u_moon_light), 0.0), cos_r = max(n.z, 1e-4);
-        float lit = cos_i / (cos_i + cos_r) * u_moon_terms.x * u_moon_terms.y;
+        float lit = cos_i / (cos_i + cos_r) * u_moon_terms.x;
         L = u_moon_color * albedo * (vec3(lit) + u_moon_earthshine);
 #ifdef SKY_HAS_ECLIPSE
-        /* the fragment's distance from the shadow axis, in km (sec. 3.1) */
-        vec3 p = u_moon_center_km + u_shadow.z * (u_moon_view * vec4(n, 0.0)).xyz;
-        float dist = length(cross(p, u_shadow_axis));
-        if (dot(p, u_shadow_axis) < 0.0 && dist < u_shadow.y) {
-            float t = dist < u_shadow.x ? 0.5 * dist / u_shadow.x
-                                        : 0.5 + 0.5 * (dist - u_shadow.x) / (u_shadow.y - u_shadow.x);
+        /* the fragment's distance from the shadow axis, in moon radii
+         * (sec. 3.1) */
+        vec3 q = (u_moon_view * vec4(n, 0.0)).xyz;
+        float dist = length(u_shadow_offset + q - dot(q, u_shadow_axis) * u_shadow_axis);
+        if (dist < u_shadow.y) {
+            float t = dist < u_shadow.x ? 0.5 * dist / u_shadow.x : 0.5 + 0.5 * (dist - u_shadow.x) / u_shadow.z;
             vec3 h = pow(vec3(10.0), -5.0 * SKY_TEX2D(u_eclipse_tex, vec2(t * (127.0 / 128.0) + 0.5 / 128.0, 0.5)).rgb);
             L *= h * u_shadow.w;
         }
@@ -69,7 +70,7 @@ void main()
         /* halo: falls off with the square of the distance, windowed to the
          * quad's edge */
         float r = sqrt(r2), w = (4.0 - r) / 3.0;
-        L = u_moon_color * u_moon_terms.y * u_moon_terms.z * w * w / r2;
+        L = u_moon_color * u_moon_terms.z * w * w / r2;
     }
 #if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
     float c = sky_front_cover(d);

@@ -173,9 +173,14 @@ void sky_rayleigh_integrals(vec3 view, out vec3 single_r, out vec3 single_m, out
         lo_tss = hi_tss;
         lo_tms = hi_tms;
     }
-    single_r *= u_sun_irradiance;
-    single_m *= u_sun_irradiance;
-    multiple *= u_sun_irradiance * u_rl_multiple;
+    /* the gain at the stage's default precision (the vertex stage's
+     * highp: 2^gain is past mediump's range at night, and an expression of
+     * mediump uniforms alone is evaluated at mediump) */
+    float gain = u_sun_gain_log2;
+    vec3 sun_irradiance = u_sun_irradiance * exp2(gain);
+    single_r *= sun_irradiance;
+    single_m *= sun_irradiance;
+    multiple *= sun_irradiance * u_rl_multiple;
 }
 
 /* The radiance from the integrals and the phases of the view direction. */

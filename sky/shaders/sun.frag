@@ -7,29 +7,27 @@ uniform SKY_UP vec3 u_sun_disc;        /* kcd/m^2 at the disc centre, through th
                                    air (sun.c: within mediump's range)    */
 uniform SKY_UP vec3 u_sun_glare;       /* the glare's peak, through the air      */
 uniform SKY_UP vec3 u_sun_transmittance;
-uniform SKY_UP vec3 u_sun_true_dir;    /* the centre without refraction         */
 uniform SKY_UP vec4 u_eclipse_sun;     /* x: moon's angular radius, y: the sun's
                                    light left, z: corona scale (kcd/m^2) */
-uniform SKY_UP vec3 u_eclipse_moon_dir; /* the moon's centre without refraction */
 SKY_IN vec3 v_dir;
-SKY_IN vec3 v_true_dir; /* refraction undone at the grid's vertices */
+SKY_IN vec3 v_sun_plane;  /* the true direction on the tangent planes at */
+SKY_IN vec3 v_moon_plane; /* the two centres (sun.vert)                 */
 
 void main()
 {
     vec3 view = normalize(v_dir);
     /* (nothing is drawn below the refracted horizon, but the discard waits
      * until the derivatives below have been taken in uniform control flow) */
-    vec3 d = normalize(v_true_dir);
-    /* |d x s| is the sine of the angle: precise for the small angles here,
-     * where acos(dot) would lose most of its digits in float. */
-    float phi = length(cross(d, u_sun_true_dir));
+    /* the tangent of the angle from the centre (the angle itself within
+     * 0.2 % out to the quad's edge, 16 radii) */
+    float phi = v_sun_plane.z > 0.0 ? length(v_sun_plane.xy) / v_sun_plane.z : 1.0;
     float r = phi / u_sun_radius;
     float disc = 0.0;
     if (r < 1.0) disc = 1.0 - 0.6 * (1.0 - sqrt(max(1.0 - r * r, 0.0)));
     /* the moon in front: its edge smoothed over about a pixel outside the
      * true disc, so a total eclipse leaves no partly lit pixel at the
      * sun's limb */
-    float to_moon = dot(d, u_eclipse_moon_dir) > 0.0 ? length(cross(d, u_eclipse_moon_dir)) : 1.0;
+    float to_moon = v_moon_plane.z > 0.0 ? length(v_moon_plane.xy) / v_moon_plane.z : 1.0;
 #ifdef SKY_NO_DERIVATIVES
     float edge = max(u_pixel_angle, 1e-7); /* to_moon changes by about the pixel's angle across it */
 #else
