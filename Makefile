@@ -262,7 +262,7 @@ $(WEB)/bench.html: $(WEB_BENCH_SRC) $(SKY_HDR) demo/cli.h web/bench.html
 		--shell-file web/bench.html -o $@ $(WEB_BENCH_SRC)
 
 bench-web: web
-	@sh tools/deps.sh npm
+	@command -v npm >/dev/null 2>&1 || sh tools/deps.sh npm
 	@$(MAKE) --no-print-directory $(WEB)/bench.html
 	@sh tools/bench-web.sh
 

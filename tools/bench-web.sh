@@ -6,7 +6,10 @@
 # three.js's Sky (the npm package "three" at THREE_VERSION, as shipped),
 # as ratios to the quad of the same round, medians over the rounds.
 # three.js dropped WebGL 1 after r162, so r162 is pinned and its Sky runs in
-# a WebGL 1 context like libsky's.
+# a WebGL 1 context like libsky's. BENCH_ROUNDS=N takes N rounds (5);
+# BENCH_PRESETS=LIST times a list of presets instead, separated by ';',
+# each with sky-render's options after it, URL-encoded
+# ("starry;starry%20--features%20stars": a layer on its own).
 set -e
 cd "$(dirname "$0")/.."
 THREE_VERSION=0.162.0
@@ -26,8 +29,8 @@ shot=$(mktemp --suffix=.png)
 # real time, not virtual: the page times its frames with performance.now;
 # the screenshot (not kept) ends the run at the timeout
 chromium-headless-shell --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
-    --enable-logging=stderr --v=0 --window-size=1280,1500 --timeout=90000 --screenshot="$shot" \
-    "http://127.0.0.1:$port/bench.html" >"$log" 2>&1 || true
+    --enable-logging=stderr --v=0 --window-size=1280,1500 --timeout=$((${BENCH_ROUNDS:-5} * 18000)) --screenshot="$shot" \
+    "http://127.0.0.1:$port/bench.html?rounds=${BENCH_ROUNDS:-5}${BENCH_PRESETS:+&presets=$BENCH_PRESETS}" >"$log" 2>&1 || true
 grep -o '"web-bench: round[^"]*"\|"stderr: [^"]*"' "$log" | sed 's/^"//; s/"$//'
 json=$(grep -o '"web-bench: {.*}"' "$log" | sed 's/^"web-bench: //; s/"$//')
 rm -f "$log" "$shot"

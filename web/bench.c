@@ -108,16 +108,22 @@ EMSCRIPTEN_KEEPALIVE double web_bench_quad(int frames)
 
 /* Median ms of frames frames of a preset as sky-bench builds it (the
  * preset's sliders, date and features, its camera, sky_update(1/60) each
- * frame), in a sky made for the call; -1 if it cannot be made. */
+ * frame), in a sky made for the call; -1 if it cannot be made. The preset's
+ * name may be followed by sky-render's options, separated by spaces
+ * ("starry --features stars"), to time a layer or a setting apart. */
 EMSCRIPTEN_KEEPALIVE double web_bench_preset(const char *preset, int frames)
 {
     double t[256];
     if (frames < 1 || frames > 256) return -1.0;
-    char size[32], err[256];
+    char size[32], err[256], words[256];
     snprintf(size, sizeof size, "%dx%d", canvas_w, canvas_h);
-    char *args[6] = {"sky-bench", "--preset", (char *)preset, "--size", size, NULL};
+    snprintf(words, sizeof words, "%s", preset);
+    char *args[32] = {"sky-bench", "--size", size, "--preset"};
+    int argc = 4;
+    for (char *w = strtok(words, " "); w && argc < 31; w = strtok(NULL, " ")) args[argc++] = w;
+    args[argc] = NULL;
     sky_cli cli;
-    if (sky_cli_parse(&cli, 5, args, 0, err, sizeof err)) {
+    if (sky_cli_parse(&cli, argc, args, 0, err, sizeof err)) {
         fprintf(stderr, "web-bench: %s\n", err);
         return -1.0;
     }
