@@ -107,6 +107,9 @@ void sky_star_color(double bv, float rgb[3]);
 double sky_stars_clock(const void *stars_state);
 struct sky_catalog *sky_stars_catalog(void *stars_state);
 void sky_stars_reload(void *stars_state);
+/* stars.c, for the tests: every star through stars.vert (1), or only the
+ * cells' selection (0, the default) */
+void sky_stars_draw_whole(void *stars_state, int whole);
 /* stars.c: stars.vert's uniform rows for a set of points in the frame's
  * sky_point_frame `member` (stars, planets). */
 #define SKY_POINT_UNIFORMS(member)                                                                       \
@@ -130,7 +133,7 @@ void sky_point_view(sky_core *s, float point_max, double scintillation, sky_poin
  * moved on by dt seconds. */
 double sky_scintillation_advance(double phase, double dt);
 /* stars.c: draws count points of that layout from buffer with program. */
-void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int count);
+void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLuint elements, int count);
 /* stars.c: the faintest V a point source is drawn at: the naked eye's
  * limit against the zenith's sky (Schaefer 1990), as the finished frame
  * has it (sky.c keeps it in frame.naked_eye_limit after every layer's

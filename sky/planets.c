@@ -159,7 +159,7 @@ static int planets_visible(const sky_core *s, const void *state)
 static int planets_draw(sky_core *s, void *state)
 {
     planets_state *st = state;
-    sky_points_draw(s, &st->program, st->buffer, SKY_ASTRO_PLANETS);
+    sky_points_draw(s, &st->program, st->buffer, 0, SKY_ASTRO_PLANETS);
     return 1;
 }
 

@@ -12,6 +12,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define STAR_FLOATS SKY_POINT_FLOATS /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
 /* Illuminance of a V = 0 star (layer.h), in klx so that luminance comes
@@ -30,6 +31,26 @@
  * years of running. */
 #define SCINTILLATION_RATE 10.0
 #define SCINTILLATION_PERIOD 997.0
+/* The buffer holds the stars in cells of about equal area, STAR_BANDS in
+ * sin(dec) by STAR_COLUMNS in right ascension (about 8 stars each, 4 to
+ * 12 degrees across), brightest first within each; a draw takes, through
+ * an index list, only the stars of the cells above the horizon and in
+ * view, and of those the ones the naked eye reaches (stars_select). With
+ * 60 degrees of view that is a sixth of the catalogue under a dark sky
+ * and a fiftieth under a moonlit one: the vertex stage, which does most
+ * of a star's work, runs for them alone. */
+#define STAR_BANDS 24
+#define STAR_COLUMNS 48
+#define STAR_CELLS (STAR_BANDS * STAR_COLUMNS)
+/* what moves a star from its cell on the way to the screen: refraction
+ * (under 0.6 degrees) and aberration (20"), in radians, with margin */
+#define STAR_CELL_MARGIN (1.0 * SKY_PI / 180.0)
+
+typedef struct star_cell {
+    int first, count;  /* its stars in the buffer                        */
+    float dir[3];      /* their mean direction, J2000                   */
+    float radius;      /* the largest angle of one from it, radians    */
+} star_cell;
 
 typedef struct stars_state {
     sky_program program;
@@ -38,6 +59,13 @@ typedef struct stars_state {
     double epoch;             /* years since J2000 of the uploaded positions */
     float point_max;          /* largest point size the context draws      */
     double scintillation;     /* the clock's phase, wrapped                */
+    int brightest_first;      /* the catalogue is sorted so (catgen.c's is) */
+    /* in cells (when the catalogue fits 16-bit indices): */
+    star_cell cells[STAR_CELLS];
+    float *vmag;              /* V of each star in the buffer's order       */
+    unsigned short *indices;  /* the draw's list                           */
+    GLuint elements;          /* and its buffer                            */
+    int whole;                /* tests: every star, without the cells      */
 } stars_state;
 
 static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars)};
@@ -73,32 +101,83 @@ void sky_star_color(double bv, float rgb[3])
     rgb[0] = (float)(r / lum), rgb[1] = (float)(g / lum), rgb[2] = (float)(b / lum);
 }
 
+/* A star's place in the buffer: its cell, brightest first within it. */
+typedef struct star_place {
+    int cell, index;
+    float vmag;
+} star_place;
+
+static int by_cell(const void *a, const void *b)
+{
+    const star_place *p = a, *q = b;
+    if (p->cell != q->cell) return p->cell < q->cell ? -1 : 1;
+    if (p->vmag != q->vmag) return p->vmag < q->vmag ? -1 : 1;
+    return (p->index > q->index) - (p->index < q->index);
+}
+
 /* Fills the vertex buffer: J2000 directions moved by proper motion to the
- * given epoch (years since J2000), colours and magnitudes. */
+ * given epoch (years since J2000), colours and magnitudes; in cells (and
+ * the cells' table) when st->indices is there, else in the catalogue's
+ * order. */
 static int upload_stars(sky_core *s, stars_state *st, double years, char *err, size_t err_len)
 {
     const sky_catalog *cat = &st->catalog;
     float *v = malloc(sizeof(float) * STAR_FLOATS * (size_t)cat->count);
-    if (!v) {
+    star_place *order = malloc(sizeof *order * (size_t)(cat->count > 0 ? cat->count : 1));
+    if (!v || !order) {
+        free(v);
+        free(order);
         sky_format(err, err_len, "out of memory for %d stars", cat->count);
         return -1;
     }
+    st->brightest_first = 1;
     const double mas = SKY_PI / 648000.0 * 1e-3;
     for (int i = 0; i < cat->count; i++) {
         const sky_star *star = &cat->stars[i];
+        if (i > 0 && star->vmag < cat->stars[i - 1].vmag) st->brightest_first = 0;
         double cd = cos(star->dec);
         double ra = star->ra + (cd > 1e-9 ? star->pm_ra / cd : 0.0) * mas * years;
         double dec = star->dec + star->pm_dec * mas * years;
         float *p = v + i * STAR_FLOATS;
-        p[0] = (float)i;
+        p[0] = (float)i; /* the twinkle's seed: the catalogue's index */
         p[1] = 0.0f;
         p[2] = (float)(cos(dec) * cos(ra));
         p[3] = (float)(cos(dec) * sin(ra));
         p[4] = (float)sin(dec);
         sky_star_color(star->bv, p + 5);
         p[8] = star->vmag;
+        double column = fmod(atan2(p[3], p[2]) / (2.0 * SKY_PI) + 1.0, 1.0) * STAR_COLUMNS;
+        int band = (int)sky_clampd((p[4] + 1.0) * 0.5 * STAR_BANDS, 0.0, STAR_BANDS - 1);
+        order[i] = (star_place){band * STAR_COLUMNS + (int)sky_clampd(column, 0.0, STAR_COLUMNS - 1), i, star->vmag};
     }
     size_t bytes = sizeof(float) * STAR_FLOATS * (size_t)cat->count;
+    float *sorted = st->indices ? malloc(bytes) : NULL;
+    if (sorted) {
+        qsort(order, (size_t)cat->count, sizeof *order, by_cell);
+        memset(st->cells, 0, sizeof st->cells);
+        for (int k = 0; k < cat->count; k++) {
+            memcpy(sorted + k * STAR_FLOATS, v + order[k].index * STAR_FLOATS, sizeof(float) * STAR_FLOATS);
+            st->vmag[k] = order[k].vmag;
+            star_cell *c = &st->cells[order[k].cell];
+            if (!c->count) c->first = k;
+            c->count++;
+            for (int j = 0; j < 3; j++) c->dir[j] += sorted[k * STAR_FLOATS + 2 + j];
+        }
+        for (int n = 0; n < STAR_CELLS; n++) {
+            star_cell *c = &st->cells[n];
+            double len = sqrt(c->dir[0] * c->dir[0] + c->dir[1] * c->dir[1] + c->dir[2] * c->dir[2]);
+            double nearest = 1.0;
+            for (int j = 0; j < 3; j++) c->dir[j] = len > 0.0 ? (float)(c->dir[j] / len) : 0.0f;
+            for (int k = c->first; k < c->first + c->count; k++) {
+                const float *d = sorted + k * STAR_FLOATS + 2;
+                nearest = fmin(nearest, d[0] * c->dir[0] + d[1] * c->dir[1] + d[2] * c->dir[2]);
+            }
+            c->radius = (float)acos(sky_clampd(nearest, -1.0, 1.0));
+        }
+        free(v);
+        v = sorted;
+    }
+    free(order);
     if (!st->buffer)
         st->buffer = sky_buffer_create(s, GL_ARRAY_BUFFER, v, bytes, GL_STATIC_DRAW);
     else
@@ -119,6 +198,23 @@ static int stars_create(sky_core *s, void *state, char *err, size_t err_len)
     stars_state *st = state;
     if (sky_catalog_load(&st->catalog, err, err_len)) return -1;
     st->point_max = sky_gl_point_size_max(s);
+    /* the cells need 16-bit indices (ES 2.0 has no others); a catalogue
+     * past them is drawn whole, in its own order */
+    int n = st->catalog.count;
+    if (n > 0 && n <= 65536) {
+        st->vmag = malloc(sizeof *st->vmag * (size_t)n);
+        st->indices = malloc(sizeof *st->indices * (size_t)n);
+        if (!st->vmag || !st->indices) {
+            sky_format(err, err_len, "out of memory for %d stars", n);
+            return -1;
+        }
+        st->elements = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, NULL, sizeof *st->indices * (size_t)n,
+                                         GL_DYNAMIC_DRAW);
+        if (!st->elements) {
+            sky_format(err, err_len, "glGenBuffers failed for the stars' index list");
+            return -1;
+        }
+    }
     if (upload_stars(s, st, s->astro.years_since_j2000, err, err_len)) return -1;
     const sky_snippet *own[1] = {&stars_snippet};
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
@@ -129,8 +225,11 @@ static void stars_destroy(sky_core *s, void *state)
 {
     stars_state *st = state;
     sky_program_destroy(s, &st->program);
-    const size_t bytes = star_bytes(&st->catalog);
-    sky_buffers_destroy(s, &st->buffer, &bytes, 1);
+    const GLuint buffers[2] = {st->buffer, st->elements};
+    const size_t bytes[2] = {star_bytes(&st->catalog), sizeof *st->indices * (size_t)st->catalog.count};
+    sky_buffers_destroy(s, buffers, bytes, 2);
+    free(st->vmag);
+    free(st->indices);
     sky_catalog_free(&st->catalog);
 }
 
@@ -203,7 +302,7 @@ void sky_point_view(sky_core *s, float point_max, double scintillation, sky_poin
     p->seed = (float)(SCINTILLATION_PERIOD * scintillation);
 }
 
-void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int count)
+void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLuint elements, int count)
 {
     const sky_gl *gl = &s->gl;
     sky_program_apply(s, program);
@@ -215,7 +314,12 @@ void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, int
     gl->glEnableVertexAttribArray(1);
     gl->glEnableVertexAttribArray(2);
     sky_gl_program_point_size(s, 1);
-    gl->glDrawArrays(GL_POINTS, 0, count);
+    if (elements) {
+        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, elements);
+        gl->glDrawElements(GL_POINTS, count, GL_UNSIGNED_SHORT, (const void *)0);
+    } else {
+        gl->glDrawArrays(GL_POINTS, 0, count);
+    }
     sky_gl_program_point_size(s, 0);
 }
 
@@ -246,10 +350,86 @@ static int stars_visible(const sky_core *s, const void *state)
     return f->stars.flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0 && -1.46 < f->stars.pressure[1] + 0.25;
 }
 
+/* How many of the n magnitudes in vmag (brightest first) the naked eye
+ * reaches against this sky: stars.vert gives nothing to a star a quarter
+ * magnitude fainter than the limit. */
+static int in_reach(const float *vmag, int n, float limit)
+{
+    int lo = 0, hi = n; /* the first past the limit lies in [lo, hi] */
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (vmag[mid] < limit + 0.26f)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The draw's index list (STAR_CELLS): the stars the eye reaches in the
+ * cells that reach above the horizon and, with a perspective camera, into
+ * the view (a cone of the cell's radius and the margin against each side
+ * plane of the frustum). Returns their number. */
+static int stars_select(const sky_core *s, stars_state *st)
+{
+    const sky_frame *f = &s->frame;
+    const float *rot = f->stars.rot, *vp = f->view_proj;
+    double planes[4][3];
+    for (int p = 0; p < 4; p++) {
+        int row = p >> 1;
+        double sign = p & 1 ? -1.0 : 1.0, len = 0.0;
+        for (int j = 0; j < 3; j++) {
+            planes[p][j] = vp[j * 4 + 3] + sign * vp[j * 4 + row]; /* w +- x, w +- y */
+            len += planes[p][j] * planes[p][j];
+        }
+        len = sqrt(len);
+        for (int j = 0; j < 3; j++) planes[p][j] = len > 0.0 ? planes[p][j] / len : 0.0;
+    }
+    /* a point spreads up to its largest radius in pixels */
+    double margin = STAR_CELL_MARGIN + f->stars.size.max_radius * f->pixel_angle;
+    float limit = f->stars.pressure[1];
+    int n = 0;
+    for (int c = 0; c < STAR_CELLS; c++) {
+        const star_cell *cell = &st->cells[c];
+        if (!cell->count) continue;
+        double d[3];
+        for (int i = 0; i < 3; i++) d[i] = rot[i] * cell->dir[0] + rot[4 + i] * cell->dir[1] + rot[8 + i] * cell->dir[2];
+        double reach = -sin(fmin(cell->radius + margin, 0.5 * SKY_PI));
+        if (d[1] < reach) continue;
+        int seen = 1;
+        for (int p = 0; seen && f->fisheye < 0.5f && p < 4; p++)
+            seen = planes[p][0] * d[0] + planes[p][1] * d[1] + planes[p][2] * d[2] >= reach;
+        if (!seen) continue;
+        int count = in_reach(st->vmag + cell->first, cell->count, limit);
+        for (int k = 0; k < count; k++) st->indices[n++] = (unsigned short)(cell->first + k);
+    }
+    return n;
+}
+
 static int stars_draw(sky_core *s, void *state)
 {
     stars_state *st = state;
-    sky_points_draw(s, &st->program, st->buffer, st->catalog.count);
+    float limit = s->frame.stars.pressure[1];
+    if (!st->elements || st->whole) {
+        /* a catalogue brightest first ends its draw at the first star past
+         * the limit; one in another order is drawn whole */
+        int count = st->catalog.count;
+        if (st->brightest_first && !st->elements) {
+            float *vmag = malloc(sizeof *vmag * (size_t)(count > 0 ? count : 1));
+            if (vmag) {
+                for (int i = 0; i < count; i++) vmag[i] = st->catalog.stars[i].vmag;
+                count = in_reach(vmag, count, limit);
+                free(vmag);
+            }
+        }
+        sky_points_draw(s, &st->program, st->buffer, 0, count);
+        return 1;
+    }
+    int n = stars_select(s, st);
+    if (!n) return 0;
+    sky_buffer_update(s, GL_ELEMENT_ARRAY_BUFFER, st->elements, st->indices, sizeof *st->indices * (size_t)n,
+                      GL_DYNAMIC_DRAW);
+    sky_points_draw(s, &st->program, st->buffer, st->elements, n);
     return 1;
 }
 
@@ -257,12 +437,13 @@ static size_t stars_buffer_bytes(const sky_core *s, const void *state)
 {
     (void)s;
     const stars_state *st = state;
-    return st->buffer ? star_bytes(&st->catalog) : 0;
+    return (st->buffer ? star_bytes(&st->catalog) : 0) + (st->elements ? sizeof *st->indices * (size_t)st->catalog.count : 0);
 }
 
 double sky_stars_clock(const void *state) { return ((const stars_state *)state)->scintillation; }
 sky_catalog *sky_stars_catalog(void *state) { return &((stars_state *)state)->catalog; }
 void sky_stars_reload(void *state) { ((stars_state *)state)->epoch = -1e9; /* the next frame uploads */ }
+void sky_stars_draw_whole(void *state, int whole) { ((stars_state *)state)->whole = whole; }
 
 /* Catalogue stars, added over the dome: their light dimmed by the
  * atmosphere (extinction in the shader) and hidden by the clouds. */

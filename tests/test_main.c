@@ -140,6 +140,7 @@ int test_skipped;
     X(stars_scintillate_more_near_horizon)       \
     X(stars_skipped_at_noon)                     \
     X(stars_flux_with_and_without_glare)         \
+    X(stars_cells_lose_no_star)                  \
     X(starmap_shows_the_milky_way)               \
     X(moon_phase_and_bright_limb)                \
     X(moon_earthshine_on_a_crescent)             \

@@ -18,6 +18,7 @@ void test_stars_scintillate_more_near_horizon(void);
 void test_stars_skipped_at_noon(void);
 void test_starmap_shows_the_milky_way(void);
 void test_stars_flux_with_and_without_glare(void);
+void test_stars_cells_lose_no_star(void);
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -474,5 +475,66 @@ void test_stars_flux_with_and_without_glare(void)
              expect * 1e3, 100.0 * (got / expect - 1.0));
         CHECK(expect > 0.0 && fabs(got / expect - 1.0) <= 0.03, "m_a %.1f: %.4g lx vs %.4g lx", ma[i], got * 1e3,
               expect * 1e3);
+    }
+}
+
+/* The draw takes only the stars of the cells above the horizon and in
+ * view (stars.c's STAR_CELLS): against every star through stars.vert, no
+ * pixel may change, whatever the camera (near the horizon, at the zenith,
+ * narrow and wide, the fisheye), under a dark sky (every star in reach)
+ * and a moonlit one (a tenth). */
+void test_stars_cells_lose_no_star(void)
+{
+    enum { W = 320, H = 180 };
+    static const struct { double yaw, pitch, fov; } views[] = {
+        {180.0, 10.0, 60.0}, {30.0, 89.0, 60.0}, {275.0, 35.0, 12.0}, {90.0, -20.0, 110.0}, {0.0, 0.0, 0.0}};
+    for (int moon = 0; moon < 2; moon++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.features = SKY_STARS | (moon ? SKY_MOON : 0u);
+        cfg.output = SKY_OUTPUT_HDR;
+        fixture f;
+        if (fixture_open_sized(&f, W, H, 1, SKY_GL_AUTO, &cfg)) {
+            CHECK(0, "fixture");
+            return;
+        }
+        /* a winter night at 60 N; with the moon a full one up */
+        sky_observer o = winter_evening();
+        if (moon) o.julian_day_utc = sky_julian_day(2024, 1, 25, 23, 0, 0.0);
+        sky_set_observer(f.s, &o);
+        void *stars = f.s->layer_state[SKY_LAYER_STARS];
+        for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+            float *img[2] = {NULL, NULL};
+            for (int whole = 0; whole < 2; whole++) {
+                sky_stars_draw_whole(stars, whole);
+                float view[16], proj[16];
+                sky_cli_camera_at(views[v].yaw, views[v].pitch, views[v].fov > 0.0 ? views[v].fov : 60.0, W, H,
+                                  view, proj);
+                sky_result r = views[v].fov > 0.0 ? sky_draw(f.s, view, proj) : sky_draw_fisheye(f.s);
+                CHECK(r == SKY_OK, "draw: %s", sky_last_error(f.s));
+                sky_osmesa_finish(&f.ctx);
+                img[whole] = malloc(sizeof(float) * 4 * W * H);
+                if (img[whole]) memcpy(img[whole], f.ctx.pixels, sizeof(float) * 4 * W * H);
+            }
+            sky_stars_draw_whole(stars, 0);
+            if (img[0] && img[1]) {
+                /* (the light; alpha, which sky.h leaves open, counts the
+                 * additive points that reached a pixel, light or none) */
+                int changed = 0, lit = 0;
+                for (int i = 0; i < W * H * 4; i++)
+                    if (i % 4 != 3) {
+                        changed += img[0][i] != img[1][i];
+                        lit += img[1][i] > 0.0f;
+                    }
+                NOTE("%s, view %zu: %d lit values, %d changed by the cells", moon ? "moonlit" : "dark", v, lit,
+                     changed);
+                CHECK(lit > 0 && changed == 0, "%s, view %zu (yaw %.0f pitch %.0f fov %.0f): the cells change %d "
+                      "values of the frame", moon ? "moonlit" : "dark", v, views[v].yaw, views[v].pitch,
+                      views[v].fov, changed);
+            }
+            free(img[0]);
+            free(img[1]);
+        }
+        fixture_close(&f);
     }
 }

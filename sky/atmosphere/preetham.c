@@ -30,8 +30,10 @@ static const sky_uniform_desc preetham_uniforms[] = {
     SKY_UF("u_perez_c", SKY_U_F3, perez[2]), SKY_UF("u_perez_d", SKY_U_F3, perez[3]),
     SKY_UF("u_perez_e", SKY_U_F3, perez[4]), SKY_UL("u_perez_zenith", SKY_U_F3, perez_zenith, 1u),
 };
+/* (in the vertex stage too: R-P's stars take its transmittance per point,
+ * flicker.vert) */
 const sky_snippet sky_preetham_snippet = {"SKY_HAS_PREETHAM", "preetham.glsl", preetham_uniforms,
-                                          SKY_UNIFORM_COUNT(preetham_uniforms), NULL};
+                                          SKY_UNIFORM_COUNT(preetham_uniforms), "preetham.glsl"};
 
 #define PREETHAM_TURBIDITY_MIN 2.0
 #define PREETHAM_TURBIDITY_MAX 10.0

@@ -39,6 +39,20 @@ vec3 sky_tangent_plane(vec3 d, vec3 c)
     return vec3(dot(d, e0), dot(d, cross(c, e0)), dot(d, c));
 }
 
+/* How points cover pixels: as sprites (ES, a core profile) the pixels
+ * whose centres lie within half the point's size of its centre; GL 2.0's
+ * points without sprites those from floor(x) - floor(size / 2), which
+ * takes a margin of a pixel or two more (the points' sizes say which). */
+#if defined(SKY_ES) || defined(SKY_CORE)
+const bool SKY_POINT_SPRITES = true;
+#else
+const bool SKY_POINT_SPRITES = false;
+#endif
+/* a catalogue star's point for its PSF's radius k in pixels (stars.vert),
+ * and one of R-P's stars' for its tent's half width (flicker.vert) */
+float sky_star_point_size(float k) { return 2.0 * k + (SKY_POINT_SPRITES ? 0.0 : 1.0); }
+float sky_flicker_point_size(float texel) { return 2.0 * max(texel, 0.5) + (SKY_POINT_SPRITES ? 1.0 : 3.0); }
+
 /* A position on the host's far plane (sky_config.depth): the sky is
  * farther than anything, so drawn after the scene with the depth test on
  * it shows only where the scene left the far plane. */
@@ -184,7 +198,7 @@ float sky_hash(vec2 p)
 vec2 sky_point_offset(vec2 center, float size)
 {
 #ifdef SKY_ES
-    return (gl_PointCoord - 0.5) * size;
+    return vec2(gl_PointCoord.x - 0.5, 0.5 - gl_PointCoord.y) * size; /* (its y runs down) */
 #else
     return gl_FragCoord.xy - center;
 #endif

@@ -27,8 +27,9 @@ void main()
      * brightness, as the unfiltered texture showed it where a pixel met
      * the texel (without the texture's popping in and out as it moves) */
     float texel = (1.0 + y) / 1024.0 / u_pixel_angle;
-    v_texel = texel < 1.0 ? 0.0 : min(texel, 0.5 * (u_point_max - 3.0));
-    v_light = u_star_luminance * flick;
+    v_texel = texel < 1.0 ? 0.0 : min(texel, 0.5 * (u_point_max - sky_flicker_point_size(0.0)));
+    /* the air in front: the same across a point this small */
+    v_light = u_star_luminance * flick * sky_atmosphere_transmittance(normalize(d));
     vec4 clip;
     if (u_fisheye > 0.5)
         clip = vec4(sky_fisheye_ndc(d) / u_aspect, 0.0, 1.0);
@@ -39,9 +40,8 @@ void main()
     bool faint = u_output_hdr < 0.5 && v_light * u_exposure < 1.0 / 1024.0;
     if (clip.w <= 0.0 || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
     gl_Position = sky_at_far(clip);
-    /* two pixels of margin: GL 2.0's points without sprites cover the
-     * pixels from floor(x) - floor(size / 2), sprites those whose centres
-     * lie within size / 2; flicker.frag weighs what is covered */
-    gl_PointSize = 2.0 * max(v_texel, 0.5) + 3.0;
+    /* the tent, or its pixel, and the margin; flicker.frag weighs what is
+     * covered */
+    gl_PointSize = sky_flicker_point_size(v_texel);
     v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_viewport.zw + u_viewport.xy;
 }

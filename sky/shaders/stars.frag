@@ -13,7 +13,7 @@ SKY_IN vec2 v_size;
 
 void main()
 {
-    float l = length(sky_point_offset(v_center, 2.0 * v_size.x + 1.0)) / v_size.x; /* stars.vert's size */
+    float l = length(sky_point_offset(v_center, sky_star_point_size(v_size.x))) / v_size.x;
     if (l >= 1.0) discard;
     float ls = l * v_size.y;                   /* distance in units of q */
     float psf = ls < 1.0 ? (2.0 * ls - 3.0) * ls * ls + 1.0 : 0.0;

@@ -111,6 +111,6 @@ void main()
      * outside the clip volume */
     if (d.y < 0.0 || clip.w <= 0.0 || occulted || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
     gl_Position = sky_at_far(clip);
-    gl_PointSize = 2.0 * k + 1.0;
+    gl_PointSize = sky_star_point_size(k);
     v_center = (clip.xy / clip.w * 0.5 + 0.5) * u_viewport.zw + u_viewport.xy;
 }
