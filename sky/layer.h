@@ -132,6 +132,11 @@ void sky_point_view(sky_core *s, float point_max, double scintillation, sky_poin
 /* stars.c: a set of points' scintillation clock, a phase wrapped in 0..1,
  * moved on by dt seconds. */
 double sky_scintillation_advance(double phase, double dt);
+/* stars.c: whether a point of magnitude vmag at the horizon direction d
+ * (before refraction) can show in this view: above the horizon and within
+ * the frustum's sides, with refraction, aberration and its point's radius
+ * (p's sizes) for margin. */
+int sky_point_in_view(const sky_core *s, const sky_point_frame *p, const double d[3], double vmag);
 /* stars.c: draws count points of that layout from buffer with program. */
 void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLuint elements, int count);
 /* stars.c: the faintest V a point source is drawn at: the naked eye's

@@ -63,6 +63,8 @@ typedef struct stars_state {
     /* in cells (when the catalogue fits 16-bit indices): */
     star_cell cells[STAR_CELLS];
     float *vmag;              /* V of each star in the buffer's order       */
+    float *dirs;              /* and its J2000 direction (3 floats)         */
+    float vmag_least;         /* the brightest star's V                     */
     unsigned short *indices;  /* the draw's list                           */
     GLuint elements;          /* and its buffer                            */
     int whole;                /* tests: every star, without the cells      */
@@ -155,9 +157,12 @@ static int upload_stars(sky_core *s, stars_state *st, double years, char *err, s
     if (sorted) {
         qsort(order, (size_t)cat->count, sizeof *order, by_cell);
         memset(st->cells, 0, sizeof st->cells);
+        st->vmag_least = cat->count > 0 ? order[0].vmag : 0.0f;
         for (int k = 0; k < cat->count; k++) {
             memcpy(sorted + k * STAR_FLOATS, v + order[k].index * STAR_FLOATS, sizeof(float) * STAR_FLOATS);
+            memcpy(st->dirs + 3 * k, sorted + k * STAR_FLOATS + 2, sizeof(float) * 3);
             st->vmag[k] = order[k].vmag;
+            st->vmag_least = fminf(st->vmag_least, order[k].vmag);
             star_cell *c = &st->cells[order[k].cell];
             if (!c->count) c->first = k;
             c->count++;
@@ -203,8 +208,9 @@ static int stars_create(sky_core *s, void *state, char *err, size_t err_len)
     int n = st->catalog.count;
     if (n > 0 && n <= 65536) {
         st->vmag = malloc(sizeof *st->vmag * (size_t)n);
+        st->dirs = malloc(sizeof *st->dirs * 3 * (size_t)n);
         st->indices = malloc(sizeof *st->indices * (size_t)n);
-        if (!st->vmag || !st->indices) {
+        if (!st->vmag || !st->dirs || !st->indices) {
             sky_format(err, err_len, "out of memory for %d stars", n);
             return -1;
         }
@@ -229,6 +235,7 @@ static void stars_destroy(sky_core *s, void *state)
     const size_t bytes[2] = {star_bytes(&st->catalog), sizeof *st->indices * (size_t)st->catalog.count};
     sky_buffers_destroy(s, buffers, bytes, 2);
     free(st->vmag);
+    free(st->dirs);
     free(st->indices);
     sky_catalog_free(&st->catalog);
 }
@@ -350,15 +357,15 @@ static int stars_visible(const sky_core *s, const void *state)
     return f->stars.flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0 && -1.46 < f->stars.pressure[1] + 0.25;
 }
 
-/* How many of the n magnitudes in vmag (brightest first) the naked eye
- * reaches against this sky: stars.vert gives nothing to a star a quarter
- * magnitude fainter than the limit. */
-static int in_reach(const float *vmag, int n, float limit)
+/* How many of n magnitudes (brightest first, stride bytes apart from
+ * first) the naked eye reaches against this sky: stars.vert gives nothing
+ * to a star a quarter magnitude fainter than the limit. */
+static int in_reach(const float *first, size_t stride, int n, float limit)
 {
     int lo = 0, hi = n; /* the first past the limit lies in [lo, hi] */
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;
-        if (vmag[mid] < limit + 0.26f)
+        if (*(const float *)(const void *)((const char *)first + (size_t)mid * stride) < limit + 0.26f)
             lo = mid + 1;
         else
             hi = mid;
@@ -366,42 +373,103 @@ static int in_reach(const float *vmag, int n, float limit)
     return lo;
 }
 
-/* The draw's index list (STAR_CELLS): the stars the eye reaches in the
- * cells that reach above the horizon and, with a perspective camera, into
- * the view (a cone of the cell's radius and the margin against each side
- * plane of the frustum). Returns their number. */
-static int stars_select(const sky_core *s, stars_state *st)
+/* The radius in pixels of a star's point (stars.vert's k, Mueller eq. 9):
+ * q, or for a star brighter than the control magnitude its glare's
+ * c_k sqrt(I_G); at most the largest point. */
+static double point_radius(const sky_point_frame *p, double vmag)
 {
-    const sky_frame *f = &s->frame;
-    const float *rot = f->stars.rot, *vp = f->view_proj;
+    double glare = pow(2.512, p->size.control_magnitude - vmag - 0.167) - 1.0;
+    return fmin(fmax(p->size.q, p->size.glare_ck * sqrt(fmax(glare, 0.0))), p->size.max_radius);
+}
+
+/* The view's bounds for points: the horizon and, with a perspective
+ * camera, the frustum's four side planes through the eye (unit normals,
+ * inward, in the horizon frame: w + x, w - x, w + y, w - y of view_proj's
+ * rows). */
+typedef struct view_bounds {
     double planes[4][3];
+    int sides;
+} view_bounds;
+
+static view_bounds bounds_of(const sky_frame *f)
+{
+    view_bounds b;
+    b.sides = f->fisheye < 0.5f ? 4 : 0;
+    const float *vp = f->view_proj;
     for (int p = 0; p < 4; p++) {
         int row = p >> 1;
         double sign = p & 1 ? -1.0 : 1.0, len = 0.0;
         for (int j = 0; j < 3; j++) {
-            planes[p][j] = vp[j * 4 + 3] + sign * vp[j * 4 + row]; /* w +- x, w +- y */
-            len += planes[p][j] * planes[p][j];
+            b.planes[p][j] = vp[j * 4 + 3] + sign * vp[j * 4 + row];
+            len += b.planes[p][j] * b.planes[p][j];
         }
         len = sqrt(len);
-        for (int j = 0; j < 3; j++) planes[p][j] = len > 0.0 ? planes[p][j] / len : 0.0;
+        for (int j = 0; j < 3; j++) b.planes[p][j] = len > 0.0 ? b.planes[p][j] / len : 0.0;
     }
-    /* a point spreads up to its largest radius in pixels */
-    double margin = STAR_CELL_MARGIN + f->stars.size.max_radius * f->pixel_angle;
-    float limit = f->stars.pressure[1];
+    return b;
+}
+
+/* How far inside those bounds the horizon direction d lies: the least of
+ * the sines of its angles from them, negative outside. */
+static double inside_by(const double d[3], const view_bounds *b)
+{
+    double least = d[1];
+    for (int p = 0; p < b->sides; p++)
+        least = fmin(least, b->planes[p][0] * d[0] + b->planes[p][1] * d[1] + b->planes[p][2] * d[2]);
+    return least;
+}
+
+/* The margin around a point of magnitude vmag in radians: what moves it
+ * from its catalogue place on the way to the screen, and its radius. */
+static double point_margin(const sky_frame *f, const sky_point_frame *p, double vmag)
+{
+    return STAR_CELL_MARGIN + (point_radius(p, vmag) + 1.0) * f->pixel_angle;
+}
+
+int sky_point_in_view(const sky_core *s, const sky_point_frame *p, const double d[3], double vmag)
+{
+    view_bounds b = bounds_of(&s->frame);
+    return inside_by(d, &b) >= -point_margin(&s->frame, p, vmag);
+}
+
+/* The draw's index list (STAR_CELLS): the stars the eye reaches in the
+ * cells that reach above the horizon and, with a perspective camera, into
+ * the view (a cone of the cell's radius and the margin against each side
+ * plane of the frustum); in a cell across a boundary, star by star. Each
+ * star left out saves a point that the rasterizer would set up only to
+ * clip (SwiftShader spends about half a microsecond on one). Returns
+ * their number. */
+static int stars_select(const sky_core *s, stars_state *st)
+{
+    const sky_frame *f = &s->frame;
+    const float *rot = f->stars.rot;
+    const sky_point_frame *pf = &f->stars;
+    view_bounds b = bounds_of(f);
     int n = 0;
+    /* A point spreads over its radius in pixels: the catalogue's brightest
+     * star's bounds every cell's for a first test, then the cell's own
+     * (its brightest star's) for the rest. Angles stand in for their
+     * sines: never smaller, so nothing in view is left out. */
+    double widest = point_margin(f, pf, st->vmag_least);
     for (int c = 0; c < STAR_CELLS; c++) {
         const star_cell *cell = &st->cells[c];
         if (!cell->count) continue;
         double d[3];
         for (int i = 0; i < 3; i++) d[i] = rot[i] * cell->dir[0] + rot[4 + i] * cell->dir[1] + rot[8 + i] * cell->dir[2];
-        double reach = -sin(fmin(cell->radius + margin, 0.5 * SKY_PI));
-        if (d[1] < reach) continue;
-        int seen = 1;
-        for (int p = 0; seen && f->fisheye < 0.5f && p < 4; p++)
-            seen = planes[p][0] * d[0] + planes[p][1] * d[1] + planes[p][2] * d[2] >= reach;
-        if (!seen) continue;
-        int count = in_reach(st->vmag + cell->first, cell->count, limit);
-        for (int k = 0; k < count; k++) st->indices[n++] = (unsigned short)(cell->first + k);
+        double inside = inside_by(d, &b);
+        if (inside < -(cell->radius + widest)) continue;
+        double margin = point_margin(f, pf, st->vmag[cell->first]);
+        if (inside < -(cell->radius + margin)) continue;
+        int count = in_reach(st->vmag + cell->first, sizeof(float), cell->count, pf->pressure[1]);
+        int whole = inside >= cell->radius; /* every star inside */
+        for (int k = cell->first; k < cell->first + count; k++) {
+            if (!whole) {
+                const float *j = st->dirs + 3 * k;
+                for (int i = 0; i < 3; i++) d[i] = rot[i] * j[0] + rot[4 + i] * j[1] + rot[8 + i] * j[2];
+                if (inside_by(d, &b) < -margin) continue;
+            }
+            st->indices[n++] = (unsigned short)k;
+        }
     }
     return n;
 }
@@ -409,19 +477,12 @@ static int stars_select(const sky_core *s, stars_state *st)
 static int stars_draw(sky_core *s, void *state)
 {
     stars_state *st = state;
-    float limit = s->frame.stars.pressure[1];
     if (!st->elements || st->whole) {
         /* a catalogue brightest first ends its draw at the first star past
          * the limit; one in another order is drawn whole */
         int count = st->catalog.count;
-        if (st->brightest_first && !st->elements) {
-            float *vmag = malloc(sizeof *vmag * (size_t)(count > 0 ? count : 1));
-            if (vmag) {
-                for (int i = 0; i < count; i++) vmag[i] = st->catalog.stars[i].vmag;
-                count = in_reach(vmag, count, limit);
-                free(vmag);
-            }
-        }
+        if (st->brightest_first && !st->elements && count > 0)
+            count = in_reach(&st->catalog.stars[0].vmag, sizeof(sky_star), count, s->frame.stars.pressure[1]);
         sky_points_draw(s, &st->program, st->buffer, 0, count);
         return 1;
     }

@@ -110,7 +110,8 @@ EMSCRIPTEN_KEEPALIVE double web_bench_quad(int frames)
  * preset's sliders, date and features, its camera, sky_update(1/60) each
  * frame), in a sky made for the call; -1 if it cannot be made. The preset's
  * name may be followed by sky-render's options, separated by spaces
- * ("starry --features stars"), to time a layer or a setting apart. */
+ * ("starry --features stars"), to time a layer or a setting apart; a
+ * --size within the canvas draws into that corner of it. */
 EMSCRIPTEN_KEEPALIVE double web_bench_preset(const char *preset, int frames)
 {
     double t[256];
@@ -118,9 +119,13 @@ EMSCRIPTEN_KEEPALIVE double web_bench_preset(const char *preset, int frames)
     char size[32], err[256], words[256];
     snprintf(size, sizeof size, "%dx%d", canvas_w, canvas_h);
     snprintf(words, sizeof words, "%s", preset);
-    char *args[32] = {"sky-bench", "--size", size, "--preset"};
-    int argc = 4;
-    for (char *w = strtok(words, " "); w && argc < 31; w = strtok(NULL, " ")) args[argc++] = w;
+    char *args[32] = {"sky-bench", "--preset"};
+    int argc = 2;
+    for (char *w = strtok(words, " "); w && argc < 29; w = strtok(NULL, " ")) args[argc++] = w;
+    if (!strstr(preset, "--size")) {
+        args[argc++] = "--size";
+        args[argc++] = size;
+    }
     args[argc] = NULL;
     sky_cli cli;
     if (sky_cli_parse(&cli, argc, args, 0, err, sizeof err)) {
@@ -138,7 +143,9 @@ EMSCRIPTEN_KEEPALIVE double web_bench_preset(const char *preset, int frames)
     sky_set_observer(s, &cli.observer);
     float view[16], proj[16];
     sky_cli_camera(&cli, view, proj);
-    glViewport(0, 0, canvas_w, canvas_h);
+    /* the canvas, or the size the options ask for ("starry --size 16x9":
+     * what a frame costs besides its pixels) */
+    glViewport(0, 0, cli.width < canvas_w ? cli.width : canvas_w, cli.height < canvas_h ? cli.height : canvas_h);
     sky_update(s, 1.0 / 60.0);
     sky_draw(s, view, proj); /* shader compilation */
     wait_for_gpu();
