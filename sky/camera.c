@@ -194,3 +194,29 @@ int sky_camera_horizon_to_world(const float m[9], float out[9])
     for (int i = 0; i < 9; i++) out[i] = identity ? (i % 4 == 0 ? 1.0f : 0.0f) : m[i];
     return 0;
 }
+
+sky_view_bounds sky_camera_bounds(const sky_frame *f)
+{
+    sky_view_bounds b;
+    b.sides = f->fisheye < 0.5f ? 4 : 0;
+    const float *vp = f->view_proj;
+    for (int p = 0; p < 4; p++) {
+        int row = p >> 1;
+        double sign = p & 1 ? -1.0 : 1.0, len = 0.0;
+        for (int j = 0; j < 3; j++) {
+            b.planes[p][j] = vp[j * 4 + 3] + sign * vp[j * 4 + row];
+            len += b.planes[p][j] * b.planes[p][j];
+        }
+        len = sqrt(len);
+        for (int j = 0; j < 3; j++) b.planes[p][j] = len > 0.0 ? b.planes[p][j] / len : 0.0;
+    }
+    return b;
+}
+
+double sky_camera_inside_by(const sky_view_bounds *b, const double d[3], int with_horizon)
+{
+    double least = with_horizon ? d[1] : 1.0;
+    for (int p = 0; p < b->sides; p++)
+        least = fmin(least, b->planes[p][0] * d[0] + b->planes[p][1] * d[1] + b->planes[p][2] * d[2]);
+    return least;
+}

@@ -16,6 +16,19 @@ int sky_camera_set(sky_core *s, const float view[16], const float proj[16], cons
  * a point on the view ray in the horizon frame (the eye at the origin).
  * 0, or -1 for a non-finite, degenerate or singular camera. */
 int sky_camera_clip_to_horizon(const sky_core *s, const float view[16], const float proj[16], float out[16]);
+/* What the view shows, for leaving out on the CPU what it does not: the
+ * horizon and, with a perspective camera, the frustum's four side planes
+ * through the eye (unit inward normals in the horizon frame, from
+ * frame.view_proj's rows: w + x, w - x, w + y, w - y). A direction behind
+ * the camera is outside all four. */
+typedef struct sky_view_bounds {
+    double planes[4][3];
+    int sides; /* 4, or 0 for the all-sky image */
+} sky_view_bounds;
+sky_view_bounds sky_camera_bounds(const sky_frame *f);
+/* The least of the sines of the horizon direction d's angles from the
+ * side planes (and from the horizon when with_horizon): negative outside. */
+double sky_camera_inside_by(const sky_view_bounds *b, const double d[3], int with_horizon);
 /* The all-sky image in the viewport: aspect and pixel_angle (the caller
  * clears the viewport). */
 void sky_camera_fisheye(sky_core *s, const GLint viewport[4]);

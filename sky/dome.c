@@ -8,6 +8,7 @@
  * also what an OpenGL 2.0 GPU wants (no texture lookups in vertex shaders:
  * the values are computed here, on the CPU, once).
  */
+#include "camera.h"
 #include "layer.h"
 #include "atmosphere/atmosphere.h"
 
@@ -43,6 +44,14 @@ typedef struct dome_state {
     GLuint vertices, indices;    /* direction, gradient colour, galaxy      */
     size_t vertex_bytes, index_bytes;
     int index_count, upper_first; /* indices: all, and where the upper hemisphere starts */
+    /* The triangles in view (select_triangles): a browser's rasterizer
+     * spends about as much on setting up and clipping the 3840 triangles
+     * as on the image's pixels; a view of 60 degrees sees a quarter. */
+    float *dirs;                 /* each vertex's direction                 */
+    unsigned short *mesh;        /* every triangle, in the order above      */
+    unsigned short *list;        /* those in view: the index buffer's       */
+    unsigned char *outside;      /* per vertex: the side planes it is out of */
+    int list_upper_first, list_count;
     /* The dome program holds only the snippets of enabled layers. With
      * night layers there are two variants, with and without them: a
      * uniform branch is not free on every GPU (llvmpipe pays for both
@@ -133,17 +142,53 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
     st->vertex_bytes = sizeof(float) * DOME_FLOATS * (size_t)n;
     st->index_bytes = sizeof(unsigned short) * k;
     st->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, v, st->vertex_bytes, GL_STATIC_DRAW);
-    st->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, st->index_bytes, GL_STATIC_DRAW);
+    st->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, st->index_bytes, GL_DYNAMIC_DRAW);
     st->index_count = (int)k;
+    st->dirs = malloc(sizeof(float) * 3 * (size_t)n);
+    st->list = malloc(st->index_bytes);
+    st->outside = malloc((size_t)n);
+    if (st->dirs && st->list && st->outside)
+        for (int i = 0; i < n; i++) memcpy(st->dirs + 3 * i, v + i * DOME_FLOATS, sizeof(float) * 3);
+    st->mesh = idx;
     free(v);
-    free(idx);
     sky_png_free(gradient);
     sky_png_free(galaxy);
+    if (!st->dirs || !st->list || !st->outside) {
+        sky_format(err, err_len, "out of memory for the dome mesh");
+        return -1;
+    }
     if (!st->vertices || !st->indices) {
         sky_format(err, err_len, "glGenBuffers failed for the dome mesh");
         return -1;
     }
     return 0;
+}
+
+/* The index buffer for this view: the triangles with a vertex inside each
+ * side plane of the frustum (a triangle of directions drawn at infinity
+ * covers the cone of its three, so one whose vertices are all outside the
+ * same plane through the eye shows nowhere), the lower hemisphere's first.
+ * The all-sky image takes them all. */
+static void select_triangles(sky_core *s, dome_state *st)
+{
+    sky_view_bounds b = sky_camera_bounds(&s->frame);
+    for (int i = 0; i < DOME_VERTICES; i++) {
+        const double d[3] = {st->dirs[3 * i], st->dirs[3 * i + 1], st->dirs[3 * i + 2]};
+        unsigned char out = 0;
+        for (int p = 0; p < b.sides; p++)
+            if (b.planes[p][0] * d[0] + b.planes[p][1] * d[1] + b.planes[p][2] * d[2] < 0.0) out |= (unsigned char)(1u << p);
+        st->outside[i] = out;
+    }
+    int n = 0;
+    for (int t = 0; t < st->index_count; t += 3) {
+        if (t == st->upper_first) st->list_upper_first = n;
+        const unsigned short *tri = st->mesh + t;
+        if (st->outside[tri[0]] & st->outside[tri[1]] & st->outside[tri[2]]) continue;
+        st->list[n++] = tri[0], st->list[n++] = tri[1], st->list[n++] = tri[2];
+    }
+    st->list_count = n;
+    sky_buffer_update(s, GL_ELEMENT_ARRAY_BUFFER, st->indices, st->list, sizeof *st->list * (size_t)(n > 0 ? n : 3),
+                      GL_DYNAMIC_DRAW);
 }
 
 /* Binds the dome's buffers and draws its upper (1) or lower (0) hemisphere. */
@@ -158,8 +203,9 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
     gl->glDisableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
     gl->glEnableVertexAttribArray(2);
-    int first = upper ? st->upper_first : 0;
-    int count = upper ? st->index_count - st->upper_first : st->upper_first;
+    int first = upper ? st->list_upper_first : 0;
+    int count = upper ? st->list_count - st->list_upper_first : st->list_upper_first;
+    if (count <= 0) return;
     gl->glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_SHORT, (const void *)(first * sizeof(unsigned short)));
 }
 
@@ -278,6 +324,10 @@ static void dome_destroy(sky_core *s, void *state)
     const GLuint buffers[3] = {st->vertices, st->indices, st->quad};
     const size_t bytes[3] = {st->vertex_bytes, st->index_bytes, 8 * sizeof(float)};
     sky_buffers_destroy(s, buffers, bytes, 3);
+    free(st->dirs);
+    free(st->mesh);
+    free(st->list);
+    free(st->outside);
     sky_gl_target_destroy(s, st->fbo);
 }
 
@@ -322,6 +372,7 @@ static int dome_draw(sky_core *s, void *state)
     int clear = s->dome_snippets->front_count && !s->dome_front_shows;
     const sky_program *upper = night ? (clear ? &st->night_clear : &st->night) : (clear ? &st->ground : &st->day);
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
+    select_triangles(s, st);
     sky_gl_target target;
     int into_image = st->fbo != 0;
     if (into_image) {

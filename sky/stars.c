@@ -5,6 +5,7 @@
  * (eq. 10), glare for stars brighter than the control magnitude,
  * extinction (eq. 11-12) and scintillation. Shaders: stars.vert/.frag.
  */
+#include "camera.h"
 #include "catalog.h"
 #include "exposure.h"
 #include "layer.h"
@@ -382,43 +383,6 @@ static double point_radius(const sky_point_frame *p, double vmag)
     return fmin(fmax(p->size.q, p->size.glare_ck * sqrt(fmax(glare, 0.0))), p->size.max_radius);
 }
 
-/* The view's bounds for points: the horizon and, with a perspective
- * camera, the frustum's four side planes through the eye (unit normals,
- * inward, in the horizon frame: w + x, w - x, w + y, w - y of view_proj's
- * rows). */
-typedef struct view_bounds {
-    double planes[4][3];
-    int sides;
-} view_bounds;
-
-static view_bounds bounds_of(const sky_frame *f)
-{
-    view_bounds b;
-    b.sides = f->fisheye < 0.5f ? 4 : 0;
-    const float *vp = f->view_proj;
-    for (int p = 0; p < 4; p++) {
-        int row = p >> 1;
-        double sign = p & 1 ? -1.0 : 1.0, len = 0.0;
-        for (int j = 0; j < 3; j++) {
-            b.planes[p][j] = vp[j * 4 + 3] + sign * vp[j * 4 + row];
-            len += b.planes[p][j] * b.planes[p][j];
-        }
-        len = sqrt(len);
-        for (int j = 0; j < 3; j++) b.planes[p][j] = len > 0.0 ? b.planes[p][j] / len : 0.0;
-    }
-    return b;
-}
-
-/* How far inside those bounds the horizon direction d lies: the least of
- * the sines of its angles from them, negative outside. */
-static double inside_by(const double d[3], const view_bounds *b)
-{
-    double least = d[1];
-    for (int p = 0; p < b->sides; p++)
-        least = fmin(least, b->planes[p][0] * d[0] + b->planes[p][1] * d[1] + b->planes[p][2] * d[2]);
-    return least;
-}
-
 /* The margin around a point of magnitude vmag in radians: what moves it
  * from its catalogue place on the way to the screen, and its radius. */
 static double point_margin(const sky_frame *f, const sky_point_frame *p, double vmag)
@@ -428,8 +392,8 @@ static double point_margin(const sky_frame *f, const sky_point_frame *p, double 
 
 int sky_point_in_view(const sky_core *s, const sky_point_frame *p, const double d[3], double vmag)
 {
-    view_bounds b = bounds_of(&s->frame);
-    return inside_by(d, &b) >= -point_margin(&s->frame, p, vmag);
+    sky_view_bounds b = sky_camera_bounds(&s->frame);
+    return sky_camera_inside_by(&b, d, 1) >= -point_margin(&s->frame, p, vmag);
 }
 
 /* The draw's index list (STAR_CELLS): the stars the eye reaches in the
@@ -444,7 +408,7 @@ static int stars_select(const sky_core *s, stars_state *st)
     const sky_frame *f = &s->frame;
     const float *rot = f->stars.rot;
     const sky_point_frame *pf = &f->stars;
-    view_bounds b = bounds_of(f);
+    sky_view_bounds b = sky_camera_bounds(f);
     int n = 0;
     /* A point spreads over its radius in pixels: the catalogue's brightest
      * star's bounds every cell's for a first test, then the cell's own
@@ -456,7 +420,7 @@ static int stars_select(const sky_core *s, stars_state *st)
         if (!cell->count) continue;
         double d[3];
         for (int i = 0; i < 3; i++) d[i] = rot[i] * cell->dir[0] + rot[4 + i] * cell->dir[1] + rot[8 + i] * cell->dir[2];
-        double inside = inside_by(d, &b);
+        double inside = sky_camera_inside_by(&b, d, 1);
         if (inside < -(cell->radius + widest)) continue;
         double margin = point_margin(f, pf, st->vmag[cell->first]);
         if (inside < -(cell->radius + margin)) continue;
@@ -466,7 +430,7 @@ static int stars_select(const sky_core *s, stars_state *st)
             if (!whole) {
                 const float *j = st->dirs + 3 * k;
                 for (int i = 0; i < 3; i++) d[i] = rot[i] * j[0] + rot[4 + i] * j[1] + rot[8 + i] * j[2];
-                if (inside_by(d, &b) < -margin) continue;
+                if (sky_camera_inside_by(&b, d, 1) < -margin) continue;
             }
             st->indices[n++] = (unsigned short)k;
         }

@@ -82,6 +82,7 @@ int test_skipped;
     X(render_sun_disc_sums_to_sunlight)          \
     X(render_hdr_finite_everywhere)              \
     X(render_dome_image_agrees_with_every_pixel) \
+    X(render_dome_covers_every_view)             \
     X(colour_hue_and_saturation_kept)            \
     X(colour_old_curve_fails_the_measure)        \
     X(colour_one_ground_below_the_horizon)       \

@@ -4,12 +4,15 @@
  */
 #include "test.h"
 #include "sky_internal.h"
+#include "cli.h"
 
+#include <GL/gl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 void test_render_cover_zero_has_no_clouds(void);
+void test_render_dome_covers_every_view(void);
 void test_render_full_cover_hides_sky(void);
 void test_render_density_darkens_clouds(void);
 void test_render_day_bright_night_dark_with_stars(void);
@@ -837,5 +840,60 @@ void test_render_sun_disc_sums_to_sunlight(void)
              100.0 * (disc / light - 1.0));
         CHECK(light > 0.0 && fabs(disc / light - 1.0) <= 0.03, "sun at %.1f deg: disc %.2f klx vs sun_color %.2f klx",
               l.sun_altitude_deg, disc, light);
+    }
+}
+
+/* The dome draws only its triangles in view (dome.c's select_triangles):
+ * whatever the camera (any yaw, pitch and roll, 3 to 170 degrees of view,
+ * wide and tall viewports), it still covers every pixel: none keeps the
+ * magenta it was cleared to. Drawn at every pixel (dome_divisor 1), where
+ * a missing triangle would leave its pixels as they were. */
+void test_render_dome_covers_every_view(void)
+{
+    static const int sizes[2][2] = {{160, 90}, {60, 120}};
+    for (int z = 0; z < 2; z++) {
+        const int w = sizes[z][0], h = sizes[z][1];
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.features = SKY_SUN;
+        cfg.dome_divisor = 1;
+        fixture f;
+        if (fixture_open_sized(&f, w, h, 0, SKY_GL_AUTO, &cfg)) {
+            CHECK(0, "fixture");
+            return;
+        }
+        unsigned seed = 12345u + (unsigned)z;
+        int holes = 0, worst_view = -1;
+        for (int v = 0; v < 60; v++) {
+            seed = seed * 1664525u + 1013904223u;
+            double yaw = (seed >> 8) % 360;
+            seed = seed * 1664525u + 1013904223u;
+            double pitch = (double)((seed >> 8) % 181) - 90.0;
+            seed = seed * 1664525u + 1013904223u;
+            double roll = (seed >> 8) % 360 * (3.14159265358979 / 180.0);
+            seed = seed * 1664525u + 1013904223u;
+            double fov = v % 4 == 0 ? 3.0 : 10.0 + (seed >> 8) % 161;
+            float view[16], proj[16], rolled[16];
+            sky_cli_camera_at(yaw, pitch, fov, w, h, view, proj);
+            /* roll: turn the camera's frame about its forward axis */
+            for (int c = 0; c < 4; c++) {
+                rolled[c * 4 + 0] = (float)(cos(roll) * view[c * 4 + 0] - sin(roll) * view[c * 4 + 1]);
+                rolled[c * 4 + 1] = (float)(sin(roll) * view[c * 4 + 0] + cos(roll) * view[c * 4 + 1]);
+                rolled[c * 4 + 2] = view[c * 4 + 2];
+                rolled[c * 4 + 3] = view[c * 4 + 3];
+            }
+            glViewport(0, 0, w, h);
+            glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+            CHECK(sky_draw(f.s, rolled, proj) == SKY_OK, "draw: %s", sky_last_error(f.s));
+            sky_osmesa_finish(&f.ctx);
+            const unsigned char *px = f.ctx.pixels;
+            int here = 0;
+            for (int i = 0; i < w * h; i++) here += px[4 * i] == 255 && px[4 * i + 1] == 0 && px[4 * i + 2] == 255;
+            if (here > holes) holes = here, worst_view = v;
+        }
+        NOTE("%dx%d, 60 views: at most %d pixels left uncovered (view %d)", w, h, holes, worst_view);
+        CHECK(holes == 0, "%dx%d: the dome leaves %d pixels uncovered in view %d", w, h, holes, worst_view);
+        fixture_close(&f);
     }
 }
