@@ -922,8 +922,9 @@ static int bench_presets(const char *const *presets, int np, sky_gl_profile gl, 
 
 /* The night layers on their own: the frame with the layer minus the
  * frame without it. Stars, planets, star map, airglow and zodiacal light
- * on an August night with the Milky Way up; the moon (full, 2024-06-22,
- * looked at) at c_d 3 and 30. */
+ * on an August night with the Milky Way up, looking south (the planets
+ * east, at Saturn: no planet in view is no draw); the moon (full,
+ * 2024-06-22, looked at) at c_d 3 and 30. */
 enum { NIGHT_NONE, NIGHT_STARS, NIGHT_STARMAP, NIGHT_PLANETS, NIGHT_AIRGLOW, NIGHT_ZODIACAL, NIGHT_MOON_NONE,
        NIGHT_MOON3, NIGHT_MOON30, NIGHT_COUNT };
 /* the stars, the planets and the moon are draws of their own: their GPU
@@ -935,7 +936,8 @@ static int bench_night(sky_gl_profile gl, int w, int h, int frames, double out_m
     row r;
     for (int i = 0; i < 6; i++) {
         char *argv[] = {"sky-bench", "--features", (char *)features[i], "--date", "2024-08-10T21:00:00Z",
-                        "--lat", "45", "--yaw", "180", "--pitch", "30", NULL};
+                        "--lat", "45", "--yaw", i == NIGHT_PLANETS ? "105" : "180",
+                        "--pitch", i == NIGHT_PLANETS ? "20" : "30", NULL};
         if (bench_args(11, argv, features[i], gl, w, h, frames, &r)) return -1;
         out_ms[i] = i == NIGHT_STARS ? r.layer_ms[SKY_LAYER_STARS]
                     : i == NIGHT_PLANETS ? r.layer_ms[SKY_LAYER_PLANETS]
@@ -1761,7 +1763,8 @@ static void print_night_table(const profiles *pr, double night[MAX_PROFS][NIGHT_
            "map, the airglow and the zodiacal light as what each adds to an atmosphere-only night frame (measured\n"
            "once, not in rounds):\n\n");
     printf("| layer | profile | ms | x baseline |\n|---|---|---|---|\n");
-    static const char *names[NIGHT_COUNT] = {"", "8874 catalogue stars", "star map", "5 planets", "airglow",
+    static const char *names[NIGHT_COUNT] = {"", "the 8874 stars' draw, looking south", "star map",
+                                             "5 planets, Saturn in view", "airglow",
                                              "zodiacal light", "", "moon, c_d 3", "moon, c_d 30"};
     /* -1: measured directly, else the frame it is the difference from */
     static const int from[NIGHT_COUNT] = {0, -1, NIGHT_NONE, -1, NIGHT_NONE, NIGHT_NONE, 0, -1, -1};
