@@ -35,11 +35,11 @@
 /* The buffer holds the stars in cells of about equal area, STAR_BANDS in
  * sin(dec) by STAR_COLUMNS in right ascension (about 8 stars each, 4 to
  * 12 degrees across), brightest first within each; a draw takes, through
- * an index list, only the stars of the cells above the horizon and in
- * view, and of those the ones the naked eye reaches (stars_select). With
- * 60 degrees of view that is a sixth of the catalogue under a dark sky
- * and a fiftieth under a moonlit one: the vertex stage, which does most
- * of a star's work, runs for them alone. */
+ * an index list, only the stars above the horizon and in view, and of
+ * those the ones the naked eye reaches (stars_select): 784 of the 8874 in
+ * the starry preset's view, 132 in the moonlit one's. A rasterizer sets
+ * up every point it is given, in view or not (SwiftShader about 0.5 us
+ * each, whatever the shader). */
 #define STAR_BANDS 24
 #define STAR_COLUMNS 48
 #define STAR_CELLS (STAR_BANDS * STAR_COLUMNS)
