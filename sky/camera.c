@@ -213,9 +213,9 @@ sky_view_bounds sky_camera_bounds(const sky_frame *f)
     return b;
 }
 
-double sky_camera_inside_by(const sky_view_bounds *b, const double d[3], int with_horizon)
+double sky_camera_inside_by(const sky_view_bounds *b, const double d[3])
 {
-    double least = with_horizon ? d[1] : 1.0;
+    double least = d[1];
     for (int p = 0; p < b->sides; p++)
         least = fmin(least, b->planes[p][0] * d[0] + b->planes[p][1] * d[1] + b->planes[p][2] * d[2]);
     return least;

@@ -27,8 +27,8 @@ typedef struct sky_view_bounds {
 } sky_view_bounds;
 sky_view_bounds sky_camera_bounds(const sky_frame *f);
 /* The least of the sines of the horizon direction d's angles from the
- * side planes (and from the horizon when with_horizon): negative outside. */
-double sky_camera_inside_by(const sky_view_bounds *b, const double d[3], int with_horizon);
+ * horizon and the side planes: negative outside. */
+double sky_camera_inside_by(const sky_view_bounds *b, const double d[3]);
 /* The all-sky image in the viewport: aspect and pixel_angle (the caller
  * clears the viewport). */
 void sky_camera_fisheye(sky_core *s, const GLint viewport[4]);

@@ -393,7 +393,7 @@ static double point_margin(const sky_frame *f, const sky_point_frame *p, double 
 int sky_point_in_view(const sky_core *s, const sky_point_frame *p, const double d[3], double vmag)
 {
     sky_view_bounds b = sky_camera_bounds(&s->frame);
-    return sky_camera_inside_by(&b, d, 1) >= -point_margin(&s->frame, p, vmag);
+    return sky_camera_inside_by(&b, d) >= -point_margin(&s->frame, p, vmag);
 }
 
 /* The draw's index list (STAR_CELLS): the stars the eye reaches in the
@@ -420,7 +420,7 @@ static int stars_select(const sky_core *s, stars_state *st)
         if (!cell->count) continue;
         double d[3];
         for (int i = 0; i < 3; i++) d[i] = rot[i] * cell->dir[0] + rot[4 + i] * cell->dir[1] + rot[8 + i] * cell->dir[2];
-        double inside = sky_camera_inside_by(&b, d, 1);
+        double inside = sky_camera_inside_by(&b, d);
         if (inside < -(cell->radius + widest)) continue;
         double margin = point_margin(f, pf, st->vmag[cell->first]);
         if (inside < -(cell->radius + margin)) continue;
@@ -430,7 +430,7 @@ static int stars_select(const sky_core *s, stars_state *st)
             if (!whole) {
                 const float *j = st->dirs + 3 * k;
                 for (int i = 0; i < 3; i++) d[i] = rot[i] * j[0] + rot[4 + i] * j[1] + rot[8 + i] * j[2];
-                if (sky_camera_inside_by(&b, d, 1) < -margin) continue;
+                if (sky_camera_inside_by(&b, d) < -margin) continue;
             }
             st->indices[n++] = (unsigned short)k;
         }
