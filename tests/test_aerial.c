@@ -97,13 +97,20 @@ void test_aerial_meets_the_sky(void)
 /* Issue target: against the spectral reference (the default Earth, the
  * Hillaire path) along level and slant (30 deg) views of 1, 10 and 100
  * km toward, across and away from the sun: the light within 10 %, the
- * green transmittance within 10 % or 0.01.
- * One case misses it, and is held to 25 % here: the sun 5 degrees up, the
- * view across its azimuth (-15 to -21 %). There single scattering is
- * within 2 % of the reference's order 1, but the multiple scattering of
- * Hillaire's table is 23 % below the reference's orders >= 2 near the
- * ground under a low sun. The sky drawn along that direction has the
+ * green transmittance within 10 % or 0.01. The reference's orders >= 2
+ * are Monte Carlo: each view gets the paths that take its standard error
+ * (sigma) to REF_REL_ERR, and the light's limit is widened by 2 sigma.
+ * One case misses the target, and is held to 25 % here: the sun 5
+ * degrees up, the view across its azimuth (-14 to -17 %). There single
+ * scattering is within 1 % of the reference's order 1, but the table's
+ * multiple scattering is 13-24 % below the reference's orders >= 2: its
+ * second order, from the first bounce expanded to degree 2, is 10 % low
+ * across the sun's azimuth (and 39 % high away from it, where the higher
+ * orders' shortfall cancels it), and its higher orders are 25 % low near
+ * the ground under a low sun. The sky drawn along that direction has the
  * same error (it is the same march). */
+#define REF_REL_ERR 0.015
+#define REF_MAX_PATHS 16384.0
 void test_aerial_against_reference(void)
 {
     sky_config cfg;
@@ -121,7 +128,7 @@ void test_aerial_against_reference(void)
     sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
     static const double suns[2] = {30.0, 5.0}, els[2] = {0.0, 30.0}, azs[3] = {0.0, 90.0, 180.0};
     static const double km[3] = {1.0, 10.0, 100.0};
-    double worst = 0.0, worst_in = 0.0, worst_tr = 0.0;
+    double worst = 0.0, worst_in = 0.0, worst_tr = 0.0, worst_ref = 0.0;
     for (int k = 0; k < 2; k++) {
         double el, az;
         if (sky_atmo_hemisphere_render(h, suns[k], &el, &az, err, sizeof err)) {
@@ -146,17 +153,30 @@ void test_aerial_against_reference(void)
                         CHECK(0, "the reference failed");
                         continue;
                     }
+                    /* A dim view's Monte Carlo orders carry a standard
+                     * error of up to 8 % at 384 paths: more paths (the
+                     * error falls as 1 / sqrt(paths)) until it is
+                     * REF_REL_ERR, and the check allows two of it */
+                    for (int tries = 0; tries < 3; tries++) {
+                        double rel_err = r.luminance_std_err / fmax(luminance(r.rgb), 1e-12);
+                        if (rel_err <= REF_REL_ERR || o.paths >= REF_MAX_PATHS) break;
+                        double more = 1.3 * o.paths * (rel_err / REF_REL_ERR) * (rel_err / REF_REL_ERR);
+                        o.paths = (int)fmin(ceil(more), REF_MAX_PATHS);
+                        if (sky_ref_radiance(&earth, 0.0, d, sun, &o, &r)) break;
+                    }
+                    double sigma = r.luminance_std_err / fmax(luminance(r.rgb), 1e-12);
+                    worst_ref = fmax(worst_ref, sigma);
                     double rel = luminance(in) / luminance(r.rgb) - 1.0;
                     double dt = tr[1] - r.transmittance_rgb[1];
                     worst = fmax(worst, fabs(rel));
                     worst_tr = fmax(worst_tr, fabs(dt));
                     if (i == 0 || fabs(rel) > 0.05)
                         NOTE("sun %.0f, view el %.0f az %+.0f from the sun, %.0f km: %.4g kcd/m^2, reference %.4g "
-                             "(%+.1f %%); transmittance %.4f, reference %.4f",
-                             suns[k], els[e], azs[a], km[i], luminance(in), luminance(r.rgb), 100.0 * rel, tr[1],
-                             r.transmittance_rgb[1]);
+                             "+- %.1f %% (%+.1f %%); transmittance %.4f, reference %.4f",
+                             suns[k], els[e], azs[a], km[i], luminance(in), luminance(r.rgb), 100.0 * sigma,
+                             100.0 * rel, tr[1], r.transmittance_rgb[1]);
                     int known = suns[k] < 10.0 && azs[a] == 90.0;
-                    double limit = known ? 0.25 : 0.10;
+                    double limit = (known ? 0.25 : 0.10) + 2.0 * sigma;
                     if (!known) worst_in = fmax(worst_in, fabs(rel));
                     CHECK(fabs(rel) <= limit, "sun %.0f, view el %.0f az %+.0f, %.0f km: light %+.1f %% from the "
                           "reference (limit %.0f %%)", suns[k], els[e], azs[a], km[i], 100.0 * rel, 100.0 * limit);
@@ -165,8 +185,9 @@ void test_aerial_against_reference(void)
                           r.transmittance_rgb[1]);
                 }
     }
-    NOTE("worst: light %.1f %% (%.1f %% without the low sun across its azimuth), green transmittance %.4f",
-         100.0 * worst, 100.0 * worst_in, worst_tr);
+    NOTE("worst: light %.1f %% (%.1f %% without the low sun across its azimuth), green transmittance %.4f; "
+         "the reference's standard error at most %.1f %%", 100.0 * worst, 100.0 * worst_in, worst_tr, 100.0 * worst_ref);
+    CHECK(worst_ref <= 2.0 * REF_REL_ERR, "the reference's standard error reached %.1f %%", 100.0 * worst_ref);
     sky_atmo_hemisphere_destroy(h);
 }
 
