@@ -111,6 +111,11 @@ void test_aerial_meets_the_sky(void)
  * same error (it is the same march). */
 #define REF_REL_ERR 0.015
 #define REF_MAX_PATHS 16384.0
+/* the reference's standard error relative to its light */
+static double reference_sigma(const sky_ref_result *r)
+{
+    return r->luminance_std_err / fmax(luminance(r->rgb), 1e-12);
+}
 void test_aerial_against_reference(void)
 {
     sky_config cfg;
@@ -158,13 +163,13 @@ void test_aerial_against_reference(void)
                      * error falls as 1 / sqrt(paths)) until it is
                      * REF_REL_ERR, and the check allows two of it */
                     for (int tries = 0; tries < 3; tries++) {
-                        double rel_err = r.luminance_std_err / fmax(luminance(r.rgb), 1e-12);
+                        double rel_err = reference_sigma(&r);
                         if (rel_err <= REF_REL_ERR || o.paths >= REF_MAX_PATHS) break;
                         double more = 1.3 * o.paths * (rel_err / REF_REL_ERR) * (rel_err / REF_REL_ERR);
                         o.paths = (int)fmin(ceil(more), REF_MAX_PATHS);
                         if (sky_ref_radiance(&earth, 0.0, d, sun, &o, &r)) break;
                     }
-                    double sigma = r.luminance_std_err / fmax(luminance(r.rgb), 1e-12);
+                    double sigma = reference_sigma(&r);
                     worst_ref = fmax(worst_ref, sigma);
                     double rel = luminance(in) / luminance(r.rgb) - 1.0;
                     double dt = tr[1] - r.transmittance_rgb[1];
