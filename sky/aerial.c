@@ -53,7 +53,7 @@ static const sky_hillaire_tables *tables_for(const sky_core *s, sky_aerial_state
         sky_hillaire_free(&a->own);
         if (sky_hillaire_init(&a->own, &s->atm_rgb, NULL, why, sizeof why)) return NULL;
         sky_hillaire_build_transmittance(&a->own);
-        sky_hillaire_build_multiscatter(&a->own);
+        if (sky_hillaire_build_multiscatter(&a->own)) return NULL;
         a->own_ready = 1;
     }
     return &a->own;

@@ -78,8 +78,10 @@ typedef enum sky_texture_id {
     SKY_TEX_ECLIPSE,    /* 128x1 eclipse colour h(t), log10-encoded (Mueller 3.2)    */
     SKY_TEX_SKYVIEW,    /* Hillaire's sky-view table (atmosphere/hillaire.c)       */
     SKY_TEX_TRANSMITTANCE, /* Hillaire's transmittance table (CORE33: GPU builds)  */
-    SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table (CORE33)        */
-    SKY_TEX_MS_MOMENTS,    /* its light's dipole and quadrupole, 4 layers (CORE33) */
+    SKY_TEX_MULTISCATTER,  /* Hillaire's multiple-scattering table and its moments,
+                              6 layers (CORE33)                                  */
+    SKY_TEX_MS_ORDER,      /* while it is built: the order a pass traces, and   */
+    SKY_TEX_MS_ORDER_PREV, /* the one before, which it scatters (7 layers each) */
     SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
     SKY_TEX_AERIAL,        /* sky_aerial_bind's table (aerial.c), RGBA8          */
     SKY_TEX_FROXELS,       /* sky_aerial_froxels' volume (CORE33, Hillaire)      */
@@ -179,6 +181,10 @@ typedef struct sky_frame {
     float hl_geometry[4], hl_profile[4], hl_rayleigh[3], hl_mie_sca[3], hl_mie_ext[3], hl_ozone[3], hl_albedo[3];
     float hl_sizes[4], hl_steps[4];
     float hl_chi[3];         /* u_hl_chi: Mie's chi_1, chi_2, Rayleigh's chi_2  */
+    float hl_chi_zonal[2];   /* u_hl_chi_zonal: Mie's chi_3, chi_4             */
+    float ms_pass[4];        /* u_ms_pass: the order a pass traces, its
+                                directions (half), steps, and how many of the
+                                directions follow the aerosol's peak          */
     struct {                 /* u_hl_misc                                      */
         float multiscatter_size, sun_mu, skyview_steps, mie_g;
     } hl_misc;

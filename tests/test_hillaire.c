@@ -239,7 +239,10 @@ void test_hillaire_transmittance_table(void)
  * |relative luminance error| at four suns within limit. */
 static void sky_vs_reference(const sky_atmosphere_params *atm, const char *name, double limit)
 {
-    sky_atmosphere_params a = *atm;
+    /* the reference renders the description's spectrum; the tables take
+     * its channel means, as sky_create has them */
+    sky_atmosphere_params a = *atm, rgb;
+    sky_atmosphere_effective(atm, &rgb);
     double sun_xyz[3], sun_rgb[3];
     sky_spectrum_sun_xyz(sun_xyz);
     sky_xyz_to_linear_srgb(sun_xyz, sun_rgb);
@@ -257,7 +260,7 @@ static void sky_vs_reference(const sky_atmosphere_params *atm, const char *name,
         sky_hillaire_tables t;
         double sun[3];
         dir_at(sun_el[s], 0.0, sun);
-        if (build_all(&t, &a, NULL, 0.0, sun[1]) != 0) {
+        if (build_all(&t, &rgb, NULL, 0.0, sun[1]) != 0) {
             CHECK(0, "build failed");
             return;
         }
@@ -299,17 +302,19 @@ static void sky_vs_reference(const sky_atmosphere_params *atm, const char *name,
     NOTE("%s: mean over the four suns %.2f %%; %.1f s with the reference", name, 100.0 * all_mean, now_s() - t0);
 }
 
-/* Hillaire's constants within issue 6's 5 % at each sun; the default
- * Earth, whose aerosol is 16 times denser, within 8 % at each sun on this
- * coarser grid (4.9 % over the four, 7.3 % at sun 2 deg; sky-bench's
- * equal-area grid, the issue's measure, gives 2.9 % by day): the
- * multiple-scattering approximation (isotropic beyond the second order)
- * errs more with more aerosol */
+/* Hillaire's constants within issue 6's 5 % at each sun (2.1 % over the
+ * four, 2.7 % at sun 30 deg); the default Earth, whose aerosol is 16
+ * times denser, within 6 % at each sun on this coarser grid (3.4 % over
+ * the four, 4.4 % at sun 10 deg; sky-bench's equal-area grid, the issue's
+ * measure, is the README's): a forward aerosol's multiple scattering is
+ * the harder to carry. Isotropic beyond the second order, as Hillaire has
+ * it, the table erred by 5.7 % (Hillaire's constants, sun 60 deg) and 5.4
+ * % (Earth, sun 10 deg). */
 void test_hillaire_sky_vs_reference(void)
 {
     sky_atmosphere_params h = hillaire_2020(), e = earth();
     sky_vs_reference(&h, "hillaire-2020", 0.05);
-    sky_vs_reference(&e, "earth", 0.08);
+    sky_vs_reference(&e, "earth", 0.06);
 }
 
 /* ---- 3. convergence ---------------------------------------------------------------- */

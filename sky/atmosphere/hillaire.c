@@ -109,7 +109,6 @@ static int next_pow2(int n)
 static const sky_uniform_desc build_uniforms[] = {
     SKY_UT("u_transmittance_table", SKY_TEX_TRANSMITTANCE),
     SKY_UT("u_multiscatter_table", SKY_TEX_MULTISCATTER),
-    SKY_UT("u_ms_moments", SKY_TEX_MS_MOMENTS),
     SKY_UF("u_hl_geometry", SKY_U_F4, hl_geometry),
     SKY_UF("u_hl_profile", SKY_U_F4, hl_profile),
     SKY_UF("u_hl_rayleigh", SKY_U_F3, hl_rayleigh),
@@ -121,9 +120,15 @@ static const sky_uniform_desc build_uniforms[] = {
     SKY_UF("u_hl_misc", SKY_U_F4, hl_misc),
     SKY_UF("u_hl_steps", SKY_U_F4, hl_steps),
     SKY_UF("u_hl_chi", SKY_U_F3, hl_chi),
+    SKY_UF("u_hl_chi_zonal", SKY_U_F2, hl_chi_zonal),
 };
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
                                           SKY_UNIFORM_COUNT(build_uniforms), NULL};
+static const sky_uniform_desc order_uniforms[] = {
+    SKY_UT("u_ms_order", SKY_TEX_MS_ORDER_PREV),
+    SKY_UF("u_ms_pass", SKY_U_F4, ms_pass),
+};
+static const sky_snippet order_snippet = {NULL, NULL, order_uniforms, SKY_UNIFORM_COUNT(order_uniforms), NULL};
 static const sky_uniform_desc froxel_uniforms[] = {
     SKY_UF("u_froxel_clip_to_dir", SKY_U_M4, froxel_clip_to_dir),
     SKY_UF("u_froxel", SKY_U_F4, froxel),
@@ -142,36 +147,93 @@ static void gpu_pass(sky_core *s, GLuint fbo, sky_program *prog, sky_texture_id 
     sky_gl_target_end(s, &t);
 }
 
-/* The GPU's multiple-scattering table and its moments, in
- * hillaire_cpu.c's layout (hillaire.h). On the GPU five RGBA texels hold
- * each texel's 18 numbers: Psi with Q_xy's red, the array's layers D_x
- * with Q_xy's green, D_y with its blue, Q_xx and Q_yy
- * (multiscatter_build.frag). */
-#define MS_MOMENT_LAYERS 4
-static int read_multiscatter(sky_core *s, sky_hillaire_state *hs, int mn)
+/* The multiple-scattering table on the GPU: 6 layers (SKY_TEX_MULTISCATTER),
+ * and one order's table while it is built: 7 (SKY_TEX_MS_ORDER). */
+#define MS_LAYERS 6
+#define MS_ORDER_LAYERS 7
+
+/* Where quantity q of an order's texel (hillaire.h's SKY_HL_ORDER
+ * floats: the mean, D_x, D_y, Q_xx, Q_yy, Q_xy, Z_3, Z_4, the irradiance,
+ * each RGB) sits in the layers: layer * 4 + channel. The mean, D_x, D_y,
+ * Q_xx, Q_yy and Z_4 in the RGB of layers 0-5, Q_xy in the alphas of
+ * layers 0-2 and Z_3 in those of 3-5, the irradiance in layer 6
+ * (multiscatter_build.frag writes them so, hl_scatter_moments reads
+ * them so). */
+static int order_slot(int q)
+{
+    static const int layer[9] = {0, 1, 2, 3, 4, -1, -1, 5, 6};
+    int what = q / 3, c = q % 3;
+    if (what == 5) return c * 4 + 3;
+    if (what == 6) return (3 + c) * 4 + 3;
+    return layer[what] * 4 + c;
+}
+
+/* The multiple-scattering table (CORE33): SKY_HL_ORDERS passes, each
+ * tracing one order on the GPU from the one before; each is read back and
+ * added to the CPU's tables (sky_hillaire_add_order: the CPU's rays, the
+ * host's lighting, use them too), and their sum becomes the table the
+ * sky-view build reads. The order tables go once it is made. */
+static int build_multiscatter(sky_core *s, sky_hillaire_state *hs, int mn, char *err, size_t err_len)
 {
     size_t texels = (size_t)mn * (size_t)mn;
-    float *rgba = malloc(sizeof(float) * 4u * texels * (1 + MS_MOMENT_LAYERS));
-    if (!rgba) return -1;
-    int rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MULTISCATTER, -1, mn, mn, rgba);
-    for (int l = 0; l < MS_MOMENT_LAYERS && !rc; l++)
-        rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MS_MOMENTS, l, mn, mn, rgba + 4u * texels * (size_t)(l + 1));
-    if (!rc) {
-        for (size_t i = 0; i < texels; i++) {
-            float *mo = hs->tables.ms_moments + i * SKY_HL_MOMENTS;
-            for (int c = 0; c < 3; c++) {
-                hs->tables.multiscatter[3 * i + (size_t)c] = rgba[4 * i + (size_t)c];
-                for (int q = 0; q < MS_MOMENT_LAYERS; q++) /* D_x, D_y, Q_xx, Q_yy: layers 0-3 */
-                    mo[3 * q + c] = rgba[4u * texels * (size_t)(q + 1) + 4 * i + (size_t)c];
+    float *rgba = malloc(sizeof(float) * 4u * texels * MS_ORDER_LAYERS);
+    float *orders = malloc(sizeof(float) * 2u * texels * SKY_HL_ORDER);
+    int rc = !rgba || !orders ? -1 : 0;
+    if (!rc && (sky_texture_create_lut_layers(s, SKY_TEX_MS_ORDER, SKY_LAYER_ATMOSPHERE, mn, mn, MS_ORDER_LAYERS,
+                                              NULL, err, err_len) ||
+                sky_texture_create_lut_layers(s, SKY_TEX_MS_ORDER_PREV, SKY_LAYER_ATMOSPHERE, mn, mn,
+                                              MS_ORDER_LAYERS, NULL, err, err_len)))
+        rc = -2;
+    float *cur = orders, *prev = orders ? orders + texels * SKY_HL_ORDER : NULL;
+    for (int k = 1; k <= SKY_HL_ORDERS && !rc; k++) {
+        int nd, np, ns;
+        sky_hillaire_order_samples(&hs->tables, k, &nd, &np, &ns);
+        s->frame.ms_pass[0] = (float)k;
+        s->frame.ms_pass[1] = (float)nd;
+        s->frame.ms_pass[2] = (float)ns;
+        s->frame.ms_pass[3] = (float)np;
+        sky_gl_target target;
+        sky_gl_target_begin_slices(s, hs->fbo, SKY_TEX_MS_ORDER, 0, MS_ORDER_LAYERS, mn, mn, &target);
+        sky_program_apply(s, &hs->multiscatter_build);
+        s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+        sky_gl_target_end_slices(s, MS_ORDER_LAYERS, &target);
+        for (int l = 0; l < MS_ORDER_LAYERS && !rc; l++)
+            rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MS_ORDER, l, mn, mn, rgba + 4u * texels * (size_t)l);
+        if (rc) break;
+        for (size_t i = 0; i < texels; i++)
+            for (int q = 0; q < SKY_HL_ORDER; q++) {
+                int slot = order_slot(q);
+                cur[i * SKY_HL_ORDER + (size_t)q] = rgba[4u * texels * (size_t)(slot / 4) + 4u * i + (size_t)(slot % 4)];
             }
-            /* Q_xy: red beside Psi, green and blue beside D_x and D_y */
-            mo[12] = rgba[4 * i + 3];
-            mo[13] = rgba[4u * texels + 4 * i + 3];
-            mo[14] = rgba[4u * texels * 2u + 4 * i + 3];
-        }
+        sky_hillaire_add_order(&hs->tables, k, cur, prev);
+        /* the order just traced is the one the next pass scatters */
+        float *swap = prev;
+        prev = cur;
+        cur = swap;
+        sky_texture traced = s->textures[SKY_TEX_MS_ORDER];
+        s->textures[SKY_TEX_MS_ORDER] = s->textures[SKY_TEX_MS_ORDER_PREV];
+        s->textures[SKY_TEX_MS_ORDER_PREV] = traced;
+    }
+    sky_texture_destroy(s, SKY_TEX_MS_ORDER);
+    sky_texture_destroy(s, SKY_TEX_MS_ORDER_PREV);
+    if (!rc) { /* the sum, in the order's first six layers */
+        const sky_hillaire_tables *t = &hs->tables;
+        for (size_t i = 0; i < texels; i++)
+            for (int q = 0; q < SKY_HL_MS_ALL; q++) {
+                int slot = order_slot(q);
+                rgba[4u * texels * (size_t)(slot / 4) + 4u * i + (size_t)(slot % 4)] =
+                    q < 3 ? t->multiscatter[3 * i + (size_t)q] : t->ms_moments[SKY_HL_MOMENTS * i + (size_t)(q - 3)];
+            }
+        if (sky_texture_create_lut_layers(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, MS_LAYERS, rgba, err,
+                                          err_len))
+            rc = -2;
     }
     free(rgba);
-    return rc;
+    free(orders);
+    if (rc == -1)
+        sky_format(err, err_len, "sky_create: building the multiple-scattering table failed (out of memory or a GL "
+                   "error)");
+    return rc ? -1 : 0;
 }
 
 /* CORE33: the three tables as float textures, the framebuffer that
@@ -188,16 +250,12 @@ static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size
                    "must be powers of two", tw, th, mn);
         return -1;
     }
-    if (sky_texture_create_lut(s, SKY_TEX_TRANSMITTANCE, SKY_LAYER_ATMOSPHERE, tw, th, 1, err, err_len) ||
-        sky_texture_create_lut(s, SKY_TEX_MULTISCATTER, SKY_LAYER_ATMOSPHERE, mn, mn, 1, err, err_len) ||
-        sky_texture_create_lut_layers(s, SKY_TEX_MS_MOMENTS, SKY_LAYER_ATMOSPHERE, mn, mn, MS_MOMENT_LAYERS, err,
-                                      err_len))
-        return -1;
-    const sky_snippet *snippets[1] = {&build_snippet};
+    if (sky_texture_create_lut(s, SKY_TEX_TRANSMITTANCE, SKY_LAYER_ATMOSPHERE, tw, th, 1, err, err_len)) return -1;
+    const sky_snippet *snippets[1] = {&build_snippet}, *order_snippets[2] = {&build_snippet, &order_snippet};
     if (sky_program_build(s, &hs->transmittance_build, "fullscreen.vert", "transmittance_build.frag", snippets, 1, err,
                           err_len) ||
-        sky_program_build(s, &hs->multiscatter_build, "fullscreen.vert", "multiscatter_build.frag", snippets, 1, err,
-                          err_len) ||
+        sky_program_build(s, &hs->multiscatter_build, "fullscreen.vert", "multiscatter_build.frag", order_snippets, 2,
+                          err, err_len) ||
         sky_program_build(s, &hs->skyview_build, "fullscreen.vert", "skyview_build.frag", snippets, 1, err, err_len))
         return -1;
     if (!(hs->fbo = sky_gl_target_create(s, SKY_TEX_SKYVIEW, err, err_len))) return -1;
@@ -228,23 +286,17 @@ static int create_gpu_build(sky_core *s, sky_hillaire_state *hs, char *err, size
     f->hl_misc.skyview_steps = (float)set->skyview_steps;
     f->hl_misc.mie_g = a->mie_g;
     f->hl_steps[0] = (float)set->transmittance_steps;
-    f->hl_steps[1] = (float)((set->multiscatter_directions + 1) / 2); /* mirrored pairs, as on the CPU */
-    f->hl_steps[2] = (float)set->multiscatter_steps;
     for (int c = 0; c < 3; c++) f->hl_chi[c] = (float)hs->tables.chi[c];
+    f->hl_chi_zonal[0] = (float)hs->tables.chi[3];
+    f->hl_chi_zonal[1] = (float)hs->tables.chi[4];
     /* the two fixed tables, built here and read back for the CPU's rays
      * (the host's lighting) */
     gpu_pass(s, hs->fbo, &hs->transmittance_build, SKY_TEX_TRANSMITTANCE, tw, th);
-    sky_gl_target target;
-    sky_gl_target_begin_layers(s, hs->fbo, SKY_TEX_MULTISCATTER, SKY_TEX_MS_MOMENTS, MS_MOMENT_LAYERS, mn, mn, &target);
-    sky_program_apply(s, &hs->multiscatter_build);
-    s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
-    sky_gl_target_end_layers(s, MS_MOMENT_LAYERS, &target);
-    if (sky_gl_read_rgb(s, hs->fbo, SKY_TEX_TRANSMITTANCE, tw, th, hs->tables.transmittance) ||
-        read_multiscatter(s, hs, mn)) {
+    if (sky_gl_read_rgb(s, hs->fbo, SKY_TEX_TRANSMITTANCE, tw, th, hs->tables.transmittance)) {
         sky_format(err, err_len, "sky_create: reading the lookup tables back failed (out of memory or a GL error)");
         return -1;
     }
-    return 0;
+    return build_multiscatter(s, hs, mn, err, err_len);
 }
 
 int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t err_len)
@@ -276,7 +328,10 @@ int sky_hillaire_create(sky_core *s, sky_hillaire_state **out, char *err, size_t
         if (rc) return -1;
     } else {
         sky_hillaire_build_transmittance(&hs->tables);
-        sky_hillaire_build_multiscatter(&hs->tables);
+        if (sky_hillaire_build_multiscatter(&hs->tables)) {
+            sky_format(err, err_len, "out of memory for the multiple-scattering table");
+            return -1;
+        }
         size_t texels = (size_t)set->skyview_width * set->skyview_height;
         hs->skyview_encoded = malloc(texels * 4);
         hs->build.encoded = malloc(texels * 4);

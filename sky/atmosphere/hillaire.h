@@ -9,12 +9,16 @@
  * sky_atmosphere_params, sun illuminance 1: transfer factors):
  *   transmittance  T(r, mu) to the top of the atmosphere or 0 where the
  *                  ray meets the ground; Bruneton's (r, mu) mapping.
- *   multiscatter   Psi_ms(r, mu_s): second and higher orders as isotropic
- *                  light, L_2nd / (1 - f_ms) (Hillaire sec. 5.5, eq. 10).
- *   ms_moments     the first bounce's light at (r, mu_s) beyond its mean:
- *                  its dipole and quadrupole, from which the observer
- *                  scatters the second order with the real phase
- *                  functions instead of isotropically (see skyview_row).
+ *   multiscatter   Psi_ms(r, mu_s): the mean over the sphere of the
+ *                  light that reaches a point after one or more
+ *                  scatterings, which the observer scatters once more
+ *                  (Hillaire sec. 5.5's Psi_ms, eq. 10; here carried
+ *                  order by order, see sky_hillaire_add_order).
+ *   ms_moments     that light beyond its mean: its dipole and quadrupole,
+ *                  and the first bounce's zonal harmonics of degrees 3
+ *                  and 4 about the sun, from which the observer scatters
+ *                  it with the real phase functions instead of
+ *                  isotropically (see skyview_row).
  *   skyview        L(view) for one observer altitude and sun zenith:
  *                  u = azimuth from the sun's vertical plane (0..pi,
  *                  symmetric), v = elevation with the horizon-concentrated
@@ -32,15 +36,23 @@
  *     above the top. T along a ray to the ground point is the caller's:
  *     T(r, mu) / T(r_ground, mu_ground) with both rays mirrored upward.
  *   - multiscatter: u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s| (columns crowd
- *     toward the horizon), v = (r - R) / (Rt - R); the first bounce with
- *     the real phase functions; per column, directions about the sun
- *     (half of them spread evenly, half Henyey-Greenstein-distributed
- *     like the aerosol's forward peak, weighted by the balance heuristic),
- *     mirrored across the sun's plane (multiscatter_directions rounded up
- *     to even).
+ *     toward the horizon), v = (r - R) / (Rt - R); SKY_HL_ORDERS orders
+ *     of scattering, each traced from the one before with the real phase
+ *     functions, the rest a geometric series; per column, directions
+ *     about the sun (half of them spread evenly, half
+ *     Henyey-Greenstein-distributed like the aerosol's forward peak,
+ *     weighted by the balance heuristic), mirrored across the sun's plane
+ *     (multiscatter_directions rounded up to even; half as many, with half
+ *     the steps, for the smoother orders after the first).
  *   - ms_moments: per texel D_x, D_y (the dipole: 3 x the mean of L w, x
- *     toward the sun's azimuth, y up) and Q_xx, Q_yy, Q_xy (the traceless
- *     quadrupole 3 x mean of L w w^T - mean of L), each RGB.
+ *     toward the sun's azimuth, y up), Q_xx, Q_yy, Q_xy (the traceless
+ *     quadrupole 3 x mean of L w w^T - mean of L) and Z_3, Z_4 (the first
+ *     bounce's (2l + 1) x mean of L P_l(s . w), s the sun), each RGB.
+ *   - both as the lookups interpolate them: multiscatter holds Psi^(1/16)
+ *     and ms_moments each moment over Psi (0 where Psi is 0), since Psi
+ *     falls steeply in the Earth's shadow (hillaire_cpu.c's ms_root);
+ *     sky_hillaire_multiscatter gives Psi back. An order's table (below)
+ *     is kept the same way, its irradiance as a sixteenth root too.
  *   - skyview: u = sqrt((1 - cos az) / 2) = sin(az / 2), the sun's vertical
  *     at u = 0; v = 0.5 (1 - sqrt(1 - theta / theta_h)) above the
  *     geometric horizon theta_h = pi - asin(R / r) and 0.5 + 0.5 sqrt((theta
@@ -58,8 +70,14 @@
 #include "../sky.h"
 
 /* floats per texel of the moments table, and of both tables */
-#define SKY_HL_MOMENTS 15
+#define SKY_HL_MOMENTS 21
 #define SKY_HL_MS_ALL (3 + SKY_HL_MOMENTS)
+/* The orders of scattering the multiple-scattering table traces one by
+ * one, and the floats per texel of one order's table: the mean, the
+ * moments (as ms_moments) and the irradiance of a level surface facing
+ * up (the next order's light off the ground), each RGB. */
+#define SKY_HL_ORDERS 3
+#define SKY_HL_ORDER (SKY_HL_MS_ALL + 3)
 
 /* The public sky_lut_settings of sky.h (zero fields = Hillaire's). */
 typedef sky_lut_settings sky_hillaire_settings;
@@ -70,9 +88,10 @@ typedef struct sky_hillaire_tables {
     float *transmittance;  /* width * height * 3, row-major, v rows        */
     float *multiscatter;   /* size * size * 3                               */
     float *ms_moments;     /* size * size * SKY_HL_MOMENTS: D_x, D_y, Q_xx,
-                              Q_yy, Q_xy, each RGB                          */
-    double chi[3];         /* Legendre moments the observer scatters them
-                              with: Mie's l = 1 and 2, Rayleigh's l = 2     */
+                              Q_yy, Q_xy, Z_3, Z_4, each RGB                */
+    double chi[5];         /* Legendre moments the observer scatters them
+                              with: Mie's l = 1 and 2, Rayleigh's l = 2,
+                              Mie's l = 3 and 4                             */
     double *scratch;       /* the sky-view builder's: both tables at one
                               altitude and 6 numbers per column; a table
                               set is built and read by one thread at a time */
@@ -86,7 +105,25 @@ int sky_hillaire_init(sky_hillaire_tables *t, const sky_atmosphere_params *atm, 
                       char *err, size_t err_len);
 void sky_hillaire_free(sky_hillaire_tables *t);
 void sky_hillaire_build_transmittance(sky_hillaire_tables *t);
-void sky_hillaire_build_multiscatter(sky_hillaire_tables *t); /* needs transmittance */
+/* needs transmittance; 0, or -1 when out of memory (the table is then
+ * left as it was) */
+int sky_hillaire_build_multiscatter(sky_hillaire_tables *t);
+/* Adds order k (1 .. SKY_HL_ORDERS) of the light that reaches each texel
+ * to the multiple-scattering table and its moments: order 1 starts them,
+ * the last adds itself as the first term of a geometric series whose
+ * ratio per texel and channel is its mean over the previous order's.
+ * order and prev (order k - 1, unused for k = 1) are size * size *
+ * SKY_HL_ORDER tables: what sky_hillaire_build_multiscatter traces, or
+ * what the GPU traced (CORE33). */
+void sky_hillaire_add_order(sky_hillaire_tables *t, int k, const float *order, const float *prev);
+/* The directions (mirrored pairs: half of them), how many of those
+ * follow the aerosol's forward peak about the sun, and the steps that
+ * order k traces per texel: the settings' (half the directions about the
+ * peak) for the first; for the smoother orders after it, half the
+ * directions, all spread evenly, and half the steps (against the
+ * settings' for every order: the same light within 2 % at 1 km under a
+ * sun 5-60 deg up). */
+void sky_hillaire_order_samples(const sky_hillaire_tables *t, int k, int *half_directions, int *peaked, int *steps);
 /* needs both; altitude_km of the observer, sun_mu = cos(sun zenith) */
 void sky_hillaire_build_skyview(sky_hillaire_tables *t, double altitude_km, double sun_mu);
 /* The same table a few rows at a time: rows row0 .. row1 - 1 (clamped to

@@ -765,34 +765,36 @@ int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int 
                           is_float ? "float lookup texture" : "RGBA8 lookup texture", 1, err, err_len);
 }
 
-/* A texture of d layers or slices w x h (CORE33), empty, linear, clamped
- * on every axis; texel_bytes of ifmt's size. */
+/* A texture of d layers or slices w x h (CORE33), linear, clamped on
+ * every axis, its contents data (RGBA of type) or none (NULL);
+ * texel_bytes of ifmt's size. */
 static int create_3d(sky_core *s, sky_texture_id id, sky_layer owner, GLenum target, GLint ifmt, GLenum type,
-                     size_t texel_bytes, int w, int h, int d, const char *what, char *err, size_t err_len)
+                     size_t texel_bytes, int w, int h, int d, const void *data, const char *what, char *err,
+                     size_t err_len)
 {
     const sky_gl *gl = &s->gl;
     sky_texture *t = new_texture(s, id, target);
     unpack_state unpack;
     unpack_begin(s, &unpack);
-    gl->glTexImage3D(target, 0, ifmt, w, h, d, 0, GL_RGBA, type, NULL);
+    gl->glTexImage3D(target, 0, ifmt, w, h, d, 0, GL_RGBA, type, data);
     unpack_end(s, &unpack);
     if (target == GL_TEXTURE_3D) gl->glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     return finish_texture(s, t, target, GL_LINEAR, GL_CLAMP_TO_EDGE, w, h, (size_t)w * (size_t)h * (size_t)d * texel_bytes,
                           owner, what, 1, err, err_len);
 }
 
-int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers, char *err,
-                                  size_t err_len)
+int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers,
+                                  const float *rgba, char *err, size_t err_len)
 {
-    return create_3d(s, id, owner, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, GL_FLOAT, 16u, w, h, layers,
+    return create_3d(s, id, owner, GL_TEXTURE_2D_ARRAY, GL_RGBA32F, GL_FLOAT, 16u, w, h, layers, rgba,
                      "float lookup texture array", err, err_len);
 }
 
 int sky_texture_create_volume(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int d, char *err,
                               size_t err_len)
 {
-    return create_3d(s, id, owner, GL_TEXTURE_3D, GL_RGBA16F, GL_HALF_FLOAT, 8u, w, h, d, "half-float volume", err,
-                     err_len);
+    return create_3d(s, id, owner, GL_TEXTURE_3D, GL_RGBA16F, GL_HALF_FLOAT, 8u, w, h, d, NULL, "half-float volume",
+                     err, err_len);
 }
 
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8, const float *rgb32f)
@@ -1112,31 +1114,6 @@ void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, 
     gl->glDisable(GL_STENCIL_TEST);
     gl->glDisable(GL_CULL_FACE);
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-}
-
-void sky_gl_target_begin_layers(sky_core *s, GLuint fbo, sky_texture_id target, sky_texture_id layers, int n_layers,
-                                int w, int h, sky_gl_target *t)
-{
-    const sky_gl *gl = &s->gl;
-    GLenum bufs[1 + SKY_GL_MAX_LAYERS] = {GL_COLOR_ATTACHMENT0};
-    if (n_layers > SKY_GL_MAX_LAYERS) n_layers = SKY_GL_MAX_LAYERS;
-    sky_gl_target_begin(s, fbo, target, w, h, t);
-    for (int i = 0; i < n_layers; i++) {
-        bufs[i + 1] = GL_COLOR_ATTACHMENT1 + (GLenum)i;
-        gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, bufs[i + 1], s->textures[layers].id, 0, i);
-    }
-    gl->glDrawBuffers(1 + n_layers, bufs);
-}
-
-void sky_gl_target_end_layers(sky_core *s, int n_layers, const sky_gl_target *t)
-{
-    const sky_gl *gl = &s->gl;
-    static const GLenum first = GL_COLOR_ATTACHMENT0;
-    if (n_layers > SKY_GL_MAX_LAYERS) n_layers = SKY_GL_MAX_LAYERS;
-    for (int i = 0; i < n_layers; i++)
-        gl->glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1 + (GLenum)i, 0, 0, 0);
-    gl->glDrawBuffers(1, &first);
-    sky_gl_target_end(s, t);
 }
 
 void sky_gl_target_begin_slices(sky_core *s, GLuint fbo, sky_texture_id volume, int first, int n, int w, int h,

@@ -96,9 +96,10 @@ int sky_texture_load(sky_core *s, sky_texture_id id, sky_layer owner, const char
  * pointers). */
 int sky_texture_create_lut(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int is_float, char *err,
                            size_t err_len);
-/* An RGBA32F 2D array of layers w x h (CORE33), linear, clamped. */
-int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers, char *err,
-                                  size_t err_len);
+/* An RGBA32F 2D array of layers w x h (CORE33), linear, clamped; rgba:
+ * its contents, layer after layer, or NULL for none (to render into). */
+int sky_texture_create_lut_layers(sky_core *s, sky_texture_id id, sky_layer owner, int w, int h, int layers,
+                                  const float *rgba, char *err, size_t err_len);
 void sky_texture_update_lut(sky_core *s, sky_texture_id id, int w, int h, const unsigned char *rgba8,
                             const float *rgb32f);
 /* A w x h x d RGBA16F volume to render into slice by slice and sample
@@ -207,15 +208,9 @@ void sky_gl_target_end(sky_core *s, const sky_gl_target *t);
 int sky_gl_read_rgb(sky_core *s, GLuint fbo, sky_texture_id source, int w, int h, float *rgb);
 /* The same as RGBA, of a 2D texture (layer -1) or one layer of an array. */
 int sky_gl_read_rgba(sky_core *s, GLuint fbo, sky_texture_id source, int layer, int w, int h, float *rgba);
-/* A target that renders into target (colour 0) and the first n_layers
- * layers of the array layers (colours 1..n_layers), CORE33; end puts the
- * framebuffer back to colour 0 alone. */
-#define SKY_GL_MAX_LAYERS 4
-void sky_gl_target_begin_layers(sky_core *s, GLuint fbo, sky_texture_id target, sky_texture_id layers, int n_layers,
-                                int w, int h, sky_gl_target *t);
-void sky_gl_target_end_layers(sky_core *s, int n_layers, const sky_gl_target *t);
 /* A target that renders into slices first .. first + n - 1 of a volume
- * (colours 0 .. n - 1, n <= 8), CORE33; end detaches them. */
+ * or layers of an array (colours 0 .. n - 1, n <= 8), CORE33; end
+ * detaches them. */
 void sky_gl_target_begin_slices(sky_core *s, GLuint fbo, sky_texture_id volume, int first, int n, int w, int h,
                                 sky_gl_target *t);
 void sky_gl_target_end_slices(sky_core *s, int n, const sky_gl_target *t);
