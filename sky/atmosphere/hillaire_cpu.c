@@ -717,108 +717,148 @@ static double legendre4(double x)
     return 0.125 * (35.0 * x2 * x2 - 30.0 * x2 + 3.0);
 }
 
+/* One ray from a texel of radius r along a direction of cosine mu to
+ * the zenith, marched for an order's table: its length, whether it meets
+ * the ground, the transmittance to its end, and per segment the
+ * midpoint's distance and radius and the weights (scattering coefficient
+ * x column x transmittance x the energy-conserving factor) that the
+ * air's and the aerosol's light there takes. */
+typedef struct hl_ray {
+    int n, ground;
+    double L, tr[3];
+    double tm[SKY_HL_MAX_STEPS], rm[SKY_HL_MAX_STEPS], wr[SKY_HL_MAX_STEPS][3], wm[SKY_HL_MAX_STEPS][3];
+} hl_ray;
+
+static void march_ray(const hl_medium *m, double r, double mu, int ns, hl_ray *g)
+{
+    g->ground = hits_ground(m, r, mu);
+    g->L = g->ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
+    g->n = g->L > 0.0 ? (ns < SKY_HL_MAX_STEPS ? ns : SKY_HL_MAX_STEPS) : 0;
+    g->tr[0] = g->tr[1] = g->tr[2] = 1.0;
+    if (!g->n) return;
+    hl_layout ly;
+    layout_init(&ly, g->L, -r * mu, g->n);
+    double ta = 0.0, ra = r;
+    hl_dens da = density_at(m, ra);
+    for (int s = 0; s < g->n; s++) {
+        double tb = layout_t(&ly, s + 1), rb = radius_along(r, mu, tb);
+        hl_dens db = density_at(m, rb);
+        hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
+        g->tm[s] = 0.5 * (ta + tb);
+        g->rm[s] = radius_along(r, mu, g->tm[s]);
+        for (int c = 0; c < 3; c++) {
+            double tau = tau_of(m, c, col), e = exp(-tau), wgt = seg_weight(tau, e) * g->tr[c];
+            g->wr[s][c] = m->br[c] * col.r * wgt;
+            g->wm[s][c] = m->bms[c] * col.m * wgt;
+            g->tr[c] *= e;
+        }
+        ta = tb;
+        ra = rb;
+        da = db;
+    }
+}
+
+/* The light a marched ray g along w brings a texel of radius r under the
+ * sun (sx, sy, 0), lk: the previous order's field (prev, an n x n table)
+ * scattered toward it at each segment's midpoint (scatter_moments at the
+ * midpoint's own texel, with w as the view), or for order 1 (prev NULL)
+ * the sunlight the real phase functions turn toward it; where w meets
+ * the Lambertian ground, the ground's reflection of the previous order's
+ * irradiance (of the sun's for order 1). */
+static void ray_light(const sky_hillaire_tables *t, const hl_medium *m, double r, const float *prev, int n,
+                      const hl_ray *g, const double w[3], double sx, double sy, double lk[3])
+{
+    double mu = w[1], cos_sw = w[0] * sx + w[1] * sy, p3 = legendre3(cos_sw), p4 = legendre4(cos_sw);
+    /* the sun's light turned toward x: from the sun into -w */
+    double pr = phase_rayleigh(cos_sw), pm = phase_cs(cos_sw, m->g);
+    lk[0] = lk[1] = lk[2] = 0.0;
+    for (int s = 0; s < g->n; s++) {
+        double tm = g->tm[s], rm = g->rm[s], jr[3], jm[3];
+        double mus = clamp((w[0] * tm * sx + (r + w[1] * tm) * sy) / rm, -1.0, 1.0);
+        if (!prev) {
+            double ts[3];
+            sun_transmittance(t, m, rm, mus, ts);
+            for (int c = 0; c < 3; c++) jr[c] = pr * ts[c], jm[c] = pm * ts[c];
+        } else { /* w in the midpoint's frame */
+            double o[SKY_HL_ORDER], sh = safe_sqrt(1.0 - mus * mus);
+            double vy = clamp((tm + r * mu) / rm, -1.0, 1.0);
+            double vx = sh > 1e-6 ? clamp((cos_sw - mus * vy) / sh, -1.0, 1.0) : 0.0;
+            order_lookup(prev, m, n, rm, mus, o);
+            scatter_moments(t, o + ORD_MEAN, o + ORD_DX, vx, vy, fmax(1.0 - vx * vx - vy * vy, 0.0), p3, p4, jr, jm);
+        }
+        for (int c = 0; c < 3; c++) lk[c] += g->wr[s][c] * jr[c] + g->wm[s][c] * jm[c];
+    }
+    if (g->ground) { /* the irradiance there: the sun's, or the previous order's */
+        double gx = w[0] * g->L, gy = r + w[1] * g->L, gz = w[2] * g->L;
+        double rg = sqrt(gx * gx + gy * gy + gz * gz), mug = clamp((gx * sx + gy * sy) / rg, -1.0, 1.0);
+        double e[3] = {0, 0, 0};
+        if (!prev) {
+            if (mug > 0.0) trans_table(t, m, m->R, mug, e);
+            for (int c = 0; c < 3; c++) e[c] *= fmax(mug, 0.0);
+        } else {
+            double o[SKY_HL_ORDER];
+            order_lookup(prev, m, n, m->R, mug, o);
+            for (int c = 0; c < 3; c++) e[c] = o[ORD_IRR + c];
+        }
+        for (int c = 0; c < 3; c++) lk[c] += g->tr[c] * e[c] * m->albedo[c] / M_PI;
+    }
+}
+
 /* One row (radius r, every mu_s) of an order's table: the light that
  * reaches each texel after k scatterings, from the one before (prev; NULL:
- * k = 1, the sun's light scattered once and the sunlit ground). Along
- * each direction w from the texel, the light the previous order's field
- * scatters toward it (scatter_moments at the point's own texel, with w
- * as the view), or the sunlight the real phase functions turn toward it,
- * each segment in the energy-conserving form; where w meets the
- * Lambertian ground, the ground's reflection of the previous order's
- * irradiance (of the sun's for k = 1). Means over the sphere with the
- * directions of ms_direction:
+ * k = 1, the sun's light scattered once and the sunlit ground), along
+ * the directions w of ms_direction (ray_light). Means over the sphere:
  *   mean = mean of L(w), D = 3 mean(L w), Q = 3 mean(L w w^T) - mean,
  *   Z_l = (2l + 1) mean(L P_l(s . w)) (k = 1 only: the later orders are
  *   smooth), irradiance = 4 pi mean(L max(w_y, 0)).
+ * The evenly spread directions' rings are the same at every column (only
+ * their azimuth from the sun differs): each ring's ray is marched once
+ * for the row; those about the sun's peak, once per column. sums: the
+ * row's scratch, n x 27 doubles.
  * Hillaire 2020 sec. 5.5 sums the orders after the first as a geometric
  * series of the first's mean, scattered isotropically; with a forward
  * aerosol and a low sun that left the light near the ground 25 % short,
  * and a degree-2 first bounce rang from the sun's aureole to its far
  * side (39 % too much second order there): see sky_hillaire_add_order. */
-static void order_row(const sky_hillaire_tables *t, const hl_medium *m, double r, const float *prev, float *row)
+static void order_row(const sky_hillaire_tables *t, const hl_medium *m, double r, const float *prev, float *row,
+                      double *sums)
 {
     int n = t->settings.multiscatter_size, nd, ns, n_peak;
     sky_hillaire_order_samples(t, prev ? 2 : 1, &nd, &n_peak, &ns);
-    for (int i = 0; i < n; i++) {
-        double mu_s = ms_mu_s((double)i / (n - 1)), sx = safe_sqrt(1.0 - mu_s * mu_s), sy = mu_s;
-        /* the sums: mean, x, y, xx, yy, xy, P_3, P_4, up (per channel) */
-        double sum[9][3];
-        memset(sum, 0, sizeof sum);
-        for (int k = 0; k < nd; k++) {
-            double w[3], wk;
+    for (size_t q = 0; q < (size_t)n * 27; q++) sums[q] = 0.0;
+    hl_ray g;
+    g.n = g.ground = 0;
+    g.L = 0.0;
+    for (int k = 0; k < nd; k++) {
+        int even = k < nd - n_peak;
+        for (int i = 0; i < n; i++) {
+            double mu_s = ms_mu_s((double)i / (n - 1)), sx = safe_sqrt(1.0 - mu_s * mu_s), sy = mu_s;
+            double w[3], wk, lk[3];
             ms_direction(k, nd, n_peak, m->g, sx, sy, w, &wk);
-            double mu = w[1], cos_sw = w[0] * sx + w[1] * sy, p3 = legendre3(cos_sw), p4 = legendre4(cos_sw);
-            /* the sun's light turned toward x: from the sun into -w */
-            double pr = phase_rayleigh(cos_sw), pm = phase_cs(cos_sw, m->g);
-            int ground = hits_ground(m, r, mu);
-            double L = ground ? dist_to_ground(m, r, mu) : dist_to_top(m, r, mu);
-            double tr[3] = {1.0, 1.0, 1.0}, lk[3] = {0, 0, 0};
-            if (L > 0.0) {
-                hl_layout ly;
-                layout_init(&ly, L, -r * mu, ns);
-                double ta = 0.0, ra = r;
-                hl_dens da = density_at(m, ra);
-                for (int s = 1; s <= ns; s++) {
-                    double tb = layout_t(&ly, s), rb = radius_along(r, mu, tb);
-                    hl_dens db = density_at(m, rb);
-                    hl_dens col = seg_column(m, da, ra, db, rb, tb - ta);
-                    /* the segment's midpoint: its solar cosine */
-                    double tm = 0.5 * (ta + tb), rm = radius_along(r, mu, tm);
-                    double mus = clamp((w[0] * tm * sx + (r + w[1] * tm) * sy) / rm, -1.0, 1.0);
-                    double jr[3], jm[3];
-                    if (!prev) {
-                        double ts[3];
-                        sun_transmittance(t, m, rm, mus, ts);
-                        for (int c = 0; c < 3; c++) jr[c] = pr * ts[c], jm[c] = pm * ts[c];
-                    } else { /* w in the midpoint's frame */
-                        double o[SKY_HL_ORDER], sh = safe_sqrt(1.0 - mus * mus);
-                        double vy = clamp((tm + r * mu) / rm, -1.0, 1.0);
-                        double vx = sh > 1e-6 ? clamp((cos_sw - mus * vy) / sh, -1.0, 1.0) : 0.0;
-                        order_lookup(prev, m, n, rm, mus, o);
-                        scatter_moments(t, o + ORD_MEAN, o + ORD_DX, vx, vy, fmax(1.0 - vx * vx - vy * vy, 0.0), p3,
-                                        p4, jr, jm);
-                    }
-                    for (int c = 0; c < 3; c++) {
-                        double tau = tau_of(m, c, col), e = exp(-tau), wgt = seg_weight(tau, e) * tr[c];
-                        lk[c] += (m->br[c] * col.r * jr[c] + m->bms[c] * col.m * jm[c]) * wgt;
-                        tr[c] *= e;
-                    }
-                    ta = tb;
-                    ra = rb;
-                    da = db;
-                }
-            }
-            if (ground) { /* the irradiance there: the sun's, or the previous order's */
-                double gx = w[0] * L, gy = r + w[1] * L, gz = w[2] * L;
-                double rg = sqrt(gx * gx + gy * gy + gz * gz), mug = clamp((gx * sx + gy * sy) / rg, -1.0, 1.0);
-                double e[3] = {0, 0, 0};
-                if (!prev) {
-                    if (mug > 0.0) trans_table(t, m, m->R, mug, e);
-                    for (int c = 0; c < 3; c++) e[c] *= fmax(mug, 0.0);
-                } else {
-                    double o[SKY_HL_ORDER];
-                    order_lookup(prev, m, n, m->R, mug, o);
-                    for (int c = 0; c < 3; c++) e[c] = o[ORD_IRR + c];
-                }
-                for (int c = 0; c < 3; c++) lk[c] += tr[c] * e[c] * m->albedo[c] / M_PI;
-            }
-            double f[9] = {1.0, w[0], w[1], w[0] * w[0], w[1] * w[1], w[0] * w[1], prev ? 0.0 : p3, prev ? 0.0 : p4,
-                           fmax(w[1], 0.0)};
+            if (!even || i == 0) march_ray(m, r, w[1], ns, &g);
+            ray_light(t, m, r, prev, n, &g, w, sx, sy, lk);
+            double cos_sw = w[0] * sx + w[1] * sy;
+            double f[9] = {1.0, w[0], w[1], w[0] * w[0], w[1] * w[1], w[0] * w[1], prev ? 0.0 : legendre3(cos_sw),
+                           prev ? 0.0 : legendre4(cos_sw), fmax(w[1], 0.0)};
+            double *sum = sums + (size_t)i * 27;
             for (int q = 0; q < 9; q++)
-                for (int c = 0; c < 3; c++) sum[q][c] += lk[c] * wk * f[q];
+                for (int c = 0; c < 3; c++) sum[q * 3 + c] += lk[c] * wk * f[q];
         }
+    }
+    for (int i = 0; i < n; i++) {
+        const double *sum = sums + (size_t)i * 27;
         double o[SKY_HL_ORDER];
         for (int c = 0; c < 3; c++) {
-            double mean = sum[0][c];
+            double mean = sum[c];
             o[ORD_MEAN + c] = mean;
-            o[ORD_DX + c] = 3.0 * sum[1][c];
-            o[ORD_DY + c] = 3.0 * sum[2][c];
-            o[ORD_QXX + c] = 3.0 * sum[3][c] - mean;
-            o[ORD_QYY + c] = 3.0 * sum[4][c] - mean;
-            o[ORD_QXY + c] = 3.0 * sum[5][c];
-            o[ORD_Z3 + c] = 7.0 * sum[6][c];
-            o[ORD_Z4 + c] = 9.0 * sum[7][c];
-            o[ORD_IRR + c] = ms_root(4.0 * M_PI * sum[8][c]);
+            o[ORD_DX + c] = 3.0 * sum[3 + c];
+            o[ORD_DY + c] = 3.0 * sum[6 + c];
+            o[ORD_QXX + c] = 3.0 * sum[9 + c] - mean;
+            o[ORD_QYY + c] = 3.0 * sum[12 + c] - mean;
+            o[ORD_QXY + c] = 3.0 * sum[15 + c];
+            o[ORD_Z3 + c] = 7.0 * sum[18 + c];
+            o[ORD_Z4 + c] = 9.0 * sum[21 + c];
+            o[ORD_IRR + c] = ms_root(4.0 * M_PI * sum[24 + c]);
         }
         ms_encode(o, SKY_HL_MOMENTS);
         for (int q = 0; q < SKY_HL_ORDER; q++) row[(size_t)i * SKY_HL_ORDER + (size_t)q] = (float)o[q];
@@ -888,14 +928,16 @@ int sky_hillaire_build_multiscatter(sky_hillaire_tables *t)
     int n = t->settings.multiscatter_size;
     size_t row = (size_t)n * SKY_HL_ORDER;
     float *prev = malloc(sizeof(float) * row * (size_t)n), *cur = malloc(sizeof(float) * row * (size_t)n);
-    if (!prev || !cur) {
+    double *sums = malloc(sizeof(double) * 27u * (size_t)n);
+    if (!prev || !cur || !sums) {
         free(prev);
         free(cur);
+        free(sums);
         return -1;
     }
     for (int k = 1; k <= SKY_HL_ORDERS; k++) {
         for (int j = 0; j < n; j++)
-            order_row(t, &m, m.R + (m.Rt - m.R) * j / (n - 1), k > 1 ? prev : NULL, cur + (size_t)j * row);
+            order_row(t, &m, m.R + (m.Rt - m.R) * j / (n - 1), k > 1 ? prev : NULL, cur + (size_t)j * row, sums);
         sky_hillaire_add_order(t, k, cur, prev);
         float *tmp = prev;
         prev = cur;
@@ -903,6 +945,7 @@ int sky_hillaire_build_multiscatter(sky_hillaire_tables *t)
     }
     free(prev);
     free(cur);
+    free(sums);
     return 0;
 }
 
