@@ -315,6 +315,8 @@ void sky_atmo_hemisphere_destroy(sky_atmo_hemisphere *h)
 
 sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h) { return h->s; }
 
+const sky_osmesa *sky_atmo_hemisphere_context(const sky_atmo_hemisphere *h) { return &h->ctx; }
+
 void sky_atmo_hemisphere_clouds(sky_atmo_hemisphere *h, float cover, float density)
 {
     h->cover = cover;

@@ -8,6 +8,7 @@
 #ifndef SKY_ATMO_ERROR_H
 #define SKY_ATMO_ERROR_H
 
+#include "osmesa_ctx.h"
 #include "sky.h"
 
 #include <stdio.h>
@@ -78,6 +79,8 @@ void sky_atmo_hemisphere_sh_check(sky_atmo_hemisphere *h, const double n[3], dou
                                   double *sh_nine);
 /* The sky, for its lighting (sky_get_lighting after a render). */
 sky *sky_atmo_hemisphere_sky(sky_atmo_hemisphere *h);
+/* Its GL context (current while h lives), for a caller's own GL calls. */
+const sky_osmesa *sky_atmo_hemisphere_context(const sky_atmo_hemisphere *h);
 /* The clouds the next renders draw (a config with SKY_CLOUDS; none by
  * default). */
 void sky_atmo_hemisphere_clouds(sky_atmo_hemisphere *h, float cover, float density);

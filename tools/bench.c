@@ -1544,6 +1544,9 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
             fprintf(stderr, "sky-bench: lighting of %s: %s\n", phot_names[p], err);
             return -1;
         }
+        /* the host program below is compiled in the hemisphere's context
+         * (--only-lighting has made no other) */
+        bench_gl_use(sky_atmo_hemisphere_context(h));
         lighting_row *r = &out[p];
         r->worst = r->worst9 = 0.0;
         static const double suns[3] = {30.0, 2.0, -20.0}, normals[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, -1, 0}};
