@@ -42,8 +42,9 @@
  *     about the sun (half of them spread evenly, half
  *     Henyey-Greenstein-distributed like the aerosol's forward peak,
  *     weighted by the balance heuristic), mirrored across the sun's plane
- *     (multiscatter_directions rounded up to even; half as many, with half
- *     the steps, for the smoother orders after the first).
+ *     (multiscatter_directions rounded up to even; for the smoother
+ *     orders after the first, half as many, all spread evenly, and half
+ *     the steps).
  *   - ms_moments: per texel D_x, D_y (the dipole: 3 x the mean of L w, x
  *     toward the sun's azimuth, y up), Q_xx, Q_yy, Q_xy (the traceless
  *     quadrupole 3 x mean of L w w^T - mean of L) and Z_3, Z_4 (the first
@@ -93,7 +94,7 @@ typedef struct sky_hillaire_tables {
                               with: Mie's l = 1 and 2, Rayleigh's l = 2,
                               Mie's l = 3 and 4                             */
     double *scratch;       /* the sky-view builder's: both tables at one
-                              altitude and 6 numbers per column; a table
+                              altitude and 8 numbers per column; a table
                               set is built and read by one thread at a time */
     float *skyview;        /* width * height * 3                            */
     double skyview_altitude_km, skyview_sun_mu; /* inputs of the last build */

@@ -145,7 +145,8 @@ vec3 hl_seg_weight(vec3 tau, vec3 e)
 vec2 hl_ms_uv(float r, float mu_s)
 {
     float R = u_hl_geometry.x, Rt = u_hl_geometry.y;
-    return vec2(hl_unit_to_tex(hl_ms_u(mu_s), u_hl_misc.x), hl_unit_to_tex(clamp((r - R) / (Rt - R), 0.0, 1.0), u_hl_misc.x));
+    return vec2(hl_unit_to_tex(hl_ms_u(mu_s), u_hl_misc.x),
+                hl_unit_to_tex(clamp((r - R) / (Rt - R), 0.0, 1.0), u_hl_misc.x));
 }
 
 /* hillaire_cpu.c's ms_power: the tables hold Psi^(1/16) (and the
