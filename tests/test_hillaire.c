@@ -302,10 +302,10 @@ static void sky_vs_reference(const sky_atmosphere_params *atm, const char *name,
     NOTE("%s: mean over the four suns %.2f %%; %.1f s with the reference", name, 100.0 * all_mean, now_s() - t0);
 }
 
-/* Hillaire's constants within issue 6's 5 % at each sun (2.1 % over the
+/* Hillaire's constants within issue 6's 5 % at each sun (1.9 % over the
  * four, 2.7 % at sun 30 deg); the default Earth, whose aerosol is 16
  * times denser, within 6 % at each sun on this coarser grid (3.4 % over
- * the four, 4.4 % at sun 10 deg; sky-bench's equal-area grid, the issue's
+ * the four, 4.1 % at sun 10 deg; sky-bench's equal-area grid, the issue's
  * measure, is the README's): a forward aerosol's multiple scattering is
  * the harder to carry. Isotropic beyond the second order, as Hillaire has
  * it, the table erred by 5.7 % (Hillaire's constants, sun 60 deg) and 5.4
