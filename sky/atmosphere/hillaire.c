@@ -152,16 +152,16 @@ static void gpu_pass(sky_core *s, GLuint fbo, sky_program *prog, sky_texture_id 
 #define MS_LAYERS 6
 #define MS_ORDER_LAYERS 7
 
-/* Where quantity q of an order's texel (hillaire.h's SKY_HL_ORDER
- * floats: the mean, D_x, D_y, Q_xx, Q_yy, Q_xy, Z_3, Z_4, the irradiance,
- * each RGB) sits in the layers: layer * 4 + channel. The mean, D_x, D_y,
- * Q_xx, Q_yy and Z_4 in the RGB of layers 0-5, Q_xy in the alphas of
- * layers 0-2 and Z_3 in those of 3-5, the irradiance in layer 6
- * (multiscatter_build.frag writes them so, hl_scatter_moments reads
- * them so). */
+/* Where quantity q (0 .. SKY_HL_MS_ALL - 1) of an order's texel (the
+ * mean, D_x, D_y, Q_xx, Q_yy, Q_xy, Z_3, Z_4, each RGB) sits in the
+ * layers: layer * 4 + channel. The mean, D_x, D_y, Q_xx, Q_yy and Z_4 in
+ * the RGB of layers 0-5, Q_xy in the alphas of layers 0-2 and Z_3 in
+ * those of 3-5 (multiscatter_build.frag writes them so,
+ * hl_scatter_moments reads them so). The irradiance, in layer 6, only
+ * the next pass reads. */
 static int order_slot(int q)
 {
-    static const int layer[9] = {0, 1, 2, 3, 4, -1, -1, 5, 6};
+    static const int layer[8] = {0, 1, 2, 3, 4, -1, -1, 5};
     int what = q / 3, c = q % 3;
     if (what == 5) return c * 4 + 3;
     if (what == 6) return (3 + c) * 4 + 3;
@@ -176,8 +176,10 @@ static int order_slot(int q)
 static int build_multiscatter(sky_core *s, sky_hillaire_state *hs, int mn, char *err, size_t err_len)
 {
     size_t texels = (size_t)mn * (size_t)mn;
-    float *rgba = malloc(sizeof(float) * 4u * texels * MS_ORDER_LAYERS);
-    float *orders = malloc(sizeof(float) * 2u * texels * SKY_HL_ORDER);
+    float *rgba = malloc(sizeof(float) * 4u * texels * MS_LAYERS);
+    /* each order as sky_hillaire_add_order reads it (the irradiance, which
+     * it does not read, left 0) */
+    float *orders = calloc(2u * texels * SKY_HL_ORDER, sizeof(float));
     int rc = !rgba || !orders ? -1 : 0;
     if (!rc && (sky_texture_create_lut_layers(s, SKY_TEX_MS_ORDER, SKY_LAYER_ATMOSPHERE, mn, mn, MS_ORDER_LAYERS,
                                               NULL, err, err_len) ||
@@ -197,11 +199,11 @@ static int build_multiscatter(sky_core *s, sky_hillaire_state *hs, int mn, char 
         sky_program_apply(s, &hs->multiscatter_build);
         s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
         sky_gl_target_end_slices(s, MS_ORDER_LAYERS, &target);
-        for (int l = 0; l < MS_ORDER_LAYERS && !rc; l++)
+        for (int l = 0; l < MS_LAYERS && !rc; l++)
             rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MS_ORDER, l, mn, mn, rgba + 4u * texels * (size_t)l);
         if (rc) break;
         for (size_t i = 0; i < texels; i++)
-            for (int q = 0; q < SKY_HL_ORDER; q++) {
+            for (int q = 0; q < SKY_HL_MS_ALL; q++) {
                 int slot = order_slot(q);
                 cur[i * SKY_HL_ORDER + (size_t)q] = rgba[4u * texels * (size_t)(slot / 4) + 4u * i + (size_t)(slot % 4)];
             }
