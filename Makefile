@@ -76,8 +76,8 @@ CLI_HDR := demo/cli.h demo/osmesa_ctx.h sky/sky.h
 # the stability suite and the atmosphere's error against the reference:
 # test and benchmark infrastructure (sky-bench prints them, the tests
 # assert them), so they live in tools/ and not among the demos
-STAB_SRC := tools/stability.c tools/atmo_error.c tools/colour.c tools/photometry.c
-STAB_HDR := tools/stability.h tools/atmo_error.h tools/colour.h tools/photometry.h
+STAB_SRC := tools/stability.c tools/atmo_error.c tools/colour.c tools/photometry.c tools/sharpness.c
+STAB_HDR := tools/stability.h tools/atmo_error.h tools/colour.h tools/photometry.h tools/sharpness.h
 
 $(BIN)/sky-render: demo/render.c $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
 	@mkdir -p $(@D)

@@ -61,7 +61,10 @@ void test_bench_preset_table_in_rounds(void)
     /* every preset row: the ratio is the median of the rounds', so within
      * their range; sky_update's CPU figure is measured */
     int presets = 0;
-    for (const char *r = strstr(out, "{\"preset\":"); r; r = strstr(r + 1, "{\"preset\":")) {
+    /* (the sharpness section after the presets has rows of its own) */
+    const char *sharpness = strstr(out, "\"sharpness\":");
+    const char *presets_end = sharpness ? sharpness : out + strlen(out);
+    for (const char *r = strstr(out, "{\"preset\":"); r && r < presets_end; r = strstr(r + 1, "{\"preset\":")) {
         const char *end = strchr(r, '}');
         if (!end) break;
         double ratio = field(r, end, "ratio"), lo = field(r, end, "ratio_min"), hi = field(r, end, "ratio_max");
@@ -75,6 +78,22 @@ void test_bench_preset_table_in_rounds(void)
           "8 presets, noon over hillaire and preetham, at two dome divisors, before and after a scene at two "
           "divisors, in 2 profiles (%d rows)",
           presets);
+
+    /* the sharpness section beside it: six presets at two sizes in both
+     * profiles, each kept figure a ratio of fine structures (a frame
+     * filtered up from fewer pixels keeps at most about all of it) and
+     * its PSNR that of a close picture */
+    CHECK(sharpness != NULL, "the JSON has the sharpness section");
+    int sharp_rows = 0;
+    for (const char *r = sharpness ? strstr(sharpness, "{\"preset\":") : NULL; r; r = strstr(r + 1, "{\"preset\":")) {
+        const char *end = strchr(r, '}');
+        if (!end) break;
+        double k2 = field(r, end, "kept_k2"), k5 = field(r, end, "kept_k5"), psnr = field(r, end, "psnr_db");
+        CHECK(k2 > 0.3 && k2 <= 1.05 && k5 > 0.3 && k5 <= 1.05 && psnr > 30.0,
+              "a sharpness row's kept figures in (0.3, 1.05] and PSNR over 30 dB: %.140s", r);
+        sharp_rows++;
+    }
+    CHECK(sharp_rows == 24, "6 presets x 2 sizes x 2 profiles of sharpness (%d rows)", sharp_rows);
 
     /* Roden & Parberry's shader, as printed and packed, and the baseline
      * drawn after a scene, in both profiles */
@@ -125,7 +144,8 @@ void test_bench_es20_presets(void)
     CHECK(positive_list(out, "es20_rounds_ms", &pos) == 2 && pos, "the ES20 baseline has 2 positive round figures");
     CHECK(strstr(out, "\"compat_frame_ms\"") == NULL, "only the profile asked for runs");
     int rows = 0, es = 0;
-    for (const char *r = strstr(out, "{\"preset\":"); r; r = strstr(r + 1, "{\"preset\":")) {
+    const char *sharp_es = strstr(out, "\"sharpness\":");
+    for (const char *r = strstr(out, "{\"preset\":"); r && (!sharp_es || r < sharp_es); r = strstr(r + 1, "{\"preset\":")) {
         const char *end = strchr(r, '}');
         if (!end) break;
         rows++;

@@ -38,6 +38,7 @@
 #include "osmesa_ctx.h"
 #include "photometry.h"
 #include "plot.h"
+#include "sharpness.h"
 #include "stability.h"
 
 #include <GL/gl.h>
@@ -1751,12 +1752,73 @@ static void bench_usage(FILE *out)
             "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
             "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting\n"
             "       | --only-night] [--gl LIST of core,compat,es20 (default core,compat; es20 with --only-presets\n"
-            "       or --only-night)]\n"
+            "       or --only-night or --only-sharpness)] [--only-sharpness] [--presets 'ROW;ROW...' (with --only-presets: these rows, each a preset and\n"
+            "       sky-render's options, in place of the table's)]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
             "       sky-bench --stability [--json]\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
             "       sky-bench --make-reference FILE [--paths N]\n",
             MAX_ROUNDS);
+}
+
+/* ---- sharpness: the default frame against the every-pixel frame ----------------------------- */
+
+/* The presets' own cameras; each at both sizes in every profile asked. */
+static const char *const sharp_presets[] = {"noon", "sunset", "overcast", "minimal", "starry", "moonlit"};
+static const int sharp_sizes[][2] = {{1280, 720}, {1920, 1080}};
+enum { SHARP_PRESETS = sizeof sharp_presets / sizeof sharp_presets[0],
+       SHARP_SIZES = sizeof sharp_sizes / sizeof sharp_sizes[0] };
+
+typedef struct sharp_row {
+    const char *preset;
+    sky_gl_profile gl;
+    int w, h;
+    sky_sharpness m;
+} sharp_row;
+
+/* Fills rows (SHARP_PRESETS x SHARP_SIZES per profile); returns how many,
+ * or -1. */
+static int sharpness_rows(const profiles *pr, sharp_row *rows)
+{
+    int n = 0;
+    char err[512];
+    for (int p = 0; p < pr->n; p++)
+        for (int z = 0; z < SHARP_SIZES; z++)
+            for (int i = 0; i < SHARP_PRESETS; i++, n++) {
+                sharp_row *r = &rows[n];
+                r->preset = sharp_presets[i];
+                r->gl = pr->gl[p];
+                r->w = sharp_sizes[z][0];
+                r->h = sharp_sizes[z][1];
+                if (sky_sharpness_measure(r->preset, NULL, r->gl, r->w, r->h, &r->m, err, sizeof err)) {
+                    fprintf(stderr, "sky-bench: sharpness of %s: %s\n", r->preset, err);
+                    return -1;
+                }
+            }
+    return n;
+}
+
+static void print_sharpness_table(const sharp_row *rows, int n)
+{
+    printf("\nSharpness: each preset's own camera, the default frame against the every-pixel frame\n"
+           "(--dome-divisor 1). Fine structure: the standard deviation of luminance (Rec. 709 weights on the\n"
+           "8-bit sRGB values) minus its box blur of side 2k, over the sky rows (0-459 of 720); kept: the\n"
+           "default frame's over the every-pixel frame's; PSNR over the whole frame.\n\n");
+    printf("| preset | profile | size | kept, k = 2 px | kept, k = 5 px | PSNR dB |\n|---|---|---|---|---|---|\n");
+    for (int i = 0; i < n; i++)
+        printf("| %s | %s | %dx%d | %.3f | %.3f | %.1f |\n", rows[i].preset, kind_names[kind_of(rows[i].gl)],
+               rows[i].w, rows[i].h, rows[i].m.kept2, rows[i].m.kept5, rows[i].m.psnr);
+}
+
+static void print_sharpness_json(const sharp_row *rows, int n)
+{
+    printf(" \"sharpness\": [\n");
+    for (int i = 0; i < n; i++)
+        printf("  {\"preset\":\"%s\", \"profile\":\"%s\", \"size\":\"%dx%d\", \"kept_k2\":%.4f, \"kept_k5\":%.4f, "
+               "\"psnr_db\":%.2f}%s\n",
+               rows[i].preset, kind_names[kind_of(rows[i].gl)], rows[i].w, rows[i].h, rows[i].m.kept2, rows[i].m.kept5,
+               isfinite(rows[i].m.psnr) ? rows[i].m.psnr : 999.0, i + 1 < n ? "," : "");
+    printf(" ]");
 }
 
 /* The night layers' table (bench_night), against the presets' baseline. */
@@ -1782,10 +1844,11 @@ static void print_night_table(const profiles *pr, double night[MAX_PROFS][NIGHT_
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, only_night = 0, soak = 0;
+        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, only_night = 0, soak = 0,
+        only_sharpness = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL,
-               *plot_phot = NULL;
+               *plot_phot = NULL, *preset_list = NULL;
     profiles pr = {2, {SKY_GL_CORE33, SKY_GL_COMPAT20}};
     for (int i = 1; i < argc; i++) {
         /* asking for the usage is not a mistake: stdout, exit 0 */
@@ -1798,12 +1861,16 @@ int main(int argc, char **argv)
             only_atmosphere = 1;
         else if (!strcmp(argv[i], "--only-presets"))
             only_presets = 1;
+        else if (!strcmp(argv[i], "--presets") && i + 1 < argc && argv[i + 1][0])
+            preset_list = argv[++i];
         else if (!strcmp(argv[i], "--only-colour"))
             only_colour = 1;
         else if (!strcmp(argv[i], "--only-photometry"))
             only_photometry = 1;
         else if (!strcmp(argv[i], "--only-lighting"))
             only_lighting = 1;
+        else if (!strcmp(argv[i], "--only-sharpness"))
+            only_sharpness = 1;
         else if (!strcmp(argv[i], "--only-night"))
             only_night = 1;
         else if (!strcmp(argv[i], "--soak") && i + 1 < argc && (soak = atoi(argv[i + 1])) >= 1000 && soak <= 50000)
@@ -1844,8 +1911,9 @@ int main(int argc, char **argv)
     if (stability) return stability_table(json);
     int es = 0;
     for (int p = 0; p < pr.n; p++) es |= pr.gl[p] == SKY_GL_ES20;
-    if (es && !only_presets && !only_night) {
-        fprintf(stderr, "sky-bench: --gl es20 times the presets (--only-presets) or the night layers (--only-night); "
+    if (es && !only_presets && !only_night && !only_sharpness) {
+        fprintf(stderr, "sky-bench: --gl es20 times the presets (--only-presets) or the night layers (--only-night), "
+                "or measures the sharpness (--only-sharpness); "
                 "the other tables need a desktop context\n");
         return 2;
     }
@@ -1853,6 +1921,18 @@ int main(int argc, char **argv)
      * a value the user set stands */
     if (es) setenv("MESA_GLES_VERSION_OVERRIDE", "2.0", 0);
     if (soak) return soak_table(soak, SKY_GL_CORE33);
+    static sharp_row sharp[MAX_PROFS * SHARP_PRESETS * SHARP_SIZES];
+    int nsharp = 0;
+    if (only_sharpness) {
+        if ((nsharp = sharpness_rows(&pr, sharp)) < 0) return 1;
+        if (json) {
+            printf("{\n");
+            print_sharpness_json(sharp, nsharp);
+            printf("\n}\n");
+        } else
+            print_sharpness_table(sharp, nsharp);
+        return 0;
+    }
     static sky_colour_row colour[COLOUR_ROWS];
     sky_photometry phot[PHOT_PATHS];
     if (only_photometry) {
@@ -1918,15 +1998,30 @@ int main(int argc, char **argv)
     /* the presets; noon's clouds over the physical paths; noon's dome at
      * every pixel and at half the resolution (the cost of sharper clouds);
      * noon drawn before and after a scene covering half the frame */
-    static const char *const presets[] = {"minimal", "noon",    "overcast", "sunset",
-                                          "starry",  "moonlit", "eclipse",  "solar-eclipse",
-                                          "noon --atmosphere hillaire", "noon --atmosphere preetham",
-                                          "noon --dome-divisor 1", "noon --dome-divisor 2",
-                                          "noon + scene over half, sky first", "noon + scene over half, sky after",
-                                          "noon --dome-divisor 1 + scene over half, sky first",
-                                          "noon --dome-divisor 1 + scene over half, sky after"};
-    enum { NP = sizeof presets / sizeof presets[0] };
-    static row rows[MAX_PROFS * (NP + QUAD_KINDS - 1)]; /* (static: gcc cannot see the loops fill it) */
+    static const char *const table_presets[] = {"minimal", "noon",    "overcast", "sunset",
+                                                "starry",  "moonlit", "eclipse",  "solar-eclipse",
+                                                "noon --atmosphere hillaire", "noon --atmosphere preetham",
+                                                "noon --dome-divisor 1", "noon --dome-divisor 2",
+                                                "noon + scene over half, sky first", "noon + scene over half, sky after",
+                                                "noon --dome-divisor 1 + scene over half, sky first",
+                                                "noon --dome-divisor 1 + scene over half, sky after"};
+    enum { TABLE_PRESETS = sizeof table_presets / sizeof table_presets[0], MAX_PRESETS = 32 };
+    const char *presets[MAX_PRESETS];
+    char list_copy[1024];
+    int NP = 0;
+    if (preset_list) { /* --presets: rows separated by ';' */
+        if (!only_presets || strlen(preset_list) >= sizeof list_copy) {
+            fprintf(stderr, "sky-bench: --presets goes with --only-presets, and is at most %zu characters\n",
+                    sizeof list_copy - 1);
+            return 2;
+        }
+        snprintf(list_copy, sizeof list_copy, "%s", preset_list);
+        for (char *save = NULL, *t = strtok_r(list_copy, ";", &save); t && NP < MAX_PRESETS;
+             t = strtok_r(NULL, ";", &save))
+            presets[NP++] = t;
+    } else
+        for (int i = 0; i < TABLE_PRESETS; i++) presets[NP++] = table_presets[i];
+    static row rows[MAX_PROFS * (MAX_PRESETS + QUAD_KINDS - 1)]; /* (static: gcc cannot see the loops fill it) */
     /* the baseline's medians over the rounds of the preset table and of
      * the atmosphere table, and its per-round figures in the first */
     double base[MAX_PROFS] = {0}, base_atmo[MAX_PROFS] = {0}, night[MAX_PROFS][NIGHT_COUNT];
@@ -1948,11 +2043,18 @@ int main(int argc, char **argv)
             if (measure_atmosphere(&atmo[natmo + a], &ref, gl)) return 1;
         natmo += ATMO_SETTINGS;
     }
+    /* the sharpness section beside the preset table (not beside a list
+     * of one's own) */
+    if (!only_atmosphere && !only_night && !preset_list && (nsharp = sharpness_rows(&pr, sharp)) < 0) return 1;
     if (only_presets && json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d,\n", w, h, frames, rounds);
         print_baseline_json("baseline", &pr, base, pinfo);
         printf(",\n");
         print_presets_json(rows, nrows);
+        if (nsharp) {
+            printf(",\n");
+            print_sharpness_json(sharp, nsharp);
+        }
         printf("}\n");
         return 0;
     }
@@ -1960,6 +2062,7 @@ int main(int argc, char **argv)
         print_baseline("", w, h, frames, &pr, base, pinfo);
         printf("\n");
         print_preset_table(rows, nrows);
+        if (nsharp) print_sharpness_table(sharp, nsharp);
         return 0;
     }
     if (only_night) {
@@ -1987,6 +2090,8 @@ int main(int argc, char **argv)
         print_baseline_json("atmosphere_baseline", &pr, base_atmo, ainfo);
         printf(",\n");
         print_presets_json(rows, nrows);
+        printf(",\n");
+        print_sharpness_json(sharp, nsharp);
         printf(",\n \"night_layers\": [\n");
         for (int prof = 0; prof < pr.n; prof++)
             printf("  {\"profile\":\"%s\", \"stars_ms\":%.4f, \"starmap_ms\":%.4f, \"planets_ms\":%.4f, "
@@ -2025,6 +2130,7 @@ int main(int argc, char **argv)
     print_baseline(" in the preset rounds", w, h, frames, &pr, base, pinfo);
     printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n\n", astro);
     print_preset_table(rows, nrows);
+    print_sharpness_table(sharp, nsharp);
     print_night_table(&pr, night, base);
     printf("\n");
     print_baseline(" in the atmosphere rounds", w, h, frames, &pr, base_atmo, ainfo);

@@ -1,0 +1,73 @@
+/*
+ * The sharpness measure (tools/sharpness.c) that sky-bench's sharpness
+ * section and these tests share: its properties on images whose answer is
+ * known by construction.
+ */
+#include "test.h"
+#include "sharpness.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void test_sharpness_measure_properties(void);
+
+static void set_grey(unsigned char *rgba, int i, int v)
+{
+    rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = (unsigned char)v;
+    rgba[4 * i + 3] = 255;
+}
+
+void test_sharpness_measure_properties(void)
+{
+    enum { W = 64, H = 48 };
+    unsigned char *flat = malloc(W * H * 4), *checker = malloc(W * H * 4), *blurred = malloc(W * H * 4);
+    if (!flat || !checker || !blurred) {
+        CHECK(0, "out of memory");
+        free(flat), free(checker), free(blurred);
+        return;
+    }
+    /* a flat grey: no fine structure */
+    for (int i = 0; i < W * H; i++) set_grey(flat, i, 120);
+    CHECK(sky_fine_structure(flat, W, H, H, 2) < 1e-9, "a flat image has fine structure %g",
+          sky_fine_structure(flat, W, H, H, 2));
+    /* a one-pixel checkerboard of 100 and 140: a box of side 4 (even)
+     * averages it to 120 exactly away from the edges, so the fine
+     * structure is its amplitude, 20, there; the edges' cut boxes differ
+     * a little */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) set_grey(checker, y * W + x, (x + y) % 2 ? 140 : 100);
+    double fs = sky_fine_structure(checker, W, H, H, 2);
+    CHECK(fabs(fs - 20.0) < 1.0, "a +-20 checkerboard's fine structure at k = 2 is %.3f, not about 20", fs);
+    /* its 2x2 box blur (a smoother image) keeps less: exactly flat but
+     * for the cut edges */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int s = 0;
+            for (int j = 0; j < 2; j++)
+                for (int i = 0; i < 2; i++) {
+                    int xx = x + i < W ? x + i : W - 1, yy = y + j < H ? y + j : H - 1;
+                    s += checker[4 * (yy * W + xx)];
+                }
+            set_grey(blurred, y * W + x, (s + 2) / 4);
+        }
+    double fb = sky_fine_structure(blurred, W, H, H, 2);
+    CHECK(fb < 0.2 * fs, "the blurred checkerboard keeps %.3f of %.3f", fb, fs);
+    /* only the first rows count: the checkerboard below a flat top half */
+    memcpy(checker, flat, W * (H / 2) * 4);
+    CHECK(sky_fine_structure(checker, W, H, H / 2 - 2, 2) < 1e-9, "rows past the measured ones counted");
+    /* PSNR: identical frames are infinitely alike; one level everywhere
+     * is 20 log10(255) = 48.13 dB */
+    CHECK(isinf(sky_psnr_rgba(flat, flat, W, H)), "identical frames give %g dB", sky_psnr_rgba(flat, flat, W, H));
+    memcpy(blurred, flat, W * H * 4);
+    for (int i = 0; i < W * H * 4; i++)
+        if (i % 4 != 3) blurred[i]++;
+    double p = sky_psnr_rgba(flat, blurred, W, H);
+    CHECK(fabs(p - 48.131) < 0.01, "one level everywhere gives %.3f dB, not 48.131", p);
+    /* the measured rows at 720 and at 1080 */
+    CHECK(sky_sharpness_rows(720) == 460 && sky_sharpness_rows(1080) == 690, "rows %d at 720, %d at 1080",
+          sky_sharpness_rows(720), sky_sharpness_rows(1080));
+    free(flat);
+    free(checker);
+    free(blurred);
+}
