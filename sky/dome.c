@@ -60,6 +60,12 @@ typedef struct dome_state {
     sky_program night;           /* the same with the night backdrop        */
     sky_program night_clear;     /* the night backdrop without the front    */
     sky_program ground;          /* below the horizon: atmosphere only      */
+    /* The day's two without the tone map's scotopic blue shift, for while
+     * it is off (the eye adapted above 3 cd/m^2: exposure.c): the same
+     * pixels, and on llvmpipe the shift's mix costs about 0.4 of the
+     * baseline quad in a frame drawn at every pixel. The night's keep it:
+     * at night it is on. */
+    sky_program day_photopic, ground_photopic;
     /* the image (dome_divisor > 0): its framebuffer, the quad that draws
      * it over the viewport, and the program that does */
     GLuint fbo, quad;
@@ -212,13 +218,24 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 /* Drawn into the image, the dome writes the clouds' alpha beside the
  * colour. */
 static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL};
+/* common.glsl's tone map without the scotopic shift */
+static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL};
 
-static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, char *err, size_t err_len)
+static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, int photopic, char *err,
+                 size_t err_len)
 {
-    const sky_snippet *list[SKY_MAX_SNIPPETS + 1];
+    const sky_snippet *list[SKY_MAX_SNIPPETS + 2];
     for (int i = 0; i < n; i++) list[i] = snippets[i];
     if (s->dome_divisor) list[n++] = &into_image_snippet;
+    if (photopic) list[n++] = &photopic_snippet;
     return sky_program_build(s, p, "dome.vert", "dome.frag", list, n, err, err_len);
+}
+
+/* A day program with the shift and without it. */
+static int build_day(sky_core *s, sky_program *shifted, sky_program *photopic, const sky_snippet *const *snippets,
+                     int n, char *err, size_t err_len)
+{
+    return build(s, shifted, snippets, n, 0, err, err_len) || build(s, photopic, snippets, n, 1, err, err_len);
 }
 
 int sky_dome_divisor_for(const sky_core *s)
@@ -286,19 +303,22 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
     const sky_snippet *list[SKY_MAX_SNIPPETS];
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list), n = atmosphere;
-    if (n + d->front_count + d->night_count + (s->dome_divisor ? 1 : 0) > SKY_MAX_SNIPPETS) { /* build's image */
+    /* the night program's snippets, or the day's with the photopic one:
+     * build adds the image's and that */
+    int image = s->dome_divisor ? 1 : 0, night_n = n + d->front_count + d->night_count + image;
+    if ((night_n > n + d->front_count + image + 1 ? night_n : n + d->front_count + image + 1) > SKY_MAX_SNIPPETS) {
         sky_format(err, err_len, "too many shader snippets for the dome");
         return -1;
     }
     for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
-    if (build(s, &st->day, list, n, err, err_len)) return -1;
+    if (build_day(s, &st->day, &st->day_photopic, list, n, err, err_len)) return -1;
     /* Below the horizon there are no clouds and no stars: the lower
      * hemisphere gets the atmosphere alone (the host's terrain usually
      * covers it; what shows in a gap is the horizon haze). */
-    if (d->front_count && build(s, &st->ground, list, atmosphere, err, err_len)) return -1;
+    if (d->front_count && build_day(s, &st->ground, &st->ground_photopic, list, atmosphere, err, err_len)) return -1;
     if (d->night_count) {
         for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
-        if (build(s, &st->night, list, n, err, err_len)) return -1;
+        if (build(s, &st->night, list, n, 0, err, err_len)) return -1;
         /* and the night without the front layers, when none shows (by day
          * the atmosphere-only program serves) */
         if (d->front_count) {
@@ -306,7 +326,7 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
             int c = 0;
             for (int i = 0; i < atmosphere; i++) clear[c++] = list[i];
             for (int i = 0; i < d->night_count; i++) clear[c++] = d->night[i];
-            if (build(s, &st->night_clear, clear, c, err, err_len)) return -1;
+            if (build(s, &st->night_clear, clear, c, 0, err, err_len)) return -1;
         }
     }
     return 0;
@@ -319,6 +339,8 @@ static void dome_destroy(sky_core *s, void *state)
     sky_program_destroy(s, &st->night);
     sky_program_destroy(s, &st->night_clear);
     sky_program_destroy(s, &st->ground);
+    sky_program_destroy(s, &st->day_photopic);
+    sky_program_destroy(s, &st->ground_photopic);
     sky_program_destroy(s, &st->composite);
     sky_program_destroy(s, &st->composite_fisheye);
     const GLuint buffers[3] = {st->vertices, st->indices, st->quad};
@@ -370,7 +392,10 @@ static int dome_draw(sky_core *s, void *state)
     const sky_frame *f = &s->frame;
     int night = st->night.id && s->dome_night_shows;
     int clear = s->dome_snippets->front_count && !s->dome_front_shows;
-    const sky_program *upper = night ? (clear ? &st->night_clear : &st->night) : (clear ? &st->ground : &st->day);
+    int photopic = !(f->night_shift > 0.0f);
+    const sky_program *ground = photopic ? &st->ground_photopic : &st->ground;
+    const sky_program *upper = night ? (clear ? &st->night_clear : &st->night)
+                                     : clear ? ground : photopic ? &st->day_photopic : &st->day;
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
     select_triangles(s, st);
     sky_gl_target target;
@@ -388,8 +413,8 @@ static int dome_draw(sky_core *s, void *state)
     /* the lower hemisphere: its own cheap program when the upper one
      * carries more than the atmosphere; none in the all-sky image */
     if (f->fisheye < 0.5f) {
-        if (st->ground.id) {
-            sky_program_apply(s, &st->ground);
+        if (ground->id) {
+            sky_program_apply(s, ground);
             draws++;
         }
         draw_hemisphere(s, st, 0);

@@ -263,9 +263,11 @@ void test_api_lighting_and_stats(void)
     sky_stats st;
     CHECK(sky_get_stats(f.s, &st) == SKY_OK, "stats");
     /* the clouds and the dome's image; dome programs by day, by night, by
-     * night without clouds and below the horizon, the image's two (view
-     * and all-sky), the flicker stars' and the sun's */
-    CHECK(st.textures == 2 && st.programs == 8, "2 textures and 8 programs by default, got %d and %d", st.textures,
+     * night without clouds and below the horizon (by day and below the
+     * horizon each twice: with the tone map's scotopic shift and without,
+     * for while it is off), the image's two (view and all-sky), the
+     * flicker stars' and the sun's */
+    CHECK(st.textures == 2 && st.programs == 10, "2 textures and 10 programs by default, got %d and %d", st.textures,
           st.programs);
     CHECK(st.layers[SKY_LAYER_MOON].enabled == 0 && st.layers[SKY_LAYER_CLOUDS].enabled == 1, "layer flags");
     size_t sum = 0;
@@ -308,7 +310,7 @@ void test_api_gl_objects_deleted(void)
     }
     /* buffers: the dome's vertices, indices and image quad, the flicker
      * stars, the sun's grid (vertices and indices) */
-    CHECK(textures == 2 && textures == st.textures && programs == st.programs && programs == 8 &&
+    CHECK(textures == 2 && textures == st.textures && programs == st.programs && programs == 10 &&
               buffers == st.buffers && buffers == 6 && glIsVertexArray(vao) == GL_TRUE,
           "all objects live before destroy (textures %d, programs %d, buffers %d)", textures, programs, buffers);
     sky_destroy(s);

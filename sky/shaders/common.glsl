@@ -150,7 +150,9 @@ vec3 sky_tonemap(vec3 L)
      * bright enough for the cones (a bright star) keeps its colour */
     vec3 e = max(L * u_exposure, vec3(0.0));
     float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
+#ifndef SKY_PHOTOPIC /* (a program drawn only while the shift is off: dome.c) */
     e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.15, y)));
+#endif
 #if defined(SKY_TONE_MAP_FILMIC)
     return sky_filmic(vec4(e, 0.0)).rgb;
 #elif defined(SKY_TONE_MAP_NEUTRAL)
