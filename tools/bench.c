@@ -2008,7 +2008,7 @@ int main(int argc, char **argv)
     enum { TABLE_PRESETS = sizeof table_presets / sizeof table_presets[0], MAX_PRESETS = 32 };
     const char *presets[MAX_PRESETS];
     char list_copy[1024];
-    int NP = 0;
+    int np = 0;
     if (preset_list) { /* --presets: rows separated by ';' */
         if (!only_presets || strlen(preset_list) >= sizeof list_copy) {
             fprintf(stderr, "sky-bench: --presets goes with --only-presets, and is at most %zu characters\n",
@@ -2016,11 +2016,11 @@ int main(int argc, char **argv)
             return 2;
         }
         snprintf(list_copy, sizeof list_copy, "%s", preset_list);
-        for (char *save = NULL, *t = strtok_r(list_copy, ";", &save); t && NP < MAX_PRESETS;
+        for (char *save = NULL, *t = strtok_r(list_copy, ";", &save); t && np < MAX_PRESETS;
              t = strtok_r(NULL, ";", &save))
-            presets[NP++] = t;
+            presets[np++] = t;
     } else
-        for (int i = 0; i < TABLE_PRESETS; i++) presets[NP++] = table_presets[i];
+        for (int i = 0; i < TABLE_PRESETS; i++) presets[np++] = table_presets[i];
     static row rows[MAX_PROFS * (MAX_PRESETS + QUAD_KINDS - 1)]; /* (static: gcc cannot see the loops fill it) */
     /* the baseline's medians over the rounds of the preset table and of
      * the atmosphere table, and its per-round figures in the first */
@@ -2030,9 +2030,9 @@ int main(int argc, char **argv)
     for (int prof = 0; prof < pr.n; prof++) {
         sky_gl_profile gl = pr.gl[prof];
         if (!only_atmosphere) {
-            if (bench_presets(presets, NP, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
+            if (bench_presets(presets, np, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
                 return 1;
-            nrows += NP + QUAD_KINDS - 1;
+            nrows += np + QUAD_KINDS - 1;
         }
         if (only_presets) continue;
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;

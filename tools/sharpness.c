@@ -86,7 +86,7 @@ int sky_sharpness_frame(const char *preset, const char *extra, int divisor, sky_
     sky *s = sky_create(&cfg, err, err_len);
     int rc = -1;
     if (s && sky_set_params(s, &cli.params) >= 0 && sky_set_observer(s, &cli.observer) >= 0 &&
-        sky_set_elapsed(s, cli.seconds) >= 0) {
+        sky_set_elapsed(s, cli.seconds) >= 0 && sky_set_exposure_bias(s, cli.exposure) >= 0) {
         float view[16], proj[16];
         sky_cli_camera(&cli, view, proj);
         if (sky_draw(s, view, proj) >= 0) {
