@@ -303,10 +303,11 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
     const sky_snippet *list[SKY_MAX_SNIPPETS];
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list), n = atmosphere;
-    /* the night program's snippets, or the day's with the photopic one:
-     * build adds the image's and that */
-    int image = s->dome_divisor ? 1 : 0, night_n = n + d->front_count + d->night_count + image;
-    if ((night_n > n + d->front_count + image + 1 ? night_n : n + d->front_count + image + 1) > SKY_MAX_SNIPPETS) {
+    /* the most any program takes: the atmosphere's, the front's, the
+     * image's (build adds it) and the night layers' or the day's photopic
+     * one */
+    int beyond_front = d->night_count > 1 ? d->night_count : 1;
+    if (n + d->front_count + (s->dome_divisor ? 1 : 0) + beyond_front > SKY_MAX_SNIPPETS) {
         sky_format(err, err_len, "too many shader snippets for the dome");
         return -1;
     }

@@ -35,7 +35,7 @@ double sky_fine_structure(const unsigned char *rgba, int width, int height, int 
     for (int y = 0; y < rows && y < height; y++)
         for (int x = 0; x < width; x++) {
             int x0 = x - k > 0 ? x - k : 0, y0 = y - k > 0 ? y - k : 0;
-            int x1 = x - k + 2 * k < width ? x - k + 2 * k : width, y1 = y - k + 2 * k < height ? y - k + 2 * k : height;
+            int x1 = x + k < width ? x + k : width, y1 = y + k < height ? y + k : height;
             double box = (sum[y1 * w1 + x1] - sum[y0 * w1 + x1] - sum[y1 * w1 + x0] + sum[y0 * w1 + x0]) /
                          ((double)(x1 - x0) * (y1 - y0));
             double d = luma[(size_t)y * width + x] - box;
