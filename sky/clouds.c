@@ -195,10 +195,6 @@ static void clouds_frame(sky_core *s, void *state)
     /* height: high clouds (1) look smaller, so more texture periods fit
      * across the dome (R-P 3.1: height scales the texture coordinates). */
     f->cloud_uv_scale = (float)(0.15 * pow(4.0, p->height));
-    /* the fade of detail a pixel cannot hold is judged in the viewport's
-     * pixels: a step in the dome's image spans dome_divisor of them */
-    f->dome_step_pixels = (float)(s->dome_divisor ? s->dome_divisor : 1);
-    f->cloud_texels_per_step = (float)SKY_CLOUD_TEXTURE_SIZE / f->dome_step_pixels;
     float *offsets[SKY_CLOUD_LAYERS] = {f->cloud_offset0, f->cloud_offset1, f->cloud_offset_upper};
     for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
         for (int i = 0; i < 2; i++) offsets[l][i] = (float)st->offsets[l][i];
@@ -222,6 +218,14 @@ static void clouds_frame(sky_core *s, void *state)
         st->mean_for[1] = p->density;
         st->mean_valid = 1;
     }
+}
+
+/* The fade of detail a pixel cannot hold is judged in the viewport's
+ * pixels: a step in the dome's image spans its divisor of them. */
+void sky_clouds_image_step(sky_core *s, int step_pixels)
+{
+    s->frame.dome_step_pixels = (float)step_pixels;
+    s->frame.cloud_texels_per_step = (float)SKY_CLOUD_TEXTURE_SIZE / (float)step_pixels;
 }
 
 void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, double rgb[3])

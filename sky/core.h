@@ -345,6 +345,7 @@ typedef struct sky_core {
                                      at every pixel (dome.c)                  */
     int dome_divisor;             /* the dome's image is 1/divisor of the viewport
                                      on each axis; 0: drawn directly (dome.c) */
+    int dome_day_divisor;         /* that of a day frame whose clouds show     */
 
     sky_frame frame;
 } sky_core;

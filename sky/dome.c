@@ -37,8 +37,17 @@ static const double dome_rings_down_deg[] = {-1.0, -3.0, -7.0, -15.0, -35.0, -65
  * sharp is drawn at full resolution over it: the sun, the moon and the
  * stars, each hidden by the clouds' alpha read from the image at its
  * pixel. HDR output and contexts without framebuffer objects draw the
- * dome at every pixel. */
+ * dome at every pixel.
+ *
+ * The day's clouds over the gradient sky (the per-vertex path) are drawn
+ * at 1/3 (DOME_DAY_DIVISOR): their detail is what a sky shows at 1:1, and
+ * the frame affords it, at about 1.8 times the quad against 1.55 at 1/4.
+ * At 1/2 it would cost 2.2 to 2.8 (over the 2.5 the presets must stay
+ * within, on a busy machine), at every pixel 3.7 to 4.1 (docs/SHARPNESS.md
+ * has the measurements). The per-pixel atmospheres and the night (the star
+ * map, the galaxy glow) at 1/3 would cost up to 2.7: theirs stay at 1/4. */
 #define DOME_DIVISOR 4
+#define DOME_DAY_DIVISOR 3
 
 typedef struct dome_state {
     GLuint vertices, indices;    /* direction, gradient colour, galaxy      */
@@ -244,6 +253,12 @@ int sky_dome_divisor_for(const sky_core *s)
     return s->cfg.output == SKY_OUTPUT_LDR && s->caps.render_to_rgba8 && divisor > 1 ? divisor : 0;
 }
 
+int sky_dome_day_divisor_for(const sky_core *s)
+{
+    int chosen = s->cfg.dome_divisor != 0 || s->atmosphere != SKY_ATMOSPHERE_GRADIENT;
+    return s->dome_divisor && !chosen ? DOME_DAY_DIVISOR : s->dome_divisor;
+}
+
 /* The image's uniform (where a fragment finds itself in it comes from the
  * common u_viewport). */
 static const sky_uniform_desc image_uniforms[] = {
@@ -265,9 +280,8 @@ static const sky_snippet corner_snippet = {"SKY_DOME_CORNER", NULL, NULL, 0, NUL
  * at, not for a frame rate, and a cube map's faces are small and must meet
  * without the reduced image's steps at their edges: theirs have every
  * pixel. */
-static void image_size(const sky_core *s, int used[2], int size[2])
+static void image_size(const sky_core *s, int divisor, int used[2], int size[2])
 {
-    int divisor = s->frame.fisheye >= 0.5f || s->capturing ? 1 : s->dome_divisor;
     for (int i = 0; i < 2; i++) {
         int n = (s->viewport[2 + i] + divisor - 1) / divisor, p = 1;
         used[i] = n < 1 ? 1 : n;
@@ -354,13 +368,11 @@ static void dome_destroy(sky_core *s, void *state)
     sky_gl_target_destroy(s, st->fbo);
 }
 
-/* The image follows the viewport's size. */
-static void dome_view(sky_core *s, void *state)
+/* The image follows the viewport's size and this draw's divisor. */
+static void fit_image(sky_core *s, dome_state *st, int divisor)
 {
-    dome_state *st = state;
-    if (!st->fbo) return;
     int used[2], size[2];
-    image_size(s, used, size);
+    image_size(s, divisor, used, size);
     const sky_texture *t = &s->textures[SKY_TEX_DOME];
     /* should it fail (out of memory), the old texture stays, its corner
      * stretched over the viewport */
@@ -401,7 +413,14 @@ static int dome_draw(sky_core *s, void *state)
     select_triangles(s, st);
     sky_gl_target target;
     int into_image = st->fbo != 0;
+    /* the image's divisor for this draw: every pixel for the all-sky image
+     * and the cube map's faces (image_size says why), the day's where the
+     * clouds show over a day program */
+    int divisor = f->fisheye >= 0.5f || s->capturing ? 1 : s->dome_front_shows && !night ? s->dome_day_divisor
+                                                                                         : s->dome_divisor;
+    sky_clouds_image_step(s, into_image ? divisor : 1);
     if (into_image) {
+        fit_image(s, st, divisor);
         sky_gl_target_begin(s, st->fbo, SKY_TEX_DOME, st->used[0], st->used[1], &target);
         if (f->fisheye >= 0.5f) { /* the margin around the all-sky circle */
             const GLint all[4] = {0, 0, st->used[0], st->used[1]};
@@ -469,7 +488,6 @@ const sky_layer_class sky_dome_layer = {
     .blend = SKY_BLEND_NONE,
     .create = dome_create,
     .destroy = dome_destroy,
-    .view = dome_view,
     .visible = dome_visible,
     .draw = dome_draw,
     .buffer_bytes = dome_buffer_bytes,

@@ -76,6 +76,9 @@ typedef struct sky_dome_snippets {
 /* dome.c: the divisor of the dome's image for this context and output
  * (0: the dome is drawn directly), decided before any layer is created. */
 int sky_dome_divisor_for(const sky_core *s);
+/* dome.c: the divisor of the image for a day frame whose clouds show
+ * (smaller than sky_dome_divisor_for's where that frame affords it). */
+int sky_dome_day_divisor_for(const sky_core *s);
 /* Builds a program of a layer drawn over the dome: what it needs to hide
  * behind the front layers (their snippets, or where the dome has an image,
  * the image's alpha: dome_cover.glsl), then its own snippets. */
@@ -96,6 +99,10 @@ const double *sky_clouds_offsets(const void *clouds_state);
  * their colour there (kcd/m^2, lit and sunset-tinted as clouds.glsl
  * tints them); 0 below the horizon, without clouds or at cover 0. */
 void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, double rgb[3]);
+/* clouds.c: the viewport pixels one step of the fragments drawing the
+ * clouds spans (the dome's image's divisor, or 1), for the fade of the
+ * detail a pixel cannot hold; the dome sets it for each draw. */
+void sky_clouds_image_step(sky_core *s, int step_pixels);
 /* flicker.c: galaxy brightness 0..1 for a direction, from the 128x128
  * galaxy image stretched over the dome (R-P sec. 4); the flicker clock. */
 float sky_flicker_galaxy_vertex(const unsigned char *galaxy_rgba, const float dir[3]);

@@ -282,6 +282,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     saved = 1;
     if (c->caps.vertex_arrays) s->vao = sky_gl_vertex_array_create(c);
     c->dome_divisor = sky_dome_divisor_for(c);
+    c->dome_day_divisor = sky_dome_day_divisor_for(c);
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
     if (sky_atmosphere_create(c, err, err_len)) goto fail;
     FOR_EACH_LAYER(s, L, state) {

@@ -316,14 +316,16 @@ typedef struct sky_config {
      * evaluated on 1/dome_divisor of the viewport's pixels along each axis,
      * into an image filtered up to the viewport; the sun, the moon and the
      * stars stay at full resolution, hidden by the clouds' alpha from that
-     * image. 0 = 4 (a sixteenth of the pixels: clouds a little softer, the
-     * frame about as cheap as one textured full-screen quad on a software
-     * rasteriser); 1 = every pixel (the sharpest clouds, about 2.3 times
-     * that cost); up to 8. Needs framebuffer objects (GL 3.0, or
+     * image. 0 = the default: 3 for a day frame whose clouds show over the
+     * gradient sky, 4 for the rest (the per-pixel atmospheres, the night),
+     * which keeps a frame within about 2 textured full-screen quads on a
+     * software rasteriser (clouds a little softer than at every pixel);
+     * 1 = every pixel (the sharpest clouds, about 4 times the quad); 2..8
+     * for every frame. Needs framebuffer objects (GL 3.0, or
      * ARB/EXT_framebuffer_object on 2.0); without them, and for HDR output,
      * the dome is drawn at every pixel. The image is one RGBA8 texture,
-     * counted in sky_stats (about 230 KB at 1280x720 and 4; the viewport's
-     * size while sky_draw_fisheye draws). */
+     * counted in sky_stats (at 1280x720 about 410 KB at 3, 230 KB at 4;
+     * the viewport's size while sky_draw_fisheye draws). */
     int dome_divisor;
     /* LDR: the tone map (above); 0 = SKY_TONE_MAP_HUE. */
     sky_tone_map tone_map;

@@ -159,6 +159,7 @@ int test_skipped;
     X(bench_rejects_bad_rounds)                  \
     X(bench_es20_presets)                        \
     X(sharpness_measure_properties)              \
+    X(sharpness_day_clouds_kept)                 \
     X(game_lit_by_the_sky)                       \
     X(headless_frames_are_rendered)              \
     X(headless_demo_writes_where_asked)          \
