@@ -110,6 +110,10 @@ $(BIN)/texgen: tools/texgen.c
 	@mkdir -p $(@D)
 	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
 
+$(BIN)/pngcrop: tools/pngcrop.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $< $(LDLIBS_M)
+
 # ---- run, test ----------------------------------------------------------------
 run: deps all
 	@sh tools/run.sh
@@ -307,7 +311,7 @@ planet-tables: $(BIN)/vsopgen
 	mv tests/data/planets_reference.txt.tmp tests/data/planets_reference.txt
 
 # The README's pictures, rendered by sky-render.
-screenshots: all
+screenshots: all $(BIN)/pngcrop
 	@sh tools/screenshots.sh
 
 clean:
