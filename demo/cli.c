@@ -176,6 +176,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --bortle N               light pollution of Bortle class N (1 excellent dark site .. 9 inner city)\n"
             "  --solar-activity A       the airglow's solar cycle: 0 minimum .. 1 maximum (default: the date's)\n"
             "  --exposure STOPS         on top of the automatic exposure (-10..10; the sun as through a filter: -8)\n"
+            "  --exposure-range STOPS   how far dusk and night show darker than full adaptation (0.01..16; 3)\n"
             "  --date YYYY-MM-DDTHH:MM:SSZ   UTC instant (years -1999..3000); with --time,\n"
             "                           --time sets the local solar time on that date\n"
             "  --lat DEG --lon DEG --alt M    observer (east longitude positive)\n",
@@ -371,6 +372,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, -10.0, 10.0, &v))
                 return fail(err, len, "--exposure: expected stops in -10..10, got '%s'", val ? val : "(nothing)");
             cli->exposure = (float)v;
+        } else if (!strcmp(opt, "--exposure-range")) {
+            if (!parse_number(val, 0.01, 16.0, &v))
+                return fail(err, len, "--exposure-range: expected stops in 0.01..16, got '%s'", val ? val : "(nothing)");
+            cli->exposure_range = (float)v;
         } else if (!strcmp(opt, "--luts")) {
             /* Hillaire's tables: his sizes and samples scaled */
             double k = 0.0;
@@ -553,6 +558,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.atmosphere = cli->atmosphere;
     cfg.moon_scale = cli->moon_scale;
     cfg.bortle = cli->bortle;
+    cfg.exposure_range = cli->exposure_range;
     cfg.solar_activity_manual = cli->solar_activity_manual;
     cfg.solar_activity = cli->solar_activity;
     cfg.turbidity = cli->turbidity;

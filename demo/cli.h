@@ -27,6 +27,7 @@ typedef struct sky_cli {
     int solar_activity_manual; /* --solar-activity given                 */
     float solar_activity;
     float exposure;         /* --exposure: stops on the automatic exposure */
+    float exposure_range;   /* --exposure-range (0 = the library's default) */
     float turbidity;        /* --turbidity (0 = the library's default)   */
     int dome_divisor;       /* --dome-divisor (0 = the library's default) */
     sky_tone_map tone_map;  /* --tone-map hue|filmic|neutral              */

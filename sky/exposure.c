@@ -18,6 +18,31 @@ double sky_naked_eye_limit(double b_kcd)
     return -16.57 - 2.5 * log10(c1 * root * root);
 }
 
+/* Partial adaptation (issue "Dusk and night"): the eye adapts fully to
+ * daylight at least FULL_ADAPTATION bright (the gradient sky's with the
+ * sun some 20 degrees up; every path's noon is brighter); daylight s =
+ * log2(daylight / FULL_ADAPTATION) < 0 stops below it shows d(s) = -range
+ * (1 - exp(SLOPE s / range)) stops darker than full adaptation would show
+ * it: 0.3 of each stop lost at first, never more than range in all. The
+ * curve is smooth and falls everywhere below FULL_ADAPTATION, so the
+ * display never jumps; engines' automatic exposures bound their range the
+ * same way (a minimum and a maximum EV). sky_exposure_frame weights it by
+ * the square root of daylight's share of what the eye adapts to: the
+ * night's own light (the moon, the glows, the stars) is adapted to fully,
+ * as before, so a night stays as legible as it was while twilight, lit by
+ * the sun from below the horizon, reads as the day's end. With the
+ * defaults the sky shows 0.50 of noon's brightness at sunset, 0.23 at -6
+ * degrees and 0.15 at -12 on the gradient path (docs/DUSK.md). */
+#define FULL_ADAPTATION_KCD 5.0
+#define ADAPTATION_SLOPE 0.3
+#define DEFAULT_RANGE_STOPS 3.0
+
+double sky_display_stops(double adapt_kcd, double range_stops)
+{
+    double s = log2(fmax(adapt_kcd, 1e-30) / FULL_ADAPTATION_KCD);
+    return s >= 0.0 ? 0.0 : -range_stops * (1.0 - exp(ADAPTATION_SLOPE * s / range_stops));
+}
+
 void sky_exposure_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
@@ -40,7 +65,15 @@ void sky_exposure_frame(sky_core *s)
      * grey. */
     double night = fmax(f->night_luminance, sky_mag_arcsec2_to_kcd(21.9));
     double adapt = f->sky_luminance * withheld + 110.0 * night;
-    f->exposure = (float)(pow(2.0, s->exposure_bias) / adapt);
+    /* the display follows daylight down only partly (above; weighted by
+     * daylight's share of the adaptation); the stars, the planets and the
+     * star map keep the brightness full adaptation gives them against a
+     * dark sky (a dark-adapted eye sees them so) */
+    double range = s->cfg.exposure_range > 0.0f ? s->cfg.exposure_range : DEFAULT_RANGE_STOPS;
+    double daylight = f->sky_luminance * withheld;
+    double shown = s->cfg.output == SKY_OUTPUT_HDR ? 0.0 : sky_display_stops(daylight, range) * sqrt(daylight / adapt);
+    f->star_local_gain = (float)(f->star_local_gain * exp2(-shown));
+    f->exposure = (float)(pow(2.0, s->exposure_bias + shown) / adapt);
     /* A fragment stage without highp holds only mediump's +-2^14 (GLSL ES
      * 1.00), and the sky's light spans far more (the sun's disc near 2e6
      * kcd/m^2, a moonless sky near 1e-7): in LDR it reaches the shaders

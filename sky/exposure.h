@@ -10,6 +10,10 @@
 #include "core.h"
 
 void sky_exposure_frame(sky_core *s);
+/* The display's partial adaptation: how many stops (<= 0) darker than full
+ * adaptation a scene adapted to adapt_kcd shows, for sky_config's
+ * exposure_range (exposure.c). */
+double sky_display_stops(double adapt_kcd, double range_stops);
 /* Schaefer (1990, PASP 102, 212): the V magnitude of the faintest point
  * the naked eye sees against a sky of luminance b (kcd/m^2). */
 double sky_naked_eye_limit(double b_kcd);

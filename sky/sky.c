@@ -188,6 +188,12 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
                    (double)cfg->moon_scale);
         return NULL;
     }
+    if (!isfinite(cfg->exposure_range) ||
+        (cfg->exposure_range != 0.0f && (cfg->exposure_range < 0.01f || cfg->exposure_range > 16.0f))) {
+        sky_format(err, err_len, "sky_create: exposure_range %g is out of range (0 = default, or 0.01..16 stops)",
+                   (double)cfg->exposure_range);
+        return NULL;
+    }
     if (!isfinite(cfg->star_control_magnitude) ||
         (cfg->star_control_magnitude != 0.0f && (cfg->star_control_magnitude < 1.0f || cfg->star_control_magnitude > 10.0f))) {
         sky_format(err, err_len, "sky_create: star_control_magnitude %g is out of range (0 = default, or 1..10)",

@@ -405,6 +405,19 @@ typedef struct sky_config {
      * sky") less the natural sky's, rising toward the horizon. 0 = none;
      * sky_create rejects anything else. */
     float bortle;
+    /* LDR: how far the display follows daylight down at the day's end, in
+     * stops. The eye adapts fully to daylight as bright as the day's sky
+     * with the sun some 20 degrees up (5 kcd/m^2); below that the
+     * automatic exposure makes up only part of each further stop the
+     * sunlit sky loses (0.7 at first) and falls at most this many stops
+     * short of full adaptation, so the evening darkens as a player expects
+     * (at -6 degrees the sky shows about a quarter of noon's brightness).
+     * The night's own light (the moon, the glows) is adapted to fully: a
+     * night is as legible as ever (docs/DUSK.md). 0 = 3; else 0.01..16
+     * (sky_create rejects anything else, NaN included); a small value is
+     * the old full adaptation, where dusk shows nearly as bright as noon.
+     * sky_set_exposure_bias adds on top. */
+    float exposure_range;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,

@@ -96,6 +96,13 @@ void test_api_rejects_null_and_bad_config(void)
     cfg.dome_divisor = -1;
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "dome_divisor"), "negative divisor: %s", err);
     cfg.dome_divisor = 0;
+    const float bad_ranges[] = {NAN, INFINITY, -1.0f, 0.005f, 16.5f}; /* 0 (default) or 0.01..16 stops */
+    for (size_t i = 0; i < sizeof bad_ranges / sizeof bad_ranges[0]; i++) {
+        cfg.exposure_range = bad_ranges[i];
+        CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "exposure_range"), "bad range %g: %s",
+              (double)bad_ranges[i], err);
+    }
+    cfg.exposure_range = 0.0f;
     cfg.tone_map = (sky_tone_map)3; /* hue, filmic or neutral */
     CHECK(sky_create(&cfg, err, sizeof err) == NULL && strstr(err, "tone_map"), "bad tone map: %s", err);
     cfg.tone_map = SKY_TONE_MAP_HUE;

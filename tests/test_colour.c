@@ -13,6 +13,8 @@ void test_colour_hue_and_saturation_kept(void);
 void test_colour_old_curve_fails_the_measure(void);
 void test_colour_one_ground_below_the_horizon(void);
 void test_colour_noon_as_bright_as_before(void);
+void test_colour_day_ends_darker(void);
+void test_colour_exposure_range_spares_noon(void);
 
 static int measure(sky_atmosphere_path path, sky_tone_map tm, double sun, int toward, sky_colour_row *r)
 {
@@ -105,4 +107,57 @@ void test_colour_noon_as_bright_as_before(void)
     CHECK(fabs(la / lb - 1.0) <= 0.10, "noon within 10 %% of the old brightness (%.3f)", la / lb);
     image_free(&a);
     image_free(&b);
+}
+
+/* The day's end (issue "Dusk and night"): on the default path and on
+ * Hillaire's the sky shows at most 0.5 of noon's brightness at -6
+ * degrees, 0.2 at -12 and 0.1 at -18, never brightens by more than 5 %
+ * from one step to the next below 4 degrees, and sunset is no brighter
+ * than noon (sky_dusk_ok). Under full adaptation (the exposure before it)
+ * the default path showed 0.88 of noon at -6 and 0.65 at -12, Hillaire's
+ * sunset 1.16. */
+void test_colour_day_ends_darker(void)
+{
+    static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
+    for (int p = 0; p < 2; p++) {
+        double rel[SKY_DUSK_SUNS];
+        char err[256], why[128];
+        if (sky_dusk_measure(paths[p], SKY_GL_AUTO, 320, 180, rel, err, sizeof err)) {
+            CHECK(0, "%s", err);
+            continue;
+        }
+        NOTE("%s: -6 %.3f, -12 %.3f, -18 %.3f of noon; sunset %.3f", p ? "hillaire" : "gradient", rel[5], rel[7],
+             rel[9], rel[3]);
+        CHECK(sky_dusk_ok(rel, why, sizeof why), "%s: %s", p ? "hillaire" : "gradient", why);
+    }
+}
+
+/* The partial adaptation leaves daylight alone: noon shows the same with
+ * any exposure_range, while at nautical dusk the smallest range (nearly
+ * the old full adaptation) shows the sky brighter than the default. */
+void test_colour_exposure_range_spares_noon(void)
+{
+    static const float times[2] = {0.5f, 0.79f}; /* noon; the sun near -10 degrees */
+    for (int t = 0; t < 2; t++) {
+        scene def = scene_default(), full;
+        def.params.time = times[t];
+        def.params.cover = 0.0f;
+        def.w = 160;
+        def.h = 90;
+        full = def;
+        full.cfg.exposure_range = 0.01f;
+        image a, b;
+        if (render_scene(&def, 0, SKY_GL_AUTO, &a) || render_scene(&full, 0, SKY_GL_AUTO, &b)) {
+            CHECK(0, "render failed");
+            return;
+        }
+        double la = mean_luminance_of(&a), lb = mean_luminance_of(&b);
+        NOTE("time %.2f: mean luminance %.4f by default, %.4f nearly fully adapted", (double)times[t], la, lb);
+        if (t == 0)
+            CHECK(fabs(la / lb - 1.0) <= 0.01, "noon moved with the exposure range: %.4f against %.4f", la, lb);
+        else
+            CHECK(la < 0.6 * lb, "dusk is not darker than under full adaptation: %.4f against %.4f", la, lb);
+        image_free(&a);
+        image_free(&b);
+    }
 }

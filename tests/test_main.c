@@ -87,6 +87,8 @@ int test_skipped;
     X(colour_old_curve_fails_the_measure)        \
     X(colour_one_ground_below_the_horizon)       \
     X(colour_noon_as_bright_as_before)           \
+    X(colour_day_ends_darker)                    \
+    X(colour_exposure_range_spares_noon)         \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
     X(profiles_every_path_with_every_layer)      \

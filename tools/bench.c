@@ -1376,6 +1376,58 @@ static void print_colour_table(const sky_colour_row *rows, int n)
            met, n);
 }
 
+/* The day's end (issue "Dusk and night"): the default path and
+ * Hillaire's, the sky's display brightness over noon's as the sun sets. */
+#define DUSK_PATHS 2
+static const sky_atmosphere_path dusk_paths[DUSK_PATHS] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
+
+static int dusk_rows(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
+{
+    char err[256];
+    for (int p = 0; p < DUSK_PATHS; p++)
+        if (sky_dusk_measure(dusk_paths[p], SKY_GL_AUTO, 480, 270, rel[p], err, sizeof err)) {
+            fprintf(stderr, "sky-bench: day's end: %s\n", err);
+            return -1;
+        }
+    return 0;
+}
+
+static void print_dusk_table(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
+{
+    printf("| path |");
+    for (int i = 0; i < SKY_DUSK_SUNS; i++) printf(i ? " %g |" : " noon (%g) |", sky_dusk_suns[i]);
+    printf(" targets |\n|---|");
+    for (int i = 0; i <= SKY_DUSK_SUNS; i++) printf("---|");
+    printf("\n");
+    for (int p = 0; p < DUSK_PATHS; p++) {
+        char why[128];
+        int ok = sky_dusk_ok(rel[p], why, sizeof why);
+        printf("| %s |", colour_path_name(dusk_paths[p]));
+        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf(" %.3f |", rel[p][i]);
+        printf(" %s |\n", ok ? "met" : why);
+    }
+    printf("\nThe mean display luminance (8-bit sRGB decoded to linear) of the sky more than 5 degrees up over\n"
+           "noon's, averaged over a view toward the sun (pitch 10) and one away (pitch 20), 60-degree field,\n"
+           "480x270, the default features with the clouds off, 40 N 0 E on 2026-03-20 (noon: the sun at 50),\n"
+           "the sun at each height in the evening. Targets: <= 0.5 at -6, <= 0.2 at -12, <= 0.1 at -18; from\n"
+           "4 degrees down no step more than 5 %% brighter than the one before; sunset (0) <= noon.\n");
+}
+
+static void print_dusk_json(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
+{
+    printf(" \"day_end\": [\n");
+    for (int p = 0; p < DUSK_PATHS; p++) {
+        char why[128];
+        int ok = sky_dusk_ok(rel[p], why, sizeof why);
+        printf("  {\"path\":\"%s\", \"sun_deg\":[", colour_path_name(dusk_paths[p]));
+        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf("%g%s", sky_dusk_suns[i], i + 1 < SKY_DUSK_SUNS ? "," : "");
+        printf("], \"over_noon\":[");
+        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf("%.4f%s", rel[p][i], i + 1 < SKY_DUSK_SUNS ? "," : "");
+        printf("], \"targets_met\":%s}%s\n", ok ? "true" : "false", p + 1 < DUSK_PATHS ? "," : "");
+    }
+    printf(" ]");
+}
+
 static void print_colour_json(sky_tone_map tm, const sky_colour_row *rows, int n)
 {
     printf(" \"colour\": {\"tone_map\":\"%s\", \"rows\": [\n", tone_map_names[tm]);
@@ -1934,6 +1986,7 @@ int main(int argc, char **argv)
         return 0;
     }
     static sky_colour_row colour[COLOUR_ROWS];
+    static double dusk[DUSK_PATHS][SKY_DUSK_SUNS];
     sky_photometry phot[PHOT_PATHS];
     if (only_photometry) {
         if (photometry_rows(phot)) return 1;
@@ -1964,14 +2017,18 @@ int main(int argc, char **argv)
         return 0;
     }
     if (only_colour) {
-        if (colour_rows(tone_map, colour)) return 1;
+        if (colour_rows(tone_map, colour) || dusk_rows(dusk)) return 1;
         if (json) {
             printf("{\n");
             print_colour_json(tone_map, colour, COLOUR_ROWS);
+            printf(",\n");
+            print_dusk_json(dusk);
             printf("\n}\n");
         } else {
             printf("Colour (tone map %s):\n\n", tone_map_names[tone_map]);
             print_colour_table(colour, COLOUR_ROWS);
+            printf("\nThe day's end:\n\n");
+            print_dusk_table(dusk);
         }
         return 0;
     }
@@ -2078,7 +2135,7 @@ int main(int argc, char **argv)
     }
     if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
     double astro = astro_us(2000);
-    if (colour_rows(tone_map, colour)) return 1;
+    if (colour_rows(tone_map, colour) || dusk_rows(dusk)) return 1;
     if (photometry_rows(phot)) return 1;
     if (plot_phot && plot_photometry(plot_phot)) return 1;
     if (lighting_rows(lighting) || capture_costs(w, h, frames, &capture)) return 1;
@@ -2118,6 +2175,8 @@ int main(int argc, char **argv)
         printf(" ],\n");
         print_colour_json(tone_map, colour, COLOUR_ROWS);
         printf(",\n");
+        print_dusk_json(dusk);
+        printf(",\n");
         print_photometry_json(phot);
         printf(",\n");
         print_lighting_json(lighting, &capture, w, h);
@@ -2139,6 +2198,8 @@ int main(int argc, char **argv)
            "frame (the atmosphere and the sun):\n\n",
            tone_map_names[tone_map]);
     print_colour_table(colour, COLOUR_ROWS);
+    printf("\nThe day's end: the sky's display brightness over noon's as the sun sets:\n\n");
+    print_dusk_table(dusk);
     printf("\nPhotometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
     print_photometry_table(phot);
     printf("\nScene lighting: sky_get_irradiance_sh (core profile):\n\n");

@@ -79,16 +79,18 @@ static double quantile(double *v, int n, double q)
     return v[i < 0 ? 0 : (i >= n ? n - 1 : i)];
 }
 
-/* One frame of the sky in its own float context: HDR or LDR output. */
+/* One frame of the sky in its own float context: HDR or LDR output, the
+ * features given (0: the library's default set), the observer o, clouds
+ * off. */
 static int render(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_profile profile, sky_output output,
-                  double t, const float view[16], const float proj[16], int w, int h, float *out, float sun_dir[3],
-                  char *err, size_t err_len)
+                  unsigned features, const sky_observer *o, double t, const float view[16], const float proj[16],
+                  int w, int h, float *out, float sun_dir[3], char *err, size_t err_len)
 {
     sky_osmesa ctx;
     if (sky_osmesa_create(&ctx, w, h, profile, 1, err, err_len)) return -1;
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_SUN;
+    cfg.features = features;
     cfg.atmosphere = path;
     cfg.output = output;
     cfg.tone_map = tone_map;
@@ -97,11 +99,10 @@ static int render(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_profil
     sky *s = sky_create(&cfg, err, err_len);
     int rc = -1;
     if (s) {
-        sky_observer o = colour_observer();
         sky_params p = sky_default_params();
         p.cover = 0.0f;
         p.time = (float)t;
-        sky_set_observer(s, &o);
+        sky_set_observer(s, o);
         sky_set_params(s, &p);
         sky_lighting l;
         sky_get_lighting(s, &l);
@@ -147,8 +148,8 @@ int sky_colour_measure(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_p
         snprintf(err, err_len, "out of memory");
         goto done;
     }
-    if (render(path, tone_map, profile, SKY_OUTPUT_HDR, t, view, proj, w, h, hdr, sun, err, err_len) ||
-        render(path, tone_map, profile, SKY_OUTPUT_LDR, t, view, proj, w, h, ldr, sun, err, err_len))
+    if (render(path, tone_map, profile, SKY_OUTPUT_HDR, SKY_SUN, &o, t, view, proj, w, h, hdr, sun, err, err_len) ||
+        render(path, tone_map, profile, SKY_OUTPUT_LDR, SKY_SUN, &o, t, view, proj, w, h, ldr, sun, err, err_len))
         goto done;
     /* each pixel's direction: the camera's right, up and forward axes are
      * the view matrix's rows */
@@ -229,5 +230,101 @@ int sky_colour_row_ok(const sky_colour_row *r, char *why, size_t why_len)
         snprintf(why, why_len, "the ground under the sun %.2fx the rest (<= 1.05)", r->pillar);
     else if (r->ground_to_sky >= 0.0 && r->ground_to_sky < 0.05)
         snprintf(why, why_len, "the twilight ground %.3f of the sky (>= 0.05)", r->ground_to_sky);
+    return why[0] == '\0';
+}
+
+const double sky_dusk_suns[SKY_DUSK_SUNS] = {50.0, 10.0, 4.0, 0.0, -3.0, -6.0, -9.0, -12.0, -15.0, -18.0};
+
+/* The library's default observer (sky.h): the 2026 vernal equinox from
+ * 40 N 0 E, the time slider setting the time of day. */
+static sky_observer default_observer(void)
+{
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.latitude_deg = 40.0;
+    o.julian_day_utc = sky_julian_day(2026, 3, 20, 12, 0, 0.0);
+    o.time_from_params = 1;
+    return o;
+}
+
+int sky_dusk_brightness(sky_atmosphere_path path, sky_gl_profile profile, double sun_deg, int w, int h, double *mean,
+                        char *err, size_t err_len)
+{
+    *mean = -1.0;
+    sky_observer o = default_observer();
+    /* noon: the sun's highest (50 degrees), for any height it never reaches */
+    double t = sun_deg >= 49.0 ? 0.5 : evening_time(&o, sun_deg);
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, (float)t, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+        snprintf(err, err_len, "no astronomy for time %g", t);
+        return -1;
+    }
+    size_t n = (size_t)w * (size_t)h;
+    float *ldr = malloc(sizeof(float) * 4 * n), sun[3];
+    if (!ldr) {
+        snprintf(err, err_len, "out of memory");
+        return -1;
+    }
+    double sum_of_means = 0.0;
+    for (int toward = 0; toward < 2; toward++) {
+        float view[16], proj[16];
+        sky_cli_camera_at(a.sun.az_deg + (toward ? 0.0 : 180.0), toward ? 10.0 : 20.0, 60.0, w, h, view, proj);
+        if (render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_LDR, 0, &o, t, view, proj, w, h, ldr, sun, err,
+                   err_len)) {
+            free(ldr);
+            return -1;
+        }
+        const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
+                     fwd[3] = {-view[2], -view[6], -view[10]};
+        double sum = 0.0;
+        long count = 0;
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5], d[3];
+                for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
+                if (d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin(5.0 * PI / 180.0)) continue;
+                const float *L = ldr + 4 * ((size_t)y * w + x);
+                double lin[3];
+                for (int i = 0; i < 3; i++) {
+                    double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
+                    lin[i] = srgb_decode(floor(v * 255.0 + 0.5) / 255.0);
+                }
+                sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
+                count++;
+            }
+        sum_of_means += count ? sum / (double)count : 0.0;
+    }
+    free(ldr);
+    *mean = 0.5 * sum_of_means;
+    return 0;
+}
+
+int sky_dusk_measure(sky_atmosphere_path path, sky_gl_profile profile, int w, int h, double rel[SKY_DUSK_SUNS],
+                     char *err, size_t err_len)
+{
+    double noon = 0.0;
+    for (int i = 0; i < SKY_DUSK_SUNS; i++) {
+        double m;
+        if (sky_dusk_brightness(path, profile, sky_dusk_suns[i], w, h, &m, err, err_len)) return -1;
+        if (i == 0) noon = m;
+        rel[i] = noon > 0.0 ? m / noon : 0.0;
+    }
+    return 0;
+}
+
+int sky_dusk_ok(const double rel[SKY_DUSK_SUNS], char *why, size_t why_len)
+{
+    why[0] = '\0';
+    static const double limit_at[3][2] = {{-6.0, 0.5}, {-12.0, 0.2}, {-18.0, 0.1}};
+    for (int i = 0; i < SKY_DUSK_SUNS && !why[0]; i++) {
+        double sun = sky_dusk_suns[i];
+        for (int k = 0; k < 3; k++)
+            if (sun == limit_at[k][0] && rel[i] > limit_at[k][1])
+                snprintf(why, why_len, "%.3f of noon at %g degrees (<= %g)", rel[i], sun, limit_at[k][1]);
+        if (!why[0] && sun == 0.0 && rel[i] > 1.0) snprintf(why, why_len, "sunset %.3f of noon (<= 1)", rel[i]);
+        if (!why[0] && i > 0 && sky_dusk_suns[i - 1] <= 4.0 && rel[i] > 1.05 * rel[i - 1])
+            snprintf(why, why_len, "%g degrees %.3f after %.3f at %g (at most 5 %% brighter)", sun, rel[i], rel[i - 1],
+                     sky_dusk_suns[i - 1]);
+    }
     return why[0] == '\0';
 }

@@ -40,6 +40,28 @@ typedef struct sky_colour_row {
 int sky_colour_measure(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_profile profile, double sun_deg,
                        int toward, int w, int h, sky_colour_row *row, char *err, size_t err_len);
 
+/* The day's end (issue "Dusk and night"): the sun heights of its table,
+ * noon (50 degrees on the default date and place) first. */
+#define SKY_DUSK_SUNS 10
+extern const double sky_dusk_suns[SKY_DUSK_SUNS];
+
+/* The mean display luminance (the 8-bit sRGB values decoded to linear) of
+ * the sky more than 5 degrees up, averaged over a view toward the sun
+ * (pitch 10) and one away from it (pitch 20), 60 degrees high, w x h: the
+ * library's default features with the clouds off, its default date and
+ * place, the sun at sun_deg in the evening (or at noon). */
+int sky_dusk_brightness(sky_atmosphere_path path, sky_gl_profile profile, double sun_deg, int w, int h, double *mean,
+                        char *err, size_t err_len);
+/* The day's end of a path: each of sky_dusk_suns' brightness over noon's
+ * (rel[0] = 1), w x h. Returns 0, or -1 with err. */
+int sky_dusk_measure(sky_atmosphere_path path, sky_gl_profile profile, int w, int h, double rel[SKY_DUSK_SUNS],
+                     char *err, size_t err_len);
+/* Whether a day's end meets its targets: at most 0.5 of noon at -6
+ * degrees, 0.2 at -12 and 0.1 at -18; from 4 degrees down no step more
+ * than 5 % brighter than the one before; sunset (0) no brighter than noon.
+ * Why not in why. */
+int sky_dusk_ok(const double rel[SKY_DUSK_SUNS], char *why, size_t why_len);
+
 /* Whether a row meets the targets that apply at its sun height; why not
  * in why. */
 int sky_colour_row_ok(const sky_colour_row *row, char *why, size_t why_len);

@@ -29,7 +29,7 @@
 #pragma GCC diagnostic pop
 #endif
 
-enum { GAP = 4, MAX_INPUTS = 8 };
+enum { GAP = 4, MAX_INPUTS = 12 };
 
 typedef struct write_state {
     FILE *f;

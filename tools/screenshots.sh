@@ -104,6 +104,22 @@ $crop 700,150,320,180 1 $out/perf/dome-divisor.png $frames/noon-1.png $frames/no
 $r --size 1280x720 --preset sunset --dome-divisor 4 --out $frames/sunset-4.png
 $crop 700,150,320,180 1 $out/sharp/noon.png $frames/noon-1.png $frames/noon-4.png $frames/noon.png
 $crop 580,150,320,180 1 $out/sharp/sunset.png $frames/sunset-1.png $frames/sunset-4.png $frames/sunset.png
+# the day's end (issue: Dusk and night): facing the sun at pitch 10 on the
+# default date and place, the sun at 10, 4, 0, -3, -6, -9, -12, -15 and -18
+# degrees (the time slider and the sun's azimuth there, from sky-render
+# --query), on the default path and on Hillaire's
+mkdir -p $out/dusk
+dusk_times="10:0.71403:261.62 4:0.73631:266.87 0:0.75220:270.55 -3:0.76226:272.89 -6:0.77193:275.14
+-9:0.78288:277.73 -12:0.79391:280.37 -15:0.80503:283.10 -18:0.81628:285.94"
+for a in gradient hillaire; do
+    strip=""
+    for step in $dusk_times; do
+        sun=${step%%:*} rest=${step#*:}
+        $r --size 160x90 --atmosphere $a --time ${rest%%:*} --yaw ${rest#*:} --pitch 10 --fov 60 --out "$frames/$a$sun.png"
+        strip="$strip $frames/$a$sun.png"
+    done
+    $crop 0,0,160,90 1 $out/dusk/$a.png $strip
+done
 rm -r "$frames"
 x=""
 [ -n "${DISPLAY:-}" ] || x="xvfb-run -a -s '-screen 0 1280x720x24'"
