@@ -207,7 +207,10 @@ typedef struct sky_frame {
                                 exposure on a fragment stage without highp
                                 (LDR), else 1                                  */
     float shader_exposure;   /* u_exposure: exposure / light_scale             */
-    float night_shift;       /* 0..0.6: scotopic blue shift in the tone map      */
+    float night_shift;       /* 0..1: the rods' share at the eye's adaptation,
+                                the tone map's blue shift at most               */
+    float display_cd;        /* u_display_cd: cd/m^2 of a unit of the tone
+                                map's input (1000 / exposure)                   */
     float star_local_gain;   /* LDR: the stars' gain against a sky the eye has
                                 not adapted to (a solar eclipse)               */
     /* the camera (camera.c) */

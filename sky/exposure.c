@@ -36,6 +36,8 @@ double sky_naked_eye_limit(double b_kcd)
 #define FULL_ADAPTATION_KCD 5.0
 #define ADAPTATION_SLOPE 0.3
 #define DEFAULT_RANGE_STOPS 3.0
+/* the night's own light is adapted to partly (sky_exposure_frame) */
+#define NIGHT_PARTIAL 0.35
 
 double sky_display_stops(double adapt_kcd, double range_stops)
 {
@@ -58,13 +60,16 @@ void sky_exposure_frame(sky_core *s)
     f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
     /* Automatic exposure from the scene's own brightness: the day sky's
      * scale maps to the filmic curve's shoulder (common.glsl); at night a
-     * floor 110 times the night sky's zenith (moonlit or not) keeps the sky
-     * dark and the stars bright. The eye adapts no further than to a
-     * natural dark sky (21.9 mag/arcsec^2, Benn & Ellison 1998): a scene
-     * that leaves the airglow out is darker, not exposed up to the same
-     * grey. */
-    double night = fmax(f->night_luminance, sky_mag_arcsec2_to_kcd(21.9));
-    double adapt = f->sky_luminance * withheld + 110.0 * night;
+     * floor 110 times a natural dark sky's zenith keeps the sky dark and
+     * the stars bright. The eye adapts no further than to that dark sky
+     * (21.9 mag/arcsec^2, Benn & Ellison 1998): a scene that leaves the
+     * airglow out is darker, not exposed up to the same grey. A brighter
+     * night (the moon, light pollution) raises the floor by its brightness
+     * over the dark sky's to the power 1 - NIGHT_PARTIAL only, so a
+     * moonlit sky shows brighter than a moonless one, as the eye sees it,
+     * where full adaptation showed both alike. */
+    double dark = sky_mag_arcsec2_to_kcd(21.9), night = fmax(f->night_luminance, dark);
+    double adapt = f->sky_luminance * withheld + 110.0 * dark * pow(night / dark, 1.0 - NIGHT_PARTIAL);
     /* the display follows daylight down only partly (above; weighted by
      * daylight's share of the adaptation); the stars, the planets and the
      * star map keep the brightness full adaptation gives them against a
@@ -92,10 +97,13 @@ void sky_exposure_frame(sky_core *s)
     int gain = prescale && sun > 1.0 ? (int)ceil(log2(sun)) : 0;
     f->sun_gain_log2 = (float)gain;
     for (int i = 0; i < 3; i++) f->sun_irradiance_sent[i] = (float)ldexp(f->sun_irradiance[i] * f->light_scale, -gain);
-    /* Night vision: the adaptation luminance (what the exposure maps to
-     * mid grey) from photopic, above 3 cd/m^2, to scotopic, below 0.01
-     * cd/m^2, on a log scale; the shift is at most 60 % (the moon and
-     * stars keep a little colour in the eye of a game player). */
-    f->night_shift = (float)(0.6 * sky_smoothstep(log10(3e-3), log10(1e-5), log10(adapt)));
+    /* Night vision (common.glsl's sky_scotopic_shift, after Jensen et
+     * al. 2000): the rods' share 1 - s at the luminance the eye adapts
+     * to, the sky's own (daylight and the night's light, cd/m^2): none
+     * above 4 cd/m^2 (the sun 5 degrees down on the gradient path), all
+     * below 0.01 (a moonlit or moonless night). */
+    double eye_cd = 1000.0 * (daylight + f->night_luminance);
+    f->night_shift = (float)(1.0 - sky_smoothstep(-2.0, 0.6, log10(fmax(eye_cd, 1e-12))));
+    f->display_cd = (float)(1000.0 / fmax(f->exposure, 1e-30));
 
 }

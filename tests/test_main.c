@@ -89,6 +89,7 @@ int test_skipped;
     X(colour_noon_as_bright_as_before)           \
     X(colour_day_ends_darker)                    \
     X(colour_exposure_range_spares_noon)         \
+    X(colour_night_is_blue)                      \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
     X(profiles_every_path_with_every_layer)      \

@@ -1381,18 +1381,32 @@ static void print_colour_table(const sky_colour_row *rows, int n)
 #define DUSK_PATHS 2
 static const sky_atmosphere_path dusk_paths[DUSK_PATHS] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
 
-static int dusk_rows(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
+/* and the night's two views on the same paths, [path][full moon] */
+typedef struct night_rows {
+    double rel[DUSK_PATHS][SKY_DUSK_SUNS];
+    double noon[DUSK_PATHS];
+    sky_night_view view[DUSK_PATHS][2];
+} night_rows;
+
+static int dusk_rows(night_rows *n)
 {
     char err[256];
-    for (int p = 0; p < DUSK_PATHS; p++)
-        if (sky_dusk_measure(dusk_paths[p], SKY_GL_AUTO, 480, 270, rel[p], err, sizeof err)) {
+    for (int p = 0; p < DUSK_PATHS; p++) {
+        if (sky_dusk_measure(dusk_paths[p], SKY_GL_AUTO, 480, 270, n->rel[p], err, sizeof err) ||
+            sky_dusk_brightness(dusk_paths[p], SKY_GL_AUTO, 50.0, 480, 270, &n->noon[p], err, sizeof err)) {
             fprintf(stderr, "sky-bench: day's end: %s\n", err);
             return -1;
         }
+        for (int m = 0; m < 2; m++)
+            if (sky_night_measure(dusk_paths[p], SKY_GL_AUTO, m, 480, 270, &n->view[p][m], err, sizeof err)) {
+                fprintf(stderr, "sky-bench: the night: %s\n", err);
+                return -1;
+            }
+    }
     return 0;
 }
 
-static void print_dusk_table(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
+static void print_dusk_table(const night_rows *n)
 {
     printf("| path |");
     for (int i = 0; i < SKY_DUSK_SUNS; i++) printf(i ? " %g |" : " noon (%g) |", sky_dusk_suns[i]);
@@ -1401,9 +1415,9 @@ static void print_dusk_table(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
     printf("\n");
     for (int p = 0; p < DUSK_PATHS; p++) {
         char why[128];
-        int ok = sky_dusk_ok(rel[p], why, sizeof why);
+        int ok = sky_dusk_ok(n->rel[p], why, sizeof why);
         printf("| %s |", colour_path_name(dusk_paths[p]));
-        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf(" %.3f |", rel[p][i]);
+        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf(" %.3f |", n->rel[p][i]);
         printf(" %s |\n", ok ? "met" : why);
     }
     printf("\nThe mean display luminance (8-bit sRGB decoded to linear) of the sky more than 5 degrees up over\n"
@@ -1411,20 +1425,47 @@ static void print_dusk_table(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
            "480x270, the default features with the clouds off, 40 N 0 E on 2026-03-20 (noon: the sun at 50),\n"
            "the sun at each height in the evening. Targets: <= 0.5 at -6, <= 0.2 at -12, <= 0.1 at -18; from\n"
            "4 degrees down no step more than 5 %% brighter than the one before; sunset (0) <= noon.\n");
+    printf("\n| path | night | median sRGB | hue | b/r | mean / noon | targets |\n|---|---|---|---|---|---|---|\n");
+    for (int p = 0; p < DUSK_PATHS; p++)
+        for (int m = 1; m >= 0; m--) {
+            const sky_night_view *v = &n->view[p][m];
+            char why[128];
+            int ok = sky_night_ok(v, m, n->noon[p], why, sizeof why);
+            printf("| %s | %s | (%d, %d, %d) | %.0f | %.2f | %.3f | %s |\n", colour_path_name(dusk_paths[p]),
+                   m ? "full moon" : "moonless", v->median[0], v->median[1], v->median[2], v->hue, v->b_over_r,
+                   v->mean / n->noon[p], ok ? "met" : why);
+        }
+    printf("\nThe sky more than 10 degrees up in a 60-degree view, 480x270, the default features and the moon,\n"
+           "clouds off: the full moon 67 degrees up (2024-01-26 00:00 UTC, 45 N 0 E, north at pitch 30) and a\n"
+           "moonless sky (2024-01-11 22:00 UTC, 45 N 10 E, south at pitch 30). Targets: the full moon hue\n"
+           "190-250, b/r >= 1.6, the brightest channel's median >= 40, <= 0.35 of noon; the moonless sky hue\n"
+           "190-260, b/r >= 1.2, the brightest channel's median 8-40.\n");
 }
 
-static void print_dusk_json(double rel[DUSK_PATHS][SKY_DUSK_SUNS])
+static void print_dusk_json(const night_rows *n)
 {
     printf(" \"day_end\": [\n");
     for (int p = 0; p < DUSK_PATHS; p++) {
         char why[128];
-        int ok = sky_dusk_ok(rel[p], why, sizeof why);
+        int ok = sky_dusk_ok(n->rel[p], why, sizeof why);
         printf("  {\"path\":\"%s\", \"sun_deg\":[", colour_path_name(dusk_paths[p]));
         for (int i = 0; i < SKY_DUSK_SUNS; i++) printf("%g%s", sky_dusk_suns[i], i + 1 < SKY_DUSK_SUNS ? "," : "");
         printf("], \"over_noon\":[");
-        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf("%.4f%s", rel[p][i], i + 1 < SKY_DUSK_SUNS ? "," : "");
+        for (int i = 0; i < SKY_DUSK_SUNS; i++) printf("%.4f%s", n->rel[p][i], i + 1 < SKY_DUSK_SUNS ? "," : "");
         printf("], \"targets_met\":%s}%s\n", ok ? "true" : "false", p + 1 < DUSK_PATHS ? "," : "");
     }
+    printf(" ],\n \"night\": [\n");
+    for (int p = 0; p < DUSK_PATHS; p++)
+        for (int m = 1; m >= 0; m--) {
+            const sky_night_view *v = &n->view[p][m];
+            char why[128];
+            int ok = sky_night_ok(v, m, n->noon[p], why, sizeof why);
+            printf("  {\"path\":\"%s\", \"night\":\"%s\", \"median\":[%d,%d,%d], \"hue\":%.1f, \"b_over_r\":%.3f, "
+                   "\"mean_over_noon\":%.4f, \"targets_met\":%s}%s\n",
+                   colour_path_name(dusk_paths[p]), m ? "full_moon" : "moonless", v->median[0], v->median[1],
+                   v->median[2], v->hue, v->b_over_r, v->mean / n->noon[p], ok ? "true" : "false",
+                   p + 1 < DUSK_PATHS || m ? "," : "");
+        }
     printf(" ]");
 }
 
@@ -1986,7 +2027,7 @@ int main(int argc, char **argv)
         return 0;
     }
     static sky_colour_row colour[COLOUR_ROWS];
-    static double dusk[DUSK_PATHS][SKY_DUSK_SUNS];
+    static night_rows dusk;
     sky_photometry phot[PHOT_PATHS];
     if (only_photometry) {
         if (photometry_rows(phot)) return 1;
@@ -2017,18 +2058,18 @@ int main(int argc, char **argv)
         return 0;
     }
     if (only_colour) {
-        if (colour_rows(tone_map, colour) || dusk_rows(dusk)) return 1;
+        if (colour_rows(tone_map, colour) || dusk_rows(&dusk)) return 1;
         if (json) {
             printf("{\n");
             print_colour_json(tone_map, colour, COLOUR_ROWS);
             printf(",\n");
-            print_dusk_json(dusk);
+            print_dusk_json(&dusk);
             printf("\n}\n");
         } else {
             printf("Colour (tone map %s):\n\n", tone_map_names[tone_map]);
             print_colour_table(colour, COLOUR_ROWS);
-            printf("\nThe day's end:\n\n");
-            print_dusk_table(dusk);
+            printf("\nThe day's end and the night:\n\n");
+            print_dusk_table(&dusk);
         }
         return 0;
     }
@@ -2135,7 +2176,7 @@ int main(int argc, char **argv)
     }
     if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
     double astro = astro_us(2000);
-    if (colour_rows(tone_map, colour) || dusk_rows(dusk)) return 1;
+    if (colour_rows(tone_map, colour) || dusk_rows(&dusk)) return 1;
     if (photometry_rows(phot)) return 1;
     if (plot_phot && plot_photometry(plot_phot)) return 1;
     if (lighting_rows(lighting) || capture_costs(w, h, frames, &capture)) return 1;
@@ -2175,7 +2216,7 @@ int main(int argc, char **argv)
         printf(" ],\n");
         print_colour_json(tone_map, colour, COLOUR_ROWS);
         printf(",\n");
-        print_dusk_json(dusk);
+        print_dusk_json(&dusk);
         printf(",\n");
         print_photometry_json(phot);
         printf(",\n");
@@ -2198,8 +2239,9 @@ int main(int argc, char **argv)
            "frame (the atmosphere and the sun):\n\n",
            tone_map_names[tone_map]);
     print_colour_table(colour, COLOUR_ROWS);
-    printf("\nThe day's end: the sky's display brightness over noon's as the sun sets:\n\n");
-    print_dusk_table(dusk);
+    printf("\nThe day's end and the night: the sky's display brightness over noon's as the sun sets, and two\n"
+           "nights' colours:\n\n");
+    print_dusk_table(&dusk);
     printf("\nPhotometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
     print_photometry_table(phot);
     printf("\nScene lighting: sky_get_irradiance_sh (core profile):\n\n");

@@ -328,3 +328,85 @@ int sky_dusk_ok(const double rel[SKY_DUSK_SUNS], char *why, size_t why_len)
     }
     return why[0] == '\0';
 }
+
+static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
+int sky_night_measure(sky_atmosphere_path path, sky_gl_profile profile, int full_moon, int w, int h,
+                      sky_night_view *out, char *err, size_t err_len)
+{
+    memset(out, 0, sizeof *out);
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.latitude_deg = 45.0;
+    o.longitude_deg = full_moon ? 0.0 : 10.0;
+    o.julian_day_utc = full_moon ? sky_julian_day(2024, 1, 26, 0, 0, 0.0) : sky_julian_day(2024, 1, 11, 22, 0, 0.0);
+    float view[16], proj[16], sun[3];
+    sky_cli_camera_at(full_moon ? 0.0 : 180.0, 30.0, 60.0, w, h, view, proj);
+    size_t n = (size_t)w * (size_t)h;
+    float *ldr = malloc(sizeof(float) * 4 * n);
+    int *channel = malloc(sizeof(int) * 3 * n);
+    int rc = -1;
+    if (!ldr || !channel) {
+        snprintf(err, err_len, "out of memory");
+        goto done;
+    }
+    if (render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_LDR, SKY_FEATURES_DEFAULT | SKY_MOON, &o, 0.0, view, proj, w, h, ldr, sun, err,
+               err_len))
+        goto done;
+    const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
+                 fwd[3] = {-view[2], -view[6], -view[10]};
+    size_t count = 0;
+    double sum = 0.0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5], d[3];
+            for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
+            if (d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin(10.0 * PI / 180.0)) continue;
+            const float *L = ldr + 4 * ((size_t)y * w + x);
+            double lin[3];
+            for (int i = 0; i < 3; i++) {
+                double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
+                int byte = (int)floor(v * 255.0 + 0.5);
+                channel[i * n + count] = byte;
+                lin[i] = srgb_decode(byte / 255.0);
+            }
+            sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
+            count++;
+        }
+    if (!count) {
+        snprintf(err, err_len, "no sky more than 10 degrees up in the view");
+        goto done;
+    }
+    double med[3];
+    for (int i = 0; i < 3; i++) {
+        qsort(channel + i * n, count, sizeof(int), cmp_int);
+        out->median[i] = channel[i * n + count / 2];
+        med[i] = out->median[i];
+    }
+    double sat;
+    hue_saturation(med, &out->hue, &sat);
+    out->b_over_r = med[2] / fmax(med[0], 1.0);
+    out->mean = sum / (double)count;
+    rc = 0;
+done:
+    free(ldr);
+    free(channel);
+    return rc;
+}
+
+int sky_night_ok(const sky_night_view *v, int full_moon, double noon, char *why, size_t why_len)
+{
+    why[0] = '\0';
+    int top = v->median[0] > v->median[1] ? v->median[0] : v->median[1];
+    top = top > v->median[2] ? top : v->median[2];
+    double hue_hi = full_moon ? 250.0 : 260.0, ratio = full_moon ? 1.6 : 1.2;
+    if (v->hue < 190.0 || v->hue > hue_hi)
+        snprintf(why, why_len, "hue %.0f (190..%.0f)", v->hue, hue_hi);
+    else if (v->b_over_r < ratio)
+        snprintf(why, why_len, "b/r %.2f (>= %.1f)", v->b_over_r, ratio);
+    else if (full_moon ? top < 40 : (top < 8 || top > 40))
+        snprintf(why, why_len, "brightest channel %d (%s)", top, full_moon ? ">= 40" : "8..40");
+    else if (full_moon && v->mean > 0.35 * noon)
+        snprintf(why, why_len, "%.3f of noon (<= 0.35)", v->mean / noon);
+    return why[0] == '\0';
+}

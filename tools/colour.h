@@ -62,6 +62,26 @@ int sky_dusk_measure(sky_atmosphere_path path, sky_gl_profile profile, int w, in
  * Why not in why. */
 int sky_dusk_ok(const double rel[SKY_DUSK_SUNS], char *why, size_t why_len);
 
+/* The night (issue "Dusk and night"): the sky more than 10 degrees up in
+ * a 60-degree view, the library's default features and the moon, clouds
+ * off: a full moon 67 degrees up (2024-01-26 00:00 UTC, 45 N 0 E, looking
+ * north 30 degrees up) or a moonless sky (2024-01-11 22:00 UTC, 45 N
+ * 10 E, looking south 30 degrees up). */
+typedef struct sky_night_view {
+    int median[3];     /* each channel's median, 8-bit sRGB */
+    double hue;        /* HSV hue of that median colour, degrees */
+    double b_over_r;   /* its blue over its red */
+    double mean;       /* the mean display luminance (decoded to linear) */
+} sky_night_view;
+int sky_night_measure(sky_atmosphere_path path, sky_gl_profile profile, int full_moon, int w, int h,
+                      sky_night_view *out, char *err, size_t err_len);
+/* Whether a night view meets its targets, its mean against noon's (the
+ * day's end's noon, sky_dusk_brightness at 50 degrees): the full moon hue
+ * 190-250, b/r >= 1.6, the brightest channel's median >= 40, at most 0.35
+ * of noon; the moonless sky hue 190-260, b/r >= 1.2, the brightest
+ * channel's median 8..40. Why not in why. */
+int sky_night_ok(const sky_night_view *v, int full_moon, double noon, char *why, size_t why_len);
+
 /* Whether a row meets the targets that apply at its sun height; why not
  * in why. */
 int sky_colour_row_ok(const sky_colour_row *row, char *why, size_t why_len);

@@ -120,6 +120,12 @@ for a in gradient hillaire; do
     done
     $crop 0,0,160,90 1 $out/dusk/$a.png $strip
 done
+# and two nights as the issue measures them (sky-bench's night rows): the
+# full moon 67 degrees up, looking north, and a moonless sky, looking south
+night="--size 320x180 --cover 0 --features clouds,sun,flicker,solar-eclipse,airglow,moon --pitch 30 --fov 60"
+$r $night --date 2024-01-26T00:00:00Z --lat 45 --lon 0 --yaw 0 --out "$frames/fullmoon.png"
+$r $night --date 2024-01-11T22:00:00Z --lat 45 --lon 10 --yaw 180 --out "$frames/moonless.png"
+$crop 0,0,320,180 1 $out/dusk/nights.png "$frames/fullmoon.png" "$frames/moonless.png"
 rm -r "$frames"
 x=""
 [ -n "${DISPLAY:-}" ] || x="xvfb-run -a -s '-screen 0 1280x720x24'"
@@ -128,6 +134,7 @@ eval $x build/bin/sky-demo --size 960x540 --frames 30 --screenshot $out/demo.png
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-noon.png --time 0.45 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-dusk.png --time 0.74 --sunset 0.8 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night.png --preset moonlit >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night-moonless.png --preset starry >/dev/null
 # the engine examples (make examples builds them): 7:12 in the morning,
 # looking south
 if [ -x build/examples/sky-sdl2 ] && [ -x build/examples/sky-osg ] && [ -x build/examples/sky-irrlicht ]; then

@@ -256,6 +256,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_pixel_angle", SKY_U_F1, pixel_angle),
     SKY_UF("u_far_z", SKY_U_F1, far_z),
     SKY_UF("u_night_shift", SKY_U_F1, night_shift),
+    SKY_UF("u_display_cd", SKY_U_F1, display_cd),
     SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,

@@ -8,7 +8,9 @@ uniform SKY_UP float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + di
 uniform SKY_UP float u_fisheye;     /* 1: equidistant all-sky mapping                   */
 uniform SKY_UP vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
 uniform SKY_UP vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
-uniform SKY_UP float u_night_shift; /* 0 photopic .. 1 scotopic: the blue shift of night vision */
+uniform SKY_UP float u_night_shift; /* 0 photopic .. 1 scotopic: the rods' share at the eye's
+                                adaptation (exposure.c), the blue shift's most */
+uniform SKY_UP float u_display_cd;  /* cd/m^2 of a unit of the tone map's input (after the exposure) */
 uniform SKY_UP mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 uniform SKY_UP vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
 uniform SKY_UP float u_pixel_angle; /* radians per pixel at the view centre             */
@@ -143,15 +145,35 @@ vec3 sky_srgb_encode(vec3 c)
  *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
  *    rational shoulder on the largest channel with a little
  *    desaturation, then sRGB. */
+#ifndef SKY_PHOTOPIC
+/* The blue shift of night vision (Jensen et al. 2000, as the thesis's sec.
+ * 3.6 gives it): where the rods see, a colour's chromaticity moves toward
+ * the blue point (x, y) = (0.25, 0.25) of night paintings, by 1 - s, s the
+ * cones' share for the colour's own luminance: 0 below 0.01 cd/m^2, 1
+ * above 4, 3t^2 - 2t^3 on t = (log10 Y + 2) / 2.6 between. So what is
+ * bright enough for the cones keeps its colour (the moon's disc, a bright
+ * star, clouds lit at dusk), capped by the rods' share at the eye's own
+ * adaptation (u_night_shift). The luminance stays the photopic one the
+ * exposure was set for (Jensen's 0.4468 times the scotopic luminance would
+ * expose the night a second time). Linear sRGB to CIE XYZ and back. */
+vec3 sky_scotopic_shift(vec3 e, float y)
+{
+    float t = clamp((log2(max(y * u_display_cd, 1e-10)) * 0.30103 + 2.0) / 2.6, 0.0, 1.0);
+    float rods = min(u_night_shift, 1.0 - t * t * (3.0 - 2.0 * t));
+    const mat3 to_xyz = mat3(0.4124, 0.2126, 0.0193, 0.3576, 0.7152, 0.1192, 0.1805, 0.0722, 0.9505);
+    const mat3 to_rgb = mat3(3.2406, -0.9689, 0.0557, -1.5372, 1.8758, -0.2040, -0.4986, 0.0415, 1.0570);
+    vec3 xyz = to_xyz * e;
+    vec2 xy = mix(xyz.xy / max(xyz.x + xyz.y + xyz.z, SKY_TINY), vec2(0.25), rods);
+    return max(to_rgb * (vec3(xy, 1.0 - xy.x - xy.y) * (y / xy.y)), vec3(0.0));
+}
+#endif
+
 vec3 sky_tonemap(vec3 L)
 {
-    /* Mueller sec. 6: rods see no colour and peak in the blue-green, so a
-     * dark-adapted scene loses saturation toward a bluish grey; what is
-     * bright enough for the cones (a bright star) keeps its colour */
     vec3 e = max(L * u_exposure, vec3(0.0));
     float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
 #ifndef SKY_PHOTOPIC /* (a program drawn only while the shift is off: dome.c) */
-    e = mix(e, y * vec3(0.82, 0.95, 1.35), u_night_shift * (1.0 - smoothstep(0.005, 0.15, y)));
+    e = sky_scotopic_shift(e, y);
 #endif
 #if defined(SKY_TONE_MAP_FILMIC)
     return sky_filmic(vec4(e, 0.0)).rgb;
