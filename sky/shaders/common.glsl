@@ -155,16 +155,17 @@ vec3 sky_srgb_encode(vec3 c)
  * star, clouds lit at dusk), capped by the rods' share at the eye's own
  * adaptation (u_night_shift). The luminance stays the photopic one the
  * exposure was set for (Jensen's 0.4468 times the scotopic luminance would
- * expose the night a second time). Linear sRGB to CIE XYZ and back. */
+ * expose the night a second time). The mix of chromaticities written
+ * without the matrices: with W = X + Y + Z = dot(e, (0.6443, 1.1920,
+ * 1.2032)) (sRGB's primaries) and B the linear sRGB of the blue point at
+ * W = 1, (0.1765, 0.2476, 0.4914), the shifted colour is
+ * Y ((1 - r) e + r W B) / ((1 - r) Y + r W / 4). */
 vec3 sky_scotopic_shift(vec3 e, float y)
 {
     float t = clamp((log2(max(y * u_display_cd, 1e-10)) * 0.30103 + 2.0) / 2.6, 0.0, 1.0);
     float rods = min(u_night_shift, 1.0 - t * t * (3.0 - 2.0 * t));
-    const mat3 to_xyz = mat3(0.4124, 0.2126, 0.0193, 0.3576, 0.7152, 0.1192, 0.1805, 0.0722, 0.9505);
-    const mat3 to_rgb = mat3(3.2406, -0.9689, 0.0557, -1.5372, 1.8758, -0.2040, -0.4986, 0.0415, 1.0570);
-    vec3 xyz = to_xyz * e;
-    vec2 xy = mix(xyz.xy / max(xyz.x + xyz.y + xyz.z, SKY_TINY), vec2(0.25), rods);
-    return max(to_rgb * (vec3(xy, 1.0 - xy.x - xy.y) * (y / xy.y)), vec3(0.0));
+    float w = dot(e, vec3(0.6443, 1.1920, 1.2032));
+    return y * mix(e, w * vec3(0.1765, 0.2476, 0.4914), rods) / max(mix(y, 0.25 * w, rods), SKY_TINY);
 }
 #endif
 
