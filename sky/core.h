@@ -206,11 +206,13 @@ typedef struct sky_frame {
                                 multiplied by on their way to the shaders: the
                                 exposure on a fragment stage without highp
                                 (LDR), else 1                                  */
-    float shader_exposure;   /* u_exposure: exposure / light_scale             */
-    float night_shift;       /* 0..1: the rods' share at the eye's adaptation,
-                                the tone map's blue shift at most               */
-    float display_cd;        /* u_display_cd: cd/m^2 of a unit of the tone
-                                map's input (1000 / exposure)                   */
+    float shader_exposure;   /* sky_display_exposure: exposure / light_scale    */
+    float night_shift;       /* sky_display_rods: 0..1, the rods' share at the
+                                eye's adaptation, the blue shift at most        */
+    float display_exposure;  /* the 8-bit output's exposure (= exposure in LDR;
+                                for an HDR host's sky_display: sky_display_bind) */
+    float display_cd;        /* sky_display_cd: cd/m^2 of a unit of the tone
+                                map's input (1000 / display_exposure)           */
     float star_local_gain;   /* LDR: the stars' gain against a sky the eye has
                                 not adapted to (a solar eclipse)               */
     /* the camera (camera.c) */

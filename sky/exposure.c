@@ -76,9 +76,14 @@ void sky_exposure_frame(sky_core *s)
      * dark sky (a dark-adapted eye sees them so) */
     double range = s->cfg.exposure_range > 0.0f ? s->cfg.exposure_range : DEFAULT_RANGE_STOPS;
     double daylight = f->sky_luminance * withheld;
-    double shown = s->cfg.output == SKY_OUTPUT_HDR ? 0.0 : sky_display_stops(daylight, range) * sqrt(daylight / adapt);
-    f->star_local_gain = (float)(f->star_local_gain * exp2(-shown));
-    f->exposure = (float)(pow(2.0, s->exposure_bias + shown) / adapt);
+    double shown = sky_display_stops(daylight, range) * sqrt(daylight / adapt);
+    /* HDR output is the sky's light as it is: its exposure (the layers'
+     * visibility thresholds) stays full adaptation's, and the display's
+     * is kept for a host's sky_display (sky_display_bind) */
+    int ldr = s->cfg.output != SKY_OUTPUT_HDR;
+    if (ldr) f->star_local_gain = (float)(f->star_local_gain * exp2(-shown));
+    f->display_exposure = (float)(pow(2.0, s->exposure_bias + shown) / adapt);
+    f->exposure = ldr ? f->display_exposure : (float)(pow(2.0, s->exposure_bias) / adapt);
     /* A fragment stage without highp holds only mediump's +-2^14 (GLSL ES
      * 1.00), and the sky's light spans far more (the sun's disc near 2e6
      * kcd/m^2, a moonless sky near 1e-7): in LDR it reaches the shaders
@@ -104,6 +109,6 @@ void sky_exposure_frame(sky_core *s)
      * below 0.01 (a moonlit or moonless night). */
     double eye_cd = 1000.0 * (daylight + f->night_luminance);
     f->night_shift = (float)(1.0 - sky_smoothstep(-2.0, 0.6, log10(fmax(eye_cd, 1e-12))));
-    f->display_cd = (float)(1000.0 / fmax(f->exposure, 1e-30));
+    f->display_cd = (float)(1000.0 / fmax(f->display_exposure, 1e-30));
 
 }

@@ -876,6 +876,30 @@ sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16]
     return SKY_OK;
 }
 
+const char *sky_display_glsl(void)
+{
+    const sky_blob *b = sky_find_blob("display.glsl");
+    return b ? (const char *)b->data : "";
+}
+
+sky_result sky_display_bind(sky *s, unsigned program)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_core *c = &s->core;
+    const sky_gl *gl = &c->gl;
+    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_display_bind: program 0");
+    if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_display_bind: no GL context is current");
+    GLint host_program = 0;
+    gl->glGetIntegerv(GL_CURRENT_PROGRAM, &host_program);
+    gl->glUseProgram(program);
+    const sky_frame *f = &c->frame;
+    gl->glUniform1f(gl->glGetUniformLocation(program, "sky_display_exposure"), f->display_exposure);
+    gl->glUniform1f(gl->glGetUniformLocation(program, "sky_display_rods"), f->night_shift);
+    gl->glUniform1f(gl->glGetUniformLocation(program, "sky_display_cd"), f->display_cd);
+    gl->glUseProgram((GLuint)host_program);
+    return SKY_OK;
+}
+
 const char *sky_aerial_glsl(void)
 {
     const sky_blob *b = sky_find_blob("aerial.glsl");

@@ -813,6 +813,26 @@ SKY_API const char *sky_aerial_glsl(void);
  * SKY_ERR_INVALID_ARGUMENT for program 0 or a unit outside the context's;
  * SKY_ERR_GL without a current context. */
 SKY_API sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit);
+/* The 8-bit output's display stages for a host that takes the sky's HDR
+ * output (or lights its own scene in kcd/m^2) and wants it shown as the
+ * sky shows itself: GLSL source to include after the #version line (GLSL
+ * 1.10 to 3.30 and ES 1.00 with highp; a NUL-terminated static string)
+ * that defines
+ *     vec3 sky_display(vec3 radiance_kcd);
+ * returning display values 0..1: the automatic exposure with its partial
+ * adaptation at the day's end and at night (sky_config.exposure_range),
+ * the rods' blue shift of night vision, and the tone map (the hue map; a
+ * #define SKY_TONE_MAP_FILMIC or SKY_TONE_MAP_NEUTRAL before it picks
+ * the others). The library's own 8-bit frames are these values plus a
+ * dither of one step. It declares the uniforms sky_display_exposure,
+ * sky_display_rods and sky_display_cd. (docs/DUSK.md) */
+SKY_API const char *sky_display_glsl(void);
+/* Sets those uniforms in program (a linked program that includes
+ * sky_display_glsl; uniforms it optimised away are skipped) for the
+ * frame: call it after sky_update. The host's current program comes back.
+ * SKY_ERR_INVALID_ARGUMENT for NULL or program 0; SKY_ERR_GL without a
+ * current context. */
+SKY_API sky_result sky_display_bind(sky *s, unsigned program);
 /* Hillaire's froxel volume (Hillaire 2020 sec. 5.4; Unreal's aerial
  * perspective table), CORE33 on the hillaire and blend paths: the same
  * air for one camera (view and proj as sky_draw takes them), marched on

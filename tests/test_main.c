@@ -90,6 +90,8 @@ int test_skipped;
     X(colour_day_ends_darker)                    \
     X(colour_exposure_range_spares_noon)         \
     X(colour_night_is_blue)                      \
+    X(display_glsl_matches_ldr)                  \
+    X(display_bind_checks)                       \
     X(profiles_core_and_compat_agree)            \
     X(profiles_compat_on_emulated_2004_gpu)      \
     X(profiles_every_path_with_every_layer)      \

@@ -246,7 +246,7 @@ int sky_gl_init(sky_core *s, char *err, size_t err_len)
 /* ---- programs ------------------------------------------------------------ */
 
 static const sky_uniform_desc common_uniforms[] = {
-    SKY_UF("u_exposure", SKY_U_F1, shader_exposure),
+    SKY_UF("sky_display_exposure", SKY_U_F1, shader_exposure),
     SKY_UF("u_output_hdr", SKY_U_F1, output_hdr),
     SKY_UF("u_fisheye", SKY_U_F1, fisheye),
     SKY_UF("u_aspect", SKY_U_F2, aspect),
@@ -255,10 +255,11 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_viewport", SKY_U_F4, viewport),
     SKY_UF("u_pixel_angle", SKY_U_F1, pixel_angle),
     SKY_UF("u_far_z", SKY_U_F1, far_z),
-    SKY_UF("u_night_shift", SKY_U_F1, night_shift),
-    SKY_UF("u_display_cd", SKY_U_F1, display_cd),
+    SKY_UF("sky_display_rods", SKY_U_F1, night_shift),
+    SKY_UF("sky_display_cd", SKY_U_F1, display_cd),
     SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
 };
+/* (display.glsl, the display stages hosts can include too, comes first) */
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
                                         SKY_UNIFORM_COUNT(common_uniforms), NULL};
 
@@ -341,8 +342,8 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
         sky_format(err, err_len, "too many shader snippets (%d)", snippet_count);
         return -1;
     }
-    /* prologue, feature defines, common code, snippets, main */
-    const char *parts[3 + SKY_MAX_SNIPPETS + 2];
+    /* prologue, feature defines, display and common code, snippets, main */
+    const char *parts[4 + SKY_MAX_SNIPPETS + 1];
     /* the tone map (common.glsl), then the snippets' defines */
     static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
     char defines[64 + 48 * SKY_MAX_SNIPPETS];
@@ -361,6 +362,7 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
         int n = 0;
         parts[n++] = prologue(s, stage);
         parts[n++] = defines;
+        if (!(parts[n++] = blob_text("display.glsl", err, err_len))) goto fail;
         if (!(parts[n++] = blob_text(sky_common_snippet.source, err, err_len))) goto fail;
         for (int i = 0; i < snippet_count; i++) {
             const char *source = stage ? snippets[i]->source : snippets[i]->vertex_source;

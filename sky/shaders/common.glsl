@@ -1,16 +1,13 @@
-/* common.glsl: shared by every libsky program (both stages). The version
- * prologue before it defines SKY_IN/SKY_OUT/SKY_ATTR, SKY_TEX2D and
- * SKY_FRAG_COLOR so one source serves GLSL 110, GLSL 330 and GLSL ES 1.00
- * (which also gets its precision there, and SKY_NO_DERIVATIVES where the
- * context has no OES_standard_derivatives). */
-uniform SKY_UP float u_exposure;    /* LDR: scale from kcd/m^2 to tone-map input       */
+/* common.glsl: shared by every libsky program (both stages), after
+ * display.glsl (the exposure and the tone map, which hosts can include
+ * too). The version prologue before them defines SKY_IN/SKY_OUT/SKY_ATTR,
+ * SKY_TEX2D and SKY_FRAG_COLOR so one source serves GLSL 110, GLSL 330
+ * and GLSL ES 1.00 (which also gets its precision there, and
+ * SKY_NO_DERIVATIVES where the context has no OES_standard_derivatives). */
 uniform SKY_UP float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + dither    */
 uniform SKY_UP float u_fisheye;     /* 1: equidistant all-sky mapping                   */
 uniform SKY_UP vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
 uniform SKY_UP vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
-uniform SKY_UP float u_night_shift; /* 0 photopic .. 1 scotopic: the rods' share at the eye's
-                                adaptation (exposure.c), the blue shift's most */
-uniform SKY_UP float u_display_cd;  /* cd/m^2 of a unit of the tone map's input (after the exposure) */
 uniform SKY_UP mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 uniform SKY_UP vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
 uniform SKY_UP float u_pixel_angle; /* radians per pixel at the view centre             */
@@ -19,14 +16,6 @@ uniform SKY_UP float u_far_z;       /* clip z / w of the host's far plane: 1, or
 uniform SKY_UP float u_refraction_pressure; /* Saemundsson's scale at the observer (astro.c) */
 
 const float SKY_PI = 3.14159265;
-/* the floor a division by a brightness is guarded with: a fragment stage
- * without highp flushes 1e-8 to 0 (its smallest normal number is 2^-14),
- * and its light arrives times the exposure, where 2^-14 is black */
-#ifdef SKY_MEDIUMP
-const float SKY_TINY = 6.2e-5;
-#else
-const float SKY_TINY = 1e-8;
-#endif
 
 /* d on the tangent plane at the unit direction c, times d . c: (d . e0,
  * d . e1, d . c) for unit e0, e1 across c. Linear in d, so a vertex stage
@@ -106,104 +95,6 @@ vec3 sky_unrefract(vec3 d)
     return d * cos(lift) - toward_zenith * sin(lift);
 }
 
-/* Hejl and Burgess-Dawson's filmic curve: a rational fit whose output
- * already carries an sRGB-like display gamma (no exp, no pow). On four
- * lanes, so one body serves a colour and a single value (the compiler
- * drops the lanes a caller leaves unused). */
-vec4 sky_filmic(vec4 e)
-{
-    vec4 x = max(e - 0.004, vec4(0.0));
-    return (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
-}
-
-/* r to the power 1 / 2.2 for r in 0..1, the curve's display gamma, as
- * 1.109 sqrt(r) - 0.109 r (within 1.5 % from r = 0.2 to 1, 5 % at 0.05):
- * a software rasteriser pays for every pow. */
-vec4 sky_display_power(vec4 r) { return 1.109 * sqrt(r) - 0.109 * r; }
-
-/* IEC 61966-2-1: linear to sRGB. */
-vec3 sky_srgb_encode(vec3 c)
-{
-    c = clamp(c, 0.0, 1.0);
-    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
-
-/* Linear luminance (kcd/m^2) to display values (LDR): exposure, the night
- * shift, then the tone map sky_config.tone_map chose (sky.h):
- *  hue (default): the filmic curve on the colour's luminance, the colour
- *    scaled with it in linear light, so hue and saturation stay what the
- *    sky computed and the brightness is what filmic gives a grey; a soft
- *    shoulder on the largest channel keeps it below white (from 0.8 of
- *    the display range), and only what is far above white (the sun, its
- *    glare) turns white, from 8 to 128 times the exposure's white. The
- *    curve's output carries its display gamma of about 2.2, so the other
- *    channels are the largest one's value times their ratio to it to the
- *    power 1 / 2.2 (and the largest the grey's over the luminance's ratio
- *    to it to that power: sky_display_power);
- *  filmic: the curve on each channel apart (bright colours drift toward
- *    white and yellow, the classic shoulder);
- *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
- *    rational shoulder on the largest channel with a little
- *    desaturation, then sRGB. */
-#ifndef SKY_PHOTOPIC
-/* The blue shift of night vision (Jensen et al. 2000, as the thesis's sec.
- * 3.6 gives it): where the rods see, a colour's chromaticity moves toward
- * the blue point (x, y) = (0.25, 0.25) of night paintings, by 1 - s, s the
- * cones' share for the colour's own luminance: 0 below 0.01 cd/m^2, 1
- * above 4, 3t^2 - 2t^3 on t = (log10 Y + 2) / 2.6 between. So what is
- * bright enough for the cones keeps its colour (the moon's disc, a bright
- * star, clouds lit at dusk), capped by the rods' share at the eye's own
- * adaptation (u_night_shift). The luminance stays the photopic one the
- * exposure was set for (Jensen's 0.4468 times the scotopic luminance would
- * expose the night a second time). The mix of chromaticities written
- * without the matrices: with W = X + Y + Z = dot(e, (0.6443, 1.1920,
- * 1.2032)) (sRGB's primaries) and B the linear sRGB of the blue point at
- * W = 1, (0.1765, 0.2476, 0.4914), the shifted colour is
- * Y ((1 - r) e + r W B) / ((1 - r) Y + r W / 4). */
-vec3 sky_scotopic_shift(vec3 e, float y)
-{
-    float t = clamp((log2(max(y * u_display_cd, 1e-10)) * 0.30103 + 2.0) / 2.6, 0.0, 1.0);
-    float rods = min(u_night_shift, 1.0 - t * t * (3.0 - 2.0 * t));
-    float w = dot(e, vec3(0.6443, 1.1920, 1.2032));
-    return y * mix(e, w * vec3(0.1765, 0.2476, 0.4914), rods) / max(mix(y, 0.25 * w, rods), SKY_TINY);
-}
-#endif
-
-vec3 sky_tonemap(vec3 L)
-{
-    vec3 e = max(L * u_exposure, vec3(0.0));
-    float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
-#ifndef SKY_PHOTOPIC /* (a program drawn only while the shift is off: dome.c) */
-    e = sky_scotopic_shift(e, y);
-#endif
-#if defined(SKY_TONE_MAP_FILMIC)
-    return sky_filmic(vec4(e, 0.0)).rgb;
-#elif defined(SKY_TONE_MAP_NEUTRAL)
-    /* the toe: a small offset taken off dark colours (Khronos' 0.04) */
-    float lo = min(e.r, min(e.g, e.b));
-    e -= lo < 0.08 ? lo - 6.25 * lo * lo : 0.04;
-    float peak = max(e.r, max(e.g, e.b));
-    const float start = 0.76, span = 0.24; /* 0.8 - 0.04, 1 - start */
-    if (peak >= start) {
-        float top = 1.0 - span * span / (peak + span - start);
-        e *= top / peak;
-        e = mix(e, vec3(top), 1.0 - 1.0 / (0.15 * (peak - top) + 1.0));
-    }
-    return sky_srgb_encode(e);
-#else
-    /* the display value of a grey of the colour's luminance, and what the
-     * largest channel then needs to keep the colour (display values carry
-     * the curve's gamma of 2.2) */
-    float m = max(max(e.r, max(e.g, e.b)), SKY_TINY);
-    vec4 g = sky_display_power(vec4(e / m, max(y, SKY_TINY) / m)); /* the channels', the luminance's */
-    float top = sky_filmic(vec4(y)).x / g.w;
-    /* a soft shoulder keeps that channel below white: the colour's hue and
-     * saturation survive, only its brightness gives way */
-    top = top <= 0.8 ? top : 0.8 + 0.2 * (top - 0.8) / (top - 0.6);
-    return mix(top * g.xyz, vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));
-#endif
-}
-
 #ifdef SKY_FRAGMENT
 /* Ordered-looking but unstructured noise in [0,1) from the pixel position:
  * the dither that keeps 8-bit gradients from banding. */
@@ -244,6 +135,6 @@ vec4 sky_output(vec3 L, float alpha)
 #else
     if (u_output_hdr > 0.5) return vec4(max(L, vec3(0.0)), alpha);
 #endif
-    return vec4(sky_dither(sky_tonemap(L)), alpha);
+    return vec4(sky_dither(sky_display(L)), alpha);
 }
 #endif /* SKY_FRAGMENT */

@@ -15,6 +15,6 @@ void main()
 #if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
     L *= 1.0 - sky_front_cover(v_dir);
 #endif
-    if (u_output_hdr < 0.5 && L * u_exposure < 1.0 / 1024.0) discard;
+    if (u_output_hdr < 0.5 && L * sky_display_exposure < 1.0 / 1024.0) discard;
     SKY_FRAG_COLOR = sky_output(vec3(L), 1.0);
 }

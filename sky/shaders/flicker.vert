@@ -37,7 +37,7 @@ void main()
         clip = (u_view_proj * vec4(d, 0.0)).xyww;
     /* behind the camera, or (LDR) adding less than a quarter of an 8-bit
      * step: outside the clip volume */
-    bool faint = u_output_hdr < 0.5 && v_light * u_exposure < 1.0 / 1024.0;
+    bool faint = u_output_hdr < 0.5 && v_light * sky_display_exposure < 1.0 / 1024.0;
     if (clip.w <= 0.0 || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);
     gl_Position = sky_at_far(clip);
     /* the tent, or its pixel, and the margin; flicker.frag weighs what is

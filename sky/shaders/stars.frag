@@ -22,6 +22,6 @@ void main()
 #if defined(SKY_HAS_CLOUDS) || defined(SKY_HAS_DOME_COVER)
     L *= 1.0 - sky_front_cover(v_dir);
 #endif
-    if (u_output_hdr < 0.5 && max(L.r, max(L.g, L.b)) * u_exposure < 1.0 / 1024.0) discard;
+    if (u_output_hdr < 0.5 && max(L.r, max(L.g, L.b)) * sky_display_exposure < 1.0 / 1024.0) discard;
     SKY_FRAG_COLOR = sky_output(L, 1.0);
 }

@@ -106,7 +106,7 @@ void main()
     /* LDR: a star whose brightest pixel (the PSF's peak plus the glare's,
      * 1.01) adds less than a quarter of an 8-bit step is left out, as
      * stars.frag would discard each of its pixels */
-    bool faint = u_output_hdr < 0.5 && max(v_light.r, max(v_light.g, v_light.b)) * 1.01 * u_exposure < 1.0 / 1024.0;
+    bool faint = u_output_hdr < 0.5 && max(v_light.r, max(v_light.g, v_light.b)) * 1.01 * sky_display_exposure < 1.0 / 1024.0;
     /* below the horizon, behind the camera or the moon, or too faint:
      * outside the clip volume */
     if (d.y < 0.0 || clip.w <= 0.0 || occulted || faint) clip = vec4(2.0, 2.0, 2.0, 1.0);

@@ -57,6 +57,6 @@ void main()
     if (view.y < 0.0) discard;
     /* Additive: where the sun adds nothing visible, add nothing at all (the
      * dome already carries the dither). */
-    if (u_output_hdr < 0.5 && max(L.r, max(L.g, L.b)) * u_exposure < 1.0 / 1024.0) discard;
+    if (u_output_hdr < 0.5 && max(L.r, max(L.g, L.b)) * sky_display_exposure < 1.0 / 1024.0) discard;
     SKY_FRAG_COLOR = sky_output(L, 1.0);
 }
