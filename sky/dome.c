@@ -300,7 +300,7 @@ static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_
         return -1;
     static const float corners[8] = {-1, -1, 1, -1, -1, 1, 1, 1};
     st->quad = sky_buffer_create(s, GL_ARRAY_BUFFER, corners, sizeof corners, GL_STATIC_DRAW);
-    /* a first image, to check the framebuffer with; resized by dome_view */
+    /* a first image, to check the framebuffer with; resized by fit_image */
     if (!st->quad || sky_texture_create_image(s, SKY_TEX_DOME, SKY_LAYER_ATMOSPHERE, 4, 4, err, err_len)) {
         if (!st->quad) sky_format(err, err_len, "glGenBuffers failed for the dome's quad");
         return -1;
