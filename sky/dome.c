@@ -227,7 +227,7 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 /* Drawn into the image, the dome writes the clouds' alpha beside the
  * colour. */
 static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL};
-/* common.glsl's tone map without the scotopic shift */
+/* display.glsl's tone map without the scotopic shift */
 static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL};
 
 static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, int photopic, char *err,

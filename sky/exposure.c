@@ -59,7 +59,7 @@ void sky_exposure_frame(sky_core *s)
     double withheld = 1.0 / sqrt(sky_clampd(f->eclipse_sky_mean, 1e-6, 1.0));
     f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
     /* Automatic exposure from the scene's own brightness: the day sky's
-     * scale maps to the filmic curve's shoulder (common.glsl); at night a
+     * scale maps to the filmic curve's shoulder (display.glsl); at night a
      * floor 110 times a natural dark sky's zenith keeps the sky dark and
      * the stars bright. The eye adapts no further than to that dark sky
      * (21.9 mag/arcsec^2, Benn & Ellison 1998): a scene that leaves the
@@ -102,7 +102,7 @@ void sky_exposure_frame(sky_core *s)
     int gain = prescale && sun > 1.0 ? (int)ceil(log2(sun)) : 0;
     f->sun_gain_log2 = (float)gain;
     for (int i = 0; i < 3; i++) f->sun_irradiance_sent[i] = (float)ldexp(f->sun_irradiance[i] * f->light_scale, -gain);
-    /* Night vision (common.glsl's sky_scotopic_shift, after Jensen et
+    /* Night vision (display.glsl's sky_scotopic_shift, after Jensen et
      * al. 2000): the rods' share 1 - s at the luminance the eye adapts
      * to, the sky's own (daylight and the night's light, cd/m^2): none
      * above 4 cd/m^2 (the sun 5 degrees down on the gradient path), all

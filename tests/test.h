@@ -117,6 +117,15 @@ sky_atmo_hemisphere *hemisphere_open(sky_atmosphere_path path, unsigned features
 /* A host's own program (test_api.c): white, its attribute 0 "p" the clip
  * position (a vec4: give it x, y, z and GL supplies w = 1). */
 unsigned test_host_program(int core);
+/* A host's program with a snippet of the library's (NULL for none)
+ * between its #version line and body, which writes FRAG; attribute 0
+ * "p" as above. A fragment stage that does not compile is a failed CHECK
+ * with its log. */
+unsigned test_snippet_program(int core, const char *snippet, const char *body);
+/* A triangle over the whole viewport on attribute 0 (with a VAO in the
+ * core profile); test_fullscreen_free deletes them. */
+void test_fullscreen_triangle(int core, unsigned *vao, unsigned *buf);
+void test_fullscreen_free(unsigned vao, unsigned buf);
 
 /* Path of a built program (SKY_BIN or build/bin). */
 const char *bin_path(const char *name, char *buf, size_t len);

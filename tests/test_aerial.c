@@ -256,43 +256,11 @@ static void glsl_matches(sky_gl_profile profile)
     p.time = 0.3f; /* a morning sun, some 20 degrees up */
     sky_set_params(f.s, &p);
     sky_update(f.s, 0.0);
-    const char *vs = core ? "#version 330 core\nin vec4 p;\nvoid main(){gl_Position=p;}\n"
-                          : "#version 110\nattribute vec4 p;\nvoid main(){gl_Position=p;}\n";
-    const char *head = core ? "#version 330 core\nout vec4 frag;\n#define FRAG frag\n"
-                            : "#version 110\n#define FRAG gl_FragColor\n";
     const char *body = "uniform vec3 dir;\nuniform float dist;\nvoid main() {\n"
                        "  vec3 t, l;\n  sky_aerial(dir, dist, t, l);\n"
                        "  FRAG = vec4(gl_FragCoord.y < 1.0 ? t : l, 1.0);\n}\n";
-    const char *fs[3] = {head, sky_aerial_glsl(), body};
-    GLuint v = glCreateShader(GL_VERTEX_SHADER), fr = glCreateShader(GL_FRAGMENT_SHADER), prog = glCreateProgram();
-    glShaderSource(v, 1, &vs, NULL);
-    glShaderSource(fr, 3, fs, NULL);
-    glCompileShader(v);
-    glCompileShader(fr);
-    GLint ok = 0;
-    glGetShaderiv(fr, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = "";
-        glGetShaderInfoLog(fr, sizeof log, NULL, log);
-        CHECK(0, "%s: the snippet does not compile: %s", name, log);
-    }
-    glAttachShader(prog, v);
-    glAttachShader(prog, fr);
-    glBindAttribLocation(prog, 0, "p");
-    glLinkProgram(prog);
-    glDeleteShader(v);
-    glDeleteShader(fr);
-    GLuint vao = 0, buf = 0;
-    if (core) {
-        glGenVertexArrays(1, &vao);
-        glBindVertexArray(vao);
-    }
-    static const float tri[6] = {-1, -1, 3, -1, -1, 3};
-    glGenBuffers(1, &buf);
-    glBindBuffer(GL_ARRAY_BUFFER, buf);
-    glBufferData(GL_ARRAY_BUFFER, sizeof tri, tri, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, NULL);
-    glEnableVertexAttribArray(0);
+    GLuint prog = test_snippet_program(core, sky_aerial_glsl(), body), vao, buf;
+    test_fullscreen_triangle(core, &vao, &buf);
     /* the host's own program and unit before the bind */
     GLuint other = test_host_program(core);
     glUseProgram(other);
@@ -353,8 +321,7 @@ static void glsl_matches(sky_gl_profile profile)
     glUseProgram(0);
     glDeleteProgram(prog);
     glDeleteProgram(other);
-    glDeleteBuffers(1, &buf);
-    if (vao) glDeleteVertexArrays(1, &vao);
+    test_fullscreen_free(vao, buf);
     fixture_close(&f);
 }
 

@@ -417,17 +417,25 @@ static void snapshot(gl_snapshot *g, int core)
     }
 }
 
-unsigned test_host_program(int core)
+unsigned test_snippet_program(int core, const char *snippet, const char *body)
 {
     const char *vs = core ? "#version 330 core\nin vec4 p;\nvoid main(){gl_Position=p;}\n"
                           : "#version 110\nattribute vec4 p;\nvoid main(){gl_Position=p;}\n";
-    const char *fs = core ? "#version 330 core\nout vec4 c;\nvoid main(){c=vec4(1.0);}\n"
-                          : "#version 110\nvoid main(){gl_FragColor=vec4(1.0);}\n";
+    const char *head = core ? "#version 330 core\nout vec4 frag;\n#define FRAG frag\n"
+                            : "#version 110\n#define FRAG gl_FragColor\n";
+    const char *fs[3] = {head, snippet ? snippet : "", body};
     GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER), p = glCreateProgram();
     glShaderSource(v, 1, &vs, NULL);
-    glShaderSource(f, 1, &fs, NULL);
+    glShaderSource(f, 3, fs, NULL);
     glCompileShader(v);
     glCompileShader(f);
+    GLint ok = 0;
+    glGetShaderiv(f, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        glGetShaderInfoLog(f, sizeof log, NULL, log);
+        CHECK(0, "a host's fragment stage with the snippet does not compile: %s", log);
+    }
     glAttachShader(p, v);
     glAttachShader(p, f);
     glBindAttribLocation(p, 0, "p");
@@ -435,6 +443,29 @@ unsigned test_host_program(int core)
     glDeleteShader(v);
     glDeleteShader(f);
     return p;
+}
+
+unsigned test_host_program(int core) { return test_snippet_program(core, NULL, "void main(){FRAG=vec4(1.0);}\n"); }
+
+void test_fullscreen_triangle(int core, unsigned *vao, unsigned *buf)
+{
+    *vao = 0;
+    if (core) {
+        glGenVertexArrays(1, vao);
+        glBindVertexArray(*vao);
+    }
+    static const float tri[6] = {-1, -1, 3, -1, -1, 3};
+    glGenBuffers(1, buf);
+    glBindBuffer(GL_ARRAY_BUFFER, *buf);
+    glBufferData(GL_ARRAY_BUFFER, sizeof tri, tri, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, NULL);
+    glEnableVertexAttribArray(0);
+}
+
+void test_fullscreen_free(unsigned vao, unsigned buf)
+{
+    glDeleteBuffers(1, &buf);
+    if (vao) glDeleteVertexArrays(1, &vao);
 }
 
 /* Compares two snapshots; names the words that differ. */

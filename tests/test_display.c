@@ -52,41 +52,9 @@ static double worst_difference(sky_gl_profile profile, float time, double *brigh
     if (sc.has_observer) sky_set_observer(f.s, &sc.observer);
     sky_set_params(f.s, &sc.params);
     sky_update(f.s, 0.0);
-    const char *vs = core ? "#version 330 core\nin vec4 p;\nvoid main(){gl_Position=p;}\n"
-                          : "#version 110\nattribute vec4 p;\nvoid main(){gl_Position=p;}\n";
-    const char *head = core ? "#version 330 core\nout vec4 frag;\n#define FRAG frag\n"
-                            : "#version 110\n#define FRAG gl_FragColor\n";
     const char *body = "uniform vec3 radiance;\nvoid main() { FRAG = vec4(sky_display(radiance), 1.0); }\n";
-    const char *fs[3] = {head, sky_display_glsl(), body};
-    GLuint v = glCreateShader(GL_VERTEX_SHADER), fr = glCreateShader(GL_FRAGMENT_SHADER), prog = glCreateProgram();
-    glShaderSource(v, 1, &vs, NULL);
-    glShaderSource(fr, 3, fs, NULL);
-    glCompileShader(v);
-    glCompileShader(fr);
-    GLint ok = 0;
-    glGetShaderiv(fr, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = "";
-        glGetShaderInfoLog(fr, sizeof log, NULL, log);
-        CHECK(0, "the snippet does not compile: %s", log);
-    }
-    glAttachShader(prog, v);
-    glAttachShader(prog, fr);
-    glBindAttribLocation(prog, 0, "p");
-    glLinkProgram(prog);
-    glDeleteShader(v);
-    glDeleteShader(fr);
-    GLuint vao = 0, buf = 0;
-    if (core) {
-        glGenVertexArrays(1, &vao);
-        glBindVertexArray(vao);
-    }
-    static const float tri[6] = {-1, -1, 3, -1, -1, 3};
-    glGenBuffers(1, &buf);
-    glBindBuffer(GL_ARRAY_BUFFER, buf);
-    glBufferData(GL_ARRAY_BUFFER, sizeof tri, tri, GL_STATIC_DRAW);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, NULL);
-    glEnableVertexAttribArray(0);
+    GLuint prog = test_snippet_program(core, sky_display_glsl(), body), vao, buf;
+    test_fullscreen_triangle(core, &vao, &buf);
     glUseProgram(0);
     CHECK(sky_display_bind(f.s, prog) == SKY_OK, "bind: %s", sky_last_error(f.s));
     GLint now = -1;
@@ -109,8 +77,7 @@ static double worst_difference(sky_gl_profile profile, float time, double *brigh
                 double mine = out[4 * ((H - 1 - y) * W + x) + c], theirs = ldr.px[3 * (y * W + x) + c];
                 worst = fmax(worst, fabs(mine - theirs) * 255.0);
             }
-    glDeleteBuffers(1, &buf);
-    if (vao) glDeleteVertexArrays(1, &vao);
+    test_fullscreen_free(vao, buf);
     glDeleteProgram(prog);
     fixture_close(&f);
 done:

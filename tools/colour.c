@@ -79,6 +79,30 @@ static double quantile(double *v, int n, double q)
     return v[i < 0 ? 0 : (i >= n ? n - 1 : i)];
 }
 
+/* A pixel's direction (unit, horizon frame) in a frame drawn with view and
+ * proj, w x h, rows bottom first: the camera's right, up and forward axes
+ * are the view matrix's rows. */
+static void pixel_direction(const float view[16], const float proj[16], int w, int h, int x, int y, double d[3])
+{
+    double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5];
+    const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
+                 fwd[3] = {-view[2], -view[6], -view[10]};
+    for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int i = 0; i < 3; i++) d[i] /= len;
+}
+
+/* An LDR pixel as a display shows it: each channel quantised to 8 bits
+ * (byte), then decoded from sRGB to linear light (lin). */
+static void displayed(const float *L, int byte[3], double lin[3])
+{
+    for (int i = 0; i < 3; i++) {
+        double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
+        byte[i] = (int)floor(v * 255.0 + 0.5);
+        lin[i] = srgb_decode(byte[i] / 255.0);
+    }
+}
+
 /* One frame of the sky in its own float context: HDR or LDR output, the
  * features given (0: the library's default set), the observer o, clouds
  * off. */
@@ -151,19 +175,13 @@ int sky_colour_measure(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_p
     if (render(path, tone_map, profile, SKY_OUTPUT_HDR, SKY_SUN, &o, t, view, proj, w, h, hdr, sun, err, err_len) ||
         render(path, tone_map, profile, SKY_OUTPUT_LDR, SKY_SUN, &o, t, view, proj, w, h, ldr, sun, err, err_len))
         goto done;
-    /* each pixel's direction: the camera's right, up and forward axes are
-     * the view matrix's rows */
-    const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
-                 fwd[3] = {-view[2], -view[6], -view[10]};
     double sun_az = atan2(sun[0], -sun[2]);
     int counted = 0, sky_px = 0, clipped = 0, under = 0, elsewhere = 0, ground_px = 0;
     double sky_sum = 0.0, ground_sum = 0.0, under_sum = 0.0, elsewhere_sum = 0.0;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5], d[3];
-            for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
-            double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            for (int i = 0; i < 3; i++) d[i] /= len;
+            double d[3];
+            pixel_direction(view, proj, w, h, x, y, d);
             const float *H = hdr + 4 * ((size_t)y * w + x), *L = ldr + 4 * ((size_t)y * w + x);
             if (d[1] < 0.0) {
                 double lum = luminance(H), daz = fabs(remainder(atan2(d[0], -d[2]) - sun_az, 2.0 * PI)) * 180.0 / PI;
@@ -176,14 +194,11 @@ int sky_colour_measure(sky_atmosphere_path path, sky_tone_map tone_map, sky_gl_p
             double cos_sun = d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2];
             if (cos_sun > cos(3.0 * PI / 180.0)) continue;
             sky_px++;
-            int byte[3], top = 0;
+            int byte[3];
             double lin[3], hdr_rgb[3] = {H[0], H[1], H[2]};
-            for (int i = 0; i < 3; i++) {
-                double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
-                byte[i] = (int)floor(v * 255.0 + 0.5);
-                if (byte[i] > top) top = byte[i];
-                lin[i] = srgb_decode(byte[i] / 255.0);
-            }
+            displayed(L, byte, lin);
+            int top = byte[0] > byte[1] ? byte[0] : byte[1];
+            top = top > byte[2] ? top : byte[2];
             if (top == 255) clipped++;
             double hue_h, sat_h, hue_l, sat_l;
             hue_saturation(hdr_rgb, &hue_h, &sat_h);
@@ -274,21 +289,15 @@ int sky_dusk_brightness(sky_atmosphere_path path, sky_gl_profile profile, double
             free(ldr);
             return -1;
         }
-        const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
-                     fwd[3] = {-view[2], -view[6], -view[10]};
         double sum = 0.0;
         long count = 0;
         for (int y = 0; y < h; y++)
             for (int x = 0; x < w; x++) {
-                double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5], d[3];
-                for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
-                if (d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin(5.0 * PI / 180.0)) continue;
-                const float *L = ldr + 4 * ((size_t)y * w + x);
-                double lin[3];
-                for (int i = 0; i < 3; i++) {
-                    double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
-                    lin[i] = srgb_decode(floor(v * 255.0 + 0.5) / 255.0);
-                }
+                double d[3], lin[3];
+                int byte[3];
+                pixel_direction(view, proj, w, h, x, y, d);
+                if (d[1] < sin(5.0 * PI / 180.0)) continue;
+                displayed(ldr + 4 * ((size_t)y * w + x), byte, lin);
                 sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
                 count++;
             }
@@ -350,26 +359,20 @@ int sky_night_measure(sky_atmosphere_path path, sky_gl_profile profile, int full
         snprintf(err, err_len, "out of memory");
         goto done;
     }
-    if (render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_LDR, SKY_FEATURES_DEFAULT | SKY_MOON, &o, 0.0, view, proj, w, h, ldr, sun, err,
+    unsigned features = SKY_FEATURES_DEFAULT | SKY_MOON;
+    if (render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_LDR, features, &o, 0.0, view, proj, w, h, ldr, sun, err,
                err_len))
         goto done;
-    const double right[3] = {view[0], view[4], view[8]}, up[3] = {view[1], view[5], view[9]},
-                 fwd[3] = {-view[2], -view[6], -view[10]};
     size_t count = 0;
     double sum = 0.0;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            double xn = (2.0 * (x + 0.5) / w - 1.0) / proj[0], yn = (2.0 * (y + 0.5) / h - 1.0) / proj[5], d[3];
-            for (int i = 0; i < 3; i++) d[i] = xn * right[i] + yn * up[i] + fwd[i];
-            if (d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin(10.0 * PI / 180.0)) continue;
-            const float *L = ldr + 4 * ((size_t)y * w + x);
-            double lin[3];
-            for (int i = 0; i < 3; i++) {
-                double v = L[i] < 0.0f ? 0.0 : (L[i] > 1.0f ? 1.0 : L[i]);
-                int byte = (int)floor(v * 255.0 + 0.5);
-                channel[i * n + count] = byte;
-                lin[i] = srgb_decode(byte / 255.0);
-            }
+            double d[3], lin[3];
+            int byte[3];
+            pixel_direction(view, proj, w, h, x, y, d);
+            if (d[1] < sin(10.0 * PI / 180.0)) continue;
+            displayed(ldr + 4 * ((size_t)y * w + x), byte, lin);
+            for (int i = 0; i < 3; i++) channel[i * n + count] = byte[i];
             sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
             count++;
         }

@@ -344,7 +344,7 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     }
     /* prologue, feature defines, display and common code, snippets, main */
     const char *parts[4 + SKY_MAX_SNIPPETS + 1];
-    /* the tone map (common.glsl), then the snippets' defines */
+    /* the tone map (display.glsl), then the snippets' defines */
     static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
     char defines[64 + 48 * SKY_MAX_SNIPPETS];
     size_t used = (size_t)snprintf(defines, sizeof defines, "%s", tone_maps[s->cfg.tone_map]);
