@@ -274,6 +274,7 @@ typedef struct sky_frame {
         float hides;         /* 0..1: the disc hides what is behind it        */
     } moon_terms;
     float moon_radius_tan;   /* the drawn disc's radius on its tangent plane     */
+    float moon_brighter;     /* LDR: 1 / the sunlit disc's own exposure scale    */
     float shadow_offset[3], shadow_axis[3], shadow[4];
 } sky_frame;
 /* The uniform table reads each packed vec4 above as four floats in a row. */

@@ -93,6 +93,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_UF("u_moon_terms", SKY_U_F4, moon_terms),
     SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
     SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
+    SKY_UF("u_moon_brighter", SKY_U_F1, moon_brighter),
 };
 static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL};
 
@@ -383,6 +384,10 @@ static void moon_frame(sky_core *s, void *state)
         f->moon_color[i] *= (float)k;
         f->moon_earthshine[i] /= (float)k;
     }
+    /* the disc is as bright as it is for the eye's cones, whatever its
+     * own exposure: the blue shift of night vision leaves its colour
+     * (display.glsl) */
+    f->moon_brighter = (float)(1.0 / k);
     /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2),
      * delta the topocentric diameter (up to 2 % larger than the
      * geocentric one with the moon high: an eclipse's totality needs it) */

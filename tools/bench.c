@@ -1386,6 +1386,7 @@ typedef struct night_rows {
     double rel[DUSK_PATHS][SKY_DUSK_SUNS];
     double noon[DUSK_PATHS];
     sky_night_view view[DUSK_PATHS][2];
+    double moon_hue[DUSK_PATHS][2]; /* the full moon's disc: HDR, 8-bit */
 } night_rows;
 
 static int dusk_rows(night_rows *n)
@@ -1402,6 +1403,11 @@ static int dusk_rows(night_rows *n)
                 fprintf(stderr, "sky-bench: the night: %s\n", err);
                 return -1;
             }
+        if (sky_moon_disc_hues(dusk_paths[p], SKY_GL_AUTO, 160, 160, &n->moon_hue[p][0], &n->moon_hue[p][1], err,
+                               sizeof err)) {
+            fprintf(stderr, "sky-bench: the moon's disc: %s\n", err);
+            return -1;
+        }
     }
     return 0;
 }
@@ -1440,6 +1446,12 @@ static void print_dusk_table(const night_rows *n)
            "moonless sky (2024-01-11 22:00 UTC, 45 N 10 E, south at pitch 30). Targets: the full moon hue\n"
            "190-250, b/r >= 1.6, the brightest channel's median >= 40, <= 0.35 of noon; the moonless sky hue\n"
            "190-260, b/r >= 1.2, the brightest channel's median 8-40.\n");
+    printf("\n");
+    for (int p = 0; p < DUSK_PATHS; p++) {
+        double shift = fabs(remainder(n->moon_hue[p][1] - n->moon_hue[p][0], 360.0));
+        printf("%s: the full moon's disc, hue %.1f in HDR and %.1f in the 8-bit frame (target: within 12 degrees, %s)\n",
+               colour_path_name(dusk_paths[p]), n->moon_hue[p][0], n->moon_hue[p][1], shift <= 12.0 ? "met" : "not met");
+    }
 }
 
 static void print_dusk_json(const night_rows *n)
@@ -1461,10 +1473,10 @@ static void print_dusk_json(const night_rows *n)
             char why[128];
             int ok = sky_night_ok(v, m, n->noon[p], why, sizeof why);
             printf("  {\"path\":\"%s\", \"night\":\"%s\", \"median\":[%d,%d,%d], \"hue\":%.1f, \"b_over_r\":%.3f, "
-                   "\"mean_over_noon\":%.4f, \"targets_met\":%s}%s\n",
+                   "\"mean_over_noon\":%.4f, \"moon_disc_hue\":[%.1f,%.1f], \"targets_met\":%s}%s\n",
                    colour_path_name(dusk_paths[p]), m ? "full_moon" : "moonless", v->median[0], v->median[1],
-                   v->median[2], v->hue, v->b_over_r, v->mean / n->noon[p], ok ? "true" : "false",
-                   p + 1 < DUSK_PATHS || m ? "," : "");
+                   v->median[2], v->hue, v->b_over_r, v->mean / n->noon[p], m ? n->moon_hue[p][0] : -1.0,
+                   m ? n->moon_hue[p][1] : -1.0, ok ? "true" : "false", p + 1 < DUSK_PATHS || m ? "," : "");
         }
     printf(" ]");
 }

@@ -413,3 +413,47 @@ int sky_night_ok(const sky_night_view *v, int full_moon, double noon, char *why,
         snprintf(why, why_len, "%.3f of noon (<= 0.35)", v->mean / noon);
     return why[0] == '\0';
 }
+
+int sky_moon_disc_hues(sky_atmosphere_path path, sky_gl_profile profile, int w, int h, double *hdr_hue,
+                       double *ldr_hue, char *err, size_t err_len)
+{
+    *hdr_hue = *ldr_hue = -1.0;
+    sky_observer o;
+    memset(&o, 0, sizeof o);
+    o.latitude_deg = 45.0;
+    o.julian_day_utc = sky_julian_day(2024, 1, 26, 0, 0, 0.0);
+    sky_astronomy a;
+    if (sky_compute_astronomy(&o, 0.0f, NULL, 0, NULL, &a, NULL, 0) != SKY_OK) {
+        snprintf(err, err_len, "no astronomy for the full moon's date");
+        return -1;
+    }
+    float view[16], proj[16], sun[3];
+    sky_cli_camera_at(a.moon.az_deg, a.moon.alt_deg, 3.0, w, h, view, proj);
+    size_t n = (size_t)w * (size_t)h;
+    float *hdr = malloc(sizeof(float) * 4 * n), *ldr = malloc(sizeof(float) * 4 * n);
+    int rc = -1;
+    unsigned features = SKY_FEATURES_DEFAULT | SKY_MOON;
+    if (!hdr || !ldr) {
+        snprintf(err, err_len, "out of memory");
+    } else if (!render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_HDR, features, &o, 0.0, view, proj, w, h, hdr, sun,
+                       err, err_len) &&
+               !render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_LDR, features, &o, 0.0, view, proj, w, h, ldr, sun,
+                       err, err_len)) {
+        double peak = 0.0, sum_h[3] = {0.0, 0.0, 0.0}, sum_l[3] = {0.0, 0.0, 0.0}, sat;
+        for (size_t i = 0; i < n; i++) peak = fmax(peak, luminance(hdr + 4 * i));
+        for (size_t i = 0; i < n; i++) {
+            if (!(luminance(hdr + 4 * i) > 0.5 * peak)) continue;
+            double lin[3];
+            int byte[3];
+            displayed(ldr + 4 * i, byte, lin);
+            for (int c = 0; c < 3; c++) sum_h[c] += hdr[4 * i + c], sum_l[c] += lin[c];
+        }
+        hue_saturation(sum_h, hdr_hue, &sat);
+        hue_saturation(sum_l, ldr_hue, &sat);
+        rc = peak > 0.0 ? 0 : -1;
+        if (rc) snprintf(err, err_len, "no moon in the view");
+    }
+    free(hdr);
+    free(ldr);
+    return rc;
+}

@@ -75,6 +75,13 @@ typedef struct sky_night_view {
 } sky_night_view;
 int sky_night_measure(sky_atmosphere_path path, sky_gl_profile profile, int full_moon, int w, int h,
                       sky_night_view *out, char *err, size_t err_len);
+/* The full moon's disc (the night view's date and place, the camera on
+ * the moon, 3 degrees high, w x h, HDR and LDR): the HSV hue of its mean
+ * colour in linear light, HDR and the 8-bit frame decoded, over the pixels
+ * brighter in HDR than half the disc's brightest. */
+int sky_moon_disc_hues(sky_atmosphere_path path, sky_gl_profile profile, int w, int h, double *hdr_hue,
+                       double *ldr_hue, char *err, size_t err_len);
+
 /* Whether a night view meets its targets, its mean against noon's (the
  * day's end's noon, sky_dusk_brightness at 50 degrees): the full moon hue
  * 190-250, b/r >= 1.6, the brightest channel's median >= 40, at most 0.35

@@ -128,13 +128,14 @@ vec3 sky_dither(vec3 display) { return clamp(display + (sky_hash(gl_FragCoord.xy
  * tone mapped and dithered. GLSL ES 1.00's gl_FragColor is mediump: a
  * value past its 65504 arrives as infinity (Mesa writes it so), so HDR
  * output there stops at that (only the sun's disc is brighter). */
-vec4 sky_output(vec3 L, float alpha)
+vec4 sky_output_seen(vec3 L, float alpha, float brighter)
 {
 #ifdef SKY_ES
     if (u_output_hdr > 0.5) return vec4(clamp(L, vec3(0.0), vec3(65504.0)), alpha);
 #else
     if (u_output_hdr > 0.5) return vec4(max(L, vec3(0.0)), alpha);
 #endif
-    return vec4(sky_dither(sky_display(L)), alpha);
+    return vec4(sky_dither(sky_display_seen(L, brighter)), alpha);
 }
+vec4 sky_output(vec3 L, float alpha) { return sky_output_seen(L, alpha, 1.0); }
 #endif /* SKY_FRAGMENT */

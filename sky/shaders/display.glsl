@@ -66,9 +66,9 @@ vec3 sky_srgb_encode(vec3 c)
  * 1.2032)) (sRGB's primaries) and B the linear sRGB of the blue point at
  * W = 1, (0.1765, 0.2476, 0.4914), the shifted colour is
  * Y ((1 - r) e + r W B) / ((1 - r) Y + r W / 4). */
-vec3 sky_scotopic_shift(vec3 e, float y)
+vec3 sky_scotopic_shift(vec3 e, float y, float brighter)
 {
-    float t = clamp((log2(max(y * sky_display_cd, 1e-10)) * 0.30103 + 2.0) / 2.6, 0.0, 1.0);
+    float t = clamp((log2(max(y * sky_display_cd * brighter, 1e-10)) * 0.30103 + 2.0) / 2.6, 0.0, 1.0);
     float rods = min(sky_display_rods, 1.0 - t * t * (3.0 - 2.0 * t));
     float w = dot(e, vec3(0.6443, 1.1920, 1.2032));
     return y * mix(e, w * vec3(0.1765, 0.2476, 0.4914), rods) / max(mix(y, 0.25 * w, rods), SKY_TINY);
@@ -93,12 +93,15 @@ vec3 sky_scotopic_shift(vec3 e, float y)
  *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
  *    rational shoulder on the largest channel with a little
  *    desaturation, then sRGB. */
-vec3 sky_display(vec3 L)
+/* brighter: how many times brighter the light really is than L, for the
+ * cones' share of the blue shift (the moon's disc is exposed on its own:
+ * moon.c); 1 elsewhere (sky_display). */
+vec3 sky_display_seen(vec3 L, float brighter)
 {
     vec3 e = max(L * sky_display_exposure, vec3(0.0));
     float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
 #ifndef SKY_PHOTOPIC /* (a program drawn only while the shift is off: dome.c) */
-    e = sky_scotopic_shift(e, y);
+    e = sky_scotopic_shift(e, y, brighter);
 #endif
 #if defined(SKY_TONE_MAP_FILMIC)
     return sky_filmic(vec4(e, 0.0)).rgb;
@@ -127,3 +130,5 @@ vec3 sky_display(vec3 L)
     return mix(top * g.xyz, vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));
 #endif
 }
+
+vec3 sky_display(vec3 L) { return sky_display_seen(L, 1.0); }

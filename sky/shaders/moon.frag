@@ -21,6 +21,8 @@ uniform SKY_UP vec4 u_moon_terms;          /* x: HLS phase factor, z: halo, w:
 uniform SKY_UP vec3 u_moon_earthshine;     /* earthshine relative to full sunlight,
                                        over that scale                       */
 uniform SKY_UP float u_moon_radius_tan;    /* the drawn disc's tangent-plane radius */
+uniform SKY_UP float u_moon_brighter;      /* 1 / that scale: the disc's real brightness
+                                       for the cones' share of the blue shift */
 #ifdef SKY_HAS_ECLIPSE
 uniform sampler2D u_eclipse_tex;    /* h(t), log10-encoded: h = 10^(-5 texel) */
 uniform SKY_UP vec3 u_shadow_offset;      /* the moon's centre from the shadow's axis,
@@ -77,5 +79,5 @@ void main()
     L *= 1.0 - c;
     cover *= 1.0 - c;
 #endif
-    SKY_FRAG_COLOR = vec4(sky_output(L, 1.0).rgb, cover);
+    SKY_FRAG_COLOR = vec4(sky_output_seen(L, 1.0, u_moon_brighter).rgb, cover);
 }
