@@ -202,8 +202,8 @@ void test_colour_night_is_blue(void)
         if (sky_moon_disc_hues(paths[p], SKY_GL_AUTO, 96, 96, &hdr_hue, &ldr_hue, err, sizeof err))
             CHECK(0, "%s: %s", name, err);
         else
-            CHECK(fabs(remainder(ldr_hue - hdr_hue, 360.0)) <= 12.0, "%s: the moon's disc's hue %.1f in HDR, %.1f in 8 bits",
-                  name, hdr_hue, ldr_hue);
+            CHECK(fabs(remainder(ldr_hue - hdr_hue, 360.0)) <= 12.0,
+                  "%s: the moon's disc's hue %.1f in HDR, %.1f in 8 bits", name, hdr_hue, ldr_hue);
         /* (medians: the mean of the moonless view is the flicker stars') */
         CHECK(v[1].median[2] > 1.5 * v[0].median[2], "%s: the full moon's sky (blue median %d) not brighter than the "
               "moonless one's (%d)", name, v[1].median[2], v[0].median[2]);
