@@ -76,7 +76,7 @@ void test_sharpness_measure_properties(void)
 
 /* The day's clouds over the gradient sky are drawn at 1/3 per axis (dome.c):
  * at 1280x720 noon keeps 0.742 / 0.804 of the every-pixel frame's fine
- * structure at k = 2 / 5 px and sunset 0.737 / 0.823, both near 45.7 dB,
+ * structure at k = 2 / 5 px (45.7 dB) and sunset 0.720 / 0.821 (46.3 dB),
  * in every profile; the 1/4 image they replaced kept 0.63-0.65 / 0.70-0.74
  * at 43.5 dB. The floors sit between the two, so a frame that falls back
  * to the coarser image fails; and kept stays at most 1.05 (a sharpening
