@@ -70,7 +70,7 @@ typedef struct dome_state {
     sky_program night_clear;     /* the night backdrop without the front    */
     sky_program ground;          /* below the horizon: atmosphere only      */
     /* The day's two without the tone map's scotopic blue shift, for while
-     * it is off (the eye adapted above 3 cd/m^2: exposure.c): the same
+     * it is off (the eye adapted above 4 cd/m^2: exposure.c): the same
      * pixels, and on llvmpipe the shift's mix costs about 0.4 of the
      * baseline quad in a frame drawn at every pixel. The night's keep it:
      * at night it is on. */

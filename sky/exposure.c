@@ -56,8 +56,7 @@ void sky_exposure_frame(sky_core *s)
      * (the catalogue, the star map and the flicker stars) are judged
      * against the sky around them, as the moon is (moon.c): in LDR they
      * keep the contrast a full adaptation would give them. */
-    double withheld = 1.0 / sqrt(sky_clampd(f->eclipse_sky_mean, 1e-6, 1.0));
-    f->star_local_gain = s->cfg.output == SKY_OUTPUT_HDR ? 1.0f : (float)withheld;
+    double withheld = 1.0 / sqrt(sky_clampd(f->eclipse_sky_mean, 1e-6, 1.0)), daylight = f->sky_luminance * withheld;
     /* Automatic exposure from the scene's own brightness: the day sky's
      * scale maps to the filmic curve's shoulder (display.glsl); at night a
      * floor 110 times a natural dark sky's zenith keeps the sky dark and
@@ -69,19 +68,18 @@ void sky_exposure_frame(sky_core *s)
      * moonlit sky shows brighter than a moonless one, as the eye sees it,
      * where full adaptation showed both alike. */
     double dark = sky_mag_arcsec2_to_kcd(21.9), night = fmax(f->night_luminance, dark);
-    double adapt = f->sky_luminance * withheld + 110.0 * dark * pow(night / dark, 1.0 - NIGHT_PARTIAL);
+    double adapt = daylight + 110.0 * dark * pow(night / dark, 1.0 - NIGHT_PARTIAL);
     /* the display follows daylight down only partly (above; weighted by
      * daylight's share of the adaptation); the stars, the planets and the
      * star map keep the brightness full adaptation gives them against a
      * dark sky (a dark-adapted eye sees them so) */
     double range = s->cfg.exposure_range > 0.0f ? s->cfg.exposure_range : DEFAULT_RANGE_STOPS;
-    double daylight = f->sky_luminance * withheld;
     double shown = sky_display_stops(daylight, range) * sqrt(daylight / adapt);
     /* HDR output is the sky's light as it is: its exposure (the layers'
      * visibility thresholds) stays full adaptation's, and the display's
      * is kept for a host's sky_display (sky_display_bind) */
     int ldr = s->cfg.output != SKY_OUTPUT_HDR;
-    if (ldr) f->star_local_gain = (float)(f->star_local_gain * exp2(-shown));
+    f->star_local_gain = ldr ? (float)(withheld * exp2(-shown)) : 1.0f;
     f->display_exposure = (float)(pow(2.0, s->exposure_bias + shown) / adapt);
     f->exposure = ldr ? f->display_exposure : (float)(pow(2.0, s->exposure_bias) / adapt);
     /* A fragment stage without highp holds only mediump's +-2^14 (GLSL ES

@@ -876,11 +876,14 @@ sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16]
     return SKY_OK;
 }
 
-const char *sky_display_glsl(void)
+/* An embedded shader source for hosts, "" if this build lacks it. */
+static const char *host_glsl(const char *name)
 {
-    const sky_blob *b = sky_find_blob("display.glsl");
+    const sky_blob *b = sky_find_blob(name);
     return b ? (const char *)b->data : "";
 }
+
+const char *sky_display_glsl(void) { return host_glsl("display.glsl"); }
 
 sky_result sky_display_bind(sky *s, unsigned program)
 {
@@ -900,11 +903,7 @@ sky_result sky_display_bind(sky *s, unsigned program)
     return SKY_OK;
 }
 
-const char *sky_aerial_glsl(void)
-{
-    const sky_blob *b = sky_find_blob("aerial.glsl");
-    return b ? (const char *)b->data : "";
-}
+const char *sky_aerial_glsl(void) { return host_glsl("aerial.glsl"); }
 
 sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit)
 {

@@ -103,6 +103,31 @@ static void displayed(const float *L, int byte[3], double lin[3])
     }
 }
 
+/* The 8-bit pixels of an LDR frame whose direction is more than min_deg
+ * above the horizon: their count, the mean of their display luminance
+ * (decoded to linear) in *mean, and, with channels (3 n ints, n = w h),
+ * their bytes channel by channel (channel c's at c n). */
+static size_t sky_above(const float *ldr, const float view[16], const float proj[16], int w, int h, double min_deg,
+                        int *channels, double *mean)
+{
+    size_t n = (size_t)w * (size_t)h, count = 0;
+    double sum = 0.0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double d[3], lin[3];
+            int byte[3];
+            pixel_direction(view, proj, w, h, x, y, d);
+            if (d[1] < sin(min_deg * PI / 180.0)) continue;
+            displayed(ldr + 4 * ((size_t)y * w + x), byte, lin);
+            if (channels)
+                for (int i = 0; i < 3; i++) channels[i * n + count] = byte[i];
+            sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
+            count++;
+        }
+    *mean = count ? sum / (double)count : 0.0;
+    return count;
+}
+
 /* One frame of the sky in its own float context: HDR or LDR output, the
  * features given (0: the library's default set), the observer o, clouds
  * off. */
@@ -289,19 +314,9 @@ int sky_dusk_brightness(sky_atmosphere_path path, sky_gl_profile profile, double
             free(ldr);
             return -1;
         }
-        double sum = 0.0;
-        long count = 0;
-        for (int y = 0; y < h; y++)
-            for (int x = 0; x < w; x++) {
-                double d[3], lin[3];
-                int byte[3];
-                pixel_direction(view, proj, w, h, x, y, d);
-                if (d[1] < sin(5.0 * PI / 180.0)) continue;
-                displayed(ldr + 4 * ((size_t)y * w + x), byte, lin);
-                sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
-                count++;
-            }
-        sum_of_means += count ? sum / (double)count : 0.0;
+        double view_mean;
+        sky_above(ldr, view, proj, w, h, 5.0, NULL, &view_mean);
+        sum_of_means += view_mean;
     }
     free(ldr);
     *mean = 0.5 * sum_of_means;
@@ -363,19 +378,7 @@ int sky_night_measure(sky_atmosphere_path path, sky_gl_profile profile, int full
     if (render(path, SKY_TONE_MAP_HUE, profile, SKY_OUTPUT_LDR, features, &o, 0.0, view, proj, w, h, ldr, sun, err,
                err_len))
         goto done;
-    size_t count = 0;
-    double sum = 0.0;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            double d[3], lin[3];
-            int byte[3];
-            pixel_direction(view, proj, w, h, x, y, d);
-            if (d[1] < sin(10.0 * PI / 180.0)) continue;
-            displayed(ldr + 4 * ((size_t)y * w + x), byte, lin);
-            for (int i = 0; i < 3; i++) channel[i * n + count] = byte[i];
-            sum += 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2];
-            count++;
-        }
+    size_t count = sky_above(ldr, view, proj, w, h, 10.0, channel, &out->mean);
     if (!count) {
         snprintf(err, err_len, "no sky more than 10 degrees up in the view");
         goto done;
@@ -389,7 +392,6 @@ int sky_night_measure(sky_atmosphere_path path, sky_gl_profile profile, int full
     double sat;
     hue_saturation(med, &out->hue, &sat);
     out->b_over_r = med[2] / fmax(med[0], 1.0);
-    out->mean = sum / (double)count;
     rc = 0;
 done:
     free(ldr);

@@ -75,7 +75,6 @@ vec3 sky_scotopic_shift(vec3 e, float y, float brighter)
 }
 #endif
 
-
 /* Linear luminance (kcd/m^2) to display values (LDR): exposure, the night
  * shift, then the tone map sky_config.tone_map chose (sky.h):
  *  hue (default): the filmic curve on the colour's luminance, the colour
@@ -92,8 +91,8 @@ vec3 sky_scotopic_shift(vec3 e, float y, float brighter)
  *    white and yellow, the classic shoulder);
  *  neutral: Khronos' PBR Neutral (2024): linear up to 0.76, then a
  *    rational shoulder on the largest channel with a little
- *    desaturation, then sRGB. */
-/* brighter: how many times brighter the light really is than L, for the
+ *    desaturation, then sRGB.
+ * brighter: how many times brighter the light really is than L, for the
  * cones' share of the blue shift (the moon's disc is exposed on its own:
  * moon.c); 1 elsewhere (sky_display). */
 vec3 sky_display_seen(vec3 L, float brighter)
