@@ -253,11 +253,18 @@ static double vsop_sum(const sky_vsop_series *series, int n, double tau)
  * Earth, FK5 correction (32.3), nutation, aberration. Also the true
  * geometric longitude (for stellar aberration), and the Earth's
  * heliocentric rectangular position (for the planets). */
-static void sun_position(double t, double dpsi, double *lambda, double *beta, double *r_au, double *true_lon,
-                         double earth[3])
+static void earth_lbr(double t, double lbr[3])
 {
     double tau = t / 10.0;
-    double l = vsop_sum(sky_earth_L, 6, tau), b = vsop_sum(sky_earth_B, 2, tau), r = vsop_sum(sky_earth_R, 5, tau);
+    lbr[0] = vsop_sum(sky_earth_L, 6, tau);
+    lbr[1] = vsop_sum(sky_earth_B, 2, tau);
+    lbr[2] = vsop_sum(sky_earth_R, 5, tau);
+}
+
+static void sun_position(double t, const double lbr[3], double dpsi, double *lambda, double *beta, double *r_au,
+                         double *true_lon, double earth[3])
+{
+    double l = lbr[0], b = lbr[1], r = lbr[2];
     earth[0] = r * cos(b) * cos(l);
     earth[1] = r * cos(b) * sin(l);
     earth[2] = r * sin(b);
@@ -273,42 +280,114 @@ static void sun_position(double t, double dpsi, double *lambda, double *beta, do
 
 /* ---- the moon ----------------------------------------------------------------------------- */
 
-/* Geocentric ecliptic longitude (of date, without nutation), latitude and
- * distance (km) of the moon: Meeus ch. 47 with all terms of tables 47.A
- * and 47.B. Also the mean arguments F and the ascending node (ch. 53). */
-static void moon_position(double t, double *lambda, double *beta, double *dist, double *f_out, double *node)
+/* The moon's mean arguments (Meeus 47.1-47.5), radians. */
+typedef struct moon_args {
+    double lp, d, m, mp, f;
+} moon_args;
+
+static moon_args moon_arguments(double t)
 {
     double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
-    double lp = (218.3164477 + 481267.88123421 * t - 0.0015786 * t2 + t3 / 538841.0 - t4 / 65194000.0) * DEG;
-    double d = (297.8501921 + 445267.1114034 * t - 0.0018819 * t2 + t3 / 545868.0 - t4 / 113065000.0) * DEG;
-    double m = (357.5291092 + 35999.0502909 * t - 0.0001536 * t2 + t3 / 24490000.0) * DEG;
-    double mp = (134.9633964 + 477198.8675055 * t + 0.0087414 * t2 + t3 / 69699.0 - t4 / 14712000.0) * DEG;
-    double f = (93.2720950 + 483202.0175233 * t - 0.0036539 * t2 - t3 / 3526000.0 + t4 / 863310000.0) * DEG;
+    moon_args g;
+    g.lp = (218.3164477 + 481267.88123421 * t - 0.0015786 * t2 + t3 / 538841.0 - t4 / 65194000.0) * DEG;
+    g.d = (297.8501921 + 445267.1114034 * t - 0.0018819 * t2 + t3 / 545868.0 - t4 / 113065000.0) * DEG;
+    g.m = (357.5291092 + 35999.0502909 * t - 0.0001536 * t2 + t3 / 24490000.0) * DEG;
+    g.mp = (134.9633964 + 477198.8675055 * t + 0.0087414 * t2 + t3 / 69699.0 - t4 / 14712000.0) * DEG;
+    g.f = (93.2720950 + 483202.0175233 * t - 0.0036539 * t2 - t3 / 3526000.0 + t4 / 863310000.0) * DEG;
+    return g;
+}
+
+/* The sums of Meeus tables 47.A and 47.B, all terms, with the additive
+ * terms of A1..A3: sum l and sum b in 1e-6 degrees, sum r in metres. */
+static void moon_sums(double t, double sums[3])
+{
+    moon_args g = moon_arguments(t);
     double a1 = (119.75 + 131.849 * t) * DEG, a2 = (53.09 + 479264.290 * t) * DEG,
            a3 = (313.45 + 481266.484 * t) * DEG;
-    double e = 1.0 - 0.002516 * t - 0.0000074 * t2;
+    double e = 1.0 - 0.002516 * t - 0.0000074 * t * t;
     double sl = 0.0, sr = 0.0, sb = 0.0;
     for (int i = 0; i < 60; i++) {
         const sky_moon_term *k = &sky_moon_lr[i];
-        double arg = k->d * d + k->m * m + k->mp * mp + k->f * f;
+        double arg = k->d * g.d + k->m * g.m + k->mp * g.mp + k->f * g.f;
         double ef = k->m == 0 ? 1.0 : (k->m == 1 || k->m == -1 ? e : e * e); /* 47.6 */
         sl += k->a * ef * sin(arg);
         sr += k->b * ef * cos(arg);
     }
     for (int i = 0; i < 60; i++) {
         const sky_moon_term *k = &sky_moon_b[i];
-        double arg = k->d * d + k->m * m + k->mp * mp + k->f * f;
+        double arg = k->d * g.d + k->m * g.m + k->mp * g.mp + k->f * g.f;
         double ef = k->m == 0 ? 1.0 : (k->m == 1 || k->m == -1 ? e : e * e);
         sb += k->a * ef * sin(arg);
     }
-    sl += 3958.0 * sin(a1) + 1962.0 * sin(lp - f) + 318.0 * sin(a2);
-    sb += -2235.0 * sin(lp) + 382.0 * sin(a3) + 175.0 * sin(a1 - f) + 175.0 * sin(a1 + f) + 127.0 * sin(lp - mp) -
-          115.0 * sin(lp + mp);
-    *lambda = wrap_2pi(lp + sl * 1e-6 * DEG);
-    *beta = sb * 1e-6 * DEG;
-    *dist = 385000.56 + sr / 1000.0;
-    *f_out = f;
+    sl += 3958.0 * sin(a1) + 1962.0 * sin(g.lp - g.f) + 318.0 * sin(a2);
+    sb += -2235.0 * sin(g.lp) + 382.0 * sin(a3) + 175.0 * sin(a1 - g.f) + 175.0 * sin(a1 + g.f) +
+          127.0 * sin(g.lp - g.mp) - 115.0 * sin(g.lp + g.mp);
+    sums[0] = sl;
+    sums[1] = sb;
+    sums[2] = sr;
+}
+
+/* Geocentric ecliptic longitude (of date, without nutation), latitude and
+ * distance (km) of the moon from the sums of its series (Meeus ch. 47).
+ * Also the mean argument F and the ascending node (ch. 53). */
+static void moon_position(double t, const double sums[3], double *lambda, double *beta, double *dist, double *f_out,
+                          double *node)
+{
+    moon_args g = moon_arguments(t);
+    double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
+    *lambda = wrap_2pi(g.lp + sums[0] * 1e-6 * DEG);
+    *beta = sums[1] * 1e-6 * DEG;
+    *dist = 385000.56 + sums[2] / 1000.0;
+    *f_out = g.f;
     *node = (125.0445479 - 1934.1362891 * t + 0.0020754 * t2 + t3 / 467441.0 - t4 / 60616000.0) * DEG;
+}
+
+/* ---- the slow terms, at nodes ------------------------------------------------------------- */
+
+static void node_at(double index, sky_astro_node *n)
+{
+    double t = (index / SKY_ASTRO_NODES_PER_DAY - J2000) / 36525.0;
+    n->index = index;
+    earth_lbr(t, n->earth_lbr);
+    moon_sums(t, n->moon_sums);
+}
+
+/* The node with this index: from the cache, or evaluated into a free
+ * slot or the least recently used one other than keep's. */
+static const sky_astro_node *node_get(sky_astro_cache *cache, double index, double keep)
+{
+    sky_astro_node *n = NULL;
+    for (int i = 0; i < cache->count && !n; i++)
+        if (cache->node[i].index == index) n = &cache->node[i];
+    if (!n) {
+        if (cache->count < SKY_ASTRO_CACHE_NODES) {
+            n = &cache->node[cache->count++];
+        } else {
+            for (int i = 0; i < SKY_ASTRO_CACHE_NODES; i++) {
+                sky_astro_node *c = &cache->node[i];
+                if (c->index != keep && (!n || c->last_use < n->last_use)) n = c;
+            }
+        }
+        node_at(index, n);
+    }
+    n->last_use = ++cache->uses;
+    return n;
+}
+
+/* The Earth's place and the moon's sums at jd_tt, interpolated linearly
+ * between the nodes around it (astro.h). The VSOP87 longitude and the sums
+ * are continuous series (not wrapped), so they interpolate as they are. */
+static void slow_terms(double jd_tt, sky_astro_cache *cache, double lbr[3], double sums[3])
+{
+    sky_astro_cache local = {0};
+    if (!cache) cache = &local;
+    double x = jd_tt * SKY_ASTRO_NODES_PER_DAY, i0 = floor(x), w = x - i0;
+    /* each lookup keeps the other's node, so a stays valid */
+    const sky_astro_node *a = node_get(cache, i0, i0 + 1.0), *b = node_get(cache, i0 + 1.0, i0);
+    for (int k = 0; k < 3; k++) {
+        lbr[k] = a->earth_lbr[k] + w * (b->earth_lbr[k] - a->earth_lbr[k]);
+        sums[k] = a->moon_sums[k] + w * (b->moon_sums[k] - a->moon_sums[k]);
+    }
 }
 
 /* ---- horizon ------------------------------------------------------------------------------- */
@@ -468,6 +547,12 @@ int sky_astro_compute(double jd_ut, const sky_astro_observer *obs, sky_astro *a,
 int sky_astro_compute_dt(double jd_ut, double delta_t, const sky_astro_observer *obs, sky_astro *a, char *err,
                          size_t err_len)
 {
+    return sky_astro_compute_cached(jd_ut, delta_t, obs, NULL, a, err, err_len);
+}
+
+int sky_astro_compute_cached(double jd_ut, double delta_t, const sky_astro_observer *obs, sky_astro_cache *cache,
+                             sky_astro *a, char *err, size_t err_len)
+{
     if (!isfinite(jd_ut) || !isfinite(delta_t) || !obs || !isfinite(obs->latitude) || !isfinite(obs->longitude) ||
         !isfinite(obs->altitude_m)) {
         set_error(err, err_len, "date or observer is not finite");
@@ -518,8 +603,10 @@ int sky_astro_compute_dt(double jd_ut, double delta_t, const sky_astro_observer 
     obs_eq[2] = EARTH_RADIUS_KM * rho_sin;
 
     /* sun */
+    double lbr[3], sums[3];
+    slow_terms(a->jd_tt, cache, lbr, sums);
     double sl, sb, sr, true_lon;
-    sun_position(t, dpsi, &sl, &sb, &sr, &true_lon, a->earth_helio);
+    sun_position(t, lbr, dpsi, &sl, &sb, &sr, &true_lon, a->earth_helio);
     ecl_to_eq(sl, sb, eps, &a->sun.ra, &a->sun.dec);
     a->sun.distance_km = sr * AU_KM;
     body_place(a, obs_eq, &a->sun);
@@ -528,7 +615,7 @@ int sky_astro_compute_dt(double jd_ut, double delta_t, const sky_astro_observer 
     /* moon: apparent longitude adds nutation (Meeus 47); no aberration,
      * the moon moves with the Earth (light time is 1.3 s: 0.7") */
     double ml, mb, md, f, node;
-    moon_position(t, &ml, &mb, &md, &f, &node);
+    moon_position(t, sums, &ml, &mb, &md, &f, &node);
     double ml_app = wrap_2pi(ml + dpsi);
     ecl_to_eq(ml_app, mb, eps, &a->moon.ra, &a->moon.dec);
     a->moon.distance_km = md;

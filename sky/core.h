@@ -319,6 +319,7 @@ typedef struct sky_core {
     sky_params params;
     sky_observer observer;
     sky_astro astro;              /* for observer + time slider; see observer.c */
+    sky_astro_cache astro_cache;  /* the series' nodes last used (astro.h)      */
     float exposure_bias;          /* stops, sky_set_exposure_bias               */
     float horizon_to_world[9];    /* column-major; identity when cfg's is zero   */
     int horizon_handedness;       /* its determinant's sign: -1 a reflection     */

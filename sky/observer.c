@@ -75,19 +75,26 @@ int sky_observer_check(const sky_observer *o, char *err, size_t err_len)
  * solar) date: start from mean solar time, then correct once by the
  * measured difference (the equation of time, at most 17 minutes, changes
  * by seconds a day, so one correction is exact to well under a second). */
-int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro *a, char *err, size_t err_len)
+static int astro_at(double jd, const sky_astro_observer *ao, sky_astro_cache *cache, sky_astro *a, char *err,
+                    size_t err_len)
+{
+    return sky_astro_compute_cached(jd, isfinite(jd) ? sky_delta_t(jd) : 0.0, ao, cache, a, err, err_len);
+}
+
+int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro_cache *cache, sky_astro *a, char *err,
+                       size_t err_len)
 {
     sky_astro_observer ao = {o->latitude_deg * DEG, o->longitude_deg * DEG, o->altitude_m};
-    if (!o->time_from_params) return sky_astro_compute(o->julian_day_utc, &ao, a, err, err_len);
+    if (!o->time_from_params) return astro_at(o->julian_day_utc, &ao, cache, a, err, err_len);
     double lon_days = o->longitude_deg / 360.0;
     double local_midnight = floor(o->julian_day_utc + lon_days + 0.5) - 0.5;
     double tod = sky_clampd(time_of_day, 0.0, 1.0);
     double jd = local_midnight + tod - lon_days;
-    if (sky_astro_compute(jd, &ao, a, err, err_len)) return -1;
+    if (astro_at(jd, &ao, cache, a, err, err_len)) return -1;
     /* apparent solar time now: the sun's hour angle + 12 h */
     double solar = sky_wrap((a->last - a->sun.ra) / (2.0 * SKY_PI) + 0.5, 1.0);
     double correction = sky_wrap(tod - solar + 0.5, 1.0) - 0.5;
-    return sky_astro_compute(jd + correction, &ao, a, err, err_len);
+    return astro_at(jd + correction, &ao, cache, a, err, err_len);
 }
 
 static void body_out(const sky_astro_body *b, sky_body_place *p)
@@ -171,7 +178,7 @@ sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, con
     }
     if (sky_observer_check(obs, err, err_len)) return SKY_ERR_INVALID_ARGUMENT;
     sky_astro a;
-    if (sky_observer_astro(obs, time_of_day, &a, err, err_len)) return SKY_ERR_INVALID_ARGUMENT;
+    if (sky_observer_astro(obs, time_of_day, NULL, &a, err, err_len)) return SKY_ERR_INVALID_ARGUMENT;
     sky_astronomy_from_astro(&a, out);
     sky_planets_fill(&a, out);
     if (count == 0) return SKY_OK;

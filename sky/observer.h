@@ -11,8 +11,9 @@
 sky_observer sky_default_observer(void);
 int sky_observer_check(const sky_observer *o, char *err, size_t err_len);
 /* Astronomy for the observer, with the time slider's time of day when the
- * observer asks for it. */
-int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro *a, char *err, size_t err_len);
+ * observer asks for it; cache may be NULL (astro.h: the result is the same). */
+int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro_cache *cache, sky_astro *a, char *err,
+                       size_t err_len);
 void sky_astronomy_from_astro(const sky_astro *a, sky_astronomy *out);
 /* The planets into out->planets: from places already computed, or
  * computed now for a's instant (the full series, some 30 us). */

@@ -76,7 +76,7 @@ sky_params sky_default_params(void)
 static void astronomy_stage(sky_core *c)
 {
     sky_astro a;
-    if (sky_observer_astro(&c->observer, c->params.time, &a, NULL, 0) == 0) c->astro = a;
+    if (sky_observer_astro(&c->observer, c->params.time, &c->astro_cache, &a, NULL, 0) == 0) c->astro = a;
     sky_frame *f = &c->frame;
     for (int i = 0; i < 3; i++) f->sun_dir[i] = (float)c->astro.sun.dir[i];
     for (int i = 0; i < 3; i++) f->moon_dir[i] = (float)c->astro.moon.dir[i];
@@ -361,7 +361,7 @@ sky_result sky_set_observer(sky *s, const sky_observer *o)
     if (!o) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_observer: observer is NULL");
     if (sky_observer_check(o, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
     sky_astro a;
-    if (sky_observer_astro(o, s->core.params.time, &a, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
+    if (sky_observer_astro(o, s->core.params.time, &s->core.astro_cache, &a, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
     s->core.observer = *o;
     compute_frame(s);
     return SKY_OK;

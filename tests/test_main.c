@@ -124,6 +124,7 @@ int test_skipped;
     X(astro_solar_eclipse_partial_vs_erfa)       \
     X(render_total_solar_eclipse)                \
     X(astro_bad_input)                           \
+    X(astro_node_cache)                          \
     X(astro_time_slider_is_solar_time)           \
     X(astro_query_json)                          \
     X(planets_vs_pyephem)                        \

@@ -224,7 +224,7 @@ void test_stars_scintillate_more_near_horizon(void)
         return;
     }
     sky_astro a;
-    sky_observer_astro(&o, 0.0, &a, NULL, 0);
+    sky_observer_astro(&o, 0.0, NULL, &a, NULL, 0);
     int n = cat.count < 3000 ? cat.count : 3000; /* the brightest 3000 */
     double *sum = calloc((size_t)n, sizeof(double)), *sum2 = calloc((size_t)n, sizeof(double));
     int *px = calloc((size_t)n * 2, sizeof(int));
@@ -342,7 +342,7 @@ void test_starmap_shows_the_milky_way(void)
      * south, the galactic north pole (in Coma) in the west. */
     sky_observer o = {sky_julian_day(2024, 8, 10, 21, 0, 0.0), 45.0, 10.0, 0.0, 0};
     sky_astro a;
-    sky_observer_astro(&o, 0.0, &a, NULL, 0);
+    sky_observer_astro(&o, 0.0, NULL, &a, NULL, 0);
     const sky_star gc = {0, 266.417 * DEG, -29.008 * DEG, 0, 0, 0, 0}, gnp = {0, 192.859 * DEG, 27.128 * DEG, 0, 0, 0, 0};
     double alt, alt_geo, az, d_gc[3], d_gnp[3];
     sky_astro_star(&a, &gc, &alt, &alt_geo, &az, d_gc);
