@@ -7,7 +7,7 @@
 #include <math.h>
 
 #define GRID_VERTEX_BYTES (SKY_DISC_GRID_VERTICES * 5 * sizeof(float))
-#define GRID_INDEX_BYTES (SKY_DISC_GRID_INDICES * sizeof(unsigned short))
+#define GRID_INDEX_BYTES ((SKY_DISC_GRID_INDICES + SKY_DISC_COARSE_INDICES) * sizeof(unsigned short))
 
 double sky_disc_above_horizon(double altitude, double radius)
 {
@@ -18,18 +18,27 @@ double sky_disc_above_horizon(double altitude, double radius)
     return 1.0 - (acos(d) - d * sqrt(fmax(1.0 - d * d, 0.0))) / SKY_PI;
 }
 
-int sky_disc_grid_create(sky_core *s, sky_disc_grid *g, const char *what, char *err, size_t err_len)
+/* Two triangles per cell of `cells` per side, over the vertex rows of the
+ * fine grid (SKY_DISC_GRID + 1 vertices each). */
+static int grid_indices(unsigned short *idx, int cells)
 {
-    /* two triangles per cell, rows of SKY_DISC_GRID + 1 vertices */
-    unsigned short idx[SKY_DISC_GRID_INDICES];
-    int k = 0;
-    for (int j = 0; j < SKY_DISC_GRID; j++)
-        for (int i = 0; i < SKY_DISC_GRID; i++) {
-            unsigned short a = (unsigned short)(j * (SKY_DISC_GRID + 1) + i), b = (unsigned short)(a + 1);
-            unsigned short c = (unsigned short)(a + SKY_DISC_GRID + 1), d = (unsigned short)(c + 1);
+    int k = 0, step = SKY_DISC_GRID / cells, row = SKY_DISC_GRID + 1;
+    for (int j = 0; j < SKY_DISC_GRID; j += step)
+        for (int i = 0; i < SKY_DISC_GRID; i += step) {
+            unsigned short a = (unsigned short)(j * row + i), b = (unsigned short)(a + step);
+            unsigned short c = (unsigned short)(a + step * row), d = (unsigned short)(c + step);
             idx[k++] = a, idx[k++] = b, idx[k++] = c;
             idx[k++] = b, idx[k++] = d, idx[k++] = c;
         }
+    return k;
+}
+
+int sky_disc_grid_create(sky_core *s, sky_disc_grid *g, const char *what, char *err, size_t err_len)
+{
+    /* the fine grid's indices, then the coarse grid's */
+    unsigned short idx[SKY_DISC_GRID_INDICES + SKY_DISC_COARSE_INDICES];
+    int fine = grid_indices(idx, SKY_DISC_GRID);
+    grid_indices(idx + fine, SKY_DISC_COARSE_GRID);
     static const float zero[SKY_DISC_GRID_VERTICES * 5];
     g->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, zero, sizeof zero, GL_DYNAMIC_DRAW);
     g->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, sizeof idx, GL_STATIC_DRAW);
@@ -54,8 +63,9 @@ void sky_disc_grid_update(sky_core *s, const sky_disc_grid *g, const double cent
     sky_buffer_update(s, GL_ARRAY_BUFFER, g->vertices, v, sizeof v, GL_DYNAMIC_DRAW);
 }
 
-void sky_disc_grid_draw(sky_core *s, const sky_disc_grid *g)
+void sky_disc_grid_draw(sky_core *s, const sky_disc_grid *g, double centre_altitude, double half_angle)
 {
+    int coarse = centre_altitude - half_angle * 1.41421356 >= SKY_DISC_COARSE_ABOVE_DEG * SKY_PI / 180.0;
     const sky_gl *gl = &s->gl;
     gl->glBindBuffer(GL_ARRAY_BUFFER, g->vertices);
     gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->indices);
@@ -64,7 +74,11 @@ void sky_disc_grid_draw(sky_core *s, const sky_disc_grid *g)
     gl->glEnableVertexAttribArray(0);
     gl->glEnableVertexAttribArray(1);
     gl->glDisableVertexAttribArray(2);
-    gl->glDrawElements(GL_TRIANGLES, SKY_DISC_GRID_INDICES, GL_UNSIGNED_SHORT, (const void *)0);
+    if (coarse)
+        gl->glDrawElements(GL_TRIANGLES, SKY_DISC_COARSE_INDICES, GL_UNSIGNED_SHORT,
+                           (const void *)(SKY_DISC_GRID_INDICES * sizeof(unsigned short)));
+    else
+        gl->glDrawElements(GL_TRIANGLES, SKY_DISC_GRID_INDICES, GL_UNSIGNED_SHORT, (const void *)0);
 }
 
 size_t sky_disc_grid_bytes(const sky_disc_grid *g) { return g->vertices ? GRID_VERTEX_BYTES + GRID_INDEX_BYTES : 0; }

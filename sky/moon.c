@@ -435,7 +435,7 @@ static int moon_draw(sky_core *s, void *state)
     sky_disc_grid_update(s, &st->grid, st->axes[2], st->axes[0], st->axes[1], MOON_QUAD_RADII * st->radius_tan,
                          MOON_QUAD_RADII);
     sky_program_apply(s, &st->program);
-    sky_disc_grid_draw(s, &st->grid);
+    sky_disc_grid_draw(s, &st->grid, s->astro.moon.alt, atan(MOON_QUAD_RADII * st->radius_tan));
     return 1;
 }
 

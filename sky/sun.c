@@ -121,9 +121,10 @@ static int sun_draw(sky_core *s, void *state)
     double tl = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
     for (int i = 0; i < 3; i++) t[i] /= tl;
     double b[3] = {d[1] * t[2] - d[2] * t[1], d[2] * t[0] - d[0] * t[2], d[0] * t[1] - d[1] * t[0]};
-    sky_disc_grid_update(s, &st->grid, d, t, b, tan(SKY_SUN_QUAD_RADII * s->frame.sun_radius), 1.0);
+    double half = SKY_SUN_QUAD_RADII * s->frame.sun_radius;
+    sky_disc_grid_update(s, &st->grid, d, t, b, tan(half), 1.0);
     sky_program_apply(s, &st->program);
-    sky_disc_grid_draw(s, &st->grid);
+    sky_disc_grid_draw(s, &st->grid, a->sun.alt, half);
     return 1;
 }
 
