@@ -48,9 +48,12 @@ $(BUILD)/obj/gen/sky_blobs.o: $(BUILD)/gen/sky_blobs.c $(SKY_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -Wno-missing-prototypes -c -o $@ $<
 
+# (-MMD -MP: each object's headers beside it, as the sanitizer trees
+# below do; SKY_HDR names the public and core ones for the first build)
 $(BUILD)/obj/%.o: %.c $(SKY_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+	$(CC) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
+-include $(SKY_OBJ:.o=.d)
 
 $(LIB)/libsky.a: $(SKY_OBJ)
 	@mkdir -p $(@D)
