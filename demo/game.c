@@ -8,8 +8,9 @@
  * per normal); a glossy ball reflecting the sky (sky_capture_environment);
  * the air between the eye and every pixel (sky_aerial_glsl and
  * sky_aerial_bind: hills 2 to 20 km away fade into the horizon behind
- * them), and the sky's exposure and tone map so world and sky share one
- * brightness scale.
+ * them), and the sky's display stages (sky_display_glsl and
+ * sky_display_bind: its exposure, night vision and tone map) so world and
+ * sky share one brightness scale.
  * Without a display it renders the same frames headless through OSMesa.
  *
  *   sky-game [--time T] [--preset P] [--gl compat] [--frames N --screenshot FILE]   (--help)
@@ -108,23 +109,15 @@ static const char *const vs =
 /* Luminance = albedo / pi * illuminance (kcd/m^2 from klx), seen through
  * the air to the eye (sky_aerial_apply, from the sky_aerial_glsl source
  * compiled in front of this one; per pixel: per vertex, the ground's far
- * corners would lend all of it their haze). Then the sky's exposure
- * and its default tone map (sky_tonemap in common.glsl, SKY_TONE_MAP_HUE,
- * without the night-vision shift, which sky_lighting does not report), so
- * a wall and the sky behind it are judged on one scale. */
+ * corners would lend all of it their haze). Then the sky's own display
+ * stages (sky_display, from sky_display_glsl: the exposure with its
+ * partial adaptation at dusk and night, the rods' blue shift, the default
+ * tone map), so a wall and the sky behind it are judged on one scale. */
 static const char *const fs =
     "VARY vec3 n;\nVARY vec3 world;\n"
-    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col;\nuniform vec3 sky_sh[9];\nuniform float exposure;\n"
+    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col;\nuniform vec3 sky_sh[9];\n"
     "uniform samplerCube sky_env;\nuniform vec3 ball;\n"
     "const vec3 grass = vec3(0.20, 0.30, 0.12), stone = vec3(0.45, 0.40, 0.35);\n"
-    "vec3 tonemap(vec3 e) {\n"
-    "  float y = dot(e, vec3(0.2126, 0.7152, 0.0722));\n"
-    "  float m = max(max(e.r, max(e.g, e.b)), 1e-8), x = max(y - 0.004, 0.0), s = max(y, 1e-8) / m;\n"
-    "  float top = (x * (6.2 * x + 0.5)) / ((x * (6.2 * x + 1.7) + 0.06) * (1.109 * sqrt(s) - 0.109 * s));\n"
-    "  top = top <= 0.8 ? top : 0.8 + 0.2 * (top - 0.8) / (top - 0.6);\n"
-    "  vec3 r = e / m;\n"
-    "  return mix(top * (1.109 * sqrt(r) - 0.109 * r), vec3(top), clamp((m - 8.0) / 120.0, 0.0, 1.0));\n"
-    "}\n"
     "void main() {\n"
     "  vec3 nn = normalize(n);\n"
     "  vec3 albedo = world.y < 0.01 ? grass : stone;\n"
@@ -140,7 +133,7 @@ static const char *const fs =
     "                    + 0.315392 * sky_sh[6] * (3.0 * nn.z * nn.z - 1.0) + 0.546274 * sky_sh[8] * (nn.x * nn.x - nn.y * nn.y));\n"
     "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0) + max(sky, vec3(0.0));\n"
     "  vec3 L = sky_aerial_apply(albedo / 3.14159 * E, world - eye, length(world - eye));\n"
-    "  vec3 c = tonemap(max(L * exposure, vec3(0.0)));\n"
+    "  vec3 c = sky_display(L);\n"
     /* the glossy ball: the captured sky (sky_capture_environment, 8-bit
      * and tone-mapped as the screen is) reflected about its normal, by
      * Schlick's Fresnel over a dark base */
@@ -224,12 +217,13 @@ typedef struct world {
     int frames;            /* drawn so far: which face of the sky to capture */
 } world;
 
-/* prologue, then the library's snippet (or NULL), then body */
-static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *snippet, const char *body)
+/* prologue, then the library's snippets (or NULL), then body */
+static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *snippet,
+                      const char *snippet2, const char *body)
 {
-    const char *src[3] = {prologue, snippet ? snippet : "", body};
+    const char *src[4] = {prologue, snippet ? snippet : "", snippet2 ? snippet2 : "", body};
     GLuint s = gl->CreateShader(type);
-    gl->ShaderSource(s, 3, src, NULL);
+    gl->ShaderSource(s, 4, src, NULL);
     gl->CompileShader(s);
     GLint ok = 0;
     gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
@@ -249,8 +243,8 @@ static int world_create(world *w, sky_get_proc_address_fn loader, int core)
     if (load_gl(gl, loader, core)) return -1;
     static float verts[(6 + BOXES * 6 * 5 + 16 * 32 * 6) * 6];
     w->count = build_world(verts);
-    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, NULL, vs);
-    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, sky_aerial_glsl(), fs);
+    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, NULL, NULL, vs);
+    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, sky_display_glsl(), sky_aerial_glsl(), fs);
     w->prog = gl->CreateProgram();
     gl->AttachShader(w->prog, v);
     gl->AttachShader(w->prog, f);
@@ -324,10 +318,11 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_col"), 1, l.moon_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sky_sh"), 9, &sh.radiance[0][0]);
-    gl->Uniform1f(gl->GetUniformLocation(w->prog, "exposure"), l.exposure);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "ball"), 1, ball);
     gl->Uniform1i(gl->GetUniformLocation(w->prog, "sky_env"), 0);
     /* the air's table on unit 1 and its uniforms (the cube map is on 0) */
+    if (sky_display_bind(s, w->prog) != SKY_OK && w->frames == 1)
+        fprintf(stderr, "sky-game: no display stages: %s\n", sky_last_error(s));
     if (sky_aerial_bind(s, w->prog, 1) != SKY_OK && w->frames == 1)
         fprintf(stderr, "sky-game: no aerial perspective: %s\n", sky_last_error(s));
     gl->ActiveTexture(GL_TEXTURE0);

@@ -143,11 +143,17 @@ typedef struct sky_frame {
     float day_luminance;     /* kcd/m^2: the gradient path's own scale, before
                                 the eclipse (its shader applies that per pixel) */
     float horizon_tint[3];   /* colour of the horizon under a low sun            */
+    float moon_sky[3];       /* kcd/m^2 of a gradient texel of value 1 lit by the
+                                moon (the gradient path's moonlit sky; 0 on
+                                the others and without a moon)               */
+    float moon_beam[3];      /* the moon's light through the air, its aureole's
+                                tint (the sun's beam model at its altitude)  */
     float night_luminance;   /* kcd/m^2: the moonless or moonlit night sky's zenith
                                 (airglow, zodiacal light, the floor, light
                                 pollution): what the exposure adapts to     */
     float night_floor[3];    /* zenith kcd/m^2 of what no layer draws: the stars
-                                fainter than the star map, the moonlit air  */
+                                fainter than the star map, and the moonlit air
+                                where the path does not draw it              */
     float artificial_glow[3];/* zenith kcd/m^2 of light pollution (cfg.bortle)  */
     float night_depth[3], night_shell[3]; /* the air's zenith optical depths and
                                 the shell of Mueller eq. 11 (observer radius,

@@ -173,5 +173,9 @@ double sky_sun_illuminance_klx(const sky_core *s);
  * moonlight a host's scene receives (sky_get_lighting). */
 double sky_moon_drawn_scale(const sky_core *s);
 void sky_moon_lighting(const sky_core *s, float moon_color[3]);
+/* The moon's illuminance above the air on a surface facing it, klx per
+ * channel (phase, distance and colour; no extinction, set or not): what
+ * the moonlit sky scatters. */
+void sky_moon_light_above_air(const sky_core *s, double light[3]);
 
 #endif /* SKY_LAYER_H */

@@ -445,22 +445,30 @@ static size_t moon_buffer_bytes(const sky_core *s, const void *state)
     return sky_disc_grid_bytes(&((const moon_state *)state)->grid);
 }
 
-void sky_moon_lighting(const sky_core *s, float moon_color[3])
+void sky_moon_light_above_air(const sky_core *s, double light[3])
 {
     const sky_astro *a = &s->astro;
     /* what the true-size disc sums to (moon.c's frame): the full moon's
      * mean luminance over the disc's solid angle at its distance from the
      * observer (1 / r^2: +-14 % between perigee and apogee), times the
-     * phase law, the moon's colour and the same extinction; times the part
-     * of the disc not yet set */
+     * phase law and the moon's colour */
     double l[3];
     double phase = moon_sun_from_moon(a, l);
     double omega = 2.0 * SKY_PI * (1.0 - cos(a->moon_topo_semidiameter));
     double e = moon_full_luminance() * omega * moon_phase_law(phase);
-    double ext[3];
+    for (int i = 0; i < 3; i++) light[i] = e * k_lambda[i];
+}
+
+void sky_moon_lighting(const sky_core *s, float moon_color[3])
+{
+    /* above the air, through the same extinction as the disc, times the
+     * part of the disc not yet set */
+    const sky_astro *a = &s->astro;
+    double top[3], ext[3];
+    sky_moon_light_above_air(s, top);
     moon_extinction(s, ext);
     double up = sky_disc_above_horizon(a->moon.alt, a->moon_topo_semidiameter);
-    for (int i = 0; i < 3; i++) moon_color[i] = (float)(e * k_lambda[i] * ext[i] * up);
+    for (int i = 0; i < 3; i++) moon_color[i] = (float)(top[i] * ext[i] * up);
 }
 
 /* The moon: added by day; at night it also hides the stars behind it

@@ -161,11 +161,16 @@ static void night_frame(sky_core *s)
         moonlight = 25.0 * pow(sky_clampd(s->astro.moon_illuminated, 0.0, 1.0), 2.0) * up;
     }
     f->moonlight = (float)moonlight;
+    /* the gradient path draws its own moonlit sky; the others' stays in
+     * the floor, one tint */
+    int gradient = s->atmosphere == SKY_ATMOSPHERE_GRADIENT;
+    double moon_sky = gradient ? sky_gradient_moon(s) : 0.0;
     static const double moon_tint[3] = {0.55, 0.7, 1.0};
     float stars[3], glow[3];
     sky_star_color(FAINT_STARS_BV, stars);
     double faint = FAINT_STARS_S10 * sky_mag_arcsec2_to_kcd(27.78);
-    for (int i = 0; i < 3; i++) f->night_floor[i] = (float)(faint * stars[i] + 2.0e-7 * moonlight * moon_tint[i]);
+    for (int i = 0; i < 3; i++)
+        f->night_floor[i] = (float)(faint * stars[i] + (gradient ? 0.0 : 2.0e-7 * moonlight * moon_tint[i]));
     /* the air between the observer and what shines above it (the night
      * glows here, the stars and planets in stars.vert): Mueller eq. 11's
      * shell of 8 km */
@@ -191,7 +196,7 @@ static void night_frame(sky_core *s)
     sky_zodiacal_zenith(s, zodiacal);
     double through[3];
     for (int i = 0; i < 3; i++) through[i] = (airglow[i] + zodiacal[i]) * exp(-depth[i]);
-    f->night_luminance = (float)(luminance(floor_rgb) + luminance(through) + artificial);
+    f->night_luminance = (float)(luminance(floor_rgb) + luminance(through) + artificial + moon_sky);
 }
 
 /* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
@@ -218,7 +223,8 @@ static void eval_blend(const sky_core *s, const double d[3], double rgb[3])
 
 /* gradient.glsl's sky_atmosphere above the horizon, without its night
  * floor: the day gradient by elevation (sky_gradient_vertex, as the dome's
- * vertices carry it) tinted toward the horizon, and the aureole. */
+ * vertices carry it) tinted toward the horizon, and the aureole; the
+ * moonlit gradient and its aureole (sky_gradient_moon). */
 static void eval_gradient(const sky_core *s, const double d[3], double rgb[3])
 {
     const sky_frame *f = &s->frame;
@@ -228,9 +234,12 @@ static void eval_gradient(const sky_core *s, const double d[3], double rgb[3])
     double mu = fmax(d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2], 0.0);
     double mu8 = pow(mu, 8.0), aureole = (0.25 * mu8 + 0.6 * pow(mu8, 4.0)) * (1.0 + 1.5 * (1.0 - e));
     double low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
+    double mm = fmax(d[0] * f->moon_dir[0] + d[1] * f->moon_dir[1] + d[2] * f->moon_dir[2], 0.0);
+    double mm8 = pow(mm, 8.0), moon_aureole = (0.25 * mm8 + 0.6 * pow(mm8, 4.0)) * (1.0 + 1.5 * (1.0 - e));
     for (int i = 0; i < 3; i++)
         rgb[i] = f->day_luminance * (day[i] * (1.0 + (f->horizon_tint[i] - 1.0) * low) +
-                                     aureole * f->sun_transmittance[i]);
+                                     aureole * f->sun_transmittance[i]) +
+                 f->moon_sky[i] * (day[i] + moon_aureole * f->moon_beam[i]);
 }
 
 void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3])

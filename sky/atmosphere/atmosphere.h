@@ -87,6 +87,9 @@ extern const sky_snippet sky_hillaire_snippet;
 extern const sky_snippet sky_hillaire_encoded_snippet; /* COMPAT20's 8-bit table */
 extern const sky_snippet sky_blend_snippet;
 void sky_gradient_frame(sky_core *s);
+/* The gradient path's moonlit sky into the frame (moon_sky, moon_beam);
+ * returns its zenith luminance, kcd/m^2. */
+double sky_gradient_moon(sky_core *s);
 /* Day-gradient colour (linear RGB) for a direction, from the 256x1
  * gradient image, as R-P's gradient texture maps it onto the dome (the
  * dome bakes it into its vertices). */

@@ -4,6 +4,7 @@
  * by the sun's altitude. The cheapest path: no texture, no lookup table.
  */
 #include "atmosphere.h"
+#include "layer.h"
 
 #include <math.h>
 
@@ -11,6 +12,9 @@ static const sky_uniform_desc gradient_uniforms[] = {
     SKY_UL("u_day_luminance", SKY_U_F1, day_luminance, 1u),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
+    SKY_UL("u_moon_sky", SKY_U_F3, moon_sky, SKY_RGB),
+    SKY_UF("u_moon_beam", SKY_U_F3, moon_beam),
+    SKY_UF("u_moon_dir", SKY_U_F3, moon_dir),
 };
 /* in both stages: the dome evaluates this path per vertex (dome.vert) */
 const sky_snippet sky_gradient_snippet = {"SKY_HAS_GRADIENT", "gradient.glsl", gradient_uniforms,
@@ -41,6 +45,30 @@ static double day_sky_luminance(double altitude)
         return 0.3 + 9.0 * (pow(sin(altitude) + s0, 0.6) - base) / (pow(1.0 + s0, 0.6) - base);
     }
     return 0.3 * pow(10.0, sky_clampd(h_deg, -90.0, 0.0) / 3.0);
+}
+
+/* The moonlit sky (Jensen et al. 2001: the day sky's own model lit by the
+ * moon): the gradient for a sun at the moon's altitude, scaled by the
+ * moon's light over the sun's above the air, per channel (phase, distance
+ * and the moon's redder colour), with an aureole around the moon tinted
+ * by its beam through the air. A full moon 67 degrees up gives a zenith
+ * of 5.7 mcd/m^2 (test_atmosphere_gradient_moonlit; measured skies near
+ * full moon: 17.5-18 mag/arcsec^2, 7-11 mcd/m^2).
+ * Returns the zenith's luminance, for the night's adaptation. */
+double sky_gradient_moon(sky_core *s)
+{
+    sky_frame *f = &s->frame;
+    for (int i = 0; i < 3; i++) f->moon_sky[i] = f->moon_beam[i] = 0.0f;
+    if (!(s->features & SKY_MOON)) return 0.0;
+    double alt = s->astro.moon.alt, top[3];
+    sky_moon_light_above_air(s, top);
+    double scale = day_sky_luminance(alt);
+    for (int i = 0; i < 3; i++) f->moon_sky[i] = (float)(scale * top[i] / s->sun_irradiance_klx[i]);
+    sky_sun_transmittance(alt, f->moon_beam);
+    static const float zenith[3] = {0.0f, 1.0f, 0.0f};
+    float day[3];
+    sky_gradient_vertex(s->gradient_texels, zenith, day);
+    return 0.2126 * f->moon_sky[0] * day[0] + 0.7152 * f->moon_sky[1] * day[1] + 0.0722 * f->moon_sky[2] * day[2];
 }
 
 void sky_gradient_frame(sky_core *s)
