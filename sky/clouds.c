@@ -201,11 +201,22 @@ static void clouds_frame(sky_core *s, void *state)
     /* R-P line 28's amount of sunlight, in luminance: half of the day sky's
      * scale as skylight plus the direct sun through the atmosphere; at night
      * clouds are lit by the night sky, so they hide the stars, and by the
-     * moon, which makes them brighter than the sky around them. */
-    static const float moon_tint[3] = {0.95f, 0.97f, 1.0f};
+     * moon by the same rule: its sky's scale (twice the moonlit zenith) as
+     * skylight, plus its beam as it reaches them (its colour, the air's
+     * extinction, set or not: sky_moon_lighting over the light above the
+     * air), which makes them brighter than the sky around them. */
+    double moon_scale = 2.0 * f->moon_sky_luminance, beam[3] = {0.0, 0.0, 0.0};
+    if (moon_scale > 0.0) {
+        double top[3];
+        float lit[3];
+        sky_moon_light_above_air(s, top);
+        sky_moon_lighting(s, lit);
+        for (int i = 0; i < 3; i++) beam[i] = top[i] > 0.0 ? lit[i] / top[i] : 0.0;
+    }
+    double night_rest = f->night_luminance - f->moon_sky_luminance;
     for (int i = 0; i < 3; i++)
-        f->cloud_light[i] = f->sky_luminance * (0.45f + 1.1f * f->daylight * f->sun_transmittance[i]) +
-                            0.6f * f->night_luminance + 4.0e-7f * f->moonlight * moon_tint[i];
+        f->cloud_light[i] = (float)(f->sky_luminance * (0.45f + 1.1f * f->daylight * f->sun_transmittance[i]) +
+                                    0.6 * night_rest + moon_scale * (0.45 + 1.1 * beam[i]));
     f->sunset_color[0] = 1.0f;
     f->sunset_color[1] = 0.42f;
     f->sunset_color[2] = 0.18f;

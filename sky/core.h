@@ -148,6 +148,10 @@ typedef struct sky_frame {
                                 the others and without a moon)               */
     float moon_beam[3];      /* the moon's light through the air, its aureole's
                                 tint (the sun's beam model at its altitude)  */
+    float moonlit_light[3];  /* the physical paths' moonlit sky: the moon's light
+                                above the air, klx per channel (0 by day)   */
+    unsigned moonlit_generation; /* bumped when their moonlit sky per unit of
+                                it changes (the dome's vertices follow)      */
     float night_luminance;   /* kcd/m^2: the moonless or moonlit night sky's zenith
                                 (airglow, zodiacal light, the floor, light
                                 pollution): what the exposure adapts to     */
@@ -161,12 +165,16 @@ typedef struct sky_frame {
     float night_air[3];      /* that shell for the dome's pixels, in mediump's
                                 range (atmosphere.glsl): (b/a)^2 - 1, the
                                 zenith path's 2 + t/a, a/t                    */
-    float moonlight;         /* 0..25: the moon's brightening of the night sky    */
+    float moon_sky_luminance; /* kcd/m^2: the moonlit sky's zenith, the moon's share
+                                of night_luminance (0 without a moon)        */
     float ambient_rgb[3];    /* sky irradiance on an upward surface, klx         */
     float fog_rgb[3];        /* horizon luminance, kcd/m^2                       */
     float ground_rgb[3];     /* the ground below the horizon, kcd/m^2            */
     /* Preetham (preetham.c): Perez A..E and zenith values for (Y, x, y) */
     float perez[5][3], perez_zenith[3];
+    float perez_moon_zenith[3], moon_tint[3]; /* Preetham's moonlit sky: its zenith
+                                values for the moon's place, and the moon's colour
+                                (unit luminance); 0 without (preetham.c)      */
     double perez_horizon_klx, perez_horizon_t; /* the fit's horizon-sun illuminance
                                                   for turbidity t (0: none yet) */
     /* analytic Rayleigh + Mie (rayleigh.c) */

@@ -52,6 +52,11 @@ static const double dome_rings_down_deg[] = {-1.0, -3.0, -7.0, -15.0, -35.0, -65
 typedef struct dome_state {
     GLuint vertices, indices;    /* direction, gradient colour, galaxy      */
     size_t vertex_bytes, index_bytes;
+    /* On a physical path with a moon the vertices' colour is its moonlit
+     * sky per unit of the moon's light (atmosphere.c), rewritten when that
+     * changes: the vertices kept, and the generation they hold. */
+    float *vertex_data;
+    unsigned moonlit_generation;
     int index_count, upper_first; /* indices: all, and where the upper hemisphere starts */
     /* The triangles in view (select_triangles): a browser's rasterizer
      * spends about as much on setting up and clipping the 3840 triangles
@@ -125,9 +130,14 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
     pn[0] = pn[2] = pz[0] = pz[2] = 0.0f;
     pn[1] = -1.0f;
     pz[1] = 1.0f;
+    int physical = s->atmosphere == SKY_ATMOSPHERE_RAYLEIGH || s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ||
+                   s->atmosphere == SKY_ATMOSPHERE_BLEND;
     for (int i = 0; i < n; i++) {
         float *p = v + i * DOME_FLOATS;
-        sky_gradient_vertex(gradient, p, p + 3);
+        if (physical)
+            p[3] = p[4] = p[5] = 0.0f; /* (the moonlit sky, from the first night on) */
+        else
+            sky_gradient_vertex(gradient, p, p + 3);
         p[6] = galaxy ? sky_flicker_galaxy_vertex(galaxy, p) : 0.0f;
     }
     /* order: nadir fan, ring quads from the bottom up, zenith fan, so the
@@ -156,7 +166,8 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
     }
     st->vertex_bytes = sizeof(float) * DOME_FLOATS * (size_t)n;
     st->index_bytes = sizeof(unsigned short) * k;
-    st->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, v, st->vertex_bytes, GL_STATIC_DRAW);
+    int moonlit = physical && (s->features & SKY_MOON);
+    st->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, v, st->vertex_bytes, moonlit ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
     st->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, st->index_bytes, GL_DYNAMIC_DRAW);
     st->index_count = (int)k;
     st->dirs = malloc(sizeof(float) * 3 * (size_t)n);
@@ -165,7 +176,10 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
     if (st->dirs && st->list && st->outside)
         for (int i = 0; i < n; i++) memcpy(st->dirs + 3 * i, v + i * DOME_FLOATS, sizeof(float) * 3);
     st->mesh = idx;
-    free(v);
+    if (moonlit)
+        st->vertex_data = v;
+    else
+        free(v);
     sky_png_free(gradient);
     sky_png_free(galaxy);
     if (!st->dirs || !st->list || !st->outside) {
@@ -363,6 +377,7 @@ static void dome_destroy(sky_core *s, void *state)
     sky_buffers_destroy(s, buffers, bytes, 3);
     free(st->dirs);
     free(st->mesh);
+    free(st->vertex_data);
     free(st->list);
     free(st->outside);
     sky_gl_target_destroy(s, st->fbo);
@@ -394,6 +409,22 @@ static int dome_visible(const sky_core *s, const void *state)
     return ((const dome_state *)state)->vertices != 0;
 }
 
+/* The physical paths' moonlit sky into the vertices, when it changed (a
+ * step of the moon: atmosphere.c). */
+static void moonlit_vertices(sky_core *s, dome_state *st)
+{
+    if (!st->vertex_data || st->moonlit_generation == s->frame.moonlit_generation) return;
+    st->moonlit_generation = s->frame.moonlit_generation;
+    size_t n = st->vertex_bytes / (sizeof(float) * DOME_FLOATS);
+    for (size_t i = 0; i < n; i++) {
+        float *p = st->vertex_data + i * DOME_FLOATS;
+        double d[3] = {p[0], p[1], p[2]}, rgb[3];
+        sky_atmosphere_moonlit_unit(s, d, rgb);
+        for (int c = 0; c < 3; c++) p[3 + c] = (float)rgb[c];
+    }
+    sky_buffer_update(s, GL_ARRAY_BUFFER, st->vertices, st->vertex_data, st->vertex_bytes, GL_DYNAMIC_DRAW);
+}
+
 /* The dome: the atmosphere, with the night backdrop behind it and the
  * front layers (clouds) over it, in one pass over the screen. Which
  * variant: the night one while a backdrop layer shows, the one without
@@ -410,6 +441,7 @@ static int dome_draw(sky_core *s, void *state)
     const sky_program *upper = night ? (clear ? &st->night_clear : &st->night)
                                      : clear ? ground : photopic ? &st->day_photopic : &st->day;
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
+    moonlit_vertices(s, st);
     select_triangles(s, st);
     sky_gl_target target;
     int into_image = st->fbo != 0;

@@ -36,8 +36,11 @@ double sky_naked_eye_limit(double b_kcd)
 #define FULL_ADAPTATION_KCD 5.0
 #define ADAPTATION_SLOPE 0.3
 #define DEFAULT_RANGE_STOPS 3.0
-/* the night's own light is adapted to partly (sky_exposure_frame) */
-#define NIGHT_PARTIAL 0.35
+/* the night's own light is adapted to partly (sky_exposure_frame): 0.40
+ * keeps a full moon's sky, scattered by the paths' own models (darker away
+ * from the moon than the uniform floor that stood for it before, at 0.35),
+ * a day-for-night blue one can see (docs/DUSK.md) */
+#define NIGHT_PARTIAL 0.40
 
 double sky_display_stops(double adapt_kcd, double range_stops)
 {

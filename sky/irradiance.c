@@ -108,6 +108,7 @@ void sky_atmosphere_key(const sky_core *s, double key[SKY_ATMOSPHERE_KEY])
         key[n++] = f->sun_transmittance[i];
         key[n++] = f->moon_dir[i]; /* the moonlit gradient's aureole */
         key[n++] = f->moon_sky[i];
+        key[n++] = f->perez_moon_zenith[i];
     }
     for (int i = 0; i < 4; i++) key[n++] = f->eclipse_sky[i];
     for (int i = 0; i < 9; i++) key[n++] = s->horizon_to_world[i];
@@ -120,7 +121,7 @@ void sky_atmosphere_key(const sky_core *s, double key[SKY_ATMOSPHERE_KEY])
     key[n++] = f->blend_weight;
     key[n++] = f->rl_geometry[0]; /* the observer's radius (physical paths) */
     key[n++] = s->observer.altitude_m;
-    _Static_assert(7 * 3 + 4 + 9 + 7 == SKY_ATMOSPHERE_KEY, "the key's length");
+    _Static_assert(8 * 3 + 4 + 9 + 7 == SKY_ATMOSPHERE_KEY, "the key's length");
 }
 
 const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *cache))[3]

@@ -18,7 +18,8 @@
 void test_atmosphere_paths_finite_for_every_sun_position(void);
 void test_atmosphere_clear_sky_colours(void);
 void test_atmosphere_shaders_match_cpu_twins(void);
-void test_atmosphere_gradient_moonlit(void);
+void test_atmosphere_moonlit_sky(void);
+void test_atmosphere_clouds_lit_by_moon(void);
 void test_atmosphere_continuous_across_horizon(void);
 void test_atmosphere_preetham_outside_its_fit(void);
 void test_atmosphere_description_checked(void);
@@ -941,20 +942,21 @@ void test_atmosphere_blend_partner_preetham(void)
         for (int k = 0; k < PARTNER_SUNS; k++) free(img[j][k]);
 }
 
-/* The gradient path's moonlit sky (gradient.c, Jensen et al. 2001): the
- * day gradient lit by the full moon 67 degrees up (2024-01-26 00:00 UTC,
- * 45 N 0 E), with an aureole around the moon; the all-sky HDR image
- * agrees with the CPU twin the lighting queries use. */
-void test_atmosphere_gradient_moonlit(void)
+/* The moonlit sky of the paths that draw one (Jensen et al. 2001: the day
+ * sky's own model lit by the moon; gradient.c, preetham.c): the full
+ * moon 67 degrees up (2024-01-26 00:00 UTC, 45 N 0 E), with an aureole
+ * around the moon; the all-sky HDR image agrees with the CPU twin the
+ * lighting queries use. */
+static void moonlit_sky(sky_atmosphere_path path, const char *name, double blue_over_red, double worst_allowed)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.atmosphere = SKY_ATMOSPHERE_GRADIENT;
+    cfg.atmosphere = path;
     cfg.output = SKY_OUTPUT_HDR;
     cfg.features = SKY_MOON;
     fixture f;
     if (fixture_open_sized(&f, 129, 129, 1, SKY_GL_AUTO, &cfg)) {
-        CHECK(0, "no sky");
+        CHECK(0, "%s: no sky", name);
         return;
     }
     hdr_sky h = {f.ctx, f.s, 129};
@@ -962,14 +964,13 @@ void test_atmosphere_gradient_moonlit(void)
     sky_params clear = sky_default_params();
     clear.cover = 0.0f;
     if (hdr_draw(&h, &o, 0.0, &clear)) {
-        CHECK(0, "draw: %s", sky_last_error(h.s));
+        CHECK(0, "%s: draw: %s", name, sky_last_error(h.s));
         hdr_close(&h);
         return;
     }
     sky_astronomy a;
     sky_get_astronomy(h.s, &a);
-    const sky_frame *fr = &h.s->core.frame;
-    /* the moon's light: a blue gradient, bluer than the moon's own colour */
+    /* the moon's light: a blue sky */
     double zen[3], near[3], far[3];
     dir_at(90.0, 0.0, zen);
     const float *z = hdr_pixel_dir(&h, zen);
@@ -980,16 +981,16 @@ void test_atmosphere_gradient_moonlit(void)
     const float *n = hdr_pixel_dir(&h, near), *w = hdr_pixel_dir(&h, far);
     double aureole = (n[0] + n[1] + n[2]) / fmax(w[0] + w[1] + w[2], 1e-30);
     double zenith_y = 0.2126 * z[0] + 0.7152 * z[1] + 0.0722 * z[2];
-    NOTE("full moon %.1f deg up: zenith %.3g kcd/m^2, b/r %.2f; 10 deg from the moon %.2f x 90 deg round",
+    NOTE("%s, full moon %.1f deg up: zenith %.3g kcd/m^2, b/r %.2f; 10 deg from the moon %.2f x 90 deg round", name,
          a.moon.alt_deg, zenith_y, zenith_br, aureole);
-    CHECK(fr->moon_sky[1] > 0.0f, "the gradient path lights its sky by the moon");
-    CHECK(zenith_y > 3e-6 && zenith_y < 3e-5, "a full moon's zenith of 3-30 mcd/m^2 (%.3g kcd/m^2)", zenith_y);
-    CHECK(zenith_br > 1.3, "the moonlit zenith is blue (b/r %.2f)", zenith_br);
-    CHECK(aureole > 1.5, "an aureole around the moon (%.2f)", aureole);
+    CHECK(zenith_y > 3e-6 && zenith_y < 3e-5, "%s: a full moon's zenith of 3-30 mcd/m^2 (%.3g kcd/m^2)", name,
+          zenith_y);
+    CHECK(zenith_br > blue_over_red, "%s: the moonlit zenith is blue (b/r %.2f)", name, zenith_br);
+    CHECK(aureole > 1.5, "%s: an aureole around the moon (%.2f)", name, aureole);
     /* the image against sky_atmosphere_radiance, outside the moon's quad:
-     * the mean held; the worst pixel is the aureole's narrow lobe (half
-     * width 12 degrees) interpolated between the dome's vertices, 5.6
-     * degrees apart (the gradient is evaluated per vertex) */
+     * the mean held; the gradient's worst pixel is the aureole's narrow
+     * lobe (half width 12 degrees) interpolated between the dome's
+     * vertices, 5.6 degrees apart (it is evaluated per vertex) */
     double sum = 0.0, worst = 0.0;
     int compared = 0;
     double m[3];
@@ -1009,8 +1010,46 @@ void test_atmosphere_gradient_moonlit(void)
             compared++;
         }
     double mean = sum / (compared ? compared : 1);
-    NOTE("moonlit gradient against its CPU twin: %d pixels, mean %.3f, worst %.3f", compared, mean, worst);
-    CHECK(compared > 3000 && mean < 0.03 && worst < 0.5, "the moonlit image and its twin: mean %.3f, worst %.3f",
-          mean, worst);
+    NOTE("%s: the moonlit image against its CPU twin: %d pixels, mean %.4f, worst %.4f", name, compared, mean, worst);
+    CHECK(compared > 3000 && mean < 0.03 && worst < worst_allowed, "%s: the moonlit image and its twin: mean %.3f, "
+          "worst %.3f", name, mean, worst);
     hdr_close(&h);
+}
+
+void test_atmosphere_moonlit_sky(void)
+{
+    moonlit_sky(SKY_ATMOSPHERE_GRADIENT, "gradient", 1.3, 0.5);
+    moonlit_sky(SKY_ATMOSPHERE_PREETHAM, "preetham", 1.0, 0.01);
+    moonlit_sky(SKY_ATMOSPHERE_RAYLEIGH, "rayleigh", 1.0, 0.5);
+    moonlit_sky(SKY_ATMOSPHERE_HILLAIRE, "hillaire", 1.0, 0.5);
+    moonlit_sky(SKY_ATMOSPHERE_BLEND, "blend", 1.0, 0.5);
+}
+
+/* The clouds are lit by the moon by the sun's rule (clouds.c): under the
+ * full moon 67 degrees up a white cloud takes several times the light it
+ * takes from the moonless night, and the moon's redder colour. */
+void test_atmosphere_clouds_lit_by_moon(void)
+{
+    double light[2][3];
+    for (int moon = 0; moon < 2; moon++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.features = SKY_FEATURES_DEFAULT | SKY_CLOUDS | SKY_AIRGLOW | SKY_ZODIACAL | (moon ? SKY_MOON : 0u);
+        fixture f;
+        if (fixture_open_sized(&f, 32, 32, 0, SKY_GL_AUTO, &cfg)) {
+            CHECK(0, "no sky");
+            return;
+        }
+        sky_observer o = {sky_julian_day(2024, 1, 26, 0, 0, 0.0), 45.0, 0.0, 0.0, 0};
+        sky_set_observer(f.s, &o);
+        for (int i = 0; i < 3; i++) light[moon][i] = f.s->core.frame.cloud_light[i];
+        fixture_close(&f);
+    }
+    double ratio = light[1][1] / fmax(light[0][1], 1e-30);
+    double red_over_blue[2] = {light[0][0] / light[0][2], light[1][0] / light[1][2]};
+    NOTE("a white cloud's light: %.3g kcd/m^2 without the moon, %.3g under the full moon (x%.1f); r/b %.2f, %.2f",
+         light[0][1], light[1][1], ratio, red_over_blue[0], red_over_blue[1]);
+    CHECK(ratio > 3.0, "the full moon lights the clouds (x%.2f the moonless night's light)", ratio);
+    CHECK(red_over_blue[1] > red_over_blue[0], "in the moon's redder light (r/b %.2f against %.2f)", red_over_blue[1],
+          red_over_blue[0]);
 }

@@ -190,7 +190,8 @@ int test_skipped;
     X(atmosphere_paths_finite_for_every_sun_position) \
     X(atmosphere_clear_sky_colours)              \
     X(atmosphere_shaders_match_cpu_twins)        \
-    X(atmosphere_gradient_moonlit)               \
+    X(atmosphere_moonlit_sky)                    \
+    X(atmosphere_clouds_lit_by_moon)             \
     X(atmosphere_continuous_across_horizon)      \
     X(atmosphere_preetham_outside_its_fit)       \
     X(atmosphere_description_checked)            \

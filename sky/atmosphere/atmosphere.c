@@ -21,6 +21,7 @@ static const sky_uniform_desc atmosphere_uniforms[] = {
     SKY_UF("u_eclipse_sky", SKY_U_F4, eclipse_sky),
     SKY_UL("u_ground", SKY_U_F3, ground_rgb, SKY_RGB),
     SKY_UL("u_horizon", SKY_U_F3, fog_rgb, SKY_RGB),
+    SKY_UL("u_moonlit_light", SKY_U_F3, moonlit_light, SKY_RGB),
 };
 /* in both stages: pure arithmetic, which a path evaluated per vertex needs */
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
@@ -30,13 +31,22 @@ const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.gl
  * upper hemisphere, the irradiance on an upward surface and the horizon's
  * luminance, without the night sky's own light. */
 typedef struct sky_summary {
-    double mean, irradiance[3], fog[3];
+    double mean, mean_rgb[3], irradiance[3], fog[3];
 } sky_summary;
 
 struct sky_atmosphere_state {
     sky_hillaire_state *hillaire; /* HILLAIRE, BLEND                         */
     sky_summary summary;          /* of the last table rebuild               */
     int summary_valid;            /* 0: the tables changed since             */
+    /* the physical paths' moonlit sky (moonlit_frame), per unit of the
+     * moon's illuminance, for the moon's place rounded */
+    int moon_valid;
+    double moon_key[4];           /* rounded altitude, azimuth (deg), the
+                                     observer's altitude (m), blend weight */
+    double moon_dir[3];           /* the rounded place, horizon frame       */
+    double moon_zenith[3];        /* the zenith's radiance, 1/sr            */
+    sky_summary moon_summary;
+    sky_frame moon_frame;         /* Rayleigh's frame lit by the moon       */
 };
 
 void sky_sun_transmittance(double altitude, float out[3])
@@ -152,25 +162,109 @@ double sky_bortle_zenith_mag(double bortle)
 
 static double luminance(const double rgb[3]) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
+static int is_physical(sky_atmosphere_path path)
+{
+    return path == SKY_ATMOSPHERE_RAYLEIGH || path == SKY_ATMOSPHERE_HILLAIRE || path == SKY_ATMOSPHERE_BLEND;
+}
+
+/* ---- the physical paths' moonlit sky ------------------------------------------- */
+
+/* Jensen et al. (2001): the moonlit sky is the day sky's own model lit by
+ * the moon. The physical paths evaluate theirs on the CPU per unit of the
+ * moon's illuminance, from the moon's place rounded to MOONLIT_STEP_DEG
+ * (so a frame stays a function of its inputs): Rayleigh's closed form
+ * (rayleigh.c, its frame computed for the moon), Hillaire's ray march
+ * through his tables (sky_hillaire_ray), the blend's mix of the two. The
+ * dome carries it per vertex (dome.c) and u_moonlit_light, the moon's light
+ * above the air (phase, distance, colour), scales it: a step costs the
+ * upper dome's 1537 vertices of the model, 2.5 ms for Rayleigh's and 3.5
+ * to 4.5 ms for Hillaire's on this machine's CPU, once for every quarter
+ * degree the moon moves (a minute of its motion). Only while the sun is
+ * down (faded in over its last 5 degrees): by day it is a millionth of
+ * the sky. */
+#define MOONLIT_STEP_DEG 0.25
+
+static void hillaire_moonlit(const sky_core *s, const double d[3], double rgb[3])
+{
+    const sky_hillaire_tables *t = sky_atmosphere_tables(s);
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!t || !t->transmittance || !t->multiscatter) return;
+    double top = t->atm.top_radius_km - t->atm.planet_radius_km;
+    double km = sky_clampd(s->observer.altitude_m / 1000.0, 0.0, top);
+    sky_hillaire_ray(t, km, d, s->atmosphere_state->moon_dir, rgb);
+}
+
+void sky_atmosphere_moonlit_unit(const sky_core *s, const double d[3], double rgb[3])
+{
+    const struct sky_atmosphere_state *st = s->atmosphere_state;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!st || !st->moon_valid || d[1] < 0.0) return; /* (below: the ground's rule) */
+    double w = s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ? 1.0 : s->atmosphere == SKY_ATMOSPHERE_BLEND ? st->moon_key[3] : 0.0;
+    double a[3] = {0, 0, 0}, h[3] = {0, 0, 0};
+    if (w < 1.0) sky_rayleigh_eval(&st->moon_frame, d, a);
+    if (w > 0.0) hillaire_moonlit(s, d, h);
+    for (int i = 0; i < 3; i++) rgb[i] = a[i] + (h[i] - a[i]) * w;
+}
+
+static void summarise(const sky_core *s, void (*eval)(const sky_core *, const double d[3], double rgb[3]),
+                      sky_summary *out);
+static float blend_weight(const sky_core *s);
+
+/* The moon's light into the frame, and the moonlit sky for its rounded
+ * place when that moved (a new generation for the dome's vertices).
+ * Returns 1 while the moonlit sky shows. */
+static int moonlit_frame(sky_core *s)
+{
+    sky_frame *f = &s->frame;
+    struct sky_atmosphere_state *st = s->atmosphere_state;
+    for (int i = 0; i < 3; i++) f->moonlit_light[i] = 0.0f;
+    double night = 1.0 - sky_smoothstep(0.0, 5.0, f->sun_altitude * 180.0 / SKY_PI);
+    if (!(s->features & SKY_MOON) || !is_physical(s->atmosphere) || night <= 0.0) return 0;
+    double top[3];
+    sky_moon_light_above_air(s, top);
+    for (int i = 0; i < 3; i++) f->moonlit_light[i] = (float)(top[i] * night);
+    double step = MOONLIT_STEP_DEG;
+    double key[4] = {round(s->astro.moon.alt * 180.0 / SKY_PI / step) * step,
+                     round(s->astro.moon.az * 180.0 / SKY_PI / step) * step, s->observer.altitude_m,
+                     s->atmosphere == SKY_ATMOSPHERE_BLEND ? blend_weight(s) : 0.0};
+    if (st->moon_valid && !memcmp(key, st->moon_key, sizeof key)) return 1;
+    memcpy(st->moon_key, key, sizeof key);
+    sky_horizon_vector(key[0] * SKY_PI / 180.0, key[1] * SKY_PI / 180.0, st->moon_dir);
+    if (s->atmosphere != SKY_ATMOSPHERE_HILLAIRE) {
+        /* (Rayleigh's sky is linear in its light: a unit irradiance) */
+        st->moon_frame = *f;
+        for (int i = 0; i < 3; i++) st->moon_frame.sun_dir[i] = (float)st->moon_dir[i];
+        sky_rayleigh_light_frame(s, &st->moon_frame);
+        for (int i = 0; i < 3; i++) st->moon_frame.sun_irradiance[i] = 1.0f;
+    }
+    st->moon_valid = 1;
+    static const double zenith[3] = {0.0, 1.0, 0.0};
+    sky_atmosphere_moonlit_unit(s, zenith, st->moon_zenith);
+    summarise(s, sky_atmosphere_moonlit_unit, &st->moon_summary);
+    f->moonlit_generation++;
+    return 1;
+}
+
 static void night_frame(sky_core *s)
 {
     sky_frame *f = &s->frame;
-    double moonlight = 0.0;
-    if (s->features & SKY_MOON) {
-        double up = sky_smoothstep(-2.0, 15.0, s->astro.moon.alt * 180.0 / SKY_PI);
-        moonlight = 25.0 * pow(sky_clampd(s->astro.moon_illuminated, 0.0, 1.0), 2.0) * up;
+    /* every path draws its own moonlit sky (the physical ones per vertex,
+     * moonlit_frame), whose zenith the night's adaptation takes */
+    double moon_sky = 0.0;
+    if (s->atmosphere == SKY_ATMOSPHERE_GRADIENT)
+        moon_sky = sky_gradient_moon(s);
+    else if (s->atmosphere == SKY_ATMOSPHERE_PREETHAM)
+        moon_sky = sky_preetham_moon(s);
+    else if (moonlit_frame(s)) {
+        const double *z = s->atmosphere_state->moon_zenith;
+        double zenith[3];
+        for (int i = 0; i < 3; i++) zenith[i] = z[i] * f->moonlit_light[i];
+        moon_sky = luminance(zenith);
     }
-    f->moonlight = (float)moonlight;
-    /* the gradient path draws its own moonlit sky; the others' stays in
-     * the floor, one tint */
-    int gradient = s->atmosphere == SKY_ATMOSPHERE_GRADIENT;
-    double moon_sky = gradient ? sky_gradient_moon(s) : 0.0;
-    static const double moon_tint[3] = {0.55, 0.7, 1.0};
     float stars[3], glow[3];
     sky_star_color(FAINT_STARS_BV, stars);
     double faint = FAINT_STARS_S10 * sky_mag_arcsec2_to_kcd(27.78);
-    for (int i = 0; i < 3; i++)
-        f->night_floor[i] = (float)(faint * stars[i] + (gradient ? 0.0 : 2.0e-7 * moonlight * moon_tint[i]));
+    for (int i = 0; i < 3; i++) f->night_floor[i] = (float)(faint * stars[i]);
     /* the air between the observer and what shines above it (the night
      * glows here, the stars and planets in stars.vert): Mueller eq. 11's
      * shell of 8 km */
@@ -197,14 +291,21 @@ static void night_frame(sky_core *s)
     double through[3];
     for (int i = 0; i < 3; i++) through[i] = (airglow[i] + zodiacal[i]) * exp(-depth[i]);
     f->night_luminance = (float)(luminance(floor_rgb) + luminance(through) + artificial + moon_sky);
+    f->moon_sky_luminance = (float)moon_sky;
 }
 
 /* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
- * floor. The blend weighs the analytic sky (RAYLEIGH or PREETHAM,
+ * floor (Preetham's with its moonlit sky, the blend's partner without). The blend weighs the analytic sky (RAYLEIGH or PREETHAM,
  * cfg.blend_partner) by day (where it is cheapest) and hands the horizon
  * band and twilight, where single scattering from one column falls short,
  * to Hillaire's tables. */
-static void eval_preetham(const sky_core *s, const double d[3], double rgb[3]) { sky_preetham_eval(&s->frame, d, rgb); }
+static void eval_preetham(const sky_core *s, const double d[3], double rgb[3])
+{
+    double moon[3];
+    sky_preetham_eval(&s->frame, d, rgb);
+    sky_preetham_moon_eval(&s->frame, d, moon);
+    for (int i = 0; i < 3; i++) rgb[i] += moon[i];
+}
 static void eval_rayleigh(const sky_core *s, const double d[3], double rgb[3]) { sky_rayleigh_eval(&s->frame, d, rgb); }
 static void eval_hillaire(const sky_core *s, const double d[3], double rgb[3])
 {
@@ -257,6 +358,12 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
     case SKY_ATMOSPHERE_BLEND: eval_blend(s, d, rgb); break;
     default: eval_gradient(s, d, rgb); break;
     }
+    /* the physical paths' moonlit sky (its vertices' values, exactly) */
+    if (is_physical(s->atmosphere) && f->moonlit_light[1] > 0.0f) {
+        double m[3];
+        sky_atmosphere_moonlit_unit(s, d, m);
+        for (int i = 0; i < 3; i++) rgb[i] += m[i] * f->moonlit_light[i];
+    }
     /* sky_eclipse_dim and sky_night_floor, then what the night layers add
      * through the air (dome.frag) */
     double e = 1.0 - sky_clampd(d[1], 0.0, 1.0), e8 = pow(e, 8.0), y = 1.0 - e;
@@ -300,6 +407,7 @@ static void summarise(const sky_core *s, void (*eval)(const sky_core *, const do
         }
         for (int i = 0; i < 3; i++) out->irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * ring[i];
         out->mean += mu_weight[k] * (0.2126 * ring[0] + 0.7152 * ring[1] + 0.0722 * ring[2]);
+        for (int i = 0; i < 3; i++) out->mean_rgb[i] += mu_weight[k] * ring[i];
         if (k == 0)
             for (int i = 0; i < 3; i++) out->fog[i] = ring[i];
     }
@@ -313,9 +421,16 @@ static void apply_summary(sky_core *s, const sky_summary *sum)
      * as the gradient path defines it: about 2.5 times the hemisphere's
      * mean luminance. */
     f->sky_luminance = (float)(2.5 * sum->mean);
+    /* the night sky's own light, the moonlit sky by its own summary:
+     * Preetham's is in its path's (evaluated every frame), the others'
+     * per unit of the moon's light (moonlit_frame) */
+    const struct sky_atmosphere_state *st = s->atmosphere_state;
+    double rest = f->night_luminance - f->moon_sky_luminance;
+    int moonlit = is_physical(s->atmosphere) && st->moon_valid;
     for (int i = 0; i < 3; i++) {
-        f->ambient_rgb[i] = (float)(sum->irradiance[i] + SKY_PI * f->night_luminance);
-        f->fog_rgb[i] = (float)(sum->fog[i] + f->night_luminance);
+        double m = moonlit ? f->moonlit_light[i] : 0.0;
+        f->ambient_rgb[i] = (float)(sum->irradiance[i] + st->moon_summary.irradiance[i] * m + SKY_PI * rest);
+        f->fog_rgb[i] = (float)(sum->fog[i] + st->moon_summary.fog[i] * m + rest);
     }
 }
 
@@ -338,11 +453,6 @@ static float blend_weight(const sky_core *s)
     if (s->cfg.blend_manual) return s->cfg.blend_weight;
     double h_deg = s->frame.sun_altitude * 180.0 / SKY_PI;
     return (float)(1.0 - 0.5 * sky_smoothstep(15.0, 60.0, h_deg));
-}
-
-static int is_physical(sky_atmosphere_path path)
-{
-    return path == SKY_ATMOSPHERE_RAYLEIGH || path == SKY_ATMOSPHERE_HILLAIRE || path == SKY_ATMOSPHERE_BLEND;
 }
 
 void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3])

@@ -44,6 +44,11 @@ double sky_bortle_zenith_mag(double bortle);
  * night floor above the horizon, the ground below it (atmosphere.glsl's
  * sky_or_ground); no sun, moon, stars or clouds. */
 void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]);
+/* The physical paths' moonlit sky in direction d per unit of the moon's
+ * illuminance (1/sr per channel; 0 below the horizon, on the other paths
+ * and before the first night): the path's model lit from the moon's
+ * place rounded (atmosphere.c), what the dome's vertices carry. */
+void sky_atmosphere_moonlit_unit(const sky_core *s, const double d[3], double rgb[3]);
 /* The sun model's direct-beam transmittance for a ray at the given
  * altitude (radians): Kasten-Young air mass times a Rayleigh+aerosol
  * optical depth; below the horizon, the horizon's value. Non-decreasing
@@ -97,7 +102,14 @@ void sky_gradient_vertex(const unsigned char *gradient_rgba, const float dir[3],
 double sky_preetham_turbidity(float requested); /* the turbidity the model uses */
 void sky_preetham_frame(sky_core *s);
 void sky_preetham_eval(const sky_frame *f, const double d[3], double rgb[3]);
+/* Preetham's moonlit sky into the frame (perez_moon_zenith, moon_tint);
+ * returns its zenith luminance, kcd/m^2; and its CPU twin (0 without). */
+double sky_preetham_moon(sky_core *s);
+void sky_preetham_moon_eval(const sky_frame *f, const double d[3], double rgb[3]);
 void sky_rayleigh_frame(sky_core *s);
+/* The same for the light along f->sun_dir into f (the moonlit sky's frame:
+ * atmosphere.c), the sun's irradiance in f->sun_irradiance. */
+void sky_rayleigh_light_frame(const sky_core *s, sky_frame *f);
 void sky_rayleigh_eval(const sky_frame *f, const double d[3], double rgb[3]);
 /* Chapman's grazing-incidence function: slant over vertical column of an
  * exponential atmosphere, X = radius / scale height, mu = cos(zenith angle),

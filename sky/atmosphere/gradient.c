@@ -14,7 +14,6 @@ static const sky_uniform_desc gradient_uniforms[] = {
     SKY_UF("u_horizon_tint", SKY_U_F3, horizon_tint),
     SKY_UL("u_moon_sky", SKY_U_F3, moon_sky, SKY_RGB),
     SKY_UF("u_moon_beam", SKY_U_F3, moon_beam),
-    SKY_UF("u_moon_dir", SKY_U_F3, moon_dir),
 };
 /* in both stages: the dome evaluates this path per vertex (dome.vert) */
 const sky_snippet sky_gradient_snippet = {"SKY_HAS_GRADIENT", "gradient.glsl", gradient_uniforms,
@@ -52,8 +51,8 @@ static double day_sky_luminance(double altitude)
  * moon's light over the sun's above the air, per channel (phase, distance
  * and the moon's redder colour), with an aureole around the moon tinted
  * by its beam through the air. A full moon 67 degrees up gives a zenith
- * of 5.7 mcd/m^2 (test_atmosphere_gradient_moonlit; measured skies near
- * full moon: 17.5-18 mag/arcsec^2, 7-11 mcd/m^2).
+ * of 5.7 mcd/m^2 (test_atmosphere_moonlit_sky; Preetham's model gives 20,
+ * measured skies near full moon 17-18 mag/arcsec^2, 7-17 mcd/m^2).
  * Returns the zenith's luminance, for the night's adaptation. */
 double sky_gradient_moon(sky_core *s)
 {

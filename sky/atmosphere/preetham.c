@@ -22,6 +22,7 @@
  * slope, through sunset, positive everywhere.
  */
 #include "atmosphere.h"
+#include "layer.h"
 
 #include <math.h>
 
@@ -29,6 +30,7 @@ static const sky_uniform_desc preetham_uniforms[] = {
     SKY_UF("u_perez_a", SKY_U_F3, perez[0]), SKY_UF("u_perez_b", SKY_U_F3, perez[1]),
     SKY_UF("u_perez_c", SKY_U_F3, perez[2]), SKY_UF("u_perez_d", SKY_U_F3, perez[3]),
     SKY_UF("u_perez_e", SKY_U_F3, perez[4]), SKY_UL("u_perez_zenith", SKY_U_F3, perez_zenith, 1u),
+    SKY_UL("u_perez_moon_zenith", SKY_U_F3, perez_moon_zenith, 1u), SKY_UF("u_moon_tint", SKY_U_F3, moon_tint),
 };
 /* (in the vertex stage too: R-P's stars take its transmittance per point,
  * flicker.vert) */
@@ -134,18 +136,19 @@ static double twilight_scale(double altitude, double horizon_klx)
     return pow(10.0, L * t * t);
 }
 
-void sky_preetham_frame(sky_core *s)
+/* Appendix A.2's coefficients for turbidity T, per (Y, x, y). */
+static void perez_coefficients(double T, double coef[3][5])
 {
-    sky_frame *f = &s->frame;
-    double T = sky_preetham_turbidity(s->cfg.turbidity);
-    double altitude = isfinite(f->sun_altitude) ? f->sun_altitude : 0.0;
-    double theta_s = 0.5 * SKY_PI - sky_clampd(altitude, 0.0, 0.5 * SKY_PI);
-    double coef[3][5];
     for (int c = 0; c < 3; c++)
-        for (int k = 0; k < 5; k++) {
-            coef[c][k] = perez_fit[c][k][0] * T + perez_fit[c][k][1];
-            f->perez[k][c] = (float)coef[c][k];
-        }
+        for (int k = 0; k < 5; k++) coef[c][k] = perez_fit[c][k][0] * T + perez_fit[c][k][1];
+}
+
+/* The zenith values (Y in kcd/m^2 for the sun's light, with the twilight
+ * scale; x, y) over F(0, theta_s) for a light at this altitude. */
+static void perez_zenith_at(sky_frame *f, const double coef[3][5], double T, double altitude, double out[3])
+{
+    altitude = isfinite(altitude) ? altitude : 0.0;
+    double theta_s = 0.5 * SKY_PI - sky_clampd(altitude, 0.0, 0.5 * SKY_PI);
     /* eq. A.2 zenith luminance, kcd/m^2; chi < pi/2 for every T >= 0 */
     double chi = (4.0 / 9.0 - T / 120.0) * (SKY_PI - 2.0 * theta_s);
     double zenith[3] = {(4.0453 * T - 4.9710) * tan(chi) - 0.2155 * T + 2.4192,
@@ -156,7 +159,7 @@ void sky_preetham_frame(sky_core *s)
         F0[c] = (1.0 + coef[c][0] * exp(coef[c][1])) *
                 (1.0 + coef[c][2] * exp(coef[c][3] * theta_s) + coef[c][4] * cos(theta_s) * cos(theta_s));
     /* The twilight scale needs the fit's horizon-sun illuminance: only
-     * while the sun is within a few degrees of the horizon or below it
+     * while the light is within a few degrees of the horizon or below it
      * (the ease above ends at h1 = 2 |log10(0.8 klx / E0)| / m: 6.9
      * degrees at T 2, the brightest horizon sky, 15 klx). It depends on
      * T alone, which a sky keeps: the 384-point quadrature (some 30 us)
@@ -173,19 +176,76 @@ void sky_preetham_frame(sky_core *s)
         scale = twilight_scale(altitude, f->perez_horizon_klx);
     }
     zenith[0] *= scale;
-    for (int c = 0; c < 3; c++) f->perez_zenith[c] = (float)(zenith[c] / F0[c]);
+    for (int c = 0; c < 3; c++) out[c] = zenith[c] / F0[c];
 }
 
-void sky_preetham_eval(const sky_frame *f, const double d[3], double rgb[3])
+void sky_preetham_frame(sky_core *s)
+{
+    sky_frame *f = &s->frame;
+    double T = sky_preetham_turbidity(s->cfg.turbidity), coef[3][5], zenith[3];
+    perez_coefficients(T, coef);
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 5; k++) f->perez[k][c] = (float)coef[c][k];
+    perez_zenith_at(f, coef, T, f->sun_altitude, zenith);
+    for (int c = 0; c < 3; c++) f->perez_zenith[c] = (float)zenith[c];
+}
+
+/* The moonlit sky (Jensen et al. 2001: the day sky's model lit by the
+ * moon): the distribution for a light at the moon's place, its zenith
+ * luminance scaled by the moon's light over the sun's above the air
+ * (phase, distance), and the moon's redder colour per channel (u_moon_tint,
+ * of unit luminance). Only while the sun is down: by day it is a
+ * millionth of the sky, and the shader skips it (faded in over the sun's
+ * last 5 degrees). Returns the zenith's luminance, kcd/m^2. */
+double sky_preetham_moon(sky_core *s)
+{
+    sky_frame *f = &s->frame;
+    for (int c = 0; c < 3; c++) f->perez_moon_zenith[c] = f->moon_tint[c] = 0.0f;
+    double night = 1.0 - sky_smoothstep(0.0, 5.0, f->sun_altitude * 180.0 / SKY_PI);
+    if (!(s->features & SKY_MOON) || night <= 0.0) return 0.0;
+    double T = sky_preetham_turbidity(s->cfg.turbidity), coef[3][5], zenith[3], top[3], ratio[3];
+    perez_coefficients(T, coef);
+    perez_zenith_at(f, coef, T, s->astro.moon.alt, zenith);
+    sky_moon_light_above_air(s, top);
+    for (int c = 0; c < 3; c++) ratio[c] = top[c] / s->sun_irradiance_klx[c];
+    double r = 0.2126 * ratio[0] + 0.7152 * ratio[1] + 0.0722 * ratio[2];
+    if (!(r > 0.0)) return 0.0;
+    zenith[0] *= r * night;
+    for (int c = 0; c < 3; c++) {
+        f->perez_moon_zenith[c] = (float)zenith[c];
+        f->moon_tint[c] = (float)(ratio[c] / r);
+    }
+    static const double up[3] = {0.0, 1.0, 0.0};
+    double rgb[3];
+    sky_preetham_moon_eval(f, up, rgb);
+    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+/* F(theta, gamma) for a light along l with the given zenith values, in
+ * linear sRGB (eq. 3; xyY -> XYZ -> linear sRGB). */
+static void perez_rgb(const sky_frame *f, const double d[3], const float l[3], const float zenith[3], double rgb[3])
 {
     double cos_theta = fmax(d[1], 1e-3);
-    double cos_gamma = sky_clampd(d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2], -1.0, 1.0);
+    double cos_gamma = sky_clampd(d[0] * l[0] + d[1] * l[1] + d[2] * l[2], -1.0, 1.0);
     double gamma = acos(cos_gamma), Yxy[3];
     for (int c = 0; c < 3; c++)
-        Yxy[c] = f->perez_zenith[c] * (1.0 + f->perez[0][c] * exp(f->perez[1][c] / cos_theta)) *
+        Yxy[c] = zenith[c] * (1.0 + f->perez[0][c] * exp(f->perez[1][c] / cos_theta)) *
                  (1.0 + f->perez[2][c] * exp(f->perez[3][c] * gamma) + f->perez[4][c] * cos_gamma * cos_gamma);
     double y = fmax(Yxy[2], 1e-4);
     double XYZ[3] = {Yxy[1] / y * Yxy[0], Yxy[0], (1.0 - Yxy[1] - Yxy[2]) / y * Yxy[0]};
     sky_xyz_to_linear_srgb(XYZ, rgb);
     for (int i = 0; i < 3; i++) rgb[i] = fmax(rgb[i], 0.0);
+}
+
+void sky_preetham_eval(const sky_frame *f, const double d[3], double rgb[3])
+{
+    perez_rgb(f, d, f->sun_dir, f->perez_zenith, rgb);
+}
+
+void sky_preetham_moon_eval(const sky_frame *f, const double d[3], double rgb[3])
+{
+    for (int i = 0; i < 3; i++) rgb[i] = 0.0;
+    if (!(f->perez_moon_zenith[0] > 0.0f)) return;
+    perez_rgb(f, d, f->moon_dir, f->perez_moon_zenith, rgb);
+    for (int i = 0; i < 3; i++) rgb[i] *= f->moon_tint[i];
 }

@@ -128,11 +128,12 @@ static void multiple_scattering(const sky_atmosphere_params *a, double mu_s, sky
     }
 }
 
-static void skylight(sky_core *s);
+static void skylight(const sky_core *s, sky_frame *f);
 
-void sky_rayleigh_frame(sky_core *s)
+void sky_rayleigh_frame(sky_core *s) { sky_rayleigh_light_frame(s, &s->frame); }
+
+void sky_rayleigh_light_frame(const sky_core *s, sky_frame *f)
 {
-    sky_frame *f = &s->frame;
     const sky_atmosphere_params *a = &s->atm_rgb;
     /* the observer inside the shell: an observer above it sees it from
      * just under the top (a closed form for the outside is Hillaire's) */
@@ -173,7 +174,7 @@ void sky_rayleigh_frame(sky_core *s)
     f->mie_phase[0] = (float)(3.0 / (8.0 * SKY_PI) * (1.0 - g * g) / (2.0 + g * g));
     f->mie_phase[1] = (float)(1.0 + g * g);
     f->mie_phase[2] = (float)(2.0 * g);
-    skylight(s);
+    skylight(s, f);
 }
 
 /* The mean of e^-E over a segment whose exponent runs linearly from a
@@ -356,9 +357,8 @@ static void node_at(const sky_frame *f, double t, double mu, double c, double m_
  * (atmosphere.c), taken without the floor; 32 closed-form evaluations a
  * frame on the CPU, nothing on the GPU but a min per node. */
 #define RL_NO_SKYLIGHT 1e4f
-static void skylight(sky_core *s)
+static void skylight(const sky_core *s, sky_frame *f)
 {
-    sky_frame *f = &s->frame;
     for (int i = 0; i < 3; i++) f->rl_skylight[i] = RL_NO_SKYLIGHT;
     /* Hillaire's path reads only the frame's extinction from here */
     if (s->atmosphere != SKY_ATMOSPHERE_RAYLEIGH && s->atmosphere != SKY_ATMOSPHERE_BLEND) return;

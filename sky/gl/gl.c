@@ -251,6 +251,7 @@ static const sky_uniform_desc common_uniforms[] = {
     SKY_UF("u_fisheye", SKY_U_F1, fisheye),
     SKY_UF("u_aspect", SKY_U_F2, aspect),
     SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
+    SKY_UF("u_moon_dir", SKY_U_F3, moon_dir),
     SKY_UF("u_view_proj", SKY_U_M4, view_proj),
     SKY_UF("u_viewport", SKY_U_F4, viewport),
     SKY_UF("u_pixel_angle", SKY_U_F1, pixel_angle),

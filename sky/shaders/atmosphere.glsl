@@ -12,6 +12,14 @@ uniform SKY_UP vec4 u_eclipse_sky;       /* solar eclipse: x the day sky's light
 uniform SKY_UP vec3 u_ground;            /* kcd/m^2: the ground lit by sun and sky     */
 uniform SKY_UP vec3 u_horizon;           /* kcd/m^2: the sky just above the horizon, its
                                      mean over azimuth                        */
+uniform SKY_UP vec3 u_moonlit_light;     /* the physical paths' moonlit sky: the moon's
+                                     light above the air (0 by day); the dome's
+                                     vertices carry that sky per unit of it   */
+
+/* The physical paths' moonlit sky (Jensen et al. 2001: their own model
+ * lit by the moon, atmosphere.c) from the dome vertex's value per unit of
+ * the moon's light: one multiply a pixel. */
+vec3 sky_moonlit(vec3 per_unit) { return per_unit * u_moonlit_light; }
 
 /* A solar eclipse dims the day sky by the light the moon hides (x). Around
  * totality what is left comes from the air outside the moon's shadow, lit

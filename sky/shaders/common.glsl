@@ -8,6 +8,7 @@ uniform SKY_UP float u_output_hdr;  /* 1: write linear kcd/m^2, 0: tone map + di
 uniform SKY_UP float u_fisheye;     /* 1: equidistant all-sky mapping                   */
 uniform SKY_UP vec2 u_aspect;       /* fisheye: ndc scale that keeps the circle round    */
 uniform SKY_UP vec3 u_sun_dir;      /* horizon frame: +x east, +y up, +z south           */
+uniform SKY_UP vec3 u_moon_dir;     /* the same, refracted (the moonlit skies)            */
 uniform SKY_UP mat4 u_view_proj;    /* horizon direction (w = 0) to clip space           */
 uniform SKY_UP vec4 u_viewport;     /* window x, y, width, height of the host's viewport */
 uniform SKY_UP float u_pixel_angle; /* radians per pixel at the view centre             */

@@ -54,24 +54,29 @@ vec3 sky_srgb_encode(vec3 c)
 #ifndef SKY_PHOTOPIC
 /* The blue shift of night vision (Jensen et al. 2000, as the thesis's sec.
  * 3.6 gives it): where the rods see, a colour's chromaticity moves toward
- * the blue point (x, y) = (0.25, 0.25) of night paintings, by 1 - s, s the
+ * a blue point, by 1 - s, s the
  * cones' share for the colour's own luminance: 0 below 0.01 cd/m^2, 1
  * above 4, 3t^2 - 2t^3 on t = (log10 Y + 2) / 2.6 between. So what is
  * bright enough for the cones keeps its colour (the moon's disc, a bright
  * star, clouds lit at dusk), capped by the rods' share at the eye's own
  * adaptation (sky_display_rods). The luminance stays the photopic one the
  * exposure was set for (Jensen's 0.4468 times the scotopic luminance would
- * expose the night a second time). The mix of chromaticities written
+ * expose the night a second time). The blue point is (x, y) = (0.245,
+ * 0.245), a step bluer than Jensen's (0.25, 0.25) of night paintings:
+ * his shows b/r 1.59 on screen once the rods see alone, below the 1.6 a
+ * night sky is held to, and any remnant of a physical moonlit sky's own
+ * colour (b/r 1.35 in linear light) pulled it under; this one shows 1.67.
+ * The mix of chromaticities written
  * without the matrices: with W = X + Y + Z = dot(e, (0.6443, 1.1920,
  * 1.2032)) (sRGB's primaries) and B the linear sRGB of the blue point at
- * W = 1, (0.1765, 0.2476, 0.4914), the shifted colour is
- * Y ((1 - r) e + r W B) / ((1 - r) Y + r W / 4). */
+ * W = 1, (0.1630, 0.2434, 0.5027), the shifted colour is
+ * Y ((1 - r) e + r W B) / ((1 - r) Y + 0.245 r W). */
 vec3 sky_scotopic_shift(vec3 e, float y, float brighter)
 {
     float t = clamp((log2(max(y * sky_display_cd * brighter, 1e-10)) * 0.30103 + 2.0) / 2.6, 0.0, 1.0);
     float rods = min(sky_display_rods, 1.0 - t * t * (3.0 - 2.0 * t));
     float w = dot(e, vec3(0.6443, 1.1920, 1.2032));
-    return y * mix(e, w * vec3(0.1765, 0.2476, 0.4914), rods) / max(mix(y, 0.25 * w, rods), SKY_TINY);
+    return y * mix(e, w * vec3(0.1630, 0.2434, 0.5027), rods) / max(mix(y, 0.245 * w, rods), SKY_TINY);
 }
 #endif
 

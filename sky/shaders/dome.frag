@@ -2,7 +2,9 @@
  * (Mueller sec. 5): the atmosphere's own light, the night layers behind it
  * dimmed by its extinction, then the clouds over both. */
 SKY_IN vec3 v_dir;
-SKY_IN vec4 v_color;  /* rgb: day gradient, a: galaxy */
+SKY_IN vec4 v_color;  /* rgb: the gradient path's day gradient, the physical
+                         paths' moonlit sky per unit of the moon's light; a:
+                         galaxy */
 #ifdef SKY_HAS_GRADIENT
 SKY_IN vec3 v_sky;
 #if defined(SKY_HAS_FLICKER) || defined(SKY_HAS_STARMAP)
@@ -32,7 +34,8 @@ void main()
     vec3 L = v_sky;
 #elif defined(SKY_HAS_RAYLEIGH)
     vec3 L = sky_atmosphere_over(d, sky_rayleigh_phases(d, v_rl_single_r.rgb, v_rl_single_m.rgb,
-                                                        vec3(v_rl_single_r.a, v_rl_single_m.a, v_rl_multiple_b)));
+                                                        vec3(v_rl_single_r.a, v_rl_single_m.a, v_rl_multiple_b)),
+                                 v_color.rgb);
 #else
     vec3 L = sky_atmosphere(d, v_color.rgb);
 #endif

@@ -1,6 +1,7 @@
 /* dome.vert: the sky dome (dome.c), a sphere of directions drawn at
- * infinity. a_color carries the per-vertex day gradient (rgb) and galaxy
- * brightness (a). w = 0 puts the vertices at infinity; z = w puts them on
+ * infinity. a_color carries the per-vertex day gradient (rgb; on the
+ * physical paths their moonlit sky per unit of the moon's light instead,
+ * atmosphere.c) and galaxy brightness (a). w = 0 puts the vertices at infinity; z = w puts them on
  * the far plane so no near/far setting clips them. What varies slowly
  * across the sky is evaluated here, per vertex, rather than per pixel: the
  * gradient path's whole sky (it has no texture and no sharp feature the

@@ -8,7 +8,6 @@ uniform SKY_UP vec3 u_sun_transmittance;
 uniform SKY_UP vec3 u_horizon_tint;      /* colour of the low-sun horizon, see gradient.c */
 uniform SKY_UP vec3 u_moon_sky;          /* the moonlit gradient's scale, per channel      */
 uniform SKY_UP vec3 u_moon_beam;         /* the moon's light through the air               */
-uniform SKY_UP vec3 u_moon_dir;
 
 /* The two lobes of the aureole around a light at cosine mu from d, at
  * elevation sine e: a broad and a narrow one, strongest near the horizon

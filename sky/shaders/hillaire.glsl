@@ -54,10 +54,11 @@ vec3 sky_hillaire_radiance(vec3 d)
 }
 
 #ifndef SKY_HAS_BLEND
-vec3 sky_atmosphere(vec3 d, vec3 day)
+vec3 sky_atmosphere(vec3 d, vec3 moonlit)
 {
     /* the table's own ground is lit by the sun alone (black under a
      * twilight sky): atmosphere.glsl's rule instead */
-    return sky_or_ground(d, sky_hillaire_radiance(d) * sky_eclipse_dim(d) + sky_night_floor(d));
+    return sky_or_ground(d, (sky_hillaire_radiance(d) + sky_moonlit(moonlit)) * sky_eclipse_dim(d) +
+                                sky_night_floor(d));
 }
 #endif

@@ -200,10 +200,11 @@ vec3 sky_rayleigh_radiance(vec3 view)
 }
 
 #ifndef SKY_HAS_BLEND
-/* the sky around an analytic radiance already evaluated (the dome's) */
-vec3 sky_atmosphere_over(vec3 d, vec3 analytic)
+/* the sky around an analytic radiance already evaluated (the dome's) and
+ * the moonlit sky's vertex value */
+vec3 sky_atmosphere_over(vec3 d, vec3 analytic, vec3 moonlit)
 {
-    return sky_or_ground(d, analytic * sky_eclipse_dim(d) + sky_night_floor(d));
+    return sky_or_ground(d, (analytic + sky_moonlit(moonlit)) * sky_eclipse_dim(d) + sky_night_floor(d));
 }
-vec3 sky_atmosphere(vec3 d, vec3 day) { return sky_atmosphere_over(d, sky_rayleigh_radiance(d)); }
+vec3 sky_atmosphere(vec3 d, vec3 moonlit) { return sky_atmosphere_over(d, sky_rayleigh_radiance(d), moonlit); }
 #endif
