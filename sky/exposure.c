@@ -62,7 +62,7 @@ void sky_exposure_frame(sky_core *s)
     double withheld = 1.0 / sqrt(sky_clampd(f->eclipse_sky_mean, 1e-6, 1.0)), daylight = f->sky_luminance * withheld;
     /* Automatic exposure from the scene's own brightness: the day sky's
      * scale maps to the filmic curve's shoulder (display.glsl); at night a
-     * floor 110 times a natural dark sky's zenith keeps the sky dark and
+     * floor 120 times a natural dark sky's zenith keeps the sky dark and
      * the stars bright. The eye adapts no further than to that dark sky
      * (21.9 mag/arcsec^2, Benn & Ellison 1998): a scene that leaves the
      * airglow out is darker, not exposed up to the same grey. A brighter
@@ -71,7 +71,7 @@ void sky_exposure_frame(sky_core *s)
      * moonlit sky shows brighter than a moonless one, as the eye sees it,
      * where full adaptation showed both alike. */
     double dark = sky_mag_arcsec2_to_kcd(21.9), night = fmax(f->night_luminance, dark);
-    double adapt = daylight + 110.0 * dark * pow(night / dark, 1.0 - NIGHT_PARTIAL);
+    double adapt = daylight + 120.0 * dark * pow(night / dark, 1.0 - NIGHT_PARTIAL);
     /* the display follows daylight down only partly (above; weighted by
      * daylight's share of the adaptation); the stars, the planets and the
      * star map keep the brightness full adaptation gives them against a

@@ -20,6 +20,7 @@ void test_atmosphere_clear_sky_colours(void);
 void test_atmosphere_shaders_match_cpu_twins(void);
 void test_atmosphere_moonlit_sky(void);
 void test_atmosphere_clouds_lit_by_moon(void);
+void test_atmosphere_moonlight_reaches_the_host(void);
 void test_atmosphere_continuous_across_horizon(void);
 void test_atmosphere_preetham_outside_its_fit(void);
 void test_atmosphere_description_checked(void);
@@ -1052,4 +1053,53 @@ void test_atmosphere_clouds_lit_by_moon(void)
     CHECK(ratio > 3.0, "the full moon lights the clouds (x%.2f the moonless night's light)", ratio);
     CHECK(red_over_blue[1] > red_over_blue[0], "in the moon's redder light (r/b %.2f against %.2f)", red_over_blue[1],
           red_over_blue[0]);
+}
+
+/* The moon's light reaches the host (Dusk and night): the ambient of
+ * sky_get_lighting, the SH irradiance and the aerial perspective of a hill
+ * 10 km away all take the moonlit sky under the full moon 67 degrees up,
+ * on the default path and on Hillaire's, against the same night without
+ * the moon. */
+void test_atmosphere_moonlight_reaches_the_host(void)
+{
+    static const sky_atmosphere_path two[2] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
+    for (int p = 0; p < 2; p++) {
+        double ambient[2], sh[2], aerial[2];
+        for (int moon = 0; moon < 2; moon++) {
+            sky_config cfg;
+            memset(&cfg, 0, sizeof cfg);
+            cfg.atmosphere = two[p];
+            cfg.features = SKY_FEATURES_DEFAULT | SKY_AIRGLOW | SKY_ZODIACAL | (moon ? SKY_MOON : 0u);
+            fixture f;
+            if (fixture_open_sized(&f, 32, 32, 0, SKY_GL_AUTO, &cfg)) {
+                CHECK(0, "no sky");
+                return;
+            }
+            sky_observer o = {sky_julian_day(2024, 1, 26, 0, 0, 0.0), 45.0, 0.0, 0.0, 0};
+            sky_set_observer(f.s, &o);
+            sky_lighting l;
+            sky_irradiance_sh irr;
+            sky_aerial a;
+            const float up[3] = {0.0f, 1.0f, 0.0f}, north[3] = {0.0f, 0.05f, -1.0f};
+            float e[3];
+            if (sky_get_lighting(f.s, &l) != SKY_OK || sky_get_irradiance_sh(f.s, &irr) != SKY_OK ||
+                sky_irradiance_sh_eval(&irr, up, e) != SKY_OK ||
+                sky_get_aerial_perspective(f.s, north, 10000.0f, &a) != SKY_OK) {
+                CHECK(0, "lighting: %s", sky_last_error(f.s));
+                fixture_close(&f);
+                return;
+            }
+            ambient[moon] = l.ambient_color[1];
+            sh[moon] = e[1];
+            aerial[moon] = a.inscatter[1];
+            fixture_close(&f);
+        }
+        const char *name = p ? "hillaire" : "gradient";
+        NOTE("%s: the full moon multiplies the ambient by %.1f, the SH irradiance by %.1f, the air's light 10 km "
+             "north by %.1f",
+             name, ambient[1] / ambient[0], sh[1] / sh[0], aerial[1] / aerial[0]);
+        CHECK(ambient[1] > 3.0 * ambient[0] && sh[1] > 3.0 * sh[0] && aerial[1] > 2.0 * aerial[0],
+              "%s: the moonlit sky lights the host (ambient x%.2f, SH x%.2f, aerial x%.2f)", name,
+              ambient[1] / ambient[0], sh[1] / sh[0], aerial[1] / aerial[0]);
+    }
 }

@@ -192,6 +192,7 @@ int test_skipped;
     X(atmosphere_shaders_match_cpu_twins)        \
     X(atmosphere_moonlit_sky)                    \
     X(atmosphere_clouds_lit_by_moon)             \
+    X(atmosphere_moonlight_reaches_the_host)     \
     X(atmosphere_continuous_across_horizon)      \
     X(atmosphere_preetham_outside_its_fit)       \
     X(atmosphere_description_checked)            \

@@ -32,10 +32,13 @@ const float SKY_TINY = 1e-8;
 /* Hejl and Burgess-Dawson's filmic curve: a rational fit whose output
  * already carries an sRGB-like display gamma (no exp, no pow). On four
  * lanes, so one body serves a colour and a single value (the compiler
- * drops the lanes a caller leaves unused). */
+ * drops the lanes a caller leaves unused). Its toe (the 0.004 taken off,
+ * a print's black) goes with the rods' share at the eye's adaptation: the
+ * dark-adapted eye reads shapes in a moonless landscape that the toe
+ * would crush to black (a wall a fifth of the sky's luminance). */
 vec4 sky_filmic(vec4 e)
 {
-    vec4 x = max(e - 0.004, vec4(0.0));
+    vec4 x = max(e - 0.004 * (1.0 - sky_display_rods), vec4(0.0));
     return (x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06);
 }
 
