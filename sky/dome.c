@@ -167,7 +167,8 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
     st->vertex_bytes = sizeof(float) * DOME_FLOATS * (size_t)n;
     st->index_bytes = sizeof(unsigned short) * k;
     int moonlit = physical && (s->features & SKY_MOON);
-    st->vertices = sky_buffer_create(s, GL_ARRAY_BUFFER, v, st->vertex_bytes, moonlit ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
+    st->vertices =
+        sky_buffer_create(s, GL_ARRAY_BUFFER, v, st->vertex_bytes, moonlit ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
     st->indices = sky_buffer_create(s, GL_ELEMENT_ARRAY_BUFFER, idx, st->index_bytes, GL_DYNAMIC_DRAW);
     st->index_count = (int)k;
     st->dirs = malloc(sizeof(float) * 3 * (size_t)n);

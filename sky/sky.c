@@ -361,7 +361,8 @@ sky_result sky_set_observer(sky *s, const sky_observer *o)
     if (!o) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_observer: observer is NULL");
     if (sky_observer_check(o, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
     sky_astro a;
-    if (sky_observer_astro(o, s->core.params.time, &s->core.astro_cache, &a, s->error, sizeof s->error)) return SKY_ERR_INVALID_ARGUMENT;
+    if (sky_observer_astro(o, s->core.params.time, &s->core.astro_cache, &a, s->error, sizeof s->error))
+        return SKY_ERR_INVALID_ARGUMENT;
     s->core.observer = *o;
     compute_frame(s);
     return SKY_OK;

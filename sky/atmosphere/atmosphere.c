@@ -31,7 +31,7 @@ const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.gl
  * upper hemisphere, the irradiance on an upward surface and the horizon's
  * luminance, without the night sky's own light. */
 typedef struct sky_summary {
-    double mean, mean_rgb[3], irradiance[3], fog[3];
+    double mean, irradiance[3], fog[3];
 } sky_summary;
 
 struct sky_atmosphere_state {
@@ -199,7 +199,9 @@ void sky_atmosphere_moonlit_unit(const sky_core *s, const double d[3], double rg
     const struct sky_atmosphere_state *st = s->atmosphere_state;
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     if (!st || !st->moon_valid || d[1] < 0.0) return; /* (below: the ground's rule) */
-    double w = s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ? 1.0 : s->atmosphere == SKY_ATMOSPHERE_BLEND ? st->moon_key[3] : 0.0;
+    double w = s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ? 1.0
+               : s->atmosphere == SKY_ATMOSPHERE_BLEND  ? st->moon_key[3]
+                                                        : 0.0;
     double a[3] = {0, 0, 0}, h[3] = {0, 0, 0};
     if (w < 1.0) sky_rayleigh_eval(&st->moon_frame, d, a);
     if (w > 0.0) hillaire_moonlit(s, d, h);
@@ -295,7 +297,8 @@ static void night_frame(sky_core *s)
 }
 
 /* CPU twins of the paths' shaders, radiance in kcd/m^2 without the night
- * floor (Preetham's with its moonlit sky, the blend's partner without). The blend weighs the analytic sky (RAYLEIGH or PREETHAM,
+ * floor (Preetham's with its moonlit sky, the blend's partner without).
+ * The blend weighs the analytic sky (RAYLEIGH or PREETHAM,
  * cfg.blend_partner) by day (where it is cheapest) and hands the horizon
  * band and twilight, where single scattering from one column falls short,
  * to Hillaire's tables. */
@@ -326,6 +329,12 @@ static void eval_blend(const sky_core *s, const double d[3], double rgb[3])
  * floor: the day gradient by elevation (sky_gradient_vertex, as the dome's
  * vertices carry it) tinted toward the horizon, and the aureole; the
  * moonlit gradient and its aureole (sky_gradient_moon). */
+static double gradient_aureole(double mu, double e)
+{
+    double mu8 = pow(mu, 8.0);
+    return (0.25 * mu8 + 0.6 * pow(mu8, 4.0)) * (1.0 + 1.5 * (1.0 - e));
+}
+
 static void eval_gradient(const sky_core *s, const double d[3], double rgb[3])
 {
     const sky_frame *f = &s->frame;
@@ -333,10 +342,9 @@ static void eval_gradient(const sky_core *s, const double d[3], double rgb[3])
     sky_gradient_vertex(s->gradient_texels, df, day);
     double e = sky_clampd(d[1], 0.0, 1.0);
     double mu = fmax(d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2], 0.0);
-    double mu8 = pow(mu, 8.0), aureole = (0.25 * mu8 + 0.6 * pow(mu8, 4.0)) * (1.0 + 1.5 * (1.0 - e));
-    double low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
+    double aureole = gradient_aureole(mu, e), low = (1.0 - e) * (1.0 - e) * (0.6 + 0.4 * mu);
     double mm = fmax(d[0] * f->moon_dir[0] + d[1] * f->moon_dir[1] + d[2] * f->moon_dir[2], 0.0);
-    double mm8 = pow(mm, 8.0), moon_aureole = (0.25 * mm8 + 0.6 * pow(mm8, 4.0)) * (1.0 + 1.5 * (1.0 - e));
+    double moon_aureole = gradient_aureole(mm, e);
     for (int i = 0; i < 3; i++)
         rgb[i] = f->day_luminance * (day[i] * (1.0 + (f->horizon_tint[i] - 1.0) * low) +
                                      aureole * f->sun_transmittance[i]) +
@@ -407,7 +415,6 @@ static void summarise(const sky_core *s, void (*eval)(const sky_core *, const do
         }
         for (int i = 0; i < 3; i++) out->irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * ring[i];
         out->mean += mu_weight[k] * (0.2126 * ring[0] + 0.7152 * ring[1] + 0.0722 * ring[2]);
-        for (int i = 0; i < 3; i++) out->mean_rgb[i] += mu_weight[k] * ring[i];
         if (k == 0)
             for (int i = 0; i < 3; i++) out->fog[i] = ring[i];
     }
