@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 void test_demo_window_shows_sky_and_sliders(void);
@@ -234,13 +235,23 @@ void test_headless_demo_writes_where_asked(void)
     }
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     run_command(cmd, NULL, 0);
-    /* make run's script still leaves build/sky.png in the source tree */
-    remove("build/sky.png");
-    int rc = run_command("env -u DISPLAY -u WAYLAND_DISPLAY sh tools/run.sh --size 48x27 2>&1", log, sizeof log);
+    /* make run's script writes build/sky.png, or SKY_RUN_OUT's file: the
+     * test's own, so the picture make run left is not replaced */
+    struct stat before, after;
+    int had = stat("build/sky.png", &before) == 0;
+    tmp("run.png", png, sizeof png);
+    remove(png);
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY -u WAYLAND_DISPLAY SKY_RUN_OUT=%s sh tools/run.sh --size 48x27 2>&1", png);
+    int rc = run_command(cmd, log, sizeof log);
     image im;
-    int loaded = image_load_png("build/sky.png", &im) == 0;
-    CHECK(rc == 0 && loaded && im.w == 48, "tools/run.sh headless: exit %d, build/sky.png %s: %s", rc,
+    int loaded = image_load_png(png, &im) == 0;
+    CHECK(rc == 0 && loaded && im.w == 48, "tools/run.sh headless: exit %d, %s %s: %s", rc, png,
           loaded ? "written" : "missing", log);
+    int kept = had ? stat("build/sky.png", &after) == 0 && after.st_mtime == before.st_mtime &&
+                         after.st_size == before.st_size
+                   : stat("build/sky.png", &after) != 0;
+    CHECK(kept, "tools/run.sh with SKY_RUN_OUT left build/sky.png as it was");
+    remove(png);
     if (loaded) image_free(&im);
 }
 
