@@ -407,9 +407,9 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             cli->turbidity = (float)v;
         } else if (!strcmp(opt, "--planet")) {
             static const char *const names[] = {"earth", "hazy", "mars", "very-clean", "polluted", "hillaire-2020"};
-            static const sky_atmosphere_preset planets[] = {SKY_ATMOSPHERE_EARTH,      SKY_ATMOSPHERE_HAZY,
-                                                            SKY_ATMOSPHERE_MARS,       SKY_ATMOSPHERE_VERY_CLEAN,
-                                                            SKY_ATMOSPHERE_POLLUTED,   SKY_ATMOSPHERE_HILLAIRE_2020};
+            static const sky_atmosphere_preset planets[] = {SKY_ATMOSPHERE_PRESET_EARTH,      SKY_ATMOSPHERE_PRESET_HAZY,
+                                                            SKY_ATMOSPHERE_PRESET_MARS,       SKY_ATMOSPHERE_PRESET_VERY_CLEAN,
+                                                            SKY_ATMOSPHERE_PRESET_POLLUTED,   SKY_ATMOSPHERE_PRESET_HILLAIRE_2020};
             int found = -1;
             for (int k = 0; val && k < (int)(sizeof names / sizeof names[0]); k++)
                 if (!strcmp(val, names[k])) found = k;

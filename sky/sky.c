@@ -227,7 +227,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         return NULL;
     }
     sky_atmosphere_params described = cfg->atmosphere_params, atm;
-    if (sky_atmosphere_is_zero(&described)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &described);
+    if (sky_atmosphere_is_zero(&described)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &described);
     char atm_err[160];
     if (sky_atmosphere_check(&described, atm_err, sizeof atm_err) != SKY_OK) {
         sky_format(err, err_len, "sky_create: %s", atm_err);

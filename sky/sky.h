@@ -52,10 +52,17 @@
  *   the sky-box pass.) sky_draw_fisheye needs no matrices.
  *
  * Versions: SKY_VERSION_MAJOR, _MINOR, _PATCH below, sky_version() at run
- * time, and the same in sky.pc. Before 1.0 every minor version may change
- * sky_config or a function (binary incompatible): the shared library's
- * soname is libsky.so.0.MINOR; from 1.0 on it is libsky.so.MAJOR and
- * changes only with the major version.
+ * time, and the same in sky.pc; CHANGELOG.md lists each version's changes.
+ *  - A patch version fixes; it adds and removes nothing.
+ *  - A minor version may add functions, enumerators, feature bits and
+ *    fields. Before 1.0 it may also change sky_config or a function
+ *    (binary incompatible): the shared library's soname is
+ *    libsky.so.0.MINOR. From 1.0 on it adds only (fields at the end of a
+ *    struct the library sizes, never one a host allocates), and the soname
+ *    is libsky.so.MAJOR, changed only with the major version.
+ *  - A name or field to be removed is deprecated first: kept working for
+ *    one minor version, marked here ("Deprecated since X.Y, removed in
+ *    X.Y+1") and in CHANGELOG.md, then removed.
  */
 #ifndef SKY_H
 #define SKY_H
@@ -67,7 +74,7 @@ extern "C" {
 #endif
 
 #define SKY_VERSION_MAJOR 0
-#define SKY_VERSION_MINOR 4
+#define SKY_VERSION_MINOR 5
 #define SKY_VERSION_PATCH 0
 
 /* Symbols the shared library exports; everything else stays hidden. */
@@ -230,7 +237,7 @@ typedef enum sky_output {
  * (the reference interpolates a smooth spectrum through them). Densities
  * fall off exponentially with their scale heights; ozone follows a tent
  * that peaks at ozone_peak_km and reaches zero ozone_half_width_km above
- * and below. All zero = SKY_ATMOSPHERE_EARTH. */
+ * and below. All zero = SKY_ATMOSPHERE_PRESET_EARTH. */
 typedef struct sky_atmosphere_params {
     float planet_radius_km;         /* ground                                  */
     float top_radius_km;            /* top of the shell; > planet radius       */
@@ -250,17 +257,26 @@ typedef struct sky_atmosphere_params {
  * (Angstrom), and its turbidity, the ratio of the whole vertical optical
  * depth at 550 nm to the molecules' alone (sky_config.turbidity). */
 typedef enum sky_atmosphere_preset {
-    SKY_ATMOSPHERE_EARTH = 0,      /* clear (the default): AOD 0.085, turbidity
-                                      1.9; matched to the CIE clear sky, gensky's
-                                      clear zenith and the IES illuminances    */
-    SKY_ATMOSPHERE_HAZY,           /* AOD 0.3 in a 2 km layer (turbidity 4.1)  */
-    SKY_ATMOSPHERE_MARS,           /* thin CO2 and a tall layer of red dust    */
-    SKY_ATMOSPHERE_VERY_CLEAN,     /* mountains, open ocean: AOD 0.04 (1.4)    */
-    SKY_ATMOSPHERE_POLLUTED,       /* summer smog: AOD 0.6 of absorbing
-                                      particles (turbidity 7.2)               */
-    SKY_ATMOSPHERE_HILLAIRE_2020   /* Hillaire 2020's published constants (AOD
-                                      0.0053, turbidity 1.05): for comparison
-                                      with other implementations of his paper */
+    SKY_ATMOSPHERE_PRESET_EARTH = 0, /* clear (the default): AOD 0.085, turbidity
+                                        1.9; matched to the CIE clear sky, gensky's
+                                        clear zenith and the IES illuminances    */
+    SKY_ATMOSPHERE_PRESET_HAZY,      /* AOD 0.3 in a 2 km layer (turbidity 4.1)  */
+    SKY_ATMOSPHERE_PRESET_MARS,      /* thin CO2 and a tall layer of red dust    */
+    SKY_ATMOSPHERE_PRESET_VERY_CLEAN, /* mountains, open ocean: AOD 0.04 (1.4)   */
+    SKY_ATMOSPHERE_PRESET_POLLUTED,  /* summer smog: AOD 0.6 of absorbing
+                                        particles (turbidity 7.2)               */
+    SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, /* Hillaire 2020's published constants
+                                        (AOD 0.0053, turbidity 1.05): for comparison
+                                        with other implementations of his paper */
+    /* Deprecated since 0.5, removed in 0.6: the names before the PRESET_
+     * ones (SKY_ATMOSPHERE_HILLAIRE_2020 read like the path
+     * SKY_ATMOSPHERE_HILLAIRE). */
+    SKY_ATMOSPHERE_EARTH = SKY_ATMOSPHERE_PRESET_EARTH,
+    SKY_ATMOSPHERE_HAZY = SKY_ATMOSPHERE_PRESET_HAZY,
+    SKY_ATMOSPHERE_MARS = SKY_ATMOSPHERE_PRESET_MARS,
+    SKY_ATMOSPHERE_VERY_CLEAN = SKY_ATMOSPHERE_PRESET_VERY_CLEAN,
+    SKY_ATMOSPHERE_POLLUTED = SKY_ATMOSPHERE_PRESET_POLLUTED,
+    SKY_ATMOSPHERE_HILLAIRE_2020 = SKY_ATMOSPHERE_PRESET_HILLAIRE_2020
 } sky_atmosphere_preset;
 
 /* Fills *out with a preset; SKY_ERR_INVALID_ARGUMENT for an unknown one. */
@@ -373,7 +389,7 @@ typedef struct sky_config {
      * atmosphere's vertical optical depth at 550 nm to its molecules' alone
      * (Linke; Preetham et al. 1999). 0 = each path's own: PREETHAM 2.5, the
      * physical paths (RAYLEIGH, HILLAIRE, BLEND) their description's
-     * aerosol (SKY_ATMOSPHERE_EARTH: 1.9). Else 1..64: PREETHAM clamps it
+     * aerosol (SKY_ATMOSPHERE_PRESET_EARTH: 1.9). Else 1..64: PREETHAM clamps it
      * into its fitted range, 2..10; the physical paths scale their
      * description's aerosol to an optical depth of (T - 1) times the
      * molecules' (at most 10/km of extinction), keeping its colour,

@@ -125,7 +125,7 @@ void test_aerial_against_reference(void)
     }
     sky *s = sky_atmo_hemisphere_sky(h);
     sky_atmosphere_params earth;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &earth);
     static const double suns[2] = {30.0, 5.0}, els[2] = {0.0, 30.0}, azs[3] = {0.0, 90.0, 180.0};
     static const double km[3] = {1.0, 10.0, 100.0};
     double worst = 0.0, worst_tr = 0.0, worst_ref = 0.0;

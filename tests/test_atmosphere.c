@@ -476,7 +476,7 @@ void test_atmosphere_preetham_outside_its_fit(void)
 void test_atmosphere_description_checked(void)
 {
     char err[256];
-    for (int p = SKY_ATMOSPHERE_EARTH; p <= SKY_ATMOSPHERE_MARS; p++) {
+    for (int p = SKY_ATMOSPHERE_PRESET_EARTH; p <= SKY_ATMOSPHERE_PRESET_MARS; p++) {
         sky_atmosphere_params a;
         CHECK(sky_atmosphere_get_preset((sky_atmosphere_preset)p, &a) == SKY_OK, "preset %d", p);
         CHECK(sky_atmosphere_check(&a, err, sizeof err) == SKY_OK, "preset %d fails its own check: %s", p, err);
@@ -501,7 +501,7 @@ void test_atmosphere_description_checked(void)
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         sky_atmosphere_params a;
-        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &a);
         memcpy((char *)&a + cases[i].offset, &cases[i].value, sizeof(float));
         sky_result r = sky_atmosphere_check(&a, err, sizeof err);
         CHECK(r == SKY_ERR_INVALID_ARGUMENT && strstr(err, cases[i].name), "%s = %g: result %d, '%s'", cases[i].name,
@@ -641,7 +641,7 @@ void test_atmosphere_gpu_tables_match_cpu(void)
  * for Earth and for the Mars-like preset alike. */
 void test_atmosphere_extinction_follows_the_description(void)
 {
-    for (int p = SKY_ATMOSPHERE_EARTH; p <= SKY_ATMOSPHERE_MARS; p += SKY_ATMOSPHERE_MARS - SKY_ATMOSPHERE_EARTH) {
+    for (int p = SKY_ATMOSPHERE_PRESET_EARTH; p <= SKY_ATMOSPHERE_PRESET_MARS; p += SKY_ATMOSPHERE_PRESET_MARS - SKY_ATMOSPHERE_PRESET_EARTH) {
         fixture f;
         sky_config cfg;
         memset(&cfg, 0, sizeof cfg);
@@ -786,8 +786,8 @@ void test_atmosphere_setting_sun_flattened(void)
  * haze: a dimmer low sun). */
 void test_atmosphere_turbidity_and_presets(void)
 {
-    static const sky_atmosphere_preset order[4] = {SKY_ATMOSPHERE_VERY_CLEAN, SKY_ATMOSPHERE_EARTH,
-                                                   SKY_ATMOSPHERE_HAZY, SKY_ATMOSPHERE_POLLUTED};
+    static const sky_atmosphere_preset order[4] = {SKY_ATMOSPHERE_PRESET_VERY_CLEAN, SKY_ATMOSPHERE_PRESET_EARTH,
+                                                   SKY_ATMOSPHERE_PRESET_HAZY, SKY_ATMOSPHERE_PRESET_POLLUTED};
     static const double documented[4] = {1.4, 1.9, 4.1, 7.2};
     double last = 1.0;
     for (int i = 0; i < 4; i++) {
@@ -801,12 +801,12 @@ void test_atmosphere_turbidity_and_presets(void)
         last = t;
     }
     sky_atmosphere_params h;
-    CHECK(sky_atmosphere_get_preset(SKY_ATMOSPHERE_HILLAIRE_2020, &h) == SKY_OK &&
+    CHECK(sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, &h) == SKY_OK &&
               fabs(sky_atmosphere_turbidity(&h) - 1.05) < 0.01,
           "Hillaire 2020's constants: turbidity %.4f (1.05)", sky_atmosphere_turbidity(&h));
 
     sky_atmosphere_params earth, out;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &earth);
     static const double wanted[4] = {1.0, 2.5, 10.0, 40.0};
     for (int i = 0; i < 4; i++) {
         sky_atmosphere_with_turbidity(&earth, wanted[i], &out);

@@ -23,7 +23,15 @@ void test_header_compiles_pedantic(void)
         CHECK(0, "cannot write %s", src);
         return;
     }
-    fputs("#include \"sky.h\"\nint main(void) { return SKY_FEATURES_NONE == 0; }\n", f);
+    /* (the deprecated names stay the PRESET_ ones' aliases until 0.6) */
+    fputs("#include \"sky.h\"\n"
+          "typedef char old_preset_names[(SKY_ATMOSPHERE_EARTH == SKY_ATMOSPHERE_PRESET_EARTH && "
+          "SKY_ATMOSPHERE_HAZY == SKY_ATMOSPHERE_PRESET_HAZY && SKY_ATMOSPHERE_MARS == SKY_ATMOSPHERE_PRESET_MARS && "
+          "SKY_ATMOSPHERE_VERY_CLEAN == SKY_ATMOSPHERE_PRESET_VERY_CLEAN && "
+          "SKY_ATMOSPHERE_POLLUTED == SKY_ATMOSPHERE_PRESET_POLLUTED && "
+          "SKY_ATMOSPHERE_HILLAIRE_2020 == SKY_ATMOSPHERE_PRESET_HILLAIRE_2020) ? 1 : -1];\n"
+          "int main(void) { old_preset_names ok; (void)ok; return SKY_FEATURES_NONE == 0; }\n",
+          f);
     fclose(f);
     static const char *const compilers[4] = {"cc -std=c99", "cc -std=c11", "c++ -x c++ -std=c++98", "c++ -x c++ -std=c++20"};
     for (int i = 0; i < 4; i++) {

@@ -29,7 +29,7 @@ void test_hillaire_bad_input(void);
 static sky_atmosphere_params earth(void)
 {
     sky_atmosphere_params a;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &a);
     return a;
 }
 
@@ -38,7 +38,7 @@ static sky_atmosphere_params earth(void)
 static sky_atmosphere_params hillaire_2020(void)
 {
     sky_atmosphere_params a;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_HILLAIRE_2020, &a);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, &a);
     return a;
 }
 
@@ -433,8 +433,8 @@ void test_hillaire_finite_everywhere(void)
     const char *names[8] = {"earth", "hazy", "mars", "g +0.999", "g -0.999", "density x1e-3", "density x1e3",
                             "albedo 1"};
     atms[0] = earth();
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_HAZY, &atms[1]);
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_MARS, &atms[2]);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_HAZY, &atms[1]);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_MARS, &atms[2]);
     atms[3] = earth();
     atms[3].mie_g = 0.999f;
     atms[4] = earth();

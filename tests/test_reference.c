@@ -26,7 +26,7 @@ void test_reference_sky_is_plausible(void);
 static sky_atmosphere_params earth(void)
 {
     sky_atmosphere_params a;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &a);
     return a;
 }
 
@@ -86,7 +86,7 @@ void test_reference_spectrum_and_units(void)
     /* grey Mie (Hillaire 2020's constants) stays grey; the Earth's
      * aerosol falls as Angstrom's lambda^-1.3 through its nodes */
     sky_atmosphere_params h;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_HILLAIRE_2020, &h);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, &h);
     double ms, me, me440, me680;
     sky_spectrum_coefficients(&h, 420.0, NULL, &ms, &me, NULL);
     CHECK(fabs(ms - 3.996e-3) < 1e-8 && fabs(me - 4.40e-3) < 1e-8, "grey Mie: %g %g", ms, me);
@@ -460,7 +460,7 @@ void test_reference_converges(void)
 void test_reference_sky_is_plausible(void)
 {
     sky_atmosphere_params a;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_HILLAIRE_2020, &a);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, &a);
     sky_ref_result zen, hor, near_sun, zen2;
     double up[3] = {0.0, 1.0, 0.0}, sun[3], view[3];
     dir_at(60.0, 0.0, sun);

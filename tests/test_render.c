@@ -627,7 +627,7 @@ void test_render_total_solar_eclipse(void)
     sc.cfg.features = SKY_SUN | SKY_MOON | SKY_STARS | SKY_SOLAR_ECLIPSE;
     sc.cfg.atmosphere = SKY_ATMOSPHERE_HILLAIRE;
     /* a dry desert 1.2 km up in April: very clean air */
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_VERY_CLEAN, &sc.cfg.atmosphere_params);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_VERY_CLEAN, &sc.cfg.atmosphere_params);
     sc.has_observer = 1;
     sc.observer.julian_day_utc = sky_julian_day(2024, 4, 8, 18, 17, 20.0);
     sc.observer.latitude_deg = 25.29;

@@ -99,7 +99,7 @@ int sky_atmo_reference_make(const char *path, int paths, int threads, FILE *prog
     memset(&job, 0, sizeof job);
     job.ref = ref;
     ref->paths = paths;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &job.atm);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &job.atm);
     job.total = SKY_ATMO_SUNS * SKY_ATMO_DIRECTIONS;
     job.progress = progress;
     pthread_mutex_init(&job.lock, NULL);

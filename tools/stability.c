@@ -582,7 +582,7 @@ static void case_chapman(suite *st)
 static sky_atmosphere_params scaled_earth(double k, float g)
 {
     sky_atmosphere_params a;
-    sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+    sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &a);
     for (int c = 0; c < 3; c++) {
         a.rayleigh_scattering[c] = (float)fmin(a.rayleigh_scattering[c] * k, 10.0);
         a.mie_scattering[c] = (float)fmin(a.mie_scattering[c] * k, 10.0);

@@ -335,7 +335,7 @@ int sky_hillaire_init(sky_hillaire_tables *t, const sky_atmosphere_params *atm, 
     }
     sky_atmosphere_params a;
     if (sky_atmosphere_is_zero(atm)) {
-        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &a);
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &a);
     } else {
         if (sky_atmosphere_check(atm, err, err_len) != SKY_OK) return -1;
         a = *atm;
@@ -449,7 +449,7 @@ void sky_hillaire_transmittance_uv_sized(const sky_atmosphere_params *atm, doubl
     double xmu = 0.0, xr = 0.0;
     sky_atmosphere_params earth;
     if (atm && sky_atmosphere_is_zero(atm)) {
-        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &earth);
         atm = &earth;
     }
     if (atm && atm->top_radius_km > atm->planet_radius_km && atm->planet_radius_km > 0.0f) {

@@ -84,12 +84,12 @@ sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_atmospher
 {
     if (!out) return SKY_ERR_INVALID_ARGUMENT;
     switch (preset) {
-    case SKY_ATMOSPHERE_EARTH: *out = earth; return SKY_OK;
-    case SKY_ATMOSPHERE_HAZY: *out = hazy; return SKY_OK;
-    case SKY_ATMOSPHERE_MARS: *out = mars; return SKY_OK;
-    case SKY_ATMOSPHERE_VERY_CLEAN: *out = very_clean; return SKY_OK;
-    case SKY_ATMOSPHERE_POLLUTED: *out = polluted; return SKY_OK;
-    case SKY_ATMOSPHERE_HILLAIRE_2020: *out = hillaire_2020; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_EARTH: *out = earth; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_HAZY: *out = hazy; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_MARS: *out = mars; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_VERY_CLEAN: *out = very_clean; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_POLLUTED: *out = polluted; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_HILLAIRE_2020: *out = hillaire_2020; return SKY_OK;
     }
     return SKY_ERR_INVALID_ARGUMENT;
 }

@@ -292,7 +292,7 @@ static int atm_is_zero(const sky_atmosphere_params *atm)
 static int resolve_atm(const sky_atmosphere_params *atm, sky_atmosphere_params *out)
 {
     if (!atm) return -1;
-    if (atm_is_zero(atm)) return sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, out) == SKY_OK ? 0 : -1;
+    if (atm_is_zero(atm)) return sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, out) == SKY_OK ? 0 : -1;
     if (sky_atmosphere_check(atm, NULL, 0) != SKY_OK) return -1;
     *out = *atm;
     return 0;

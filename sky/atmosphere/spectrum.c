@@ -50,7 +50,7 @@ void sky_spectrum_coefficients(const sky_atmosphere_params *atm, double lambda_n
 {
     sky_atmosphere_params earth;
     if (!atm || sky_atmosphere_is_zero(atm)) {
-        sky_atmosphere_get_preset(SKY_ATMOSPHERE_EARTH, &earth);
+        sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &earth);
         atm = &earth;
     }
     double ms = sky_spectrum_interpolate(atm->mie_scattering, lambda_nm);
