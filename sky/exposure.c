@@ -32,7 +32,7 @@ double sky_naked_eye_limit(double b_kcd)
  * as before, so a night stays as legible as it was while twilight, lit by
  * the sun from below the horizon, reads as the day's end. With the
  * defaults the sky shows 0.50 of noon's brightness at sunset, 0.23 at -6
- * degrees and 0.15 at -12 on the gradient path (docs/DUSK.md). */
+ * degrees and 0.16 at -12 on the gradient path (docs/DUSK.md). */
 #define FULL_ADAPTATION_KCD 5.0
 #define ADAPTATION_SLOPE 0.3
 #define DEFAULT_RANGE_STOPS 3.0
