@@ -13,7 +13,7 @@ LDLIBS_M := -lm
 # the headless contexts (demo/osmesa_ctx.c): OSMesa, and EGL for ES 2.0
 HEADLESS_LIBS := -lOSMesa -lEGL
 
-SKY_SRC := sky/sky.c sky/core.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/planets.c sky/airglow.c sky/zodiacal.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
+SKY_SRC := sky/sky.c sky/core.c sky/light_units.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/sun.c sky/stars.c sky/planets.c sky/airglow.c sky/zodiacal.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/gl.c sky/gl/image.c
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
 TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
@@ -22,7 +22,7 @@ SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
 # runners) compile it in.
 REF_SRC := sky/atmosphere/reference.c
 REF_HDR := sky/atmosphere/reference.h sky/atmosphere/spectrum.h sky/sky.h
-SKY_HDR := sky/sky.h sky/sky_internal.h sky/core.h sky/layer.h sky/camera.h sky/disc.h sky/exposure.h sky/solar_eclipse.h sky/observer.h sky/catalog.h sky/gl/gl.h sky/atmosphere/atmosphere.h sky/atmosphere/spectrum.h sky/atmosphere/hillaire.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
+SKY_HDR := sky/sky.h sky/sky_internal.h sky/core.h sky/light_units.h sky/layer.h sky/camera.h sky/disc.h sky/exposure.h sky/solar_eclipse.h sky/observer.h sky/catalog.h sky/gl/gl.h sky/atmosphere/atmosphere.h sky/atmosphere/spectrum.h sky/atmosphere/hillaire.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
 
 BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib

@@ -10,6 +10,7 @@
 #define SKY_CORE_H
 
 #include "astro.h"
+#include "light_units.h"
 #include "gl/glapi.h"
 #include "sky.h"
 
@@ -296,22 +297,6 @@ _Static_assert(sizeof(((sky_frame *)0)->moon_terms) == 4 * sizeof(float), "moon_
 _Static_assert(sizeof(((sky_point_frame *)0)->size) == 4 * sizeof(float), "a point's size is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->hl_misc) == 4 * sizeof(float), "hl_misc is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "eclipse_sun is a vec4");
-
-/* Illuminance of a V = 0 source above the atmosphere, 2.54e-6 lux (Allen's
- * Astrophysical Quantities), in klx: the one zero point the stars and the
- * moon's magnitude share. */
-#define SKY_V0_ILLUMINANCE_KLX 2.54e-9
-/* A surface brightness in V mag/arcsec^2 as luminance (kcd/m^2) and back,
- * from that zero point: 0 mag/arcsec^2 is 108 kcd/m^2, 22 is 0.17 mcd/m^2. */
-#define SKY_ARCSEC2_SR 2.35044305391e-11
-static inline double sky_mag_arcsec2_to_kcd(double mag)
-{
-    return SKY_V0_ILLUMINANCE_KLX / SKY_ARCSEC2_SR * pow(10.0, -0.4 * mag);
-}
-static inline double sky_kcd_to_mag_arcsec2(double kcd)
-{
-    return -2.5 * log10(kcd > 1e-30 ? kcd * SKY_ARCSEC2_SR / SKY_V0_ILLUMINANCE_KLX : 1e-30);
-}
 
 /* ---- the shared context ---------------------------------------------------
  * What every room may read: the configuration, the GL functions and

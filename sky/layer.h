@@ -107,10 +107,9 @@ void sky_clouds_image_step(sky_core *s, int step_pixels);
  * galaxy image stretched over the dome (R-P sec. 4); the flicker clock. */
 float sky_flicker_galaxy_vertex(const unsigned char *galaxy_rgba, const float dir[3]);
 double sky_flicker_clock(const void *flicker_state);
-/* stars.c: B-V to linear sRGB of unit luminance; the scintillation clock;
- * the catalogue it draws, and a request to upload it again (after a test
- * changed it). */
-void sky_star_color(double bv, float rgb[3]);
+/* stars.c: the scintillation clock; the catalogue it draws, and a
+ * request to upload it again (after a test changed it). (A B - V's colour:
+ * light_units.h.) */
 double sky_stars_clock(const void *stars_state);
 struct sky_catalog *sky_stars_catalog(void *stars_state);
 void sky_stars_reload(void *stars_state);

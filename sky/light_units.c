@@ -1,0 +1,36 @@
+/*
+ * Light units and colour shared by the rooms (light_units.h).
+ */
+#include "light_units.h"
+
+static double clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+/* B-V to linear sRGB of unit luminance: temperature after Ballesteros
+ * (2012), the Planckian locus fit of Kim et al. (2002) for its
+ * chromaticity, then XYZ to linear sRGB (IEC 61966-2-1). */
+void sky_star_color(double bv, float rgb[3])
+{
+    bv = clampd(bv, -0.4, 2.5);
+    double t = 4600.0 * (1.0 / (0.92 * bv + 1.7) + 1.0 / (0.92 * bv + 0.62));
+    t = clampd(t, 1667.0, 25000.0);
+    double t1 = 1e3 / t, t2 = t1 * t1, t3 = t2 * t1, x, y;
+    if (t <= 4000.0)
+        x = -0.2661239 * t3 - 0.2343589 * t2 + 0.8776956 * t1 + 0.179910;
+    else
+        x = -3.0258469 * t3 + 2.1070379 * t2 + 0.2226347 * t1 + 0.240390;
+    double x2 = x * x, x3 = x2 * x;
+    if (t <= 2222.0)
+        y = -1.1063814 * x3 - 1.34811020 * x2 + 2.18555832 * x - 0.20219683;
+    else if (t <= 4000.0)
+        y = -0.9549476 * x3 - 1.37418593 * x2 + 2.09137015 * x - 0.16748867;
+    else
+        y = 3.0817580 * x3 - 5.87338670 * x2 + 3.75112997 * x - 0.37001483;
+    double X = x / y, Y = 1.0, Z = (1.0 - x - y) / y;
+    double r = 3.2406 * X - 1.5372 * Y - 0.4986 * Z;
+    double g = -0.9689 * X + 1.8758 * Y + 0.0415 * Z;
+    double b = 0.0557 * X - 0.2040 * Y + 1.0570 * Z;
+    r = r > 0 ? r : 0, g = g > 0 ? g : 0, b = b > 0 ? b : 0;
+    /* the clamp can change the luminance; set it back to 1 */
+    double lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    rgb[0] = (float)(r / lum), rgb[1] = (float)(g / lum), rgb[2] = (float)(b / lum);
+}
