@@ -744,6 +744,17 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
     return SKY_OK;
 }
 
+int sky_layer_count(void) { return SKY_LAYER_COUNT; }
+
+sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out)
+{
+    if (!s || !out || layer < 0 || layer >= SKY_LAYER_COUNT) return SKY_ERR_INVALID_ARGUMENT;
+    sky_stats all;
+    sky_get_stats(s, &all);
+    *out = all.layers[layer];
+    return SKY_OK;
+}
+
 sky_result sky_get_lighting(const sky *s, sky_lighting *out)
 {
     if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;

@@ -632,10 +632,19 @@ typedef struct sky_stats {
     size_t gpu_bytes;         /* all textures and buffers                     */
     int textures, programs, buffers;
     int draws_per_frame;
+    /* Deprecated since 0.5, removed in 0.6: its size follows the layer
+     * count, so a new layer changed this struct. Use sky_layer_count and
+     * sky_get_layer_stats. */
     sky_layer_stats layers[SKY_LAYER_COUNT];
 } sky_stats;
 
 SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
+/* The layers by index, so that adding one changes no public struct: how
+ * many this build has (SKY_LAYER_COUNT; sky_layer_name names each), and
+ * one's statistics for the last frame. SKY_ERR_INVALID_ARGUMENT for a NULL
+ * sky or output or an index outside 0 .. sky_layer_count() - 1. Since 0.5. */
+SKY_API int sky_layer_count(void);
+SKY_API sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out);
 
 /* What a game needs to light its scene, for the current state. Directions
  * are unit vectors in the world frame (horizon_to_world applied);

@@ -276,10 +276,32 @@ void test_api_lighting_and_stats(void)
      * flicker stars' and the sun's */
     CHECK(st.textures == 2 && st.programs == 10, "2 textures and 10 programs by default, got %d and %d", st.textures,
           st.programs);
-    CHECK(st.layers[SKY_LAYER_MOON].enabled == 0 && st.layers[SKY_LAYER_CLOUDS].enabled == 1, "layer flags");
+    /* the layers by index (sky_get_layer_stats), as the deprecated array
+     * has them */
+    CHECK(sky_layer_count() == SKY_LAYER_COUNT, "sky_layer_count %d", sky_layer_count());
     size_t sum = 0;
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) sum += st.layers[l].bytes;
+    int same = 1;
+    for (int l = 0; l < sky_layer_count(); l++) {
+        sky_layer_stats ls;
+        if (sky_get_layer_stats(f.s, l, &ls) != SKY_OK) {
+            CHECK(0, "layer %d: %s", l, sky_last_error(f.s));
+            continue;
+        }
+        sum += ls.bytes;
+        same &= ls.enabled == st.layers[l].enabled && ls.drawn == st.layers[l].drawn &&
+                ls.draws == st.layers[l].draws && ls.bytes == st.layers[l].bytes;
+    }
+    sky_layer_stats moon, clouds, spare;
+    CHECK(sky_get_layer_stats(f.s, SKY_LAYER_MOON, &moon) == SKY_OK && !moon.enabled &&
+              sky_get_layer_stats(f.s, SKY_LAYER_CLOUDS, &clouds) == SKY_OK && clouds.enabled,
+          "layer flags");
+    CHECK(same, "sky_get_layer_stats agrees with sky_stats.layers");
     CHECK(sum == st.gpu_bytes, "per-layer bytes add up to gpu_bytes (%zu vs %zu)", sum, st.gpu_bytes);
+    CHECK(sky_get_layer_stats(f.s, -1, &spare) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_get_layer_stats(f.s, sky_layer_count(), &spare) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_get_layer_stats(f.s, 0, NULL) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_get_layer_stats(NULL, 0, &spare) == SKY_ERR_INVALID_ARGUMENT,
+          "sky_get_layer_stats refuses a bad index, a NULL sky or output");
     fixture_close(&f);
 }
 
