@@ -84,6 +84,10 @@ static int astro_at(double jd, const sky_astro_observer *ao, sky_astro_cache *ca
 int sky_observer_astro(const sky_observer *o, double time_of_day, sky_astro_cache *cache, sky_astro *a, char *err,
                        size_t err_len)
 {
+    /* without one, a cache of this call's own: the two instants below,
+     * at most the equation of time apart, share their nodes */
+    sky_astro_cache own = {0};
+    if (!cache) cache = &own;
     sky_astro_observer ao = {o->latitude_deg * DEG, o->longitude_deg * DEG, o->altitude_m};
     if (!o->time_from_params) return astro_at(o->julian_day_utc, &ao, cache, a, err, err_len);
     double lon_days = o->longitude_deg / 360.0;
