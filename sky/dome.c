@@ -130,8 +130,7 @@ static int create_mesh(sky_core *s, dome_state *st, char *err, size_t err_len)
     pn[0] = pn[2] = pz[0] = pz[2] = 0.0f;
     pn[1] = -1.0f;
     pz[1] = 1.0f;
-    int physical = s->atmosphere == SKY_ATMOSPHERE_RAYLEIGH || s->atmosphere == SKY_ATMOSPHERE_HILLAIRE ||
-                   s->atmosphere == SKY_ATMOSPHERE_BLEND;
+    int physical = sky_atmosphere_is_physical(s->atmosphere);
     for (int i = 0; i < n; i++) {
         float *p = v + i * DOME_FLOATS;
         if (physical)

@@ -1026,6 +1026,24 @@ void test_atmosphere_moonlit_sky(void)
     moonlit_sky(SKY_ATMOSPHERE_BLEND, "blend", 1.0, 0.5);
 }
 
+/* A 32x32 sky on the path at the night of the full moon 67 degrees up
+ * (2024-01-26 00:00 UTC, 45 N 0 E), with the night glows, the extra
+ * features and the moon or not. 0, or -1 after a failed check. */
+static int full_moon_night(fixture *f, sky_atmosphere_path path, unsigned extra, int moon)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.atmosphere = path;
+    cfg.features = SKY_FEATURES_DEFAULT | SKY_AIRGLOW | SKY_ZODIACAL | extra | (moon ? SKY_MOON : 0u);
+    if (fixture_open_sized(f, 32, 32, 0, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no sky");
+        return -1;
+    }
+    sky_observer o = {sky_julian_day(2024, 1, 26, 0, 0, 0.0), 45.0, 0.0, 0.0, 0};
+    sky_set_observer(f->s, &o);
+    return 0;
+}
+
 /* The clouds are lit by the moon by the sun's rule (clouds.c): under the
  * full moon 67 degrees up a white cloud takes several times the light it
  * takes from the moonless night, and the moon's redder colour. */
@@ -1033,16 +1051,8 @@ void test_atmosphere_clouds_lit_by_moon(void)
 {
     double light[2][3];
     for (int moon = 0; moon < 2; moon++) {
-        sky_config cfg;
-        memset(&cfg, 0, sizeof cfg);
-        cfg.features = SKY_FEATURES_DEFAULT | SKY_CLOUDS | SKY_AIRGLOW | SKY_ZODIACAL | (moon ? SKY_MOON : 0u);
         fixture f;
-        if (fixture_open_sized(&f, 32, 32, 0, SKY_GL_AUTO, &cfg)) {
-            CHECK(0, "no sky");
-            return;
-        }
-        sky_observer o = {sky_julian_day(2024, 1, 26, 0, 0, 0.0), 45.0, 0.0, 0.0, 0};
-        sky_set_observer(f.s, &o);
+        if (full_moon_night(&f, SKY_ATMOSPHERE_GRADIENT, SKY_CLOUDS, moon)) return;
         for (int i = 0; i < 3; i++) light[moon][i] = f.s->core.frame.cloud_light[i];
         fixture_close(&f);
     }
@@ -1066,17 +1076,8 @@ void test_atmosphere_moonlight_reaches_the_host(void)
     for (int p = 0; p < 2; p++) {
         double ambient[2], sh[2], aerial[2];
         for (int moon = 0; moon < 2; moon++) {
-            sky_config cfg;
-            memset(&cfg, 0, sizeof cfg);
-            cfg.atmosphere = two[p];
-            cfg.features = SKY_FEATURES_DEFAULT | SKY_AIRGLOW | SKY_ZODIACAL | (moon ? SKY_MOON : 0u);
             fixture f;
-            if (fixture_open_sized(&f, 32, 32, 0, SKY_GL_AUTO, &cfg)) {
-                CHECK(0, "no sky");
-                return;
-            }
-            sky_observer o = {sky_julian_day(2024, 1, 26, 0, 0, 0.0), 45.0, 0.0, 0.0, 0};
-            sky_set_observer(f.s, &o);
+            if (full_moon_night(&f, two[p], 0u, moon)) return;
             sky_lighting l;
             sky_irradiance_sh irr;
             sky_aerial a;

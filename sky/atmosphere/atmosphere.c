@@ -162,7 +162,7 @@ double sky_bortle_zenith_mag(double bortle)
 
 static double luminance(const double rgb[3]) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
-static int is_physical(sky_atmosphere_path path)
+int sky_atmosphere_is_physical(sky_atmosphere_path path)
 {
     return path == SKY_ATMOSPHERE_RAYLEIGH || path == SKY_ATMOSPHERE_HILLAIRE || path == SKY_ATMOSPHERE_BLEND;
 }
@@ -221,7 +221,7 @@ static int moonlit_frame(sky_core *s)
     struct sky_atmosphere_state *st = s->atmosphere_state;
     for (int i = 0; i < 3; i++) f->moonlit_light[i] = 0.0f;
     double night = 1.0 - sky_smoothstep(0.0, 5.0, f->sun_altitude * 180.0 / SKY_PI);
-    if (!(s->features & SKY_MOON) || !is_physical(s->atmosphere) || night <= 0.0) return 0;
+    if (!(s->features & SKY_MOON) || !sky_atmosphere_is_physical(s->atmosphere) || night <= 0.0) return 0;
     double top[3];
     sky_moon_light_above_air(s, top);
     for (int i = 0; i < 3; i++) f->moonlit_light[i] = (float)(top[i] * night);
@@ -367,7 +367,7 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
     default: eval_gradient(s, d, rgb); break;
     }
     /* the physical paths' moonlit sky (its vertices' values, exactly) */
-    if (is_physical(s->atmosphere) && f->moonlit_light[1] > 0.0f) {
+    if (sky_atmosphere_is_physical(s->atmosphere) && f->moonlit_light[1] > 0.0f) {
         double m[3];
         sky_atmosphere_moonlit_unit(s, d, m);
         for (int i = 0; i < 3; i++) rgb[i] += m[i] * f->moonlit_light[i];
@@ -433,7 +433,7 @@ static void apply_summary(sky_core *s, const sky_summary *sum)
      * per unit of the moon's light (moonlit_frame) */
     const struct sky_atmosphere_state *st = s->atmosphere_state;
     double rest = f->night_luminance - f->moon_sky_luminance;
-    int moonlit = is_physical(s->atmosphere) && st->moon_valid;
+    int moonlit = sky_atmosphere_is_physical(s->atmosphere) && st->moon_valid;
     for (int i = 0; i < 3; i++) {
         double m = moonlit ? f->moonlit_light[i] : 0.0;
         f->ambient_rgb[i] = (float)(sum->irradiance[i] + st->moon_summary.irradiance[i] * m + SKY_PI * rest);
@@ -465,7 +465,7 @@ static float blend_weight(const sky_core *s)
 void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3])
 {
     const sky_frame *f = &s->frame;
-    if (is_physical(s->atmosphere)) {
+    if (sky_atmosphere_is_physical(s->atmosphere)) {
         /* the description's columns above the observer (rayleigh.c) */
         for (int i = 0; i < 3; i++) depth[i] = f->tau_rayleigh[i] + f->tau_mie_ext[i] + f->tau_ozone[i];
         return;
@@ -485,7 +485,7 @@ void sky_atmosphere_frame(sky_core *s)
      * scene): the physical paths send it through their own description
      * (rayleigh.c's closed-form extinction, which Hillaire's and the
      * blend's night layers use too); the others use the sun model. */
-    if (is_physical(s->atmosphere)) {
+    if (sky_atmosphere_is_physical(s->atmosphere)) {
         sky_rayleigh_frame(s);
         for (int i = 0; i < 3; i++) f->sun_transmittance[i] = (float)exp(-f->sun_depth[i]);
     } else {

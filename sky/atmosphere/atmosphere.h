@@ -49,6 +49,9 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
  * and before the first night): the path's model lit from the moon's
  * place rounded (atmosphere.c), what the dome's vertices carry. */
 void sky_atmosphere_moonlit_unit(const sky_core *s, const double d[3], double rgb[3]);
+/* 1 for the paths that scatter light through a described atmosphere
+ * (Rayleigh's, Hillaire's, the blend), 0 for the gradient and Preetham's. */
+int sky_atmosphere_is_physical(sky_atmosphere_path path);
 /* The sun model's direct-beam transmittance for a ray at the given
  * altitude (radians): Kasten-Young air mass times a Rayleigh+aerosol
  * optical depth; below the horizon, the horizon's value. Non-decreasing

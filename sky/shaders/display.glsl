@@ -35,7 +35,7 @@ const float SKY_TINY = 1e-8;
  * drops the lanes a caller leaves unused). Its toe (the 0.004 taken off,
  * a print's black) goes with the rods' share at the eye's adaptation: the
  * dark-adapted eye reads shapes in a moonless landscape that the toe
- * would crush to black (a wall a fifth of the sky's luminance). */
+ * would crush to black (a wall an eighth of the sky's luminance). */
 vec4 sky_filmic(vec4 e)
 {
     vec4 x = max(e - 0.004 * (1.0 - sky_display_rods), vec4(0.0));
