@@ -138,10 +138,12 @@ void test_demo_readout_is_gpu_frame_time(void)
 void test_game_lit_by_the_sky(void)
 {
     char path[512], cmd[2048], log[4096], png[256];
-    double mean[2];
-    const char *when[2] = {"--time 0.5", "--time 0.0"};
-    for (int k = 0; k < 2; k++) {
-        tmp(k ? "night.png" : "noon.png", png, sizeof png);
+    double mean[3];
+    /* noon, midnight, and the README's moonless night (the starry preset:
+     * the night glows, no moon) */
+    const char *when[3] = {"--time 0.5", "--time 0.0", "--preset starry"};
+    for (int k = 0; k < 3; k++) {
+        tmp(k == 2 ? "starry.png" : k ? "night.png" : "noon.png", png, sizeof png);
         snprintf(cmd, sizeof cmd, XVFB "%s --size 640x360 --frames 3 --screenshot %s %s 2>&1",
                  bin_path("sky-game", path, sizeof path), png, when[k]);
         image im;
@@ -159,8 +161,14 @@ void test_game_lit_by_the_sky(void)
         image_free(&im);
         remove(png);
     }
-    NOTE("sky-game: a box's mean brightness %.3f at noon, %.3f at midnight", mean[0], mean[1]);
+    NOTE("sky-game: a box's mean brightness %.3f at noon, %.3f at midnight, %.3f under the starry preset's moonless "
+         "sky", mean[0], mean[1], mean[2]);
     CHECK(mean[0] > 0.15 && mean[0] > 5.0 * mean[1] + 0.02, "the world is lit by the sky: bright at noon, dark at night");
+    /* and readable under a moonless sky, not black: the night's grade
+     * (display.glsl) lifts what the sky lights to an eighth of its
+     * luminance (the box showed 0 of 255 before the night's toe went, 5
+     * after, about 12 graded) */
+    CHECK(mean[2] >= 8.0 / 255.0, "the box under the moonless sky %.1f of 255, at least 8", 255.0 * mean[2]);
 }
 
 /* The spread of an image's luminance: its 95th percentile less its 5th

@@ -103,7 +103,38 @@ vec3 sky_scotopic_shift(vec3 e, float y, float brighter)
  * brighter: how many times brighter the light really is than L, for the
  * cones' share of the blue shift (the moon's disc is exposed on its own:
  * moon.c); 1 elsewhere (sky_display). */
+#ifndef SKY_PHOTOPIC
+/* The night's grade: where the rods see, display values below the night
+ * sky's own level (the knee, 0.15: a moonless sky's 38 of 255) rise toward
+ * it, as knee (d / knee)^0.5 on the largest channel (the colour kept), by
+ * the rods' share at the eye's adaptation. The dark-adapted eye makes out
+ * walls and ground that a moonless sky lights to an eighth of its own
+ * luminance, which the display's gamma leaves near black ((4, 5, 7)
+ * under a sky of (20, 24, 33); (10, 12, 17) graded). What is brighter
+ * than the knee (the stars, the moon, a moonlit sky) keeps its value; by
+ * day, and wherever the cones see, nothing changes. */
+vec3 sky_night_lift(vec3 d)
+{
+    const float knee = 0.15;
+    float m = max(d.r, max(d.g, d.b));
+    float lifted = m < knee ? knee * pow(max(m, 0.0) / knee, 0.5) : m;
+    return d * mix(1.0, lifted / max(m, SKY_TINY), sky_display_rods);
+}
+#endif
+
+vec3 sky_display_seen_graded(vec3 L, float brighter);
+/* (below: the exposure, the rods' shift and the tone map; here the
+ * night's grade after them) */
 vec3 sky_display_seen(vec3 L, float brighter)
+{
+#ifndef SKY_PHOTOPIC
+    return sky_night_lift(sky_display_seen_graded(L, brighter));
+#else
+    return sky_display_seen_graded(L, brighter);
+#endif
+}
+
+vec3 sky_display_seen_graded(vec3 L, float brighter)
 {
     vec3 e = max(L * sky_display_exposure, vec3(0.0));
     float y = dot(e, vec3(0.2126, 0.7152, 0.0722));
