@@ -185,7 +185,8 @@ void test_web_drag_changes_the_frame(void)
 }
 
 /* The preset menu: switching from noon to starry gives a dark sky with
- * stars in it. */
+ * stars in it: its green no brighter than the moonless night's brightest
+ * channel may be (40 of 255, docs/DUSK.md's target; noon's is about 0.7). */
 void test_web_preset_switch(void)
 {
     char console[8192];
@@ -198,7 +199,7 @@ void test_web_preset_switch(void)
     for (int y = 60; y < 500; y++)
         for (int x = 400; x < 1200; x++) stars += im.px[3 * (y * im.w + x) + 1] > mean + 0.25;
     NOTE("starry: mean green %.3f, %d star pixels", mean, stars);
-    CHECK(mean < 0.1, "a night sky after the switch (mean %.3f)", mean);
+    CHECK(mean < 40.0 / 255.0, "a night sky after the switch (mean %.3f)", mean);
     CHECK(stars > 30, "stars in it (%d bright pixels)", stars);
     image_free(&im);
     stop_serving();
