@@ -895,15 +895,23 @@ static const char *host_glsl(const char *name)
     return b ? (const char *)b->data : "";
 }
 
+/* What both binders of the host's snippets check first (s not NULL). */
+static sky_result host_program_check(sky *s, unsigned program, const char *what)
+{
+    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "%s: program 0", what);
+    if (!sky_gl_context_current(&s->core)) return sky_fail(s, SKY_ERR_GL, "%s: no GL context is current", what);
+    return SKY_OK;
+}
+
 const char *sky_display_glsl(void) { return host_glsl("display.glsl"); }
 
 sky_result sky_display_bind(sky *s, unsigned program)
 {
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_result rc = host_program_check(s, program, "sky_display_bind");
+    if (rc != SKY_OK) return rc;
     sky_core *c = &s->core;
     const sky_gl *gl = &c->gl;
-    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_display_bind: program 0");
-    if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_display_bind: no GL context is current");
     GLint host_program = 0;
     gl->glGetIntegerv(GL_CURRENT_PROGRAM, &host_program);
     gl->glUseProgram(program);
@@ -920,10 +928,10 @@ const char *sky_aerial_glsl(void) { return host_glsl("aerial.glsl"); }
 sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit)
 {
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_result rc = host_program_check(s, program, "sky_aerial_bind");
+    if (rc != SKY_OK) return rc;
     sky_core *c = &s->core;
     const sky_gl *gl = &c->gl;
-    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_aerial_bind: program 0");
-    if (!sky_gl_context_current(c)) return sky_fail(s, SKY_ERR_GL, "sky_aerial_bind: no GL context is current");
     GLint units = 0;
     gl->glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
     if (texture_unit < 0 || (units > 0 && texture_unit >= units))
