@@ -1,7 +1,7 @@
 # libsky: make | make run | make check | make test | make install PREFIX=... | make textures
 #
-# Outputs go to build/ only. `make run`, `make check` and `make test` first install the
-# Debian packages they need when missing (tools/deps.sh).
+# Outputs go to build/ only. `make run` and `make test` first install the Debian
+# packages they need when missing (tools/deps.sh); `make check`, the fast tier, does not.
 
 CC      ?= cc
 PREFIX  ?= /usr/local
@@ -121,10 +121,27 @@ $(BIN)/pngcrop: tools/pngcrop.c
 run: deps all
 	@sh tools/run.sh
 
-TEST_SRC := $(wildcard tests/*.c)
-$(BIN)/sky-tests: $(TEST_SRC) tests/test.h $(CLI_SRC) $(CLI_HDR) $(STAB_SRC) $(STAB_HDR) $(REF_SRC) $(REF_HDR) $(SKY_HDR) $(LIB)/libsky.a
+# The test runner: one object per file, in a tree of its own (the tools'
+# flags), and its list of tests written from the files' TEST lines
+# (tests/list.sh), so a new test is its function and nothing else.
+TEST_SRC := $(sort $(wildcard tests/*.c))
+TEST_DIR := $(BUILD)/tests/obj
+TEST_OBJ := $(patsubst %.c,$(TEST_DIR)/%.o,$(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC))
+TEST_CFLAGS := $(DEMO_CFLAGS) -Itests -Itools -I$(BUILD)/gen/tests
+
+$(BUILD)/gen/tests/test_list.h: tests/list.sh $(TEST_SRC)
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -Itests -Itools -o $@ $(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) -lerfa -lpthread $(LDLIBS_M)
+	sh tests/list.sh $@ $(TEST_SRC)
+
+$(TEST_DIR)/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(TEST_CFLAGS) -MMD -MP -c -o $@ $<
+$(TEST_DIR)/tests/test_main.o: $(BUILD)/gen/tests/test_list.h
+-include $(TEST_OBJ:.o=.d)
+
+$(BIN)/sky-tests: $(TEST_OBJ) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) -o $@ $(TEST_OBJ) $(LIB)/libsky.a $(HEADLESS_LIBS) -lerfa -lpthread $(LDLIBS_M)
 
 # The sanitized programs are linked from objects compiled once per
 # sanitizer, each in a tree of its own. -MMD -MP write each object's
@@ -137,7 +154,7 @@ DEPFLAGS := -MMD -MP
 # test runner and the leak check (ASan includes LeakSanitizer; the leak
 # test runs sky-leaks with detect_leaks=1).
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-SAN_CFLAGS := -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itools -Itests -Wno-missing-prototypes
+SAN_CFLAGS := -std=c11 $(WARN) -O1 -g $(SAN_FLAGS) -D_DEFAULT_SOURCE -Isky -I$(BUILD)/gen -Idemo -Itools -Itests -I$(BUILD)/gen/tests -Wno-missing-prototypes
 SAN_DIR := $(BUILD)/asan/obj
 SAN_SKY_OBJ := $(SKY_SRC:%.c=$(SAN_DIR)/%.o) $(SAN_DIR)/gen/sky_blobs.o
 SAN_TEST_OBJ := $(patsubst %.c,$(SAN_DIR)/%.o,$(TEST_SRC) $(CLI_SRC) $(STAB_SRC) $(REF_SRC))
@@ -150,6 +167,7 @@ $(SAN_DIR)/gen/sky_blobs.o: $(BUILD)/gen/sky_blobs.c
 $(SAN_DIR)/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(SAN_CFLAGS) $(DEPFLAGS) -c -o $@ $<
+$(SAN_DIR)/tests/test_main.o: $(BUILD)/gen/tests/test_list.h
 
 $(BUILD)/asan/sky-tests: $(SAN_TEST_OBJ) $(SAN_SKY_OBJ)
 	@mkdir -p $(@D)
@@ -190,11 +208,13 @@ $(BUILD)/fuzz/fuzz_cli: $(FUZZ_DIR)/demo/cli.o
 fuzz: $(FUZZERS)
 	@SKY_FUZZ_SECONDS=300 SKY_FUZZ=$(BUILD)/fuzz sh tests/fuzz/run.sh
 
-# make check: the fast tier. The plain runner alone, no sanitizer builds and
-# no fuzzers; SKY_LEAKS empty makes the leak test, whose program is one of
-# make test's sanitizer builds, skip rather than run a stale one.
-check: deps all $(BIN)/sky-tests
-	@SKY_BIN=$(BIN) SKY_LEAKS= $(BIN)/sky-tests
+# make check: the fast tier, for iterating: the plain runner without the
+# tests marked SLOW_TEST, no sanitizer builds, no fuzzers, and no package
+# manager (make run or make test install the packages); SKY_LEAKS empty
+# makes the leak test, whose program is one of make test's sanitizer
+# builds, skip rather than run a stale one.
+check: all $(BIN)/sky-tests
+	@SKY_BIN=$(BIN) SKY_LEAKS= $(BIN)/sky-tests --fast
 
 # make test: everything: the plain runner, the ASan/UBSan runner, the leak
 # check and the fuzzers.
@@ -230,9 +250,13 @@ $(EX)/sky-irrlicht: examples/irrlicht.cpp sky/sky.h $(LIB)/libsky.a
 
 # the test runner's harness (test_main.c) with the examples' tests in place
 # of the library's
-$(EX)/example-tests: tests/examples/test_examples.c tests/test_main.c tests/test.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+$(EX)/gen/test_list.h: tests/list.sh tests/examples/test_examples.c
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -DSKY_EXAMPLE_TESTS -Itests -o $@ tests/examples/test_examples.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
+	sh tests/list.sh $@ tests/examples/test_examples.c
+
+$(EX)/example-tests: tests/examples/test_examples.c tests/test_main.c tests/test.h $(EX)/gen/test_list.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -Itests -I$(EX)/gen -o $@ tests/examples/test_examples.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
 
 test-examples: examples $(EX)/example-tests
 	@SKY_EXAMPLES=$(EX) xvfb-run -a -s '-screen 0 1280x720x24' $(EX)/example-tests
@@ -275,9 +299,13 @@ bench-web: web
 
 # The page in headless Chromium (WebGL 1 through SwiftShader): the runner
 # is the test harness built natively with tests/web/.
-$(WEB)/web-tests: tests/web/test_web.c tests/test_main.c tests/test.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+$(WEB)/gen/test_list.h: tests/list.sh tests/web/test_web.c
 	@mkdir -p $(@D)
-	$(CC) $(DEMO_CFLAGS) -DSKY_WEB_TESTS -Itests -o $@ tests/web/test_web.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
+	sh tests/list.sh $@ tests/web/test_web.c
+
+$(WEB)/web-tests: tests/web/test_web.c tests/test_main.c tests/test.h $(WEB)/gen/test_list.h $(CLI_SRC) $(CLI_HDR) $(LIB)/libsky.a
+	@mkdir -p $(@D)
+	$(CC) $(DEMO_CFLAGS) -Itests -I$(WEB)/gen -o $@ tests/web/test_web.c tests/test_main.c $(CLI_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) $(LDLIBS_M)
 
 test-web: web $(WEB)/web-tests
 	@SKY_WEB=$(WEB) $(WEB)/web-tests

@@ -17,7 +17,16 @@
 typedef struct test_case {
     const char *name;
     void (*fn)(void);
+    int slow; /* SLOW_TEST: make test runs it, make check (--fast) not */
 } test_case;
+
+/* A test: TEST(name) { ... } defines test_name, which tests/list.sh finds
+ * (at the start of a line) and the runner runs. SLOW_TEST: one that takes
+ * a second or more, left out of make check's fast tier. */
+#define TEST(name)               \
+    void test_##name(void);      \
+    void test_##name(void)
+#define SLOW_TEST(name) TEST(name)
 
 extern int test_failures; /* failures within the running test */
 extern int test_skipped;  /* the running test could not run here */

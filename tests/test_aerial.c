@@ -17,12 +17,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_aerial_meets_the_sky(void);
-void test_aerial_against_reference(void);
-void test_aerial_checks_its_input(void);
-void test_aerial_glsl_matches_cpu(void);
-void test_aerial_froxels_match_cpu(void);
-
 static double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
 static void horizon_dir(double el_deg, double az_deg, double d[3])
@@ -47,7 +41,7 @@ static int aerial(sky *s, const double d[3], double m, double in[3], double tr[3
  * HDR render of the same sky; in between, light that grows and
  * transmittance that falls with distance. Every path, by day, at sunset
  * and at night. */
-void test_aerial_meets_the_sky(void)
+TEST(aerial_meets_the_sky)
 {
     static const double suns[3] = {30.0, 2.0, -20.0};
     static const double views[4][2] = {{0.5, 0.0}, {0.5, 90.0}, {0.5, 180.0}, {20.0, 60.0}}; /* el, az from the sun */
@@ -111,7 +105,7 @@ static double reference_sigma(const sky_ref_result *r)
 {
     return r->luminance_std_err / fmax(luminance(r->rgb), 1e-12);
 }
-void test_aerial_against_reference(void)
+SLOW_TEST(aerial_against_reference)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -189,7 +183,7 @@ void test_aerial_against_reference(void)
     sky_atmo_hemisphere_destroy(h);
 }
 
-void test_aerial_checks_its_input(void)
+TEST(aerial_checks_its_input)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_CORE33, NULL)) {
@@ -325,7 +319,7 @@ static void glsl_matches(sky_gl_profile profile)
     fixture_close(&f);
 }
 
-void test_aerial_glsl_matches_cpu(void)
+TEST(aerial_glsl_matches_cpu)
 {
     glsl_matches(SKY_GL_CORE33);
     glsl_matches(SKY_GL_COMPAT20);
@@ -336,7 +330,7 @@ void test_aerial_glsl_matches_cpu(void)
  * function's within 5 % in light (or 1 % of the volume's brightest) and
  * 0.01 in mean transmittance, by day and at sunset; the host's state
  * back; refused off the Hillaire paths and in COMPAT20. */
-void test_aerial_froxels_match_cpu(void)
+TEST(aerial_froxels_match_cpu)
 {
     enum { N = 32 };
     sky_config cfg;

@@ -13,26 +13,13 @@
 #include <string.h>
 #include <unistd.h>
 
-void test_api_zero_config_renders(void);
-void test_api_rejects_null_and_bad_config(void);
-void test_api_sliders_clamp_and_reject_nan(void);
-void test_api_update_time_validation(void);
-void test_api_draw_rejects_bad_matrices(void);
-void test_api_lighting_and_stats(void);
-void test_api_gl_objects_deleted(void);
-void test_api_leaks_1000_cycles(void);
-void test_gl_state_restored_core(void);
-void test_gl_state_restored_compat(void);
-void test_gl_host_raster_state_ignored(void);
-void test_gl_errors_left_to_host_and_contexts_checked(void);
-
 static void default_camera(float view[16], float proj[16])
 {
     scene sc = scene_default();
     scene_camera(&sc, view, proj);
 }
 
-void test_api_zero_config_renders(void)
+TEST(api_zero_config_renders)
 {
     fixture f;
     sky_config zero;
@@ -50,7 +37,7 @@ void test_api_zero_config_renders(void)
     fixture_close(&f);
 }
 
-void test_api_rejects_null_and_bad_config(void)
+TEST(api_rejects_null_and_bad_config)
 {
     char err[256];
     CHECK(sky_create(NULL, err, sizeof err) == NULL && strstr(err, "NULL"), "NULL config: %s", err);
@@ -135,7 +122,7 @@ void test_api_rejects_null_and_bad_config(void)
     sky_osmesa_destroy(&ctx);
 }
 
-void test_api_sliders_clamp_and_reject_nan(void)
+TEST(api_sliders_clamp_and_reject_nan)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
@@ -183,7 +170,7 @@ void test_api_sliders_clamp_and_reject_nan(void)
     fixture_close(&f);
 }
 
-void test_api_update_time_validation(void)
+TEST(api_update_time_validation)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
@@ -207,7 +194,7 @@ void test_api_update_time_validation(void)
     fixture_close(&f);
 }
 
-void test_api_draw_rejects_bad_matrices(void)
+TEST(api_draw_rejects_bad_matrices)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
@@ -240,7 +227,7 @@ void test_api_draw_rejects_bad_matrices(void)
     fixture_close(&f);
 }
 
-void test_api_lighting_and_stats(void)
+TEST(api_lighting_and_stats)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
@@ -305,7 +292,7 @@ void test_api_lighting_and_stats(void)
     fixture_close(&f);
 }
 
-void test_api_gl_objects_deleted(void)
+TEST(api_gl_objects_deleted)
 {
     char err[256];
     sky_osmesa ctx;
@@ -350,7 +337,7 @@ void test_api_gl_objects_deleted(void)
     sky_osmesa_destroy(&ctx);
 }
 
-void test_api_leaks_1000_cycles(void)
+TEST(api_leaks_1000_cycles)
 {
     char path[512], out[4096];
     char cmd[1024];
@@ -616,15 +603,15 @@ static void state_restored(sky_gl_profile profile)
     sky_osmesa_destroy(&ctx);
 }
 
-void test_gl_state_restored_core(void) { state_restored(SKY_GL_CORE33); }
-void test_gl_state_restored_compat(void) { state_restored(SKY_GL_COMPAT20); }
+TEST(gl_state_restored_core) { state_restored(SKY_GL_CORE33); }
+TEST(gl_state_restored_compat) { state_restored(SKY_GL_COMPAT20); }
 
 /* The host's raster state that would change the sky's picture is set
  * aside for its draws: filled polygons whatever glPolygonMode says, and no
  * second sRGB encoding by a framebuffer with GL_FRAMEBUFFER_SRGB on (the
  * 8-bit output is encoded by the sky). The same frame drawn into a plain
  * RGBA8 target and into an sRGB one under those settings: the same bytes. */
-void test_gl_host_raster_state_ignored(void)
+TEST(gl_host_raster_state_ignored)
 {
     enum { W = 64, H = 48 };
     fixture f;
@@ -691,7 +678,7 @@ static void make_current(const sky_osmesa *o)
  * (with cfg.check_gl_errors it says they were pending before the call).
  * No current context, and a context that is not the sky's, are found
  * without glGetError. */
-void test_gl_errors_left_to_host_and_contexts_checked(void)
+TEST(gl_errors_left_to_host_and_contexts_checked)
 {
     char err[256];
     sky_osmesa a, b;

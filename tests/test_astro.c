@@ -19,20 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_astro_time_scales(void);
-void test_astro_sun_vs_erfa(void);
-void test_astro_moon_vs_erfa(void);
-void test_astro_stars_vs_erfa(void);
-void test_astro_phase_and_eclipse_vs_erfa(void);
-void test_astro_historic_lunar_eclipses(void);
-void test_astro_refraction(void);
-void test_astro_solar_eclipse_totality(void);
-void test_astro_solar_eclipse_partial_vs_erfa(void);
-void test_astro_bad_input(void);
-void test_astro_node_cache(void);
-void test_astro_time_slider_is_solar_time(void);
-void test_astro_query_json(void);
-
 #define PI 3.14159265358979323846
 #define DEG (PI / 180.0)
 #define C_AU_PER_DAY (ERFA_CMPS * 86400.0 / ERFA_DAU)
@@ -186,7 +172,7 @@ static double worst_body(int body, double *worst_alt, double *worst_az)
 
 /* ---- tests ------------------------------------------------------------------------------ */
 
-void test_astro_time_scales(void)
+TEST(astro_time_scales)
 {
     /* calendar -> JD against eraCal2jd over a spread of dates */
     int bad = 0;
@@ -231,21 +217,21 @@ void test_astro_time_scales(void)
     CHECK(worst < 1.0 * ERFA_DAS2R, "sidereal time within 1 arcsec (%.3f)", worst / ERFA_DAS2R);
 }
 
-void test_astro_sun_vs_erfa(void)
+TEST(astro_sun_vs_erfa)
 {
     double da, dz, w = worst_body(0, &da, &dz);
     NOTE("sun, %d instants 1800-2200, pole to pole: max error %.5f deg (alt %.5f, az*cos(alt) %.5f)", DRAWS, w, da, dz);
     CHECK(w <= 0.005, "sun topocentric alt/az max error %.5f deg > 0.005", w);
 }
 
-void test_astro_moon_vs_erfa(void)
+TEST(astro_moon_vs_erfa)
 {
     double da, dz, w = worst_body(1, &da, &dz);
     NOTE("moon, %d instants 1800-2200, pole to pole: max error %.5f deg (alt %.5f, az*cos(alt) %.5f)", DRAWS, w, da, dz);
     CHECK(w <= 0.01, "moon topocentric alt/az max error %.5f deg > 0.01", w);
 }
 
-void test_astro_stars_vs_erfa(void)
+TEST(astro_stars_vs_erfa)
 {
     sky_catalog cat;
     char err[256];
@@ -286,7 +272,7 @@ void test_astro_stars_vs_erfa(void)
     sky_catalog_free(&cat);
 }
 
-void test_astro_phase_and_eclipse_vs_erfa(void)
+TEST(astro_phase_and_eclipse_vs_erfa)
 {
     draw d[DRAWS];
     make_draws(d, DRAWS);
@@ -323,7 +309,7 @@ void test_astro_phase_and_eclipse_vs_erfa(void)
     CHECK(worst_p <= 0.01, "penumbral magnitude error %.5f > 0.01", worst_p);
 }
 
-void test_astro_historic_lunar_eclipses(void)
+TEST(astro_historic_lunar_eclipses)
 {
     /* Greatest eclipse (TD) and magnitudes published in F. Espenak's
      * NASA eclipse catalogue; instants converted to UT with our Delta T.
@@ -362,7 +348,7 @@ static sky_astro solar_at(double jd, double lat_deg, double lon_deg)
     return a;
 }
 
-void test_astro_solar_eclipse_totality(void)
+TEST(astro_solar_eclipse_totality)
 {
     /* Points on the central lines near greatest eclipse (NASA / Espenak's
      * local circumstances): 2017-08-21 near Hopkinsville, Kentucky, greatest
@@ -501,7 +487,7 @@ static double oracle_obscuration(double jd_ut, double delta_t, double lat, doubl
     return (double)covered / (double)inside;
 }
 
-void test_astro_solar_eclipse_partial_vs_erfa(void)
+TEST(astro_solar_eclipse_partial_vs_erfa)
 {
     /* partial phases of the 2024-04-08 eclipse from New York and of the
      * 2017-08-21 eclipse from Los Angeles, every 10 minutes from first to
@@ -531,7 +517,7 @@ void test_astro_solar_eclipse_partial_vs_erfa(void)
     CHECK(partial >= 20, "only %d instants were partial", partial);
 }
 
-void test_astro_refraction(void)
+TEST(astro_refraction)
 {
     /* finite, non-negative, continuous; apparent altitude monotonic */
     double prev_app = -1e9, prev_r = sky_refraction(-PI / 2, 1.0), worst_step = 0.0;
@@ -569,7 +555,7 @@ void test_astro_refraction(void)
  * instants come in, and the linear interpolation stays within its stated
  * 0.05" of the series (judged against a cubic through four nodes, whose
  * own error at the midpoint, 3/128 h^4 f'''', is far smaller). */
-void test_astro_node_cache(void)
+TEST(astro_node_cache)
 {
     const double h = 1.0 / SKY_ASTRO_NODES_PER_DAY;
     sky_astro_observer obs = {0.7, -1.2, 300.0};
@@ -621,7 +607,7 @@ void test_astro_node_cache(void)
           worst_moon, worst_sun);
 }
 
-void test_astro_bad_input(void)
+TEST(astro_bad_input)
 {
     sky_astro a;
     char err[256];
@@ -684,7 +670,7 @@ void test_astro_bad_input(void)
     }
 }
 
-void test_astro_time_slider_is_solar_time(void)
+TEST(astro_time_slider_is_solar_time)
 {
     /* time 0.5 puts the sun on the meridian (azimuth 180 or 0), whatever
      * the date and longitude; 0.25 and 0.75 put it east and west */
@@ -705,7 +691,7 @@ void test_astro_time_slider_is_solar_time(void)
     CHECK(worst < 0.05, "solar noon on the meridian (%.4f deg off)", worst);
 }
 
-void test_astro_query_json(void)
+TEST(astro_query_json)
 {
     char path[512], cmd[1024], out[8192];
     bin_path("sky-render", path, sizeof path);

@@ -15,23 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_atmosphere_paths_finite_for_every_sun_position(void);
-void test_atmosphere_clear_sky_colours(void);
-void test_atmosphere_shaders_match_cpu_twins(void);
-void test_atmosphere_moonlit_sky(void);
-void test_atmosphere_clouds_lit_by_moon(void);
-void test_atmosphere_moonlight_reaches_the_host(void);
-void test_atmosphere_continuous_across_horizon(void);
-void test_atmosphere_preetham_outside_its_fit(void);
-void test_atmosphere_description_checked(void);
-void test_atmosphere_error_against_reference(void);
-void test_atmosphere_gpu_tables_match_cpu(void);
-void test_atmosphere_extinction_follows_the_description(void);
-void test_atmosphere_observer_altitudes(void);
-void test_atmosphere_setting_sun_flattened(void);
-void test_atmosphere_turbidity_and_presets(void);
-void test_atmosphere_blend_partner_preetham(void);
-
 static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                             SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
 static const char *const path_names[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend"};
@@ -151,7 +134,7 @@ static void dir_at(double alt_deg, double az_deg, double d[3])
     sky_horizon_vector(alt_deg * SKY_PI / 180.0, az_deg * SKY_PI / 180.0, d);
 }
 
-void test_atmosphere_paths_finite_for_every_sun_position(void)
+SLOW_TEST(atmosphere_paths_finite_for_every_sun_position)
 {
     sky_observer o = equator_equinox();
     sky_params extremes[2];
@@ -202,7 +185,7 @@ static double ring_blue_over_red(const hdr_sky *h, double alt_deg)
     return b / fmax(r, 1e-30);
 }
 
-void test_atmosphere_clear_sky_colours(void)
+TEST(atmosphere_clear_sky_colours)
 {
     sky_observer o = equator_equinox();
     sky_params clear = sky_default_params();
@@ -284,7 +267,7 @@ static void twin_eval(const sky *s, const double d[3], double rgb[3])
  * just set. Perspective views (where the
  * interpolated ray is the pixel's exact direction), toward the sun's
  * azimuth and away from it, from the horizon up to 75 degrees. */
-void test_atmosphere_shaders_match_cpu_twins(void)
+TEST(atmosphere_shaders_match_cpu_twins)
 {
     sky_observer o = equator_equinox();
     static const double altitudes[] = {60.0, 8.0, 0.5, -1.0};
@@ -392,7 +375,7 @@ void test_atmosphere_shaders_match_cpu_twins(void)
  * degree;
  * anything past 12 % is a step. (0.1 degree: more than the sun movement
  * that rebuilds Hillaire's sky-view table, 0.05.) */
-void test_atmosphere_continuous_across_horizon(void)
+TEST(atmosphere_continuous_across_horizon)
 {
     sky_observer o = equator_equinox();
     static const double altitudes[] = {0.1, 0.0, -0.1};
@@ -439,7 +422,7 @@ void test_atmosphere_continuous_across_horizon(void)
 /* Preetham's fit covers turbidity 2..10 with the sun up. Turbidity
  * outside is clamped (1 renders as 2, 64 as 10), and the zenith of the
  * fitted model stays positive down to a sun at the horizon for both ends. */
-void test_atmosphere_preetham_outside_its_fit(void)
+TEST(atmosphere_preetham_outside_its_fit)
 {
     sky_observer o = equator_equinox();
     static const float pairs[2][2] = {{1.0f, 2.0f}, {64.0f, 10.0f}};
@@ -473,7 +456,7 @@ void test_atmosphere_preetham_outside_its_fit(void)
     CHECK(-0.2155 * 10.0 + 2.4192 > 0.2, "Preetham's horizon-sun zenith at T 10 is not positive");
 }
 
-void test_atmosphere_description_checked(void)
+TEST(atmosphere_description_checked)
 {
     char err[256];
     for (int p = SKY_ATMOSPHERE_PRESET_EARTH; p <= SKY_ATMOSPHERE_PRESET_MARS; p++) {
@@ -541,7 +524,7 @@ void test_atmosphere_description_checked(void)
 /* The paths against the cached CPU reference (tests/data, written by
  * sky-bench --make-reference): a regression guard on the errors sky-bench
  * reports, and the two profiles agreeing on every path. */
-void test_atmosphere_error_against_reference(void)
+SLOW_TEST(atmosphere_error_against_reference)
 {
     static sky_atmo_reference ref;
     char err[512];
@@ -584,7 +567,7 @@ void test_atmosphere_error_against_reference(void)
 /* CORE33 builds Hillaire's transmittance and multiple-scattering tables on
  * the GPU (and reads them back for the host's lighting): they must be the
  * tables hillaire_cpu.c builds, to float rounding. */
-void test_atmosphere_gpu_tables_match_cpu(void)
+TEST(atmosphere_gpu_tables_match_cpu)
 {
     hdr_sky h;
     if (hdr_open(&h, 16, SKY_ATMOSPHERE_HILLAIRE, SKY_GL_CORE33, 0.0f)) {
@@ -639,7 +622,7 @@ void test_atmosphere_gpu_tables_match_cpu(void)
  * columns (Mueller sec. 5): the zenith optical depth above a sea-level
  * observer is sum(beta H) of the description (ozone: its tent's area),
  * for Earth and for the Mars-like preset alike. */
-void test_atmosphere_extinction_follows_the_description(void)
+TEST(atmosphere_extinction_follows_the_description)
 {
     for (int p = SKY_ATMOSPHERE_PRESET_EARTH; p <= SKY_ATMOSPHERE_PRESET_MARS; p += SKY_ATMOSPHERE_PRESET_MARS - SKY_ATMOSPHERE_PRESET_EARTH) {
         fixture f;
@@ -675,7 +658,7 @@ void test_atmosphere_extinction_follows_the_description(void)
  * the ground and to the shell, the horizon dipping below 0 with height;
  * every pixel of an all-sky image finite and >= 0 for the sun from the
  * nadir to the zenith. */
-void test_atmosphere_observer_altitudes(void)
+SLOW_TEST(atmosphere_observer_altitudes)
 {
     static const double heights[] = {0.0, 1.0, 8000.0, 100000.0};
     sky_observer o = equator_equinox();
@@ -717,7 +700,7 @@ void test_atmosphere_observer_altitudes(void)
  * horizon cuts the lower half away, the upper half-height over the
  * half-width. Predicted: the true limbs (centre +- the radius) through
  * astro.c's refraction. */
-void test_atmosphere_setting_sun_flattened(void)
+TEST(atmosphere_setting_sun_flattened)
 {
     static const double targets[] = {0.55, 0.0};
     const int size = 256;
@@ -784,7 +767,7 @@ void test_atmosphere_setting_sun_flattened(void)
  * colour, albedo, asymmetry and height; it is bounded by the
  * description's limits; and through sky_create it changes the sky (more
  * haze: a dimmer low sun). */
-void test_atmosphere_turbidity_and_presets(void)
+TEST(atmosphere_turbidity_and_presets)
 {
     static const sky_atmosphere_preset order[4] = {SKY_ATMOSPHERE_PRESET_VERY_CLEAN, SKY_ATMOSPHERE_PRESET_EARTH,
                                                    SKY_ATMOSPHERE_PRESET_HAZY, SKY_ATMOSPHERE_PRESET_POLLUTED};
@@ -884,7 +867,7 @@ static int render_suns(sky_config cfg, int size, float *out[PARTNER_SUNS], float
     return rc;
 }
 
-void test_atmosphere_blend_partner_preetham(void)
+TEST(atmosphere_blend_partner_preetham)
 {
     static const double altitudes[PARTNER_SUNS] = {30.0, 3.0, -3.0};
     static const struct {
@@ -1017,7 +1000,7 @@ static void moonlit_sky(sky_atmosphere_path path, const char *name, double blue_
     hdr_close(&h);
 }
 
-void test_atmosphere_moonlit_sky(void)
+TEST(atmosphere_moonlit_sky)
 {
     moonlit_sky(SKY_ATMOSPHERE_GRADIENT, "gradient", 1.3, 0.5);
     moonlit_sky(SKY_ATMOSPHERE_PREETHAM, "preetham", 1.0, 0.01);
@@ -1047,7 +1030,7 @@ static int full_moon_night(fixture *f, sky_atmosphere_path path, unsigned extra,
 /* The clouds are lit by the moon by the sun's rule (clouds.c): under the
  * full moon 67 degrees up a white cloud takes several times the light it
  * takes from the moonless night, and the moon's redder colour. */
-void test_atmosphere_clouds_lit_by_moon(void)
+TEST(atmosphere_clouds_lit_by_moon)
 {
     double light[2][3];
     for (int moon = 0; moon < 2; moon++) {
@@ -1070,7 +1053,7 @@ void test_atmosphere_clouds_lit_by_moon(void)
  * 10 km away all take the moonlit sky under the full moon 67 degrees up,
  * on the default path and on Hillaire's, against the same night without
  * the moon. */
-void test_atmosphere_moonlight_reaches_the_host(void)
+TEST(atmosphere_moonlight_reaches_the_host)
 {
     static const sky_atmosphere_path two[2] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
     for (int p = 0; p < 2; p++) {

@@ -8,10 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_bench_preset_table_in_rounds(void);
-void test_bench_rejects_bad_rounds(void);
-void test_bench_es20_presets(void);
-
 /* The number after "key": within [from, end), or NAN-like -1e300 if absent. */
 static double field(const char *from, const char *end, const char *key)
 {
@@ -43,7 +39,7 @@ static int positive_list(const char *json, const char *key, int *all_positive)
     return n;
 }
 
-void test_bench_preset_table_in_rounds(void)
+SLOW_TEST(bench_preset_table_in_rounds)
 {
     char path[512], cmd[1024];
     static char out[32768];
@@ -116,7 +112,7 @@ void test_bench_preset_table_in_rounds(void)
     }
 }
 
-void test_bench_rejects_bad_rounds(void)
+TEST(bench_rejects_bad_rounds)
 {
     char path[512], cmd[1024], out[2048];
     static const char *const bad[3] = {"0", "51", "x"};
@@ -131,7 +127,7 @@ void test_bench_rejects_bad_rounds(void)
 /* --gl es20 runs the preset table on ES 2.0 contexts: its own baseline
  * ("es20_frame_ms", per round) and every preset's row marked es20; the
  * tables that need a desktop context refuse it with a message. */
-void test_bench_es20_presets(void)
+SLOW_TEST(bench_es20_presets)
 {
     char path[512], cmd[1024];
     static char out[32768];

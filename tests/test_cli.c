@@ -10,20 +10,6 @@
 #include <stb/stb_image.h>
 #include <unistd.h>
 
-void test_profiles_compat_on_emulated_2004_gpu(void);
-void test_profiles_every_path_with_every_layer(void);
-void test_texture_budget_minimal_path(void);
-void test_profiles_too_old_context_is_an_error(void);
-void test_textures_tile_without_seams(void);
-void test_cli_exit_codes_and_messages(void);
-void test_flicker_texture_neighbourhoods(void);
-void test_cli_outputs_png_pfm_stats(void);
-void test_cli_every_option_checked(void);
-void test_cli_screenshot_must_be_png(void);
-void test_cli_no_output_says_so(void);
-void test_cli_help_exits_0(void);
-void test_cli_demo_help_lists_every_key(void);
-
 double image_psnr(const image *a, const image *b);
 
 /* Mesa pretending to be a 2004-class GPU (README's "Old GPUs"). */
@@ -31,7 +17,6 @@ double image_psnr(const image *a, const image *b);
     "MESA_GL_VERSION_OVERRIDE=2.0 MESA_GLSL_VERSION_OVERRIDE=110 MESA_EXTENSION_MAX_YEAR=2004 " \
     "MESA_EXTENSION_OVERRIDE='-GL_ARB_texture_float -GL_ARB_framebuffer_object "               \
     "-GL_ARB_texture_non_power_of_two' "
-
 
 /* Integer value of "key":N in a JSON text, or -1. */
 static double json_number(const char *json, const char *key)
@@ -42,7 +27,7 @@ static double json_number(const char *json, const char *key)
     return p ? atof(p + strlen(pat)) : -1.0;
 }
 
-void test_profiles_compat_on_emulated_2004_gpu(void)
+SLOW_TEST(profiles_compat_on_emulated_2004_gpu)
 {
     char render[512], core_png[512], old_png[512], soft_png[512], cmd[2048], out[8192];
     bin_path("sky-render", render, sizeof render);
@@ -89,7 +74,7 @@ void test_profiles_compat_on_emulated_2004_gpu(void)
  * dome's image needs its corner snippet too): each shader that carries
  * the atmosphere and the clouds' cover stays within the program's
  * snippets and builds. */
-void test_profiles_every_path_with_every_layer(void)
+SLOW_TEST(profiles_every_path_with_every_layer)
 {
     static const char *const paths[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend",
                                         "blend --blend-partner preetham"};
@@ -111,7 +96,7 @@ void test_profiles_every_path_with_every_layer(void)
 }
 
 /* A context older than OpenGL 2.0 gets a clear error, not a crash. */
-void test_profiles_too_old_context_is_an_error(void)
+TEST(profiles_too_old_context_is_an_error)
 {
     char render[512], cmd[1024], out[2048];
     snprintf(cmd, sizeof cmd, "MESA_GL_VERSION_OVERRIDE=1.5 %s --size 16x16 --stats 2>&1",
@@ -121,7 +106,7 @@ void test_profiles_too_old_context_is_an_error(void)
           rc, out);
 }
 
-void test_texture_budget_minimal_path(void)
+TEST(texture_budget_minimal_path)
 {
     char render[512], cmd[1024], out[8192];
     snprintf(cmd, sizeof cmd, OLD_GPU "%s --size 64x64 --preset minimal --stats 2>&1",
@@ -136,7 +121,7 @@ void test_texture_budget_minimal_path(void)
 
 /* Seam check: the jump across a tile's wrap must look like any other step
  * between neighbouring texels. */
-void test_textures_tile_without_seams(void)
+TEST(textures_tile_without_seams)
 {
     const char *files[1] = {"textures/clouds.png"};
     for (int f = 0; f < 1; f++) {
@@ -170,7 +155,7 @@ void test_textures_tile_without_seams(void)
 /* The flicker texture's stars carry their rate, variance and phase into
  * their 3x3 neighbourhood, so linear filtering never mixes two stars'
  * parameters (flicker.glsl relies on it). */
-void test_flicker_texture_neighbourhoods(void)
+TEST(flicker_texture_neighbourhoods)
 {
     int w, h, n;
     unsigned char *p = stbi_load("textures/flicker.png", &w, &h, &n, 4);
@@ -196,7 +181,7 @@ void test_flicker_texture_neighbourhoods(void)
     stbi_image_free(p);
 }
 
-void test_cli_exit_codes_and_messages(void)
+SLOW_TEST(cli_exit_codes_and_messages)
 {
     struct {
         const char *args;
@@ -274,7 +259,7 @@ void test_cli_exit_codes_and_messages(void)
 /* Every option: missing, malformed, out of range and given twice exit 2
  * naming it; the outputs to an unwritable place exit 1 naming the path and
  * leave no file. */
-void test_cli_every_option_checked(void)
+SLOW_TEST(cli_every_option_checked)
 {
     static const struct {
         const char *opt, *malformed, *out_of_range; /* NULL: no such case */
@@ -335,7 +320,7 @@ void test_cli_every_option_checked(void)
     NOTE("%d malformed command lines checked", checked);
 }
 
-void test_cli_outputs_png_pfm_stats(void)
+TEST(cli_outputs_png_pfm_stats)
 {
     char render[512], png[512], pfm[512], seq[512], cmd[2048], out[8192];
     bin_path("sky-render", render, sizeof render);
@@ -414,7 +399,7 @@ void test_cli_outputs_png_pfm_stats(void)
  * naming --screenshot, before any window or rendering. Without a display
  * the demo renders headless, so the old behaviour showed as an attempt to
  * write the file (exit 1). */
-void test_cli_screenshot_must_be_png(void)
+TEST(cli_screenshot_must_be_png)
 {
     static const char *const progs[2] = {"sky-demo", "sky-game"};
     char bin[512], cmd[1024], out[2048];
@@ -440,7 +425,7 @@ void test_cli_screenshot_must_be_png(void)
 /* sky-render with nothing to write (no --out, --out-pfm, --stats or
  * --query) still renders, as a check of GL, but says on stderr that
  * nothing was written and how to write; a command with an output does not. */
-void test_cli_no_output_says_so(void)
+TEST(cli_no_output_says_so)
 {
     char render[512], cmd[1024], out[2048];
     bin_path("sky-render", render, sizeof render);
@@ -459,7 +444,7 @@ void test_cli_no_output_says_so(void)
 
 /* --help and -h print the usage on stdout and exit 0, with nothing on
  * stderr (sky-bench called them a bad argument, exit 2). */
-void test_cli_help_exits_0(void)
+TEST(cli_help_exits_0)
 {
     static const char *const progs[2] = {"sky-render", "sky-bench"};
     static const char *const flags[2] = {"--help", "-h"};
@@ -497,7 +482,7 @@ static int has_word(const char *text, const char *word)
  * and O were missing): each GLFW_KEY_ in demo/demo.c is looked up in the
  * usage, so a key added without its line fails here. sky-game, which has
  * no keys, lists none. */
-void test_cli_demo_help_lists_every_key(void)
+TEST(cli_demo_help_lists_every_key)
 {
     static const struct {
         const char *glfw, *shown;

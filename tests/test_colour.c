@@ -9,14 +9,6 @@
 #include <math.h>
 #include <string.h>
 
-void test_colour_hue_and_saturation_kept(void);
-void test_colour_old_curve_fails_the_measure(void);
-void test_colour_one_ground_below_the_horizon(void);
-void test_colour_noon_as_bright_as_before(void);
-void test_colour_day_ends_darker(void);
-void test_colour_exposure_range_spares_noon(void);
-void test_colour_night_is_blue(void);
-
 static int measure(sky_atmosphere_path path, sky_tone_map tm, double sun, int toward, sky_colour_row *r)
 {
     char err[256];
@@ -30,7 +22,7 @@ static int measure(sky_atmosphere_path path, sky_tone_map tm, double sun, int to
 /* Two paths at three sun heights, facing the sun, with the default tone
  * map: the issue's targets (hue shift median <= 3, p90 <= 8 degrees;
  * saturation kept median >= 0.85, p10 >= 0.6; clipped <= 1 %). */
-void test_colour_hue_and_saturation_kept(void)
+TEST(colour_hue_and_saturation_kept)
 {
     const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE};
     const double suns[3] = {0.5, 8.0, 30.0};
@@ -49,7 +41,7 @@ void test_colour_hue_and_saturation_kept(void)
 
 /* The measure sees what the issue saw in the per-channel filmic curve:
  * near the horizon at sunset, orange turned yellow and pale. */
-void test_colour_old_curve_fails_the_measure(void)
+TEST(colour_old_curve_fails_the_measure)
 {
     sky_colour_row r;
     if (measure(SKY_ATMOSPHERE_RAYLEIGH, SKY_TONE_MAP_FILMIC, 0.5, 1, &r)) return;
@@ -62,7 +54,7 @@ void test_colour_old_curve_fails_the_measure(void)
 /* Below the horizon: no column under a low sun (the analytic paths used
  * to mirror the horizon downward), and a twilight sky lights its ground
  * (Hillaire's table left it black). */
-void test_colour_one_ground_below_the_horizon(void)
+TEST(colour_one_ground_below_the_horizon)
 {
     const sky_atmosphere_path paths[4] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM, SKY_ATMOSPHERE_RAYLEIGH,
                                           SKY_ATMOSPHERE_HILLAIRE};
@@ -89,7 +81,7 @@ static double mean_luminance_of(const image *im)
 
 /* The new default keeps noon about as bright as the old curve showed it
  * (within 10 %). */
-void test_colour_noon_as_bright_as_before(void)
+TEST(colour_noon_as_bright_as_before)
 {
     scene hue = scene_default(), filmic;
     hue.params.time = 0.5f;
@@ -117,7 +109,7 @@ void test_colour_noon_as_bright_as_before(void)
  * than noon (sky_dusk_ok). Under full adaptation (the exposure before it)
  * the default path showed 0.88 of noon at -6 and 0.65 at -12, Hillaire's
  * sunset 1.16. */
-void test_colour_day_ends_darker(void)
+SLOW_TEST(colour_day_ends_darker)
 {
     static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
     for (int p = 0; p < 2; p++) {
@@ -136,7 +128,7 @@ void test_colour_day_ends_darker(void)
 /* The partial adaptation leaves daylight alone: noon shows the same with
  * any exposure_range, while at nautical dusk the smallest range (nearly
  * the old full adaptation) shows the sky brighter than the default. */
-void test_colour_exposure_range_spares_noon(void)
+TEST(colour_exposure_range_spares_noon)
 {
     static const float times[2] = {0.5f, 0.79f}; /* noon; the sun near -10 degrees */
     for (int t = 0; t < 2; t++) {
@@ -174,7 +166,7 @@ void test_colour_exposure_range_spares_noon(void)
  * and the full moon's darker than the moonless sky. The issue's b/r >= 1.6
  * for the full moon, its sky each path's own model lit by the moon: the
  * blue point's display ratio is 1.67. */
-void test_colour_night_is_blue(void)
+SLOW_TEST(colour_night_is_blue)
 {
     static const sky_atmosphere_path paths[] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
     for (int p = 0; p < 2; p++) {

@@ -15,10 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_conventions_left_handed_host(void);
-void test_conventions_version_everywhere(void);
-void test_conventions_sky_after_the_scene(void);
-
 /* One LDR frame of a default sky (cover 0.4, mid-morning, the sun in view)
  * drawn with view and proj into a 96x64 buffer; its bytes into out. */
 static sky_result frame(const float h2w[9], const float view[16], const float proj[16], unsigned char *out)
@@ -42,7 +38,7 @@ static sky_result frame(const float h2w[9], const float view[16], const float pr
 
 /* S = diag(1, 1, -1, 1): an engine's left-handed matrices are S V S and
  * P S of a right-handed host's V and P looking the same way (sky.h). */
-void test_conventions_left_handed_host(void)
+TEST(conventions_left_handed_host)
 {
     enum { W = 96, H = 64, N = W * H * 4 };
     scene sc = scene_default();
@@ -89,7 +85,7 @@ void test_conventions_left_handed_host(void)
 
 /* sky_version() is what sky.h says; the shared library's soname and the
  * installed sky.pc follow it. */
-void test_conventions_version_everywhere(void)
+TEST(conventions_version_everywhere)
 {
     unsigned v = sky_version();
     CHECK(v == ((unsigned)SKY_VERSION_MAJOR << 16 | (unsigned)SKY_VERSION_MINOR << 8 | (unsigned)SKY_VERSION_PATCH),
@@ -142,7 +138,7 @@ static void host_quad(void)
  * the scene's pixels and fills the rest: depth cleared to 1 with LESS,
  * reversed-Z cleared to 0 with GREATER, and reversed-Z with a 0..1 clip
  * range where the context has glClipControl. */
-void test_conventions_sky_after_the_scene(void)
+TEST(conventions_sky_after_the_scene)
 {
     enum { W = 64, H = 48 };
     static const sky_depth modes[3] = {SKY_DEPTH_FAR_ONE, SKY_DEPTH_FAR_ZERO, SKY_DEPTH_FAR_ZERO_CLIP01};

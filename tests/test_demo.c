@@ -16,22 +16,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-void test_demo_window_shows_sky_and_sliders(void);
-void test_demo_drag_on_cover_slider(void);
-void test_demo_readout_is_gpu_frame_time(void);
-void test_game_lit_by_the_sky(void);
-void test_headless_frames_are_rendered(void);
-void test_headless_demo_writes_where_asked(void);
-void test_unwritable_screenshot_fails(void);
-void test_game_compat_context(void);
-void test_game_options_are_its_own(void);
-void test_game_fog_grows_with_distance(void);
-void test_game_walls_seen_at_night(void);
-void test_demo_rebuild_keeps_the_clock(void);
-void test_demo_atmosphere_key(void);
-void test_demo_es20_window(void);
-void test_headless_out_must_be_png(void);
-
 #define XVFB "xvfb-run -a -s '-screen 0 1280x720x24' "
 
 static const char *tmp(const char *name, char *buf, size_t len)
@@ -70,7 +54,7 @@ static int run_demo(const char *args, const char *png, image *out)
     return 0;
 }
 
-void test_demo_window_shows_sky_and_sliders(void)
+TEST(demo_window_shows_sky_and_sliders)
 {
     char png[256];
     image im;
@@ -91,7 +75,7 @@ void test_demo_window_shows_sky_and_sliders(void)
     image_free(&im);
 }
 
-void test_demo_drag_on_cover_slider(void)
+SLOW_TEST(demo_drag_on_cover_slider)
 {
     char png[256];
     image before, after;
@@ -115,7 +99,7 @@ void test_demo_drag_on_cover_slider(void)
  * after --frames: the sky's GPU frame time (median of the frames after the
  * first, by a timer query that agreed with the clock, else by the clock
  * around glFinish, as sky-bench) and the frame rate. */
-void test_demo_readout_is_gpu_frame_time(void)
+TEST(demo_readout_is_gpu_frame_time)
 {
     char path[512], cmd[2048], log[4096], png[256];
     snprintf(cmd, sizeof cmd, XVFB "%s --size 320x180 --frames 8 --screenshot %s --preset noon 2>&1",
@@ -135,7 +119,7 @@ void test_demo_readout_is_gpu_frame_time(void)
           "the median of every frame but the first (%d of 8; a timer query's come two frames late)", n);
 }
 
-void test_game_lit_by_the_sky(void)
+SLOW_TEST(game_lit_by_the_sky)
 {
     char path[512], cmd[2048], log[4096], png[256];
     double mean[3];
@@ -189,7 +173,7 @@ static double luminance_spread(const image *im)
 
 /* With DISPLAY unset each window program falls back to OSMesa; the frame
  * it writes must be the rendered sky, not the untouched (black) buffer. */
-void test_headless_frames_are_rendered(void)
+TEST(headless_frames_are_rendered)
 {
     static const char *const progs[] = {"sky-demo", "sky-game"};
     for (size_t k = 0; k < sizeof progs / sizeof progs[0]; k++) {
@@ -219,7 +203,7 @@ void test_headless_frames_are_rendered(void)
 /* Outside the source tree (a temporary directory, no build/ in it) the
  * headless sky-demo writes sky.png in the current directory, or --out's
  * file. */
-void test_headless_demo_writes_where_asked(void)
+TEST(headless_demo_writes_where_asked)
 {
     char rel[512], bin[PATH_MAX], dir[256], cmd[PATH_MAX + 1024], log[4096], png[600];
     if (!realpath(bin_path("sky-demo", rel, sizeof rel), bin)) {
@@ -269,7 +253,7 @@ static int have_xvfb(void) { return run_command("command -v xvfb-run >/dev/null 
 
 /* A screenshot that cannot be written is a failure a script must see:
  * exit status 1 and the message, in a window and headless. */
-void test_unwritable_screenshot_fails(void)
+SLOW_TEST(unwritable_screenshot_fails)
 {
     if (!have_xvfb()) {
         SKIP("xvfb-run is not installed");
@@ -299,7 +283,7 @@ static double mean_abs_diff(const image *a, const image *b)
 /* sky-game --gl compat asks GLFW for a 2.0 compatibility context, which
  * SKY_GL_COMPAT20 needs, and draws its world there in GLSL 1.10: the same
  * picture as the 3.3 core profile's. */
-void test_game_compat_context(void)
+SLOW_TEST(game_compat_context)
 {
     if (!have_xvfb()) {
         SKIP("xvfb-run is not installed");
@@ -356,7 +340,7 @@ static int game_headless(const char *args, image *out)
 /* sky-game's --help lists the game's options, not sky-render's; the ones
  * it lists do something, and sky-render's that make no sense for a world
  * (--fisheye, --tone-map) are refused. */
-void test_game_options_are_its_own(void)
+SLOW_TEST(game_options_are_its_own)
 {
     char path[512], cmd[1024], log[8192];
     snprintf(cmd, sizeof cmd, "%s --help 2>&1", bin_path("sky-game", path, sizeof path));
@@ -414,7 +398,7 @@ static double colour_distance(const double a[3], const double b[3])
  * while a box 40 m away keeps its colour. Each hill is sampled where the
  * game's camera projects a point on its face, the sky just above its
  * top. */
-void test_game_fog_grows_with_distance(void)
+TEST(game_fog_grows_with_distance)
 {
     image im;
     if (game_headless("--time 0.45", &im)) return;
@@ -465,7 +449,7 @@ void test_game_fog_grows_with_distance(void)
  * sky's exposure: darker than the sky behind it, as a silhouette, but not
  * black (it was: lit by the sky's ambient alone, it fell below the tone
  * curve's toe). */
-void test_game_walls_seen_at_night(void)
+TEST(game_walls_seen_at_night)
 {
     image im;
     if (game_headless("--preset moonlit --yaw 180 --pitch 20", &im)) return;
@@ -510,7 +494,7 @@ static int demo_sky(const char *args, image *out, char *log, size_t len)
 /* A layer toggled off and on again rebuilds the sky; the new sky takes
  * the animation clock where the old one was, so the clouds stay put
  * instead of jumping back to where they were at 0 s. */
-void test_demo_rebuild_keeps_the_clock(void)
+SLOW_TEST(demo_rebuild_keeps_the_clock)
 {
     if (!have_xvfb()) {
         SKIP("xvfb-run is not installed");
@@ -545,7 +529,7 @@ void test_demo_rebuild_keeps_the_clock(void)
 /* The A key's first press goes to the next real path (the default path
  * is the gradient), five presses come back round, and the demo names the
  * path on screen. */
-void test_demo_atmosphere_key(void)
+SLOW_TEST(demo_atmosphere_key)
 {
     if (!have_xvfb()) {
         SKIP("xvfb-run is not installed");
@@ -577,7 +561,7 @@ void test_demo_atmosphere_key(void)
 
 /* --out, like --screenshot, takes only a name ending in .png (any case):
  * anything else is a bad argument naming it, exit 2, before rendering. */
-void test_headless_out_must_be_png(void)
+TEST(headless_out_must_be_png)
 {
     static const char *const progs[2] = {"sky-demo", "sky-game"};
     for (int p = 0; p < 2; p++) {
@@ -596,7 +580,7 @@ void test_headless_out_must_be_png(void)
 
 /* --gl es20 opens an OpenGL ES 2.0 window (GLX's ES profile under Xvfb)
  * and the sky in it is COMPAT20's. */
-void test_demo_es20_window(void)
+SLOW_TEST(demo_es20_window)
 {
     if (!have_xvfb()) {
         SKIP("xvfb-run is not installed");

@@ -14,9 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_display_glsl_matches_ldr(void);
-void test_display_bind_checks(void);
-
 enum { W = 16, H = 9 };
 
 /* One frame's HDR and 8-bit pixels against the host program's. */
@@ -88,7 +85,7 @@ done:
 
 /* The library's 8-bit frame is the snippet's values plus a dither of half
  * a step either way, quantised: within 1.5 steps of 255. */
-void test_display_glsl_matches_ldr(void)
+TEST(display_glsl_matches_ldr)
 {
     /* day, the sun 9 degrees down, a full-moon night (the observer's date) */
     static const float times[3] = {0.3f, 0.78f, -1.0f};
@@ -105,7 +102,7 @@ void test_display_glsl_matches_ldr(void)
         }
 }
 
-void test_display_bind_checks(void)
+TEST(display_bind_checks)
 {
     CHECK(sky_display_bind(NULL, 1) == SKY_ERR_INVALID_ARGUMENT, "a NULL sky is refused");
     fixture f;

@@ -8,9 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_docs_no_paths_outside_the_repository(void);
-void test_docs_readme_figures_agree(void);
-
 /* Split so that this file does not match itself. */
 static const char *const outside[] = {"../" "shared/", "DESIGN" ".md", "ANCHORS" ".md"};
 
@@ -25,7 +22,7 @@ static int list_files(char *list, size_t len)
     return rc == 0 && list[0] ? 0 : -1;
 }
 
-void test_docs_no_paths_outside_the_repository(void)
+TEST(docs_no_paths_outside_the_repository)
 {
     static char list[1 << 20];
     int have_list = list_files(list, sizeof list) == 0;
@@ -87,7 +84,7 @@ static char *read_readme(void)
  * astronomy is described is the figure of the Measured section (sky-bench's
  * "astronomy:" line; they said 13 and 8.1 us), and the LDR output's tone
  * map is not called exponential (the maps are hue, filmic and neutral). */
-void test_docs_readme_figures_agree(void)
+TEST(docs_readme_figures_agree)
 {
     char *readme = read_readme();
     CHECK(readme != NULL, "README.md readable from the working directory");

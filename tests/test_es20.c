@@ -17,15 +17,6 @@
 #include <string.h>
 #include <unistd.h>
 
-void test_es20_presets_match_compat20(void);
-void test_es20_without_optional_extensions(void);
-void test_es20_every_path_with_every_layer(void);
-void test_es20_state_restored(void);
-void test_es20_profile_mismatch_is_an_error(void);
-void test_es20_aerial_snippet(void);
-void test_es20_capture_cross(void);
-void test_es20_mediump_fragment_stage(void);
-
 double image_psnr(const image *a, const image *b);
 
 /* A native ES 2.0 context, and one without any of the extensions the
@@ -41,7 +32,6 @@ static const char *const scenes[] = {"--preset noon",     "--preset sunset --yaw
                                      "--preset starry",   "--preset overcast",
                                      "--preset moonlit",  "--preset eclipse",
                                      "--preset solar-eclipse", "--preset minimal"};
-
 
 /* Renders the arguments' scene through env and --gl gl into png; returns the exit status
  * with the output (stats included) in out. */
@@ -80,7 +70,7 @@ static double es_against_compat(const char *env, const char *args, const char *w
     return psnr;
 }
 
-void test_es20_presets_match_compat20(void)
+SLOW_TEST(es20_presets_match_compat20)
 {
     for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         double psnr = es_against_compat(ES2, scenes[k], "every extension");
@@ -92,7 +82,7 @@ void test_es20_presets_match_compat20(void)
 /* Without OES_standard_derivatives the clouds' footprint fade and the
  * sun's edge use an estimate from the pixel's angle; without
  * OES_texture_npot the dome's image is a power of two. */
-void test_es20_without_optional_extensions(void)
+SLOW_TEST(es20_without_optional_extensions)
 {
     for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
         double psnr = es_against_compat(ES2_BARE, scenes[k], "no extensions");
@@ -103,7 +93,7 @@ void test_es20_without_optional_extensions(void)
 
 /* Every path's programs with every layer build and draw under GLSL ES
  * 1.00, with and without the extensions, and agree with COMPAT20. */
-void test_es20_every_path_with_every_layer(void)
+SLOW_TEST(es20_every_path_with_every_layer)
 {
     static const char *const paths[] = {"gradient", "preetham", "rayleigh", "hillaire", "blend",
                                         "blend --blend-partner preetham"};
@@ -399,7 +389,7 @@ static void es_state_restored(int hide_vao)
     sky_osmesa_destroy(&ctx);
 }
 
-void test_es20_state_restored(void)
+TEST(es20_state_restored)
 {
     es_state_restored(0);
     es_state_restored(1);
@@ -407,7 +397,7 @@ void test_es20_state_restored(void)
 
 /* An ES context runs ES20 alone, and ES20 needs one: each mismatch is an
  * error that says so, before anything is created. */
-void test_es20_profile_mismatch_is_an_error(void)
+TEST(es20_profile_mismatch_is_an_error)
 {
     char err[256];
     sky_osmesa ctx;
@@ -448,7 +438,7 @@ void test_es20_profile_mismatch_is_an_error(void)
  * 1.00 shader with the host's highp, sky_aerial_bind binds it, and what it
  * draws (8-bit: transmittance, and the light over the brightest) is the
  * CPU function's within 2 levels plus 2 %. */
-void test_es20_aerial_snippet(void)
+TEST(es20_aerial_snippet)
 {
     enum { DIRS = 8, DISTS = 5 };
     sky_osmesa ctx;
@@ -546,7 +536,7 @@ void test_es20_aerial_snippet(void)
 
 /* sky-render --capture under ES20: the faces read back through a
  * framebuffer (ES 2.0 has no glGetTexImage), the cross COMPAT20's. */
-void test_es20_capture_cross(void)
+TEST(es20_capture_cross)
 {
     char bin[512], es_png[512], compat_png[512], cmd[2048], out[4096];
     bin_path("sky-render", bin, sizeof bin);
@@ -632,7 +622,7 @@ static double mediump_against_highp(sky_osmesa *ctx, es_api *gl, sky_atmosphere_
     return mse > 0.0 ? 10.0 * log10(255.0 * 255.0 / mse) : 99.0;
 }
 
-void test_es20_mediump_fragment_stage(void)
+SLOW_TEST(es20_mediump_fragment_stage)
 {
     sky_osmesa ctx;
     es_api gl;

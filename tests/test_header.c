@@ -8,12 +8,10 @@
 #include <string.h>
 #include <unistd.h>
 
-void test_header_compiles_pedantic(void);
-
 /* sky/sky.h alone, under -pedantic -Werror, in C99, C11 and (where a C++
  * compiler is installed) C++98 and C++20: ISO C wants every enumerator to
  * fit an int, which SKY_FEATURES_NONE (bit 31) once did not. */
-void test_header_compiles_pedantic(void)
+TEST(header_compiles_pedantic)
 {
     char src[256], cmd[1024], out[4096];
     const char *dir = getenv("TMPDIR");

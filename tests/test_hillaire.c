@@ -19,13 +19,6 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-void test_hillaire_transmittance_table(void);
-void test_hillaire_sky_vs_reference(void);
-void test_hillaire_error_falls_with_table_size(void);
-void test_hillaire_finite_everywhere(void);
-void test_hillaire_rebuilds_identical(void);
-void test_hillaire_bad_input(void);
-
 static sky_atmosphere_params earth(void)
 {
     sky_atmosphere_params a;
@@ -110,7 +103,7 @@ static void tau_quadrature(const sky_atmosphere_params *a, double r, double mu, 
         tau[c] = a->rayleigh_scattering[c] * col[0] + a->mie_extinction[c] * col[1] + a->ozone_absorption[c] * col[2];
 }
 
-void test_hillaire_transmittance_table(void)
+TEST(hillaire_transmittance_table)
 {
     /* the table's interpolation on Hillaire's constants, whose bounds are
      * below; the default Earth's denser aerosol near the ground steepens
@@ -311,7 +304,7 @@ static void sky_vs_reference(const sky_atmosphere_params *atm, const char *name,
  * the harder to carry. Isotropic beyond the second order, as Hillaire has
  * it, the table erred by 5.7 % (Hillaire's constants, sun 60 deg) and 5.4
  * % (Earth, sun 10 deg). */
-void test_hillaire_sky_vs_reference(void)
+SLOW_TEST(hillaire_sky_vs_reference)
 {
     sky_atmosphere_params h = hillaire_2020(), e = earth();
     sky_vs_reference(&h, "hillaire-2020", 0.05);
@@ -357,7 +350,7 @@ static double sky_difference(const sky_hillaire_tables *x, const sky_hillaire_ta
     return n ? sum / n : 0.0;
 }
 
-void test_hillaire_error_falls_with_table_size(void)
+SLOW_TEST(hillaire_error_falls_with_table_size)
 {
     sky_atmosphere_params a = earth();
     double sun[3];
@@ -426,7 +419,7 @@ static int lookups_ok(const sky_hillaire_tables *t, const double sun[3])
     return 1;
 }
 
-void test_hillaire_finite_everywhere(void)
+TEST(hillaire_finite_everywhere)
 {
     sky_hillaire_settings s = {16, 8, 8, 8, 16, 8, 16, 12, 8};
     sky_atmosphere_params atms[8];
@@ -492,7 +485,7 @@ void test_hillaire_finite_everywhere(void)
  * their own between calls (the sky-view table is rebuilt as the sun
  * moves, and frames must be functions of their inputs). The build times
  * are noted, not held: timing belongs in sky-bench (--only-atmosphere). */
-void test_hillaire_rebuilds_identical(void)
+TEST(hillaire_rebuilds_identical)
 {
     sky_atmosphere_params a = earth();
     sky_hillaire_tables t;
@@ -538,7 +531,7 @@ void test_hillaire_rebuilds_identical(void)
 
 /* ---- 6. bad input ---------------------------------------------------------------------- */
 
-void test_hillaire_bad_input(void)
+TEST(hillaire_bad_input)
 {
     sky_atmosphere_params a = earth(), zero;
     memset(&zero, 0, sizeof zero);

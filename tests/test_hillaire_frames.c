@@ -17,11 +17,6 @@
 #include <string.h>
 #include <time.h>
 
-void test_hillaire_timelapse_under_1ms_a_frame(void);
-void test_hillaire_timelapse_shows_whole_tables(void);
-void test_hillaire_timelapse_settles_on_exact_table(void);
-void test_hillaire_jump_builds_at_once(void);
-
 #define SIZE 32
 /* sky-demo's default time-lapse: a day in two minutes at 30 frames a
  * second, 1/3600 of the slider a frame: 0.1 degree of sun at the equator */
@@ -175,8 +170,9 @@ static int cmp_double(const void *a, const void *b)
  * its lut_ms (wall time, which a preemption by another process inflates)
  * and the CPU time of the two calls (which also holds the astronomy and
  * the lighting summary): both are reported, and the smaller bound's worst;
- * the test asserts the slicing, not the time (below). */
-void test_hillaire_timelapse_under_1ms_a_frame(void)
+ * the test asserts the slicing, not the time (below), and is named for
+ * what it asserts. */
+TEST(hillaire_timelapse_builds_in_slices)
 {
     lapse l;
     if (lapse_open(&l, SKY_GL_COMPAT20, time_for_sun(-6.0))) {
@@ -229,7 +225,7 @@ void test_hillaire_timelapse_under_1ms_a_frame(void)
  * infinite or negative channel, and is never darker than 0.9 times the
  * frame before (a rising sun only brightens the sky; a blank, half-built
  * or wrongly decoded table would not). */
-void test_hillaire_timelapse_shows_whole_tables(void)
+TEST(hillaire_timelapse_shows_whole_tables)
 {
     lapse l;
     if (lapse_open(&l, SKY_GL_COMPAT20, time_for_sun(-6.0))) {
@@ -273,7 +269,7 @@ void test_hillaire_timelapse_shows_whole_tables(void)
  * use is for exactly that sun, equal bit for bit to
  * sky_hillaire_build_skyview's, and the frame equals that of a sky created
  * at the final time (whose first table is built at once). */
-void test_hillaire_timelapse_settles_on_exact_table(void)
+TEST(hillaire_timelapse_settles_on_exact_table)
 {
     lapse l, fresh;
     if (lapse_open(&l, SKY_GL_COMPAT20, time_for_sun(-3.0))) {
@@ -350,7 +346,7 @@ void test_hillaire_timelapse_settles_on_exact_table(void)
  * than 10 m; a smaller move of the sun keeps the table in use for now and
  * builds the next one a slice at a time. CORE33 (built on the GPU in
  * sky_draw) takes every move past the threshold at once, as before. */
-void test_hillaire_jump_builds_at_once(void)
+TEST(hillaire_jump_builds_at_once)
 {
     lapse l;
     if (lapse_open(&l, SKY_GL_COMPAT20, time_for_sun(-2.0))) {

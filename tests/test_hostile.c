@@ -16,13 +16,6 @@
 #include <time.h>
 #include <unistd.h>
 
-void test_hostile_missing_gl_entry_point(void);
-void test_hostile_context_lost(void);
-void test_hostile_fifo_override(void);
-void test_hostile_directory_override(void);
-void test_hostile_palette_overrun(void);
-void test_hostile_core_context_names_what_it_lacks(void);
-
 /* The wrapping loaders' settings: a loader is a bare function pointer, so
  * what it drops or fakes lives here (test program state, not library). */
 static const char *hidden_name;
@@ -49,7 +42,7 @@ static sky_gl_proc loader_context_lost(const char *name)
     return hiding_from(name);
 }
 
-void test_hostile_missing_gl_entry_point(void)
+TEST(hostile_missing_gl_entry_point)
 {
     /* every name sky_gl_init requires, in its loading order: an ES
      * context needs all but desktop GL's own */
@@ -88,7 +81,7 @@ void test_hostile_missing_gl_entry_point(void)
     }
 }
 
-void test_hostile_context_lost(void)
+TEST(hostile_context_lost)
 {
     static const sky_gl_profile kinds[2] = {SKY_GL_AUTO, SKY_GL_ES20};
     for (int k = 0; k < 2; k++) {
@@ -136,7 +129,7 @@ static sky *create_with_dir(const char *dir, char *err, size_t err_len, sky_osme
     return s;
 }
 
-void test_hostile_fifo_override(void)
+TEST(hostile_fifo_override)
 {
     char dir[] = "/tmp/sky-fifo-XXXXXX";
     if (!mkdtemp(dir)) {
@@ -177,7 +170,7 @@ void test_hostile_fifo_override(void)
     rmdir(dir);
 }
 
-void test_hostile_directory_override(void)
+TEST(hostile_directory_override)
 {
     char dir[] = "/tmp/sky-dir-XXXXXX";
     if (!mkdtemp(dir)) {
@@ -278,7 +271,7 @@ static void dirty_stack(void)
     for (size_t i = 0; i < sizeof junk; i++) junk[i] = 0xa5;
 }
 
-void test_hostile_palette_overrun(void)
+TEST(hostile_palette_overrun)
 {
     unsigned char png[512];
     size_t size = palette_overrun_png(png);
@@ -305,7 +298,7 @@ void test_hostile_palette_overrun(void)
 /* A core context whose loader lacks a 3.x entry point CORE33 needs cannot
  * fall back to COMPAT20 (a core profile runs no GLSL 1.10): the message
  * names the missing function, not only the profile. */
-void test_hostile_core_context_names_what_it_lacks(void)
+TEST(hostile_core_context_names_what_it_lacks)
 {
     static const char *const names[2] = {"glGenVertexArrays", "glBindFramebuffer"};
     char err[512];

@@ -16,16 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_lighting_sh_irradiance_matches_render(void);
-void test_lighting_sh_checks_its_input(void);
-void test_lighting_sh_with_clouds(void);
-void test_lighting_sh_matches_fisheye(void);
-void test_lighting_sh_in_the_world_frame(void);
-void test_lighting_capture_faces_are_sky_draw(void);
-void test_lighting_capture_checks_and_restores(void);
-void test_lighting_capture_hdr(void);
-void test_lighting_capture_without_framebuffer_objects(void);
-
 /* test.h's path list and hemisphere (here, in the suite's own build:
  * the engine examples' test build has no tools) */
 const sky_atmosphere_path test_paths[TEST_PATHS] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
@@ -52,7 +42,7 @@ sky_atmo_hemisphere *hemisphere_open(sky_atmosphere_path path, unsigned features
  * the rendered sky on an upward, a horizontal and a downward normal, by
  * day, at sunset and at night, on every path (discs, stars and clouds
  * left out of both; the render's own sky is the SH's source). */
-void test_lighting_sh_irradiance_matches_render(void)
+TEST(lighting_sh_irradiance_matches_render)
 {
     static const double suns[3] = {30.0, 2.0, -20.0};
     static const char *const when[3] = {"day", "sunset", "night"};
@@ -104,7 +94,7 @@ void test_lighting_sh_irradiance_matches_render(void)
  * facing a sun on the horizon (measured -6 and -10 % at cover 0.6 and
  * 0.9), where the drawn clouds fade into the bright horizon glow by
  * their footprint (clouds.glsl) and the mean does not. */
-void test_lighting_sh_with_clouds(void)
+SLOW_TEST(lighting_sh_with_clouds)
 {
     static const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
     static const char *const names[2] = {"gradient", "hillaire"};
@@ -155,7 +145,7 @@ void test_lighting_sh_with_clouds(void)
  * equidistant: a pixel at ndc radius r sees zenith angle r 90 deg and
  * spans sin(theta) (pi / 2) (2 / N)^2 / r sr): within 3 % on every path,
  * by day, at sunset and at night. */
-void test_lighting_sh_matches_fisheye(void)
+TEST(lighting_sh_matches_fisheye)
 {
     enum { N = 512 };
     static const double suns[3] = {30.0, 2.0, -20.0};
@@ -206,7 +196,7 @@ void test_lighting_sh_matches_fisheye(void)
     NOTE("upward irradiance: SH within %.2f %% of the fisheye render", 100.0 * worst);
 }
 
-void test_lighting_sh_checks_its_input(void)
+TEST(lighting_sh_checks_its_input)
 {
     sky_irradiance_sh sh;
     memset(&sh, 0, sizeof sh);
@@ -231,7 +221,7 @@ void test_lighting_sh_checks_its_input(void)
  * and a left-handed one (Irrlicht) see the same irradiance on the same
  * physical surface as the identity frame, within float rounding; and the
  * horizon's up, 'up', is where horizon_to_world puts +y. */
-void test_lighting_sh_in_the_world_frame(void)
+TEST(lighting_sh_in_the_world_frame)
 {
     static const float frames[3][9] = {{1, 0, 0, 0, 1, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 1, 0, -1, 0},
                                        {1, 0, 0, 0, 1, 0, 0, 0, -1}};
@@ -285,7 +275,7 @@ static int face_pixels(GLuint tex, int face, unsigned char *out)
     return glGetError() == GL_NO_ERROR ? 0 : -1;
 }
 
-void test_lighting_capture_faces_are_sky_draw(void)
+TEST(lighting_capture_faces_are_sky_draw)
 {
     static const sky_gl_profile profiles[2] = {SKY_GL_CORE33, SKY_GL_COMPAT20};
     for (int q = 0; q < 2; q++) {
@@ -373,7 +363,7 @@ void test_lighting_capture_faces_are_sky_draw(void)
 
 /* The host's framebuffer, viewport and texture bindings come back; bad
  * sizes, faces, flags and foreign textures are refused with a message. */
-void test_lighting_capture_checks_and_restores(void)
+TEST(lighting_capture_checks_and_restores)
 {
     fixture f;
     if (fixture_open_sized(&f, CAP, CAP, 0, SKY_GL_CORE33, NULL)) {
@@ -437,7 +427,7 @@ static sky_gl_proc no_fbo_loader(const char *name)
  * cloud pixels, up to 1.01 %: llvmpipe picks a texture's mipmap level
  * from a 2 x 2 quad's differences, and its draw buffer lies upside down
  * to a framebuffer object's, so their quads differ there.) */
-void test_lighting_capture_hdr(void)
+TEST(lighting_capture_hdr)
 {
     static const char *const names[3] = {"CORE33", "COMPAT20", "COMPAT20 without framebuffer objects"};
     for (int q = 0; q < 3; q++) {
@@ -534,7 +524,7 @@ void test_lighting_capture_hdr(void)
  * pattern follows a pixel's place in the buffer, and the host's viewport
  * here starts at 4, 2), the pixels it drew into reported, the host's
  * viewport and textures back, a face larger than the viewport refused. */
-void test_lighting_capture_without_framebuffer_objects(void)
+TEST(lighting_capture_without_framebuffer_objects)
 {
     char err[512];
     sky_osmesa ctx;

@@ -1,7 +1,8 @@
 /*
  * libsky's test runner: runs every test (or those whose name contains
- * argv[1]) and ends with the line "N passed, N failed" (followed by
- * ", N skipped" when a test could not run here).
+ * the argument) and ends with the line "N passed, N failed" (followed by
+ * ", N skipped" when a test could not run here). --fast (make check)
+ * leaves out the tests defined with SLOW_TEST, which make test runs.
  */
 #include "test.h"
 #include "cli.h"
@@ -10,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 /* The test program's own PNG reader (the library keeps its copy private). */
@@ -20,230 +22,12 @@
 int test_failures;
 int test_skipped;
 
-#if defined(SKY_WEB_TESTS)
-/* the browser build's runner (make test-web): tests/web/ */
-#define TESTS(X)                        \
-    X(web_page_shows_a_sky)             \
-    X(web_drag_changes_the_frame)       \
-    X(web_preset_switch)
-#elif defined(SKY_EXAMPLE_TESTS)
-/* the engine examples' runner (make test-examples): the same harness, its
- * own tests (tests/examples/) */
-#define TESTS(X)                                 \
-    X(examples_sdl2_sky_above_scene_below)       \
-    X(examples_osg_sky_above_scene_below)        \
-    X(examples_irrlicht_sky_above_scene_below)   \
-    X(examples_sdl2_sun_where_lighting_says)     \
-    X(examples_osg_sun_where_lighting_says)      \
-    X(examples_irrlicht_sun_where_lighting_says) \
-    X(examples_irrlicht_left_handed)             \
-    X(examples_sdl2_depth_conventions)
-#else
-#define TESTS(X)                                 \
-    X(api_zero_config_renders)                   \
-    X(api_rejects_null_and_bad_config)           \
-    X(api_sliders_clamp_and_reject_nan)          \
-    X(api_update_time_validation)                \
-    X(api_draw_rejects_bad_matrices)             \
-    X(api_lighting_and_stats)                    \
-    X(api_gl_objects_deleted)                    \
-    X(api_leaks_1000_cycles)                     \
-    X(gl_state_restored_core)                    \
-    X(gl_state_restored_compat)                  \
-    X(es20_state_restored)                       \
-    X(es20_profile_mismatch_is_an_error)         \
-    X(es20_aerial_snippet)                       \
-    X(es20_capture_cross)                        \
-    X(es20_mediump_fragment_stage)               \
-    X(es20_presets_match_compat20)               \
-    X(es20_without_optional_extensions)          \
-    X(es20_every_path_with_every_layer)          \
-    X(gl_host_raster_state_ignored)              \
-    X(gl_errors_left_to_host_and_contexts_checked) \
-    X(header_compiles_pedantic)                  \
-    X(conventions_left_handed_host)              \
-    X(conventions_version_everywhere)            \
-    X(conventions_sky_after_the_scene)           \
-    X(validation_dates)                          \
-    X(validation_config_fields_named)            \
-    X(validation_extreme_aspect_ratio)           \
-    X(validation_ldr_in_float_target_stays_in_range) \
-    X(render_cover_zero_has_no_clouds)           \
-    X(render_full_cover_hides_sky)               \
-    X(render_density_darkens_clouds)             \
-    X(render_day_bright_night_dark_with_stars)   \
-    X(render_no_star_work_at_noon)               \
-    X(render_flicker_changes_with_seconds)       \
-    X(render_clouds_drift_by_expected_offset)    \
-    X(render_drift_stays_smooth_after_years)     \
-    X(render_height_changes_cloud_scale)         \
-    X(render_sun_where_direction_projects)       \
-    X(render_sun_in_fisheye)                     \
-    X(render_sun_disc_sums_to_sunlight)          \
-    X(render_hdr_finite_everywhere)              \
-    X(render_dome_image_agrees_with_every_pixel) \
-    X(render_dome_covers_every_view)             \
-    X(colour_hue_and_saturation_kept)            \
-    X(colour_old_curve_fails_the_measure)        \
-    X(colour_one_ground_below_the_horizon)       \
-    X(colour_noon_as_bright_as_before)           \
-    X(colour_day_ends_darker)                    \
-    X(colour_exposure_range_spares_noon)         \
-    X(colour_night_is_blue)                      \
-    X(display_glsl_matches_ldr)                  \
-    X(display_bind_checks)                       \
-    X(profiles_core_and_compat_agree)            \
-    X(profiles_compat_on_emulated_2004_gpu)      \
-    X(profiles_every_path_with_every_layer)      \
-    X(profiles_too_old_context_is_an_error)      \
-    X(texture_budget_minimal_path)               \
-    X(textures_tile_without_seams)               \
-    X(flicker_texture_neighbourhoods)            \
-    X(cli_exit_codes_and_messages)               \
-    X(cli_every_option_checked)                  \
-    X(cli_screenshot_must_be_png)                \
-    X(cli_no_output_says_so)                     \
-    X(cli_help_exits_0)                          \
-    X(cli_demo_help_lists_every_key)             \
-    X(output_device_node_survives_failed_write)  \
-    X(output_directory_target_untouched)         \
-    X(output_full_disk_keeps_old_file)           \
-    X(output_png_writer_checks_every_write)      \
-    X(output_stdout_errors_exit_1)               \
-    X(output_same_file_twice_rejected)           \
-    X(docs_no_paths_outside_the_repository)      \
-    X(docs_readme_figures_agree)                 \
-    X(astro_time_scales)                         \
-    X(astro_sun_vs_erfa)                         \
-    X(astro_moon_vs_erfa)                        \
-    X(astro_stars_vs_erfa)                       \
-    X(astro_phase_and_eclipse_vs_erfa)           \
-    X(astro_historic_lunar_eclipses)             \
-    X(astro_refraction)                          \
-    X(astro_solar_eclipse_totality)              \
-    X(astro_solar_eclipse_partial_vs_erfa)       \
-    X(render_total_solar_eclipse)                \
-    X(astro_bad_input)                           \
-    X(astro_node_cache)                          \
-    X(astro_time_slider_is_solar_time)           \
-    X(astro_query_json)                          \
-    X(planets_vs_pyephem)                        \
-    X(planets_magnitudes_published)              \
-    X(planets_state_serves_its_window)           \
-    X(planets_drawn_where_astronomy_puts_them)   \
-    X(planets_light_sums_to_magnitude)           \
-    X(planets_venus_in_the_afternoon)            \
-    X(planets_layer_costs)                       \
-    X(planets_layer_follows_the_clock)           \
-    X(nightglow_dark_site_zenith)                \
-    X(nightglow_bortle_classes)                  \
-    X(nightglow_zodiacal_follows_the_table)      \
-    X(nightglow_cpu_matches_render)              \
-    X(nightglow_layer_costs)                     \
-    X(nightglow_naked_eye_limit)                 \
-    X(stars_where_astronomy_puts_them)           \
-    X(stars_control_magnitude_and_twilight)      \
-    X(stars_colour_follows_bv)                   \
-    X(stars_scintillate_more_near_horizon)       \
-    X(stars_skipped_at_noon)                     \
-    X(stars_flux_with_and_without_glare)         \
-    X(stars_cells_lose_no_star)                  \
-    X(starmap_shows_the_milky_way)               \
-    X(moon_phase_and_bright_limb)                \
-    X(moon_earthshine_on_a_crescent)             \
-    X(moon_total_eclipse_is_dark_and_red)        \
-    X(moon_penumbral_eclipse_is_slightly_darker) \
-    X(moon_left_out_when_not_needed)             \
-    X(moon_rising_is_flattened)                  \
-    X(moon_hides_the_stars_behind_it)            \
-    X(moon_disc_sums_to_moonlight)               \
-    X(moon_scale_keeps_luminance)                \
-    X(demo_window_shows_sky_and_sliders)         \
-    X(demo_drag_on_cover_slider)                 \
-    X(demo_readout_is_gpu_frame_time)            \
-    X(bench_preset_table_in_rounds)              \
-    X(bench_rejects_bad_rounds)                  \
-    X(bench_es20_presets)                        \
-    X(sharpness_measure_properties)              \
-    X(sharpness_day_clouds_kept)                 \
-    X(game_lit_by_the_sky)                       \
-    X(headless_frames_are_rendered)              \
-    X(headless_demo_writes_where_asked)          \
-    X(unwritable_screenshot_fails)               \
-    X(game_compat_context)                       \
-    X(game_options_are_its_own)                  \
-    X(game_fog_grows_with_distance)              \
-    X(game_walls_seen_at_night)                  \
-    X(demo_rebuild_keeps_the_clock)              \
-    X(demo_atmosphere_key)                       \
-    X(demo_es20_window)                          \
-    X(headless_out_must_be_png)                  \
-    X(reliability_hostile_override_textures)     \
-    X(reliability_two_skies_are_independent)     \
-    X(reliability_soak_10000_frames)             \
-    X(hostile_missing_gl_entry_point)            \
-    X(hostile_context_lost)                      \
-    X(hostile_fifo_override)                     \
-    X(hostile_directory_override)                \
-    X(hostile_palette_overrun)                   \
-    X(hostile_core_context_names_what_it_lacks)  \
-    X(atmosphere_paths_finite_for_every_sun_position) \
-    X(atmosphere_clear_sky_colours)              \
-    X(atmosphere_shaders_match_cpu_twins)        \
-    X(atmosphere_moonlit_sky)                    \
-    X(atmosphere_clouds_lit_by_moon)             \
-    X(atmosphere_moonlight_reaches_the_host)     \
-    X(atmosphere_continuous_across_horizon)      \
-    X(atmosphere_preetham_outside_its_fit)       \
-    X(atmosphere_description_checked)            \
-    X(atmosphere_error_against_reference)        \
-    X(atmosphere_gpu_tables_match_cpu)           \
-    X(atmosphere_extinction_follows_the_description) \
-    X(atmosphere_observer_altitudes)             \
-    X(atmosphere_setting_sun_flattened)          \
-    X(atmosphere_turbidity_and_presets)          \
-    X(atmosphere_blend_partner_preetham)         \
-    X(stability_suite)                           \
-    X(stability_suite_es20)                      \
-    X(stability_clocks_survive_any_step)         \
-    X(reference_spectrum_and_units)              \
-    X(reference_single_scattering_vs_quadrature) \
-    X(reference_energy_balance)                  \
-    X(reference_converges)                       \
-    X(reference_sky_is_plausible)                \
-    X(hillaire_transmittance_table)              \
-    X(hillaire_sky_vs_reference)                 \
-    X(hillaire_error_falls_with_table_size)      \
-    X(hillaire_finite_everywhere)                \
-    X(hillaire_rebuilds_identical)               \
-    X(hillaire_bad_input)                        \
-    X(hillaire_timelapse_under_1ms_a_frame)      \
-    X(hillaire_timelapse_shows_whole_tables)     \
-    X(hillaire_timelapse_settles_on_exact_table) \
-    X(hillaire_jump_builds_at_once)              \
-    X(cli_outputs_png_pfm_stats)                 \
-    X(photometry_published_formulas)             \
-    X(photometry_measures_every_path)            \
-    X(photometry_preetham_twilight)              \
-    X(photometry_physical_paths_targets)         \
-    X(photometry_rayleigh_goes_dark)             \
-    X(lighting_sh_irradiance_matches_render)     \
-    X(lighting_sh_checks_its_input)              \
-    X(lighting_sh_with_clouds)                   \
-    X(lighting_sh_matches_fisheye)               \
-    X(lighting_sh_in_the_world_frame)            \
-    X(lighting_capture_faces_are_sky_draw)       \
-    X(lighting_capture_checks_and_restores)      \
-    X(lighting_capture_hdr)                      \
-    X(lighting_capture_without_framebuffer_objects) \
-    X(aerial_meets_the_sky)                      \
-    X(aerial_against_reference)                  \
-    X(aerial_checks_its_input)                   \
-    X(aerial_glsl_matches_cpu)                   \
-    X(aerial_froxels_match_cpu)
-#endif
+/* TESTS(X): every TEST and SLOW_TEST of the runner's files, in their
+ * order, found by tests/list.sh (no hand-kept list). Each runner (this
+ * one, the browser's, the engine examples') has its own list. */
+#include "test_list.h"
 
-#define DECLARE(name) void test_##name(void);
+#define DECLARE(name, slow) void test_##name(void);
 TESTS(DECLARE)
 #undef DECLARE
 
@@ -486,29 +270,40 @@ int run_command(const char *cmd, char *buf, size_t len)
 int main(int argc, char **argv)
 {
     static const test_case tests[] = {
-#define ENTRY(name) {#name, test_##name},
+#define ENTRY(name, slow) {#name, test_##name, slow},
         TESTS(ENTRY)
 #undef ENTRY
     };
     setvbuf(stdout, NULL, _IOLBF, 0);
-    int passed = 0, failed = 0, skipped = 0;
+    int fast = argc > 1 && strcmp(argv[1], "--fast") == 0;
+    const char *filter = argc > 1 + fast ? argv[1 + fast] : NULL;
+    int passed = 0, failed = 0, skipped = 0, left_out = 0;
     for (size_t i = 0; i < sizeof tests / sizeof tests[0]; i++) {
-        if (argc > 1 && !strstr(tests[i].name, argv[1])) continue;
+        if (filter && !strstr(tests[i].name, filter)) continue;
+        if (fast && tests[i].slow) {
+            left_out++;
+            continue;
+        }
         test_failures = 0;
         test_skipped = 0;
         printf("  %s\n", tests[i].name);
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
         tests[i].fn();
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        double took = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
         if (test_failures) {
-            printf("FAIL %s\n", tests[i].name);
+            printf("FAIL %s (%.2f s)\n", tests[i].name, took);
             failed++;
         } else if (test_skipped) {
-            printf("skip %s\n", tests[i].name);
+            printf("skip %s (%.2f s)\n", tests[i].name, took);
             skipped++;
         } else {
-            printf("ok   %s\n", tests[i].name);
+            printf("ok   %s (%.2f s)\n", tests[i].name, took);
             passed++;
         }
     }
+    if (left_out) printf("(%d slow tests left to make test)\n", left_out);
     /* the skip count only when there is one, so a complete run ends with
      * exactly "N passed, N failed" */
     if (skipped) printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);

@@ -11,16 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_moon_phase_and_bright_limb(void);
-void test_moon_earthshine_on_a_crescent(void);
-void test_moon_total_eclipse_is_dark_and_red(void);
-void test_moon_penumbral_eclipse_is_slightly_darker(void);
-void test_moon_left_out_when_not_needed(void);
-void test_moon_rising_is_flattened(void);
-void test_moon_hides_the_stars_behind_it(void);
-void test_moon_disc_sums_to_moonlight(void);
-void test_moon_scale_keeps_luminance(void);
-
 #define DEG (3.14159265358979323846 / 180.0)
 
 typedef struct closeup {
@@ -73,7 +63,7 @@ static double lit_fraction(const closeup *c, double *limb_angle)
     return disc ? (double)lit / disc : 0.0;
 }
 
-void test_moon_phase_and_bright_limb(void)
+TEST(moon_phase_and_bright_limb)
 {
     const struct {
         const char *name;
@@ -109,7 +99,7 @@ void test_moon_phase_and_bright_limb(void)
     }
 }
 
-void test_moon_earthshine_on_a_crescent(void)
+TEST(moon_earthshine_on_a_crescent)
 {
     /* a two-day crescent in deep twilight */
     sky_observer o = {sky_julian_day(2024, 6, 8, 20, 30, 0.0), 45.0, 10.0, 0.0, 0};
@@ -154,7 +144,7 @@ static double disc_mean(const closeup *c, double rgb[3])
     return n ? sum / n : 0.0;
 }
 
-void test_moon_total_eclipse_is_dark_and_red(void)
+TEST(moon_total_eclipse_is_dark_and_red)
 {
     /* greatest eclipse of 2011-06-15 (20:12:37 TD), seen from where the
      * moon stands high (Madagascar region) */
@@ -176,7 +166,7 @@ void test_moon_total_eclipse_is_dark_and_red(void)
     image_free(&plain.im);
 }
 
-void test_moon_penumbral_eclipse_is_slightly_darker(void)
+TEST(moon_penumbral_eclipse_is_slightly_darker)
 {
     /* the penumbral eclipse of 2020-01-10, greatest at 19:10 UT */
     sky_observer o = {sky_julian_day(2020, 1, 10, 19, 10, 0.0), 20.0, 80.0, 0.0, 0};
@@ -194,7 +184,7 @@ void test_moon_penumbral_eclipse_is_slightly_darker(void)
     image_free(&plain.im);
 }
 
-void test_moon_left_out_when_not_needed(void)
+TEST(moon_left_out_when_not_needed)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -247,7 +237,7 @@ void test_moon_left_out_when_not_needed(void)
     }
 }
 
-void test_moon_rising_is_flattened(void)
+TEST(moon_rising_is_flattened)
 {
     /* The full moon rising on 2024-06-21 at 45 N 10 E: the instant its
      * centre stands 0.55 degree up (apparent), found by bisection */
@@ -308,7 +298,7 @@ void test_moon_rising_is_flattened(void)
     image_free(&without);
 }
 
-void test_moon_hides_the_stars_behind_it(void)
+TEST(moon_hides_the_stars_behind_it)
 {
     /* A crescent at the end of twilight (2024-06-08 21:30 UT, 45 N 10 E,
      * the sun 17.6 degrees down), where the disc only adds light: HIP
@@ -411,7 +401,7 @@ static int disc_and_light(const sky_observer *o, float moon_scale, double *disc,
  * full at phase angle a (degrees). */
 static double ks_phase(double a) { return pow(10.0, -0.4 * (0.026 * fabs(a) + 4e-9 * a * a * a * a)); }
 
-void test_moon_disc_sums_to_moonlight(void)
+TEST(moon_disc_sums_to_moonlight)
 {
     /* the perigee and apogee full moons of 2024-10-17 and 2025-04-13 high
      * in a dark sky, then the phases of test_moon_phase_and_bright_limb */
@@ -454,7 +444,7 @@ void test_moon_disc_sums_to_moonlight(void)
           per_ks[1] * 1e3);
 }
 
-void test_moon_scale_keeps_luminance(void)
+TEST(moon_scale_keeps_luminance)
 {
     /* moon_scale draws a bigger moon of the same surface brightness (a
      * telephoto view), so its disc carries scale^2 times the flux, while

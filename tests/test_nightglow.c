@@ -15,13 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_nightglow_dark_site_zenith(void);
-void test_nightglow_bortle_classes(void);
-void test_nightglow_zodiacal_follows_the_table(void);
-void test_nightglow_cpu_matches_render(void);
-void test_nightglow_layer_costs(void);
-void test_nightglow_naked_eye_limit(void);
-
 #define DEG (3.14159265358979323846 / 180.0)
 
 /* 2024-06-14 23:50 UTC at 45 N 10 E: local sidereal time 18 h, so the
@@ -57,7 +50,7 @@ static double zenith_luminance(unsigned features, float bortle, float activity, 
 /* Issue: "Night zenith brightness with airglow and zodiacal light at a
  * dark site: 21.5-22.3 mag/arcsec^2", at solar minimum and maximum; and
  * left out, a darker sky. */
-void test_nightglow_dark_site_zenith(void)
+TEST(nightglow_dark_site_zenith)
 {
     sky_observer o = dark_site();
     const unsigned glows = SKY_AIRGLOW | SKY_ZODIACAL;
@@ -76,7 +69,7 @@ void test_nightglow_dark_site_zenith(void)
 /* Issue: "with Bortle 1...9 the zenith follows the class's published
  * range". The natural sky of this scene (about 21.9 at solar minimum)
  * bounds how dark a class can be: class 1's 21.99-22.00 lies under it. */
-void test_nightglow_bortle_classes(void)
+TEST(nightglow_bortle_classes)
 {
     static const double lo[9] = {21.99, 21.89, 21.69, 20.49, 19.50, 18.94, 18.38, 17.80, 17.0};
     static const double hi[9] = {22.00, 21.99, 21.89, 21.69, 20.49, 19.50, 18.94, 18.38, 17.80};
@@ -101,7 +94,7 @@ void test_nightglow_bortle_classes(void)
  * degrees from the sun (505 units), at latitude 60 (104), the gegenschein
  * (230 at 180 degrees, 179 at 150), each through the 8-bit logarithmic
  * encoding within 2.5 %; mirror images east and west of the sun. */
-void test_nightglow_zodiacal_follows_the_table(void)
+TEST(nightglow_zodiacal_follows_the_table)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -144,7 +137,7 @@ void test_nightglow_zodiacal_follows_the_table(void)
 /* The CPU twin that the lighting queries use (sky_atmosphere_radiance:
  * floor, light pollution, airglow and zodiacal light through the air)
  * against the rendered dome, at night on two paths, within 3 %. */
-void test_nightglow_cpu_matches_render(void)
+TEST(nightglow_cpu_matches_render)
 {
     const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_HILLAIRE};
     for (int p = 0; p < 2; p++) {
@@ -190,7 +183,7 @@ void test_nightglow_cpu_matches_render(void)
 /* Layers of their own: the zodiacal light's 64 x 32 RGBA8 table is its
  * only GPU memory, the airglow has none; both are in the dome's night
  * variant at night and not by day. */
-void test_nightglow_layer_costs(void)
+TEST(nightglow_layer_costs)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -239,7 +232,7 @@ static double schaefer_limit(double b)
  * Schaefer's limit for the zenith's brightness measured in the render.
  * The catalogue stops at V 6.5: under classes 1-3 its limit is the
  * catalogue's. */
-void test_nightglow_naked_eye_limit(void)
+TEST(nightglow_naked_eye_limit)
 {
     const int n = 512;
     const float classes[6] = {1.0f, 3.0f, 5.0f, 7.0f, 8.0f, 9.0f};

@@ -16,14 +16,6 @@
 #include <dirent.h>
 #include <unistd.h>
 
-void test_output_device_node_survives_failed_write(void);
-void test_output_directory_target_untouched(void);
-void test_output_full_disk_keeps_old_file(void);
-void test_output_png_writer_checks_every_write(void);
-void test_output_stdout_errors_exit_1(void);
-void test_output_same_file_twice_rejected(void);
-
-
 /* A node with /dev/full's device numbers (every write: ENOSPC) at path;
  * 0 when made. Needs root: the tests skip without it. */
 static int make_full_device(const char *path)
@@ -71,7 +63,7 @@ static int count_entries(const char *dir)
     return n;
 }
 
-void test_output_device_node_survives_failed_write(void)
+TEST(output_device_node_survives_failed_write)
 {
     char render[512], pfm[512], png[512], cmd[2048], out[4096];
     bin_path("sky-render", render, sizeof render);
@@ -95,7 +87,7 @@ void test_output_device_node_survives_failed_write(void)
     unlink(png);
 }
 
-void test_output_directory_target_untouched(void)
+TEST(output_directory_target_untouched)
 {
     char render[512], dir[512], cmd[2048], out[4096];
     bin_path("sky-render", render, sizeof render);
@@ -115,7 +107,7 @@ void test_output_directory_target_untouched(void)
 /* A 64 KiB tmpfs: a PNG or PFM too big for it fails part way, as on a full
  * disk. The file already there keeps its contents and no temporary file is
  * left; an image that fits replaces it, keeping its permissions. */
-void test_output_full_disk_keeps_old_file(void)
+TEST(output_full_disk_keeps_old_file)
 {
     char render[512], dir[512], png[600], pfm[600], cmd[2048], out[4096], buf[256];
     bin_path("sky-render", render, sizeof render);
@@ -161,7 +153,7 @@ void test_output_full_disk_keeps_old_file(void)
 
 /* The encoder's sink itself, against a device where every write fails:
  * stbi_write_png alone reported success there. */
-void test_output_png_writer_checks_every_write(void)
+TEST(output_png_writer_checks_every_write)
 {
     char dev[512];
     tmp_path("writer-full", dev, sizeof dev);
@@ -195,7 +187,7 @@ void test_output_png_writer_checks_every_write(void)
     }
 }
 
-void test_output_stdout_errors_exit_1(void)
+TEST(output_stdout_errors_exit_1)
 {
     char render[512], dev[512], cmd[2048], out[4096];
     bin_path("sky-render", render, sizeof render);
@@ -216,7 +208,7 @@ void test_output_stdout_errors_exit_1(void)
     unlink(dev);
 }
 
-void test_output_same_file_twice_rejected(void)
+TEST(output_same_file_twice_rejected)
 {
     char render[512], png[512], pfm[512], cmd[2048], out[4096], buf[64];
     bin_path("sky-render", render, sizeof render);

@@ -12,15 +12,9 @@
 #include <math.h>
 #include <string.h>
 
-void test_photometry_published_formulas(void);
-void test_photometry_measures_every_path(void);
-void test_photometry_preetham_twilight(void);
-void test_photometry_physical_paths_targets(void);
-void test_photometry_rayleigh_goes_dark(void);
-
 #define PI 3.14159265358979323846
 
-void test_photometry_published_formulas(void)
+TEST(photometry_published_formulas)
 {
     sky_photometry pub;
     sky_photometry_published(&pub);
@@ -51,7 +45,7 @@ void test_photometry_published_formulas(void)
 /* Every path measured: finite, positive, and in the ranges that any sky
  * lit by a sun must be in (a closest CIE type among 11-13; brighter glow
  * than zenith; twilight darker at -12 than at -6). */
-void test_photometry_measures_every_path(void)
+TEST(photometry_measures_every_path)
 {
     static const sky_atmosphere_path paths[5] = {SKY_ATMOSPHERE_GRADIENT, SKY_ATMOSPHERE_PREETHAM,
                                                  SKY_ATMOSPHERE_RAYLEIGH, SKY_ATMOSPHERE_HILLAIRE,
@@ -84,7 +78,7 @@ void test_photometry_measures_every_path(void)
  * the daytime shape against the CIE clear skies no worse than before the
  * change (5 / 6 / 15 / 30 %, held at 10 / 10 / 20 / 35 %): the twilight
  * scale is one factor per frame, which leaves L/Lz alone. */
-void test_photometry_preetham_twilight(void)
+TEST(photometry_preetham_twilight)
 {
     sky_config cfg = sky_photometry_config(SKY_ATMOSPHERE_PREETHAM);
     sky_photometry m, pub;
@@ -112,7 +106,7 @@ void test_photometry_preetham_twilight(void)
  * clear zenith and the IES diffuse illuminance within 25 %; civil and
  * nautical twilight within x2 of Bond & Henderson; the night zenith
  * 21.5-22.3 mag/arcsec^2. */
-void test_photometry_physical_paths_targets(void)
+TEST(photometry_physical_paths_targets)
 {
     static const sky_atmosphere_path paths[2] = {SKY_ATMOSPHERE_HILLAIRE, SKY_ATMOSPHERE_BLEND};
     static const char *const names[2] = {"hillaire", "blend"};
@@ -155,7 +149,7 @@ void test_photometry_physical_paths_targets(void)
  * (measured 4.5 lx, 0.0046 lx, 21.7 mag/arcsec^2, shape 7 / 9 / 12 / 5
  * %; the nautical figure is near its bound, 0.004 lx: the path's twilight
  * is darker than Hillaire's tables, 0.009 lx in the same atmosphere). */
-void test_photometry_rayleigh_goes_dark(void)
+TEST(photometry_rayleigh_goes_dark)
 {
     sky_config cfg = sky_photometry_config(SKY_ATMOSPHERE_RAYLEIGH);
     sky_photometry m, pub;

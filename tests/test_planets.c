@@ -13,15 +13,6 @@
 #include <math.h>
 #include <string.h>
 
-void test_planets_vs_pyephem(void);
-void test_planets_magnitudes_published(void);
-void test_planets_state_serves_its_window(void);
-void test_planets_drawn_where_astronomy_puts_them(void);
-void test_planets_light_sums_to_magnitude(void);
-void test_planets_venus_in_the_afternoon(void);
-void test_planets_layer_costs(void);
-void test_planets_layer_follows_the_clock(void);
-
 #define DEG (3.14159265358979323846 / 180.0)
 #define ARCSEC_PER_RAD 206264.806
 
@@ -42,7 +33,7 @@ static int planet_index(const char *name)
  * (alt/az, topocentric); magnitudes within 0.1 of the published formulas'
  * values". Each row is one planet at one instant and place; both sides
  * turn the Earth with PyEphem's Delta T. */
-void test_planets_vs_pyephem(void)
+TEST(planets_vs_pyephem)
 {
     FILE *f = fopen("tests/data/planets_reference.txt", "r");
     CHECK(f != NULL, "tests/data/planets_reference.txt is missing (tools/planet-reference.py writes it)");
@@ -108,7 +99,7 @@ void test_planets_vs_pyephem(void)
  * their reference code: distances and phase angles from JPL Horizons, and
  * the magnitude their equations give), to 0.001 as their code checks; Mars
  * to 0.03, since its rotation term is left out. */
-void test_planets_magnitudes_published(void)
+TEST(planets_magnitudes_published)
 {
     static const struct {
         int planet;
@@ -146,7 +137,7 @@ void test_planets_magnitudes_published(void)
 /* A state serves SKY_PLANET_STATE_DAYS either side of its instant: the
  * Taylor step against the full series, at Mercury's and Venus's closest
  * approaches (where their geocentric motion is fastest) and elsewhere. */
-void test_planets_state_serves_its_window(void)
+TEST(planets_state_serves_its_window)
 {
     double worst[SKY_ASTRO_PLANETS] = {0};
     sky_astro_observer obs = {45.0 * DEG, 10.0 * DEG, 0.0};
@@ -193,7 +184,7 @@ static int astronomy_at(int y, int mo, int d, int h, int mi, sky_observer *o, sk
 /* Venus and Jupiter half a degree apart in the evening twilight of
  * 2023-03-01 (Munich, sun 8.8 degrees down): each drawn where the
  * astronomy puts it, and nothing there without SKY_PLANETS. */
-void test_planets_drawn_where_astronomy_puts_them(void)
+TEST(planets_drawn_where_astronomy_puts_them)
 {
     sky_observer o;
     sky_astronomy a;
@@ -245,7 +236,7 @@ void test_planets_drawn_where_astronomy_puts_them(void)
  * extinction and colour of a star (stars.vert), no day-night fade. Venus
  * at 15 degrees in the twilight of 2023-06-04, at the default m_a 4 (a
  * glare of 63 px, which carries 84 % of its light). */
-void test_planets_light_sums_to_magnitude(void)
+TEST(planets_light_sums_to_magnitude)
 {
     sky_observer o;
     sky_astronomy a;
@@ -302,7 +293,7 @@ void test_planets_light_sums_to_magnitude(void)
  * through a 5-degree view, whose pixels are about 1', it is a speck a
  * few 8-bit levels above the blue; through a 60-degree view of 256
  * pixels its light spreads over 14' and it is gone. */
-void test_planets_venus_in_the_afternoon(void)
+TEST(planets_venus_in_the_afternoon)
 {
     sky_observer o;
     sky_astronomy a;
@@ -344,7 +335,7 @@ void test_planets_venus_in_the_afternoon(void)
 /* SKY_PLANETS is a layer of its own: without it nothing is created; with
  * it one program and a 180-byte buffer, and at noon with every planet
  * down, no draw. */
-void test_planets_layer_costs(void)
+TEST(planets_layer_costs)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -401,7 +392,7 @@ void test_planets_layer_costs(void)
  * turns it with the sky every frame: what sky_get_astronomy reports (the
  * layer's places) stays within 5" of a fresh computation as the clock
  * runs in steps of 5 s, and within 1e-9 degrees right after a jump. */
-void test_planets_layer_follows_the_clock(void)
+TEST(planets_layer_follows_the_clock)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);

@@ -17,12 +17,6 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-void test_reference_spectrum_and_units(void);
-void test_reference_single_scattering_vs_quadrature(void);
-void test_reference_energy_balance(void);
-void test_reference_converges(void);
-void test_reference_sky_is_plausible(void);
-
 static sky_atmosphere_params earth(void)
 {
     sky_atmosphere_params a;
@@ -49,7 +43,7 @@ static double seconds_now(void)
 
 /* ---- 1. spectra and units ----------------------------------------------------- */
 
-void test_reference_spectrum_and_units(void)
+TEST(reference_spectrum_and_units)
 {
     /* Rayleigh through the nodes: the quadratic in ln(lambda) through
      * three points of a power law is that power law. The description
@@ -264,7 +258,7 @@ static void quad_single(const quad_atm *q, const double view[3], const double su
     }
 }
 
-void test_reference_single_scattering_vs_quadrature(void)
+SLOW_TEST(reference_single_scattering_vs_quadrature)
 {
     sky_atmosphere_params a = earth();
     quad_atm q = quad_setup(&a);
@@ -362,7 +356,7 @@ static double balance(const sky_atmosphere_params *a, int max_order, int paths, 
     return (direct + down + upf) / E;
 }
 
-void test_reference_energy_balance(void)
+TEST(reference_energy_balance)
 {
     /* A conservative atmosphere over a black ground: whatever enters at
      * the top leaves through the top or is absorbed by the ground.
@@ -395,7 +389,7 @@ void test_reference_energy_balance(void)
 
 /* ---- 4. convergence ----------------------------------------------------------- */
 
-void test_reference_converges(void)
+TEST(reference_converges)
 {
     sky_atmosphere_params a = earth();
     const double cases[2][3] = {{45.0, 30.0, 40.0}, {1.0, 2.0, 20.0}}; /* view el, sun el, view az */
@@ -457,7 +451,7 @@ void test_reference_converges(void)
 
 /* ---- 5. a plausible sky --------------------------------------------------------- */
 
-void test_reference_sky_is_plausible(void)
+TEST(reference_sky_is_plausible)
 {
     sky_atmosphere_params a;
     sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, &a);

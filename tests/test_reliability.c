@@ -11,10 +11,6 @@
 #include <string.h>
 #include <unistd.h>
 
-void test_reliability_hostile_override_textures(void);
-void test_reliability_two_skies_are_independent(void);
-void test_reliability_soak_10000_frames(void);
-
 static void write_file(const char *path, const void *data, size_t n)
 {
     FILE *f = fopen(path, "wb");
@@ -24,7 +20,7 @@ static void write_file(const char *path, const void *data, size_t n)
     }
 }
 
-void test_reliability_hostile_override_textures(void)
+TEST(reliability_hostile_override_textures)
 {
     char dir[] = "/tmp/sky-hostile-XXXXXX";
     if (!mkdtemp(dir)) {
@@ -106,7 +102,7 @@ void test_reliability_hostile_override_textures(void)
     rmdir(dir);
 }
 
-void test_reliability_two_skies_are_independent(void)
+TEST(reliability_two_skies_are_independent)
 {
     /* two skies in one context, different parameters, drawn interleaved,
      * give the same pictures as each drawn alone */
@@ -156,7 +152,7 @@ void test_reliability_two_skies_are_independent(void)
     image_free(&alone_b);
 }
 
-void test_reliability_soak_10000_frames(void)
+SLOW_TEST(reliability_soak_10000_frames)
 {
     /* 10 000 frames, sliders swept, a day and a half of sky time per 1000
      * frames; every frame finite, GL objects and memory flat, the cloud

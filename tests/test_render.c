@@ -11,24 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_render_cover_zero_has_no_clouds(void);
-void test_render_dome_covers_every_view(void);
-void test_render_full_cover_hides_sky(void);
-void test_render_density_darkens_clouds(void);
-void test_render_day_bright_night_dark_with_stars(void);
-void test_render_no_star_work_at_noon(void);
-void test_render_flicker_changes_with_seconds(void);
-void test_render_clouds_drift_by_expected_offset(void);
-void test_render_drift_stays_smooth_after_years(void);
-void test_render_height_changes_cloud_scale(void);
-void test_render_sun_where_direction_projects(void);
-void test_render_sun_in_fisheye(void);
-void test_render_hdr_finite_everywhere(void);
-void test_profiles_core_and_compat_agree(void);
-void test_render_total_solar_eclipse(void);
-void test_render_dome_image_agrees_with_every_pixel(void);
-void test_render_sun_disc_sums_to_sunlight(void);
-
 #define PI 3.14159265358979323846
 
 /* Largest relative difference of two linear images. */
@@ -84,7 +66,7 @@ static scene sky_only(unsigned features)
     return sc;
 }
 
-void test_render_cover_zero_has_no_clouds(void)
+TEST(render_cover_zero_has_no_clouds)
 {
     scene with = sky_only(SKY_CLOUDS | SKY_SUN), without = sky_only(SKY_SUN);
     with.params.cover = without.params.cover = 0.0f;
@@ -115,7 +97,7 @@ static double changed_fraction(const image *a, const image *b)
     return (double)changed / (a->w * a->h);
 }
 
-void test_render_full_cover_hides_sky(void)
+TEST(render_full_cover_hides_sky)
 {
     scene clouds = sky_only(SKY_CLOUDS), clear = sky_only(SKY_FEATURES_NONE);
     clouds.params.cover = 1.0f;
@@ -159,7 +141,7 @@ static double luminance_quantile(const image *im, double q)
     return v;
 }
 
-void test_render_density_darkens_clouds(void)
+TEST(render_density_darkens_clouds)
 {
     /* R-P lines 20-24: dense clouds get darker where they are thick */
     scene thin = sky_only(SKY_CLOUDS), dense = sky_only(SKY_CLOUDS);
@@ -179,7 +161,7 @@ void test_render_density_darkens_clouds(void)
     image_free(&b);
 }
 
-void test_render_day_bright_night_dark_with_stars(void)
+TEST(render_day_bright_night_dark_with_stars)
 {
     scene day = sky_only(SKY_FLICKER_STARS), night = sky_only(SKY_FLICKER_STARS);
     day.params.time = 0.5f;
@@ -213,7 +195,7 @@ void test_render_day_bright_night_dark_with_stars(void)
     image_free(&nl);
 }
 
-void test_render_no_star_work_at_noon(void)
+TEST(render_no_star_work_at_noon)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
@@ -251,7 +233,7 @@ void test_render_no_star_work_at_noon(void)
     image_free(&b);
 }
 
-void test_render_flicker_changes_with_seconds(void)
+TEST(render_flicker_changes_with_seconds)
 {
     /* the default night: the flicker stars over the airglow */
     scene a_sc = sky_only(SKY_FLICKER_STARS | SKY_AIRGLOW), b_sc;
@@ -334,7 +316,7 @@ static void layer_motion(const double d[2], const double m[4], double k, double 
     out[1] = dp[1] / s * n / PI;
 }
 
-void test_render_clouds_drift_by_expected_offset(void)
+TEST(render_clouds_drift_by_expected_offset)
 {
     scene sc = scene_default();
     sc.cfg.features = SKY_CLOUDS;
@@ -393,7 +375,7 @@ static double mean_abs_diff(const image *a, const image *b)
     return s / (double)n;
 }
 
-void test_render_drift_stays_smooth_after_years(void)
+TEST(render_drift_stays_smooth_after_years)
 {
     /* frame-to-frame change after 3 years of running equals that at start */
     double diffs[2];
@@ -432,7 +414,7 @@ static double mean_gradient(const image *im, int half)
     return s / n;
 }
 
-void test_render_height_changes_cloud_scale(void)
+TEST(render_height_changes_cloud_scale)
 {
     scene low = scene_default();
     low.cfg.features = SKY_CLOUDS;
@@ -488,7 +470,7 @@ static int sun_direction(const scene *sc, double dir[3])
     return 0;
 }
 
-void test_render_sun_where_direction_projects(void)
+TEST(render_sun_where_direction_projects)
 {
     const double yaws[3] = {180.0, 165.0, 200.0}, pitches[3] = {40.0, 30.0, 55.0};
     for (int k = 0; k < 3; k++) {
@@ -523,7 +505,7 @@ void test_render_sun_where_direction_projects(void)
     }
 }
 
-void test_render_sun_in_fisheye(void)
+TEST(render_sun_in_fisheye)
 {
     scene sc = scene_default();
     sc.cfg.features = SKY_SUN;
@@ -549,10 +531,11 @@ void test_render_sun_in_fisheye(void)
     image_free(&im);
 }
 
-void test_render_hdr_finite_everywhere(void)
+TEST(render_hdr_finite_everywhere)
 {
     const float times[6] = {0.0f, 0.24f, 0.25f, 0.2501f, 0.5f, 0.76f};
     int bad = 0, frames = 0;
+    double mean[6][2] = {{0}};
     for (int t = 0; t < 6; t++)
         for (int fish = 0; fish < 2; fish++) {
             scene sc = scene_default();
@@ -570,14 +553,28 @@ void test_render_hdr_finite_everywhere(void)
                 return;
             }
             frames++;
-            for (size_t i = 0; i < 3u * (size_t)im.w * (size_t)im.h; i++)
+            double sum = 0.0;
+            for (size_t i = 0; i < 3u * (size_t)im.w * (size_t)im.h; i++) {
                 if (!isfinite(im.px[i]) || im.px[i] < 0.0f) bad++;
+                else sum += im.px[i];
+            }
+            /* and a sky, not a cleared frame: linear output is the sky's
+             * luminance before exposure, above zero even at midnight's
+             * starlight (t = 0) */
+            mean[t][fish] = sum / (3.0 * im.w * im.h);
+            CHECK(mean[t][fish] > 0.0, "time %.4f%s: an all-black linear frame", (double)times[t],
+                  fish ? " (fisheye)" : "");
             image_free(&im);
         }
     CHECK(bad == 0, "%d non-finite or negative values in %d linear frames", bad, frames);
+    /* noon's sky outshines midnight's by orders of magnitude in either
+     * projection (about 10^6 in luminance; asserted: 10^3) */
+    for (int fish = 0; fish < 2; fish++)
+        CHECK(mean[4][fish] > 1e3 * mean[0][fish], "noon's mean %g against midnight's %g%s", mean[4][fish],
+              mean[0][fish], fish ? " (fisheye)" : "");
 }
 
-void test_profiles_core_and_compat_agree(void)
+TEST(profiles_core_and_compat_agree)
 {
     const float times[3] = {0.45f, 0.735f, 0.02f};
     for (int k = 0; k < 3; k++) {
@@ -617,7 +614,7 @@ static int count_added_points(const image *a, const image *b, float contrast)
     return n;
 }
 
-void test_render_total_solar_eclipse(void)
+TEST(render_total_solar_eclipse)
 {
     /* 2024-04-08 near Nazas, Durango, at greatest eclipse (18:17:20 UT,
      * the sun at 70 degrees): the whole sky, and the stars in the east
@@ -731,7 +728,7 @@ void test_render_total_solar_eclipse(void)
  * against the dome at every pixel (dome_divisor 1): the same sky and
  * clouds, a little softer; the sun, and at night the stars and the
  * flicker stars, as sharp and as bright, where the clouds let them be. */
-void test_render_dome_image_agrees_with_every_pixel(void)
+TEST(render_dome_image_agrees_with_every_pixel)
 {
     scene day = scene_default();
     day.cfg.features = SKY_CLOUDS | SKY_SUN;
@@ -804,7 +801,7 @@ static double sun_layer_flux(const scene *sc)
     return sum;
 }
 
-void test_render_sun_disc_sums_to_sunlight(void)
+TEST(render_sun_disc_sums_to_sunlight)
 {
     /* the equator at the equinox, the sun from the zenith down to 7
      * degrees: the disc (limb-darkened, through the same transmittance)
@@ -848,7 +845,7 @@ void test_render_sun_disc_sums_to_sunlight(void)
  * wide and tall viewports), it still covers every pixel: none keeps the
  * magenta it was cleared to. Drawn at every pixel (dome_divisor 1), where
  * a missing triangle would leave its pixels as they were. */
-void test_render_dome_covers_every_view(void)
+TEST(render_dome_covers_every_view)
 {
     static const int sizes[2][2] = {{160, 90}, {60, 120}};
     for (int z = 0; z < 2; z++) {

@@ -11,16 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_sharpness_measure_properties(void);
-void test_sharpness_day_clouds_kept(void);
-
 static void set_grey(unsigned char *rgba, int i, int v)
 {
     rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = (unsigned char)v;
     rgba[4 * i + 3] = 255;
 }
 
-void test_sharpness_measure_properties(void)
+TEST(sharpness_measure_properties)
 {
     enum { W = 64, H = 48 };
     unsigned char *flat = malloc(W * H * 4), *checker = malloc(W * H * 4), *blurred = malloc(W * H * 4);
@@ -81,7 +78,7 @@ void test_sharpness_measure_properties(void)
  * at 43.5 dB. The floors sit between the two, so a frame that falls back
  * to the coarser image fails; and kept stays at most 1.05 (a sharpening
  * filter is not detail). */
-void test_sharpness_day_clouds_kept(void)
+TEST(sharpness_day_clouds_kept)
 {
     static const char *const presets[] = {"noon", "sunset"};
     static const sky_gl_profile profiles[] = {SKY_GL_CORE33, SKY_GL_COMPAT20};

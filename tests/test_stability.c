@@ -11,10 +11,6 @@
 #include <math.h>
 #include <string.h>
 
-void test_stability_suite(void);
-void test_stability_suite_es20(void);
-void test_stability_clocks_survive_any_step(void);
-
 /* Every row passes. */
 static void check_rows(const sky_stability_row *rows, int n)
 {
@@ -27,7 +23,7 @@ static void check_rows(const sky_stability_row *rows, int n)
     }
 }
 
-void test_stability_suite(void)
+SLOW_TEST(stability_suite)
 {
     sky_stability_row rows[SKY_STABILITY_MAX_ROWS];
     char err[512];
@@ -38,7 +34,7 @@ void test_stability_suite(void)
 
 /* The render cases through the ES20 profile's GLSL ES 1.00 shaders (an ES
  * 3 context's float target: an 8-bit ES 2.0 one cannot show a NaN). */
-void test_stability_suite_es20(void)
+SLOW_TEST(stability_suite_es20)
 {
     sky_stability_row rows[SKY_STABILITY_MAX_ROWS];
     char err[512];
@@ -53,7 +49,7 @@ void test_stability_suite_es20(void)
  * llvmpipe), so the clocks are checked here directly: before the fix,
  * two sky_update(DBL_MAX) left the scintillation clock infinite and the
  * flicker phase NaN. */
-void test_stability_clocks_survive_any_step(void)
+TEST(stability_clocks_survive_any_step)
 {
     const double steps[] = {0.0, 1e-9, 0.016, 1e9, 1e300, DBL_MAX};
     const double rates[] = {0.0, 2.0 / 255.0, -0.013, 10.0 / 997.0, 1e6};

@@ -11,15 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_stars_where_astronomy_puts_them(void);
-void test_stars_control_magnitude_and_twilight(void);
-void test_stars_colour_follows_bv(void);
-void test_stars_scintillate_more_near_horizon(void);
-void test_stars_skipped_at_noon(void);
-void test_starmap_shows_the_milky_way(void);
-void test_stars_flux_with_and_without_glare(void);
-void test_stars_cells_lose_no_star(void);
-
 #define DEG (3.14159265358979323846 / 180.0)
 
 /* Winter evening at 60 N: Orion in the south, Vega low in the north,
@@ -47,7 +38,7 @@ static int render_with_observer(const scene *sc, const sky_observer *o, int hdr,
     return render_scene(&with, hdr, SKY_GL_AUTO, out);
 }
 
-void test_stars_where_astronomy_puts_them(void)
+TEST(stars_where_astronomy_puts_them)
 {
     const struct {
         const char *name;
@@ -111,7 +102,7 @@ static int count_stars(const image *im, float contrast)
     return n;
 }
 
-void test_stars_control_magnitude_and_twilight(void)
+TEST(stars_control_magnitude_and_twilight)
 {
     sky_observer o = winter_evening();
     int counts[3];
@@ -165,7 +156,7 @@ void test_stars_control_magnitude_and_twilight(void)
     CHECK(dusk_count < counts[1] / 2, "a brighter sky hides most stars (%d vs %d)", dusk_count, counts[1]);
 }
 
-void test_stars_colour_follows_bv(void)
+TEST(stars_colour_follows_bv)
 {
     float blue[3], red[3], sun[3];
     sky_star_color(-0.03, blue); /* Rigel */
@@ -212,7 +203,7 @@ void test_stars_colour_follows_bv(void)
     CHECK(ratio[0] > 1.5 * ratio[1], "Rigel renders bluer than Betelgeuse");
 }
 
-void test_stars_scintillate_more_near_horizon(void)
+SLOW_TEST(stars_scintillate_more_near_horizon)
 {
     /* brightness of every catalogue star over 24 frames, in a fisheye;
      * relative variance averaged for low (5..15 deg) and high (70..90 deg) */
@@ -281,7 +272,7 @@ void test_stars_scintillate_more_near_horizon(void)
     sky_catalog_free(&cat);
 }
 
-void test_stars_skipped_at_noon(void)
+TEST(stars_skipped_at_noon)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -336,7 +327,7 @@ static void fisheye_pixel(const double d[3], int n, double *x, double *y)
     *y = hl > 0 ? (1.0 + r * d[2] / hl) * 0.5 * n : 0.5 * n;
 }
 
-void test_starmap_shows_the_milky_way(void)
+TEST(starmap_shows_the_milky_way)
 {
     /* An August night at 45 N: the galactic centre (Sgr A*) low in the
      * south, the galactic north pole (in Coma) in the west. */
@@ -452,7 +443,7 @@ static double star_flux(const sky_observer *o, const sky_star_place *p, float m_
     return sum * pa * pa;
 }
 
-void test_stars_flux_with_and_without_glare(void)
+TEST(stars_flux_with_and_without_glare)
 {
     /* Capella (V 0.08) near the zenith of the winter evening (scintillation
      * there under 1 %): without glare at m_a 1 would need m_a < 0.25, so
@@ -483,7 +474,7 @@ void test_stars_flux_with_and_without_glare(void)
  * pixel may change, whatever the camera (near the horizon, at the zenith,
  * narrow and wide, the fisheye), under a dark sky (every star in reach)
  * and a moonlit one (a tenth). */
-void test_stars_cells_lose_no_star(void)
+TEST(stars_cells_lose_no_star)
 {
     enum { W = 320, H = 180 };
     static const struct { double yaw, pitch, fov; } views[] = {

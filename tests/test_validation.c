@@ -9,13 +9,8 @@
 #include <math.h>
 #include <string.h>
 
-void test_validation_dates(void);
-void test_validation_config_fields_named(void);
-void test_validation_extreme_aspect_ratio(void);
-void test_validation_ldr_in_float_target_stays_in_range(void);
-
 /* Dates: no signed overflow, no float-cast overflow, no silent nonsense. */
-void test_validation_dates(void)
+TEST(validation_dates)
 {
     CHECK(isnan(sky_julian_day(0, INT_MIN, 1, 0, 0, 0.0)), "a month of INT_MIN is refused (NaN)");
     CHECK(isnan(sky_julian_day(INT_MAX, 1, 1, 0, 0, 0.0)), "a year of INT_MAX is refused (NaN)");
@@ -39,7 +34,7 @@ void test_validation_dates(void)
 
 /* The config's fields: out of range, NaN or infinite is refused, naming
  * the field; an empty sky cannot carry features. */
-void test_validation_config_fields_named(void)
+TEST(validation_config_fields_named)
 {
     char err[256];
     sky_osmesa ctx;
@@ -97,7 +92,7 @@ void test_validation_config_fields_named(void)
 }
 
 /* A projection of aspect 1:8192 (and 8192:1) is not singular. */
-void test_validation_extreme_aspect_ratio(void)
+TEST(validation_extreme_aspect_ratio)
 {
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
@@ -116,7 +111,7 @@ void test_validation_extreme_aspect_ratio(void)
 
 /* LDR output into a float target: display values within 0..1 (the dither
  * must not push a black pixel to -0.5/255). */
-void test_validation_ldr_in_float_target_stays_in_range(void)
+TEST(validation_ldr_in_float_target_stays_in_range)
 {
     enum { W = 64, H = 48 };
     fixture f;

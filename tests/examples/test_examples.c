@@ -17,15 +17,6 @@
 
 #include <stb/stb_image.h>
 
-void test_examples_sdl2_sky_above_scene_below(void);
-void test_examples_osg_sky_above_scene_below(void);
-void test_examples_irrlicht_sky_above_scene_below(void);
-void test_examples_sdl2_sun_where_lighting_says(void);
-void test_examples_osg_sun_where_lighting_says(void);
-void test_examples_irrlicht_sun_where_lighting_says(void);
-void test_examples_irrlicht_left_handed(void);
-void test_examples_sdl2_depth_conventions(void);
-
 static const char *const examples[3] = {"sky-sdl2", "sky-osg", "sky-irrlicht"};
 
 /* One run of an example: its output lines and its screenshot (RGB, rows
@@ -173,18 +164,18 @@ done:
     run_free(&r);
 }
 
-void test_examples_sdl2_sky_above_scene_below(void) { sky_above_scene_below(examples[0]); }
-void test_examples_osg_sky_above_scene_below(void) { sky_above_scene_below(examples[1]); }
-void test_examples_irrlicht_sky_above_scene_below(void) { sky_above_scene_below(examples[2]); }
-void test_examples_sdl2_sun_where_lighting_says(void) { sun_where_lighting_says(examples[0]); }
-void test_examples_osg_sun_where_lighting_says(void) { sun_where_lighting_says(examples[1]); }
-void test_examples_irrlicht_sun_where_lighting_says(void) { sun_where_lighting_says(examples[2]); }
+TEST(examples_sdl2_sky_above_scene_below) { sky_above_scene_below(examples[0]); }
+TEST(examples_osg_sky_above_scene_below) { sky_above_scene_below(examples[1]); }
+TEST(examples_irrlicht_sky_above_scene_below) { sky_above_scene_below(examples[2]); }
+TEST(examples_sdl2_sun_where_lighting_says) { sun_where_lighting_says(examples[0]); }
+TEST(examples_osg_sun_where_lighting_says) { sun_where_lighting_says(examples[1]); }
+TEST(examples_irrlicht_sun_where_lighting_says) { sun_where_lighting_says(examples[2]); }
 
 /* Irrlicht's own left-handed matrices with a reflecting horizon_to_world
  * give the picture that right-handed matrices with the identity give;
  * its own matrices with the identity give a mirror image and the
  * warning. */
-void test_examples_irrlicht_left_handed(void)
+TEST(examples_irrlicht_left_handed)
 {
     static const char *const base = "--time 0.35 --cover 0.3 --face-sun";
     char opts[256];
@@ -213,7 +204,7 @@ void test_examples_irrlicht_left_handed(void)
  * far-one, sky-after frame. (The scenes themselves may differ by a pixel
  * where two of their surfaces meet: the conventions' depth precision
  * differs, and that is the host's depth test, not the sky.) */
-void test_examples_sdl2_depth_conventions(void)
+TEST(examples_sdl2_depth_conventions)
 {
     static const char *const modes[6] = {"--depth far-one",   "--depth far-one --sky-first",
                                          "--depth reversed-z", "--depth reversed-z --sky-first",

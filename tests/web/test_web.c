@@ -15,10 +15,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-void test_web_page_shows_a_sky(void);
-void test_web_drag_changes_the_frame(void);
-void test_web_preset_switch(void);
-
 enum { PAGE_W = 1280, PAGE_H = 800, BAR_H = 50 }; /* the menu's bar above the canvas */
 
 /* The page's server: python3's, for the test's duration. */
@@ -145,7 +141,7 @@ static double mean_abs_diff(const image *a, const image *b)
     return n ? sum / (double)n : 0.0;
 }
 
-void test_web_page_shows_a_sky(void)
+TEST(web_page_shows_a_sky)
 {
     char console[8192];
     image im;
@@ -163,7 +159,7 @@ void test_web_page_shows_a_sky(void)
 
 /* sky-demo's --drag test hook, through the page's address: the cover
  * slider dragged from 0.1 to 0.9 covers the sky. */
-void test_web_drag_changes_the_frame(void)
+TEST(web_drag_changes_the_frame)
 {
     char console[8192];
     image before, after;
@@ -187,7 +183,7 @@ void test_web_drag_changes_the_frame(void)
 /* The preset menu: switching from noon to starry gives a dark sky with
  * stars in it: its green no brighter than the moonless night's brightest
  * channel may be (40 of 255, docs/DUSK.md's target; noon's is about 0.7). */
-void test_web_preset_switch(void)
+TEST(web_preset_switch)
 {
     char console[8192];
     image im;
