@@ -17,6 +17,7 @@
  * and stars still fetch it.
  */
 #include "layer.h"
+#include "moonlight.h"
 
 #include <math.h>
 #include <stdlib.h>

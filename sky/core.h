@@ -313,7 +313,7 @@ typedef struct sky_core {
     sky_gl gl;
     sky_gl_profile profile;
     char gl_version[128];         /* copy of GL_VERSION                        */
-    sky_gl_caps caps;             /* what beyond GL 2.0 it may use (gl.c)       */
+    sky_gl_caps caps;             /* what beyond GL 2.0 it may use (gl/load.c)     */
 
     sky_params params;
     sky_observer observer;

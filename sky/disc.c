@@ -66,19 +66,13 @@ void sky_disc_grid_update(sky_core *s, const sky_disc_grid *g, const double cent
 void sky_disc_grid_draw(sky_core *s, const sky_disc_grid *g, double centre_altitude, double half_angle)
 {
     int coarse = centre_altitude - half_angle * 1.41421356 >= SKY_DISC_COARSE_ABOVE_DEG * SKY_PI / 180.0;
-    const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, g->vertices);
-    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->indices);
-    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)0);
-    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), (const void *)(2 * sizeof(float)));
-    gl->glEnableVertexAttribArray(0);
-    gl->glEnableVertexAttribArray(1);
-    gl->glDisableVertexAttribArray(2);
+    static const sky_gl_layout layout = {
+        5 * sizeof(float), {{2, GL_FLOAT, GL_FALSE, 0}, {3, GL_FLOAT, GL_FALSE, 2 * sizeof(float)}, {0, 0, 0, 0}}};
+    sky_gl_vertices_bind(s, g->vertices, g->indices, &layout);
     if (coarse)
-        gl->glDrawElements(GL_TRIANGLES, SKY_DISC_COARSE_INDICES, GL_UNSIGNED_SHORT,
-                           (const void *)(SKY_DISC_GRID_INDICES * sizeof(unsigned short)));
+        sky_gl_draw_elements(s, GL_TRIANGLES, SKY_DISC_GRID_INDICES, SKY_DISC_COARSE_INDICES);
     else
-        gl->glDrawElements(GL_TRIANGLES, SKY_DISC_GRID_INDICES, GL_UNSIGNED_SHORT, (const void *)0);
+        sky_gl_draw_elements(s, GL_TRIANGLES, 0, SKY_DISC_GRID_INDICES);
 }
 
 size_t sky_disc_grid_bytes(const sky_disc_grid *g) { return g->vertices ? GRID_VERTEX_BYTES + GRID_INDEX_BYTES : 0; }

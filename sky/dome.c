@@ -223,19 +223,15 @@ static void select_triangles(sky_core *s, dome_state *st)
 /* Binds the dome's buffers and draws its upper (1) or lower (0) hemisphere. */
 static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 {
-    const sky_gl *gl = &s->gl;
-    gl->glBindBuffer(GL_ARRAY_BUFFER, st->vertices);
-    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, st->indices);
-    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, DOME_FLOATS * sizeof(float), (const void *)0);
-    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, DOME_FLOATS * sizeof(float),
-                              (const void *)(3 * sizeof(float)));
-    gl->glDisableVertexAttribArray(0);
-    gl->glEnableVertexAttribArray(1);
-    gl->glEnableVertexAttribArray(2);
+    static const sky_gl_layout layout = {DOME_FLOATS * sizeof(float),
+                                         {{0, 0, 0, 0},
+                                          {3, GL_FLOAT, GL_FALSE, 0},
+                                          {4, GL_FLOAT, GL_FALSE, 3 * sizeof(float)}}};
+    sky_gl_vertices_bind(s, st->vertices, st->indices, &layout);
     int first = upper ? st->list_upper_first : 0;
     int count = upper ? st->list_count - st->list_upper_first : st->list_upper_first;
     if (count <= 0) return;
-    gl->glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_SHORT, (const void *)(first * sizeof(unsigned short)));
+    sky_gl_draw_elements(s, GL_TRIANGLES, first, count);
 }
 
 /* Drawn into the image, the dome writes the clouds' alpha beside the
@@ -273,19 +269,9 @@ int sky_dome_day_divisor_for(const sky_core *s)
     return s->dome_divisor && !chosen ? DOME_DAY_DIVISOR : s->dome_divisor;
 }
 
-/* The image's uniform (where a fragment finds itself in it comes from the
- * common u_viewport). */
-static const sky_uniform_desc image_uniforms[] = {
-    SKY_UT("u_dome_tex", SKY_TEX_DOME),
-    SKY_UF("u_dome_texel", SKY_U_F2, dome_texel),
-    SKY_UF("u_dome_scale", SKY_U_F2, dome_scale),
-};
-static const sky_snippet composite_snippet = {NULL, NULL, image_uniforms, SKY_UNIFORM_COUNT(image_uniforms), NULL};
+/* (The image's uniforms and the corner of a power-of-two image:
+ * over_dome.c, which the layers drawn over the dome share.) */
 static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL};
-static const sky_snippet cover_snippet = {"SKY_HAS_DOME_COVER", "dome_cover.glsl", image_uniforms,
-                                          SKY_UNIFORM_COUNT(image_uniforms), NULL};
-/* without NPOT textures the image is the corner of a power of two */
-static const sky_snippet corner_snippet = {"SKY_DOME_CORNER", NULL, NULL, 0, NULL};
 
 /* The image for a viewport: 1/divisor of it on each axis, rounded up
  * (used), in a texture of that size, or without NPOT textures of the
@@ -306,7 +292,7 @@ static void image_size(const sky_core *s, int divisor, int used[2], int size[2])
 
 static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_len)
 {
-    const sky_snippet *own[3] = {&composite_snippet, &corner_snippet, &fisheye_circle_snippet};
+    const sky_snippet *own[3] = {&sky_dome_image_snippet, &sky_dome_corner_snippet, &fisheye_circle_snippet};
     int n = s->caps.npot ? 1 : 2; /* (own[1] only without NPOT) */
     if (s->caps.npot) own[1] = &fisheye_circle_snippet;
     if (sky_program_build(s, &st->composite, "composite.vert", "composite.frag", own, n, err, err_len) ||
@@ -474,14 +460,10 @@ static int dome_draw(sky_core *s, void *state)
     if (!into_image) return draws;
     sky_gl_target_end(s, &target);
     /* the image over the viewport: one filtered fetch and the dither */
-    const sky_gl *gl = &s->gl;
+    static const sky_gl_layout quad = {2 * sizeof(float), {{2, GL_FLOAT, GL_FALSE, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}}};
     sky_program_apply(s, f->fisheye >= 0.5f ? &st->composite_fisheye : &st->composite);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, st->quad);
-    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), (const void *)0);
-    gl->glEnableVertexAttribArray(0);
-    gl->glDisableVertexAttribArray(1);
-    gl->glDisableVertexAttribArray(2);
-    gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    sky_gl_vertices_bind(s, st->quad, 0, &quad);
+    sky_gl_draw_arrays(s, GL_TRIANGLE_STRIP, 0, 4);
     return draws + 1;
 }
 
@@ -491,27 +473,6 @@ static size_t dome_buffer_bytes(const sky_core *s, const void *state)
     const dome_state *st = state;
     return (st->vertices ? st->vertex_bytes : 0) + (st->indices ? st->index_bytes : 0) +
            (st->quad ? 8 * sizeof(float) : 0);
-}
-
-int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
-                                const char *frag_main, const sky_snippet *const *own, int own_count, char *err,
-                                size_t err_len)
-{
-    const sky_snippet *list[SKY_MAX_SNIPPETS];
-    int n = 0;
-    /* the front layers' own snippets, or the image's cover (and corner) */
-    int fronts = s->dome_divisor && dome->front_count ? 1 + !s->caps.npot : dome->front_count;
-    if (fronts + own_count > SKY_MAX_SNIPPETS) {
-        sky_format(err, err_len, "too many shader snippets for %s", frag_main);
-        return -1;
-    }
-    if (s->dome_divisor && dome->front_count) {
-        list[n++] = &cover_snippet;
-        if (!s->caps.npot) list[n++] = &corner_snippet;
-    } else
-        for (int i = 0; i < dome->front_count; i++) list[n++] = dome->front[i];
-    for (int i = 0; i < own_count; i++) list[n++] = own[i];
-    return sky_program_build(s, p, vert_main, frag_main, list, n, err, err_len);
 }
 
 const sky_layer_class sky_dome_layer = {

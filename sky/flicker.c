@@ -173,17 +173,14 @@ static int flicker_visible(const sky_core *s, const void *state)
 static int flicker_draw(sky_core *s, void *state)
 {
     flicker_state *st = state;
-    const sky_gl *gl = &s->gl;
+    static const sky_gl_layout layout = {sizeof(flicker_vertex),
+                                         {{2, GL_SHORT, GL_TRUE, 0},
+                                          {0, 0, 0, 0},
+                                          {4, GL_UNSIGNED_BYTE, GL_TRUE, 2 * sizeof(short)}}};
     sky_program_apply(s, &st->program);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, st->buffer);
-    gl->glVertexAttribPointer(0, 2, GL_SHORT, GL_TRUE, sizeof(flicker_vertex), (const void *)0);
-    gl->glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(flicker_vertex),
-                              (const void *)(2 * sizeof(short)));
-    gl->glEnableVertexAttribArray(0);
-    gl->glDisableVertexAttribArray(1);
-    gl->glEnableVertexAttribArray(2);
+    sky_gl_vertices_bind(s, st->buffer, 0, &layout);
     sky_gl_program_point_size(s, 1);
-    gl->glDrawArrays(GL_POINTS, 0, st->count);
+    sky_gl_draw_arrays(s, GL_POINTS, 0, st->count);
     sky_gl_program_point_size(s, 0);
     return 1;
 }

@@ -79,7 +79,11 @@ int sky_dome_divisor_for(const sky_core *s);
 /* dome.c: the divisor of the image for a day frame whose clouds show
  * (smaller than sky_dome_divisor_for's where that frame affords it). */
 int sky_dome_day_divisor_for(const sky_core *s);
-/* Builds a program of a layer drawn over the dome: what it needs to hide
+/* over_dome.c: the dome image's uniforms (the composite pass's), its
+ * alpha as the cover of a layer drawn over it, and the define for an
+ * image in the corner of a power-of-two texture. */
+extern const sky_snippet sky_dome_image_snippet, sky_dome_cover_snippet, sky_dome_corner_snippet;
+/* over_dome.c: builds a program of a layer drawn over the dome: what it needs to hide
  * behind the front layers (their snippets, or where the dome has an image,
  * the image's alpha: dome_cover.glsl), then its own snippets. */
 int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
@@ -172,9 +176,7 @@ double sky_sun_illuminance_klx(const sky_core *s);
  * moonlight a host's scene receives (sky_get_lighting). */
 double sky_moon_drawn_scale(const sky_core *s);
 void sky_moon_lighting(const sky_core *s, float moon_color[3]);
-/* The moon's illuminance above the air on a surface facing it, klx per
- * channel (phase, distance and colour; no extinction, set or not): what
- * the moonlit sky scatters. */
-void sky_moon_light_above_air(const sky_core *s, double light[3]);
+/* (The moon's light above the air, which the atmosphere and the clouds
+ * scatter: moonlight.h.) */
 
 #endif /* SKY_LAYER_H */

@@ -25,12 +25,18 @@ void sky_star_color(double bv, float rgb[3])
         y = -0.9549476 * x3 - 1.37418593 * x2 + 2.09137015 * x - 0.16748867;
     else
         y = 3.0817580 * x3 - 5.87338670 * x2 + 3.75112997 * x - 0.37001483;
-    double X = x / y, Y = 1.0, Z = (1.0 - x - y) / y;
-    double r = 3.2406 * X - 1.5372 * Y - 0.4986 * Z;
-    double g = -0.9689 * X + 1.8758 * Y + 0.0415 * Z;
-    double b = 0.0557 * X - 0.2040 * Y + 1.0570 * Z;
-    r = r > 0 ? r : 0, g = g > 0 ? g : 0, b = b > 0 ? b : 0;
+    const double xyz[3] = {x / y, 1.0, (1.0 - x - y) / y};
+    double lin[3];
+    sky_xyz_to_linear_srgb(xyz, lin);
+    double r = lin[0] > 0 ? lin[0] : 0, g = lin[1] > 0 ? lin[1] : 0, b = lin[2] > 0 ? lin[2] : 0;
     /* the clamp can change the luminance; set it back to 1 */
     double lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
     rgb[0] = (float)(r / lum), rgb[1] = (float)(g / lum), rgb[2] = (float)(b / lum);
+}
+
+void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
+{
+    rgb[0] = 3.2406 * xyz[0] - 1.5372 * xyz[1] - 0.4986 * xyz[2];
+    rgb[1] = -0.9689 * xyz[0] + 1.8758 * xyz[1] + 0.0415 * xyz[2];
+    rgb[2] = 0.0557 * xyz[0] - 0.2040 * xyz[1] + 1.0570 * xyz[2];
 }

@@ -28,5 +28,7 @@ static inline double sky_kcd_to_mag_arcsec2(double kcd)
 
 /* B - V to linear sRGB of unit luminance (light_units.c). */
 void sky_star_color(double bv, float rgb[3]);
+/* CIE 1931 XYZ to linear sRGB (IEC 61966-2-1). */
+void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 
 #endif /* SKY_LIGHT_UNITS_H */

@@ -9,23 +9,13 @@
  */
 #include "layer.h"
 #include "disc.h"
+#include "moonlight.h"
 #include "atmosphere/atmosphere.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define MOON_RADIUS_KM 1737.4
-/* The moon's photometry, one scale for the drawn disc and the host's
- * moonlight (sky_get_lighting): the full moon's visual magnitude at its
- * mean distance, -12.73 (Krisciunas & Schaefer 1991, eq. 8 at phase angle
- * 0), through the V = 0 illuminance the stars use (layer.h): 0.314 lx
- * above the atmosphere, 0.255 lx at the zenith after this library's
- * extinction (published: about 0.24-0.27 lx). Spread over the true disc at
- * that distance it is a mean luminance of 4.9 kcd/m^2 (lighting handbooks'
- * round 2.5 kcd/m^2 gives only half the published illuminance). */
-#define MOON_FULL_V (-12.73)
-#define MOON_MEAN_DISTANCE_KM 384400.0 /* K&S's normalising distance */
 /* Earthshine at new moon relative to the full moon's surface brightness:
  * about 1.5e-4 (the ashen light of a young crescent, near magnitude -3
  * spread over the disc, against the full moon's -12.7). */
@@ -34,46 +24,6 @@
 /* The halo's profile over the quad (moon.frag), ((4 - r) / 3)^2 / r^2 for
  * r = 1..4 disc radii, integrated over the plane: 2 pi (16 ln 4 - 16.5) / 9 */
 #define MOON_HALO_INTEGRAL (2.0 * SKY_PI * (16.0 * 1.3862943611198906 - 16.5) / 9.0)
-/* The full moon's mean luminance above the atmosphere, kcd/m^2: its
- * illuminance at the mean distance over the solid angle of its disc there
- * (a cap of angular radius asin(R / d): 2 pi (1 - cos)). Luminance does not
- * change with distance; the disc's solid angle carries the 1 / r^2. */
-static double moon_full_luminance(void)
-{
-    double e = SKY_V0_ILLUMINANCE_KLX * pow(10.0, -0.4 * MOON_FULL_V);
-    double sd = asin(MOON_RADIUS_KM / MOON_MEAN_DISTANCE_KM);
-    return e / (2.0 * SKY_PI * (1.0 - cos(sd)));
-}
-
-/* The moon's phase law relative to full, Krisciunas & Schaefer (1991)
- * eq. 8 (after Allen's Astrophysical Quantities): the magnitude grows by
- * 0.026 |a| + 4e-9 a^4, a the phase angle in degrees. */
-static double moon_phase_law(double phase)
-{
-    double a = sky_clampd(fabs(phase), 0.0, SKY_PI) * 180.0 / SKY_PI;
-    return pow(10.0, -0.4 * (0.026 * a + 4e-9 * a * a * a * a));
-}
-
-/* Mueller's k_lambda (sec. 2.2.2), scaled to unit luminance: the moon's
- * reddish colour, in the disc and in its light alike. */
-static const double k_lambda[3] = {0.92 / 0.807, 0.79 / 0.807, 0.64 / 0.807};
-
-/* The direction to the sun seen from the moon (both topocentric,
- * geometric: the exact phase geometry for this observer), and its angle
- * from the direction back to the observer: the phase angle. */
-static double moon_sun_from_moon(const sky_astro *a, double l[3])
-{
-    const double *mt = a->moon.dir_geometric;
-    double n = 0.0;
-    for (int i = 0; i < 3; i++) {
-        l[i] = a->sun.dir_geometric[i] * a->sun.topo_distance_km - mt[i] * a->moon.topo_distance_km;
-        n += l[i] * l[i];
-    }
-    n = sqrt(n);
-    double c = 0.0;
-    for (int i = 0; i < 3; i++) l[i] /= n > 0.0 ? n : 1.0, c -= l[i] * mt[i];
-    return acos(sky_clampd(c, -1.0, 1.0));
-}
 
 /* Extinction over the moon's air mass, per channel, as for the stars
  * (the spherical shell of stars.vert over the atmosphere's zenith optical
@@ -297,7 +247,7 @@ static void moon_frame(sky_core *s, void *state)
     f->moon_view[15] = 1.0f;
     /* sun seen from the moon: the exact phase geometry */
     double l[3];
-    double phase = moon_sun_from_moon(a, l);
+    double phase = sky_moon_sun_from_moon(a, l);
     double l_view[3] = {l[0] * x[0] + l[1] * x[1] + l[2] * x[2], l[0] * y[0] + l[1] * y[1] + l[2] * y[2],
                         l[0] * z[0] + l[1] * z[1] + l[2] * z[2]};
     for (int i = 0; i < 3; i++) f->moon_light[i] = (float)l_view[i];
@@ -328,7 +278,7 @@ static void moon_frame(sky_core *s, void *state)
      * faster than the published law there), where the earthshine takes
      * over. */
     double lsum = lit_sum(st, l_view, body);
-    double law = moon_phase_law(phase) * st->albedo_mean;
+    double law = sky_moon_phase_law(phase) * st->albedo_mean;
     double phase_factor = fmin(law / fmax(lsum, 1e-9), 2.0);
     /* halo (moon.frag): at night, light the air scatters just off the
      * disc, 2e-3 of the full moon's moon_color at the limb falling off as
@@ -336,7 +286,7 @@ static void moon_frame(sky_core *s, void *state)
      * the disc. Its flux, moon_color x halo x HALO_INTEGRAL, is taken out
      * of the disc (moon_color x pi x law x albedo_mean): the layer's total
      * stays the moonlight. */
-    double halo = 2e-3 * moon_phase_law(phase) * a->star_visibility;
+    double halo = 2e-3 * sky_moon_phase_law(phase) * a->star_visibility;
     double halo_share = halo * MOON_HALO_INTEGRAL / (SKY_PI * fmax(law, 1e-12));
     phase_factor *= 1.0 - sky_clampd(halo_share, 0.0, 0.5);
     /* earthshine (eq. 4), normalised to its new-moon value */
@@ -350,9 +300,9 @@ static void moon_frame(sky_core *s, void *state)
      * LDR only, so HDR output is the moon's own luminance and sums to the
      * moonlight sky_get_lighting reports */
     double fade = f->output_hdr > 0.5f ? 1.0 : a->moon_visibility;
-    double full = moon_full_luminance();
+    double full = sky_moon_full_luminance();
     double scale = full / (st->albedo_mean > 0.01f ? st->albedo_mean : 0.01f);
-    for (int i = 0; i < 3; i++) f->moon_color[i] = (float)(scale * k_lambda[i] * ext[i] * fade);
+    for (int i = 0; i < 3; i++) f->moon_color[i] = (float)(scale * sky_moon_k_lambda[i] * ext[i] * fade);
     f->moon_terms.phase_factor = (float)phase_factor;
     for (int i = 0; i < 3; i++) f->moon_earthshine[i] = (float)(e * beta_e[i]); /* bluish */
     f->moon_terms.halo = (float)halo;
@@ -408,11 +358,11 @@ static void moon_frame(sky_core *s, void *state)
         double km = a->moon.distance_km, along = km * (mg[0] * sg[0] + mg[1] * sg[1] + mg[2] * sg[2]);
         for (int i = 0; i < 3; i++) {
             f->shadow_axis[i] = (float)sg[i];
-            f->shadow_offset[i] = along < 0.0 ? (float)((km * mg[i] - along * sg[i]) / MOON_RADIUS_KM) : 0.0f;
+            f->shadow_offset[i] = along < 0.0 ? (float)((km * mg[i] - along * sg[i]) / SKY_MOON_RADIUS_KM) : 0.0f;
         }
         if (along >= 0.0) f->shadow_offset[0] = 1e3f;
-        f->shadow[0] = (float)(km * tan(a->umbra_radius) / MOON_RADIUS_KM);
-        f->shadow[1] = (float)(km * tan(a->penumbra_radius) / MOON_RADIUS_KM);
+        f->shadow[0] = (float)(km * tan(a->umbra_radius) / SKY_MOON_RADIUS_KM);
+        f->shadow[1] = (float)(km * tan(a->penumbra_radius) / SKY_MOON_RADIUS_KM);
         f->shadow[2] = f->shadow[1] - f->shadow[0];
         /* i(t_m): brighten a deep eclipse in LDR (Mueller sec. 3.2.1) */
         double tm = a->umbral_magnitude;
@@ -443,20 +393,6 @@ static size_t moon_buffer_bytes(const sky_core *s, const void *state)
 {
     (void)s;
     return sky_disc_grid_bytes(&((const moon_state *)state)->grid);
-}
-
-void sky_moon_light_above_air(const sky_core *s, double light[3])
-{
-    const sky_astro *a = &s->astro;
-    /* what the true-size disc sums to (moon.c's frame): the full moon's
-     * mean luminance over the disc's solid angle at its distance from the
-     * observer (1 / r^2: +-14 % between perigee and apogee), times the
-     * phase law and the moon's colour */
-    double l[3];
-    double phase = moon_sun_from_moon(a, l);
-    double omega = 2.0 * SKY_PI * (1.0 - cos(a->moon_topo_semidiameter));
-    double e = moon_full_luminance() * omega * moon_phase_law(phase);
-    for (int i = 0; i < 3; i++) light[i] = e * k_lambda[i];
 }
 
 void sky_moon_lighting(const sky_core *s, float moon_color[3])

@@ -34,4 +34,20 @@ struct sky {
                                              sky_aerial_bind's                */
 };
 
+/* sky.c: writes the message sky_last_error returns, and returns code. */
+sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* sky.c: draws through the view and projection (NULL: the all-sky
+ * fisheye) with the host's state saved and restored around it. */
+sky_result sky_draw_view(sky *s, const float *view, const float *proj);
+/* config.c: checks cfg against sky.h's ranges, naming the field it
+ * refuses, and derives what sky_create keeps: the features (0 meaning the
+ * defaults resolved), the atmosphere at cfg's turbidity, and
+ * horizon_to_world (the identity for all zero). 0, or -1 with a message. */
+int sky_config_check(const sky_config *cfg, unsigned *features, sky_atmosphere_params *atm,
+                     float horizon_to_world[9], char *err, size_t err_len);
+
 #endif /* SKY_INTERNAL_H */

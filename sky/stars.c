@@ -282,22 +282,17 @@ void sky_point_view(sky_core *s, float point_max, double scintillation, sky_poin
 
 void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLuint elements, int count)
 {
-    const sky_gl *gl = &s->gl;
+    static const sky_gl_layout layout = {STAR_FLOATS * sizeof(float),
+                                         {{2, GL_FLOAT, GL_FALSE, 0},
+                                          {3, GL_FLOAT, GL_FALSE, 2 * sizeof(float)},
+                                          {4, GL_FLOAT, GL_FALSE, 5 * sizeof(float)}}};
     sky_program_apply(s, program);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    gl->glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)0);
-    gl->glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(2 * sizeof(float)));
-    gl->glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, STAR_FLOATS * sizeof(float), (const void *)(5 * sizeof(float)));
-    gl->glEnableVertexAttribArray(0);
-    gl->glEnableVertexAttribArray(1);
-    gl->glEnableVertexAttribArray(2);
+    sky_gl_vertices_bind(s, buffer, elements, &layout);
     sky_gl_program_point_size(s, 1);
-    if (elements) {
-        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, elements);
-        gl->glDrawElements(GL_POINTS, count, GL_UNSIGNED_SHORT, (const void *)0);
-    } else {
-        gl->glDrawArrays(GL_POINTS, 0, count);
-    }
+    if (elements)
+        sky_gl_draw_elements(s, GL_POINTS, 0, count);
+    else
+        sky_gl_draw_arrays(s, GL_POINTS, 0, count);
     sky_gl_program_point_size(s, 0);
 }
 

@@ -6,6 +6,7 @@
  */
 #include "atmosphere.h"
 #include "../layer.h"
+#include "../moonlight.h"
 #include "../solar_eclipse.h"
 #include "spectrum.h"
 
@@ -48,39 +49,6 @@ struct sky_atmosphere_state {
     sky_summary moon_summary;
     sky_frame moon_frame;         /* Rayleigh's frame lit by the moon       */
 };
-
-void sky_sun_transmittance(double altitude, float out[3])
-{
-    /* Zenith optical depths at 680, 550, 440 nm: Rayleigh (Bruneton's
-     * coefficients times an 8 km scale height) plus aerosol of optical
-     * depth 0.1 at 550 nm with Angstrom exponent 1.3. */
-    static const double tau[3] = {0.046 + 0.076, 0.108 + 0.100, 0.265 + 0.134};
-    /* Kasten & Young (1989) air mass, fitted down to the horizon. Below it
-     * the fit is meaningless (its air mass peaks near -2 degrees and falls
-     * again towards its pole at -6.08, so the beam would brighten as the
-     * sun sinks); a ray there meets the ground, and what still reaches the eye is the
-     * rim of a setting disc, seen along the horizon: hold the horizon's
-     * value. How much of the disc is left is sky_disc_above_horizon's. */
-    double h_deg = sky_clampd(altitude * 180.0 / SKY_PI, 0.0, 90.0);
-    double airmass = 1.0 / (sin(h_deg * SKY_PI / 180.0) + 0.50572 * pow(h_deg + 6.07995, -1.6364));
-    for (int i = 0; i < 3; i++) out[i] = (float)exp(-tau[i] * airmass);
-}
-
-void sky_sun_irradiance_rgb(double rgb[3])
-{
-    /* the reference's sun: a 5778 K blackbody of 1361 W/m^2 through the
-     * same colour matching functions (125 klx) */
-    double xyz[3];
-    sky_spectrum_sun_xyz(xyz);
-    sky_xyz_to_linear_srgb(xyz, rgb);
-}
-
-void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3])
-{
-    rgb[0] = 3.2406 * xyz[0] - 1.5372 * xyz[1] - 0.4986 * xyz[2];
-    rgb[1] = -0.9689 * xyz[0] + 1.8758 * xyz[1] + 0.0415 * xyz[2];
-    rgb[2] = 0.0557 * xyz[0] - 0.2040 * xyz[1] + 1.0570 * xyz[2];
-}
 
 static const sky_uniform_desc blend_uniforms[] = {
     SKY_UF("u_blend_weight", SKY_U_F1, blend_weight),
@@ -384,15 +352,6 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
     for (int i = 0; i < 3; i++)
         rgb[i] = rgb[i] * (f->eclipse_sky[0] + f->eclipse_sky[1 + i] * e8) + f->night_floor[i] * (2.0 - y) +
                  f->artificial_glow[i] * artificial + (glow[i] + zodiacal[i]) * t[i];
-}
-
-void sky_night_extinction(const sky_core *s, const double d[3], double t[3])
-{
-    const sky_frame *f = &s->frame;
-    double a = f->night_shell[0], b = f->night_shell[1], c = sky_clampd(d[1], -1.0, 1.0);
-    double path = sqrt(fmax(b * b - a * a * (1.0 - c * c), 0.0)) - a * c;
-    double airmass = path / fmax(f->night_shell[2], 1e-3);
-    for (int i = 0; i < 3; i++) t[i] = exp(-f->night_depth[i] * airmass);
 }
 
 /* A physical path's sky summarised from its own CPU twin: Gauss-Legendre

@@ -32,7 +32,7 @@ sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested);
  * description's for the physical paths, the sun model's otherwise; what
  * dims the stars and the moon (Mueller sec. 5). */
 void sky_atmosphere_zenith_depth(const sky_core *s, double depth[3]);
-/* What the air leaves of light from above it (the night glows) seen in
+/* (airmass.c) What the air leaves of light from above it (the night glows) seen in
  * direction d, per channel: the zenith depths over the shell's path
  * (atmosphere.glsl's sky_night_extinction). */
 void sky_night_extinction(const sky_core *s, const double d[3], double t[3]);
@@ -52,17 +52,16 @@ void sky_atmosphere_moonlit_unit(const sky_core *s, const double d[3], double rg
 /* 1 for the paths that scatter light through a described atmosphere
  * (Rayleigh's, Hillaire's, the blend), 0 for the gradient and Preetham's. */
 int sky_atmosphere_is_physical(sky_atmosphere_path path);
-/* The sun model's direct-beam transmittance for a ray at the given
+/* (airmass.c) The sun model's direct-beam transmittance for a ray at the given
  * altitude (radians): Kasten-Young air mass times a Rayleigh+aerosol
  * optical depth; below the horizon, the horizon's value. Non-decreasing
  * in altitude. */
 void sky_sun_transmittance(double altitude, float out[3]);
-/* The sun above the atmosphere in linear sRGB, klx per channel: the
+/* (spectrum.c) The sun above the atmosphere in linear sRGB, klx per channel: the
  * reference's sun (atmosphere/spectrum.c), so the physical paths and their
  * yardstick are lit alike. */
 void sky_sun_irradiance_rgb(double rgb[3]);
-/* CIE 1931 XYZ to linear sRGB (IEC 61966-2-1). */
-void sky_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
+/* (CIE XYZ to linear sRGB: light_units.h.) */
 /* For the tests: Hillaire's tables (NULL on other paths) and the sun and
  * observer the sky-view table was last built for. */
 sky_hillaire_tables *sky_atmosphere_tables(const sky_core *s);

@@ -143,7 +143,7 @@ static void gpu_pass(sky_core *s, GLuint fbo, sky_program *prog, sky_texture_id 
     sky_gl_target t;
     sky_gl_target_begin(s, fbo, target, w, h, &t);
     sky_program_apply(s, prog);
-    s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+    sky_gl_draw_arrays(s, GL_TRIANGLES, 0, 3);
     sky_gl_target_end(s, &t);
 }
 
@@ -197,7 +197,7 @@ static int build_multiscatter(sky_core *s, sky_hillaire_state *hs, int mn, char 
         sky_gl_target target;
         sky_gl_target_begin_slices(s, hs->fbo, SKY_TEX_MS_ORDER, 0, MS_ORDER_LAYERS, mn, mn, &target);
         sky_program_apply(s, &hs->multiscatter_build);
-        s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+        sky_gl_draw_arrays(s, GL_TRIANGLES, 0, 3);
         sky_gl_target_end_slices(s, MS_ORDER_LAYERS, &target);
         for (int l = 0; l < MS_LAYERS && !rc; l++)
             rc = sky_gl_read_rgba(s, hs->fbo, SKY_TEX_MS_ORDER, l, mn, mn, rgba + 4u * texels * (size_t)l);
@@ -567,7 +567,7 @@ int sky_hillaire_froxels(sky_core *s, sky_hillaire_state *hs, const float clip_t
         f->froxel[0] = (float)first;
         sky_gl_target_begin_slices(s, hs->fbo, SKY_TEX_FROXELS, first, PASS, N, N, &t);
         sky_program_apply(s, &hs->froxel_build);
-        s->gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+        sky_gl_draw_arrays(s, GL_TRIANGLES, 0, 3);
         sky_gl_target_end_slices(s, PASS, &t);
     }
     if (s->cfg.profile_layers) sky_gl_finish(s);

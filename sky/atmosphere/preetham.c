@@ -23,6 +23,7 @@
  */
 #include "atmosphere.h"
 #include "layer.h"
+#include "moonlight.h"
 
 #include <math.h>
 

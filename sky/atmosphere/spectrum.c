@@ -129,3 +129,12 @@ void sky_spectrum_sun_xyz(double xyz[3])
     for (int i = 0; i < SKY_SPECTRUM_SAMPLES; i++) e[i] = sky_spectrum_solar_irradiance(sky_spectrum_wavelength_nm(i));
     sky_spectrum_to_xyz(e, xyz);
 }
+
+void sky_sun_irradiance_rgb(double rgb[3])
+{
+    /* the reference's sun: a 5778 K blackbody of 1361 W/m^2 through the
+     * same colour matching functions (125 klx) */
+    double xyz[3];
+    sky_spectrum_sun_xyz(xyz);
+    sky_xyz_to_linear_srgb(xyz, rgb);
+}

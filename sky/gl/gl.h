@@ -76,6 +76,22 @@ void sky_program_destroy(sky_core *s, sky_program *p);
 /* Sets every uniform of the program from s->frame and binds its textures. */
 void sky_program_apply(sky_core *s, const sky_program *p);
 
+/* A value for a uniform of the host's own program, set by name: n floats
+ * (1, 3 or 4), or with n 0 the sampler's texture unit in unit. */
+typedef struct sky_gl_host_uniform {
+    const char *name;
+    int n;
+    float v[4];
+    int unit;
+} sky_gl_host_uniform;
+/* Sets count such uniforms in the host's program; with texture non-zero
+ * it binds it (2D) on texture_unit first. The host's current program and
+ * active unit come back; the texture stays bound on its unit. */
+void sky_gl_host_uniforms(sky_core *s, GLuint program, const sky_gl_host_uniform *u, int count, int texture_unit,
+                          GLuint texture);
+/* The number of texture units a program's stages may use together. */
+int sky_gl_texture_units(sky_core *s);
+
 /* ---- textures and buffers ------------------------------------------------ */
 /* Uploads an 8-bit image of 3 (RGB) or 4 (RGBA) channels. repeat: wrap
  * mode. Power-of-two sizes only. */
@@ -167,6 +183,26 @@ typedef enum sky_blend {
     SKY_BLEND_PREMULTIPLIED  /* added, hiding what is behind by its alpha: moon */
 } sky_blend;
 void sky_gl_blend(sky_core *s, sky_blend mode);
+/* An interleaved vertex buffer's layout on attributes 0..2: per
+ * attribute its component count (0: off for this draw), type, whether
+ * integers are normalised to 0..1 or -1..1, and byte offset. */
+typedef struct sky_gl_attribute {
+    int size;
+    GLenum type;
+    GLboolean normalized;
+    size_t offset;
+} sky_gl_attribute;
+typedef struct sky_gl_layout {
+    GLsizei stride;
+    sky_gl_attribute attribute[3];
+} sky_gl_layout;
+/* Binds buffer as the array buffer with its layout, and elements as the
+ * element buffer (0: that binding is left as it is). */
+void sky_gl_vertices_bind(sky_core *s, GLuint buffer, GLuint elements, const sky_gl_layout *layout);
+/* Draws count vertices from first of the bound arrays, or count 16-bit
+ * indices from index first of the bound elements. */
+void sky_gl_draw_arrays(sky_core *s, GLenum mode, int first, int count);
+void sky_gl_draw_elements(sky_core *s, GLenum mode, int first, int count);
 /* Points sized by the vertex shader (gl_PointSize): on around a point
  * draw, off after it. */
 void sky_gl_program_point_size(sky_core *s, int on);
@@ -177,6 +213,10 @@ float sky_gl_point_size_max(sky_core *s);
 void sky_gl_clear_viewport(sky_core *s, const GLint viewport[4]);
 /* Waits for the GPU: per-layer timings, only when the host asked for them. */
 void sky_gl_finish(sky_core *s);
+/* Reads the pending GL errors until none is left, within a bound (a lost
+ * context may never answer GL_NO_ERROR): GL_NO_ERROR, or the error still
+ * reported after it (load.c). */
+GLenum sky_gl_drain_errors(const sky_gl *gl);
 /* The first GL error since the last call, GL_NO_ERROR if none. */
 GLenum sky_gl_error(sky_core *s);
 /* Whether a context is current (GL_VERSION answers), and whether program
@@ -202,6 +242,26 @@ GLuint sky_gl_target_create(sky_core *s, sky_texture_id probe, char *err, size_t
 void sky_gl_target_destroy(sky_core *s, GLuint fbo); /* 0: nothing */
 void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, int h, sky_gl_target *t);
 void sky_gl_target_end(sky_core *s, const sky_gl_target *t);
+/* The host's framebuffer bindings (draw and read), and putting them back. */
+void sky_gl_framebuffers_get(sky_core *s, GLint *draw, GLint *read);
+void sky_gl_framebuffers_set(sky_core *s, GLint draw, GLint read);
+/* A framebuffer object of its own (0 when the context makes none). */
+GLuint sky_gl_framebuffer_create(sky_core *s);
+/* Binds fbo with face (0..5, GL's order) of cube map texture as its
+ * colour (texture 0: detaches it); the framebuffer's status. */
+GLenum sky_gl_target_cube_face(sky_core *s, GLuint fbo, GLuint texture, int face);
+/* The largest cube map face; the width of a cube map's +X level 0 (bound
+ * on unit 0 to ask: the caller restores the host's state); copying the
+ * draw buffer's size x size square at x, y into a face. */
+int sky_gl_cube_size_max(sky_core *s);
+int sky_gl_cube_width(sky_core *s, GLuint texture);
+void sky_gl_cube_copy_face(sky_core *s, GLuint texture, int face, int x, int y, int size);
+/* The viewport: read, and set. */
+void sky_gl_viewport_get(sky_core *s, GLint viewport[4]);
+void sky_gl_viewport_set(sky_core *s, int x, int y, int w, int h);
+/* Unit 0's 3D texture binding (the froxel volume's), and setting it. */
+GLuint sky_gl_volume_binding(sky_core *s);
+void sky_gl_volume_bind(sky_core *s, GLuint texture);
 /* Reads the w x h corner of a float texture back as RGB floats, with the
  * host's pixel-pack state set aside. Returns 0, or -1 on a GL error or
  * no memory. */

@@ -265,7 +265,7 @@ typedef struct sky_gl {
 #undef SKY_GL_MEMBER
 } sky_gl;
 
-/* What a context offers beyond OpenGL 2.0 that the sky uses (gl.c). */
+/* What a context offers beyond OpenGL 2.0 that the sky uses (gl/load.c). */
 typedef struct sky_gl_caps {
     int render_to_rgba8;       /* framebuffer objects (3.0, ARB or EXT)     */
     int separate_framebuffers; /* draw and read bindings apart (3.0, ARB, EXT_blit) */

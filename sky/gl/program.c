@@ -1,0 +1,265 @@
+/*
+ * GL backend, programs: the version prologue, compiling and linking a
+ * program from its snippets, and its uniform table applied each draw.
+ */
+#include "gl.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- programs ------------------------------------------------------------ */
+
+static const sky_uniform_desc common_uniforms[] = {
+    SKY_UF("sky_display_exposure", SKY_U_F1, shader_exposure),
+    SKY_UF("u_output_hdr", SKY_U_F1, output_hdr),
+    SKY_UF("u_fisheye", SKY_U_F1, fisheye),
+    SKY_UF("u_aspect", SKY_U_F2, aspect),
+    SKY_UF("u_sun_dir", SKY_U_F3, sun_dir),
+    SKY_UF("u_moon_dir", SKY_U_F3, moon_dir),
+    SKY_UF("u_view_proj", SKY_U_M4, view_proj),
+    SKY_UF("u_viewport", SKY_U_F4, viewport),
+    SKY_UF("u_pixel_angle", SKY_U_F1, pixel_angle),
+    SKY_UF("u_far_z", SKY_U_F1, far_z),
+    SKY_UF("sky_display_rods", SKY_U_F1, night_shift),
+    SKY_UF("sky_display_cd", SKY_U_F1, display_cd),
+    SKY_UF("u_refraction_pressure", SKY_U_F1, refraction_pressure),
+};
+/* (display.glsl, the display stages hosts can include too, comes first) */
+const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
+                                        SKY_UNIFORM_COUNT(common_uniforms), NULL};
+
+
+/* The version prologue: one GLSL source per stage serves every profile.
+ * GLSL ES 1.00 wants a default float precision in the fragment stage:
+ * highp where the stage has it (caps.fragment_highp: the sky's light spans
+ * far more than mediump's 2^14, and the uniforms are kept within it
+ * without), and its fwidth through OES_standard_derivatives. */
+#define SKY_ES_MACROS "#define SKY_ES 1\n#define SKY_TEX2D texture2D\n#define SKY_TEXCUBE textureCube\n"
+#define SKY_ES_FRAGMENT "#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_FRAG_COLOR gl_FragColor\n"
+#define SKY_ES_DERIVATIVES "#extension GL_OES_standard_derivatives : enable\n"
+#define SKY_ES_HIGHP "precision highp float;\n#define SKY_UP\n"
+/* Without highp in the fragment stage the uniforms both stages declare
+ * are mediump in both (GLSL ES 1.00 links them only at one precision):
+ * SKY_UP qualifies every uniform; the vertex stage's own values stay highp. */
+#define SKY_ES_MEDIUMP "precision mediump float;\n#define SKY_MEDIUMP 1\n#define SKY_UP mediump\n"
+static const char *prologue(const sky_core *s, int fragment)
+{
+    if (s->profile == SKY_GL_ES20) {
+        static const char *const fragment_stage[2][2] = { /* [derivatives][highp] */
+            {"#version 100\n" SKY_ES_MEDIUMP SKY_ES_MACROS "#define SKY_NO_DERIVATIVES 1\n" SKY_ES_FRAGMENT,
+             "#version 100\n" SKY_ES_HIGHP SKY_ES_MACROS "#define SKY_NO_DERIVATIVES 1\n" SKY_ES_FRAGMENT},
+            {"#version 100\n" SKY_ES_DERIVATIVES SKY_ES_MEDIUMP SKY_ES_MACROS SKY_ES_FRAGMENT,
+             "#version 100\n" SKY_ES_DERIVATIVES SKY_ES_HIGHP SKY_ES_MACROS SKY_ES_FRAGMENT}};
+        if (!fragment)
+            return s->caps.fragment_highp
+                       ? "#version 100\n" SKY_ES_HIGHP SKY_ES_MACROS "#define SKY_ATTR attribute\n#define SKY_OUT varying\n"
+                       : "#version 100\nprecision highp float;\n#define SKY_UP mediump\n" SKY_ES_MACROS
+                         "#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
+        return fragment_stage[s->caps.derivatives != 0][s->caps.fragment_highp != 0];
+    }
+    if (s->profile == SKY_GL_CORE33)
+        return fragment ? "#version 330 core\n#define SKY_UP\n#define SKY_CORE 1\n#define SKY_FRAGMENT 1\n#define SKY_IN in\n"
+                          "#define SKY_TEX2D texture\n#define SKY_TEXCUBE texture\nout vec4 sky_frag_color;\n"
+                          "#define SKY_FRAG_COLOR sky_frag_color\n"
+                        : "#version 330 core\n#define SKY_UP\n#define SKY_CORE 1\n#define SKY_ATTR in\n#define SKY_OUT out\n";
+    return fragment ? "#version 110\n#define SKY_UP\n#define SKY_FRAGMENT 1\n#define SKY_IN varying\n#define SKY_TEX2D texture2D\n"
+                      "#define SKY_TEXCUBE textureCube\n"
+                      "#define SKY_FRAG_COLOR gl_FragColor\n"
+                    : "#version 110\n#define SKY_UP\n#define SKY_ATTR attribute\n#define SKY_OUT varying\n";
+}
+
+static GLuint compile(sky_core *s, GLenum type, const char *const *parts, int count, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    GLuint sh = gl->glCreateShader(type);
+    if (!sh) {
+        sky_format(err, err_len, "glCreateShader failed");
+        return 0;
+    }
+    gl->glShaderSource(sh, count, parts, NULL);
+    gl->glCompileShader(sh);
+    GLint ok = 0;
+    gl->glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[512] = "";
+        gl->glGetShaderInfoLog(sh, (GLsizei)sizeof log, NULL, log);
+        sky_format(err, err_len, "%s shader failed to compile: %s", type == GL_VERTEX_SHADER ? "vertex" : "fragment",
+                log);
+        gl->glDeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+static const char *blob_text(const char *name, char *err, size_t err_len)
+{
+    const sky_blob *b = sky_find_blob(name);
+    if (!b) sky_format(err, err_len, "embedded shader %s is missing from this build", name);
+    return b ? (const char *)b->data : NULL;
+}
+
+int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const char *frag_main,
+                      const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len)
+{
+    const sky_gl *gl = &s->gl;
+    memset(p, 0, sizeof *p);
+    if (snippet_count > SKY_MAX_SNIPPETS) {
+        sky_format(err, err_len, "too many shader snippets (%d)", snippet_count);
+        return -1;
+    }
+    /* prologue, feature defines, display and common code, snippets, main */
+    const char *parts[4 + SKY_MAX_SNIPPETS + 1];
+    /* the tone map (display.glsl), then the snippets' defines */
+    static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
+    char defines[64 + 48 * SKY_MAX_SNIPPETS];
+    size_t used = (size_t)snprintf(defines, sizeof defines, "%s", tone_maps[s->cfg.tone_map]);
+    for (int i = 0; i < snippet_count; i++)
+        if (snippets[i]->define) {
+            int n = snprintf(defines + used, sizeof defines - used, "#define %s 1\n", snippets[i]->define);
+            if (n < 0 || (size_t)n >= sizeof defines - used) { /* a define dropped would build another shader */
+                sky_format(err, err_len, "shader defines overflow at %s", snippets[i]->define);
+                return -1;
+            }
+            used += (size_t)n;
+        }
+    GLuint shaders[2] = {0, 0};
+    for (int stage = 0; stage < 2; stage++) {
+        int n = 0;
+        parts[n++] = prologue(s, stage);
+        parts[n++] = defines;
+        if (!(parts[n++] = blob_text("display.glsl", err, err_len))) goto fail;
+        if (!(parts[n++] = blob_text(sky_common_snippet.source, err, err_len))) goto fail;
+        for (int i = 0; i < snippet_count; i++) {
+            const char *source = stage ? snippets[i]->source : snippets[i]->vertex_source;
+            if (source && !(parts[n++] = blob_text(source, err, err_len))) goto fail;
+        }
+        if (!(parts[n++] = blob_text(stage ? frag_main : vert_main, err, err_len))) goto fail;
+        shaders[stage] = compile(s, stage ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER, parts, n, err, err_len);
+        if (!shaders[stage]) goto fail;
+    }
+    p->id = gl->glCreateProgram();
+    gl->glAttachShader(p->id, shaders[0]);
+    gl->glAttachShader(p->id, shaders[1]);
+    gl->glBindAttribLocation(p->id, 0, "a_pos");
+    gl->glBindAttribLocation(p->id, 1, "a_dir");
+    gl->glBindAttribLocation(p->id, 2, "a_color");
+    /* a program with more outputs (multiscatter_build.frag) places the
+     * others explicitly; the common one is always colour 0 */
+    if (s->profile == SKY_GL_CORE33) gl->glBindFragDataLocation(p->id, 0, "sky_frag_color");
+    gl->glLinkProgram(p->id);
+    gl->glDeleteShader(shaders[0]); /* flagged; freed with the program */
+    gl->glDeleteShader(shaders[1]);
+    shaders[0] = shaders[1] = 0;
+    GLint ok = 0;
+    gl->glGetProgramiv(p->id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[512] = "";
+        gl->glGetProgramInfoLog(p->id, (GLsizei)sizeof log, NULL, log);
+        sky_format(err, err_len, "shader program failed to link: %s", log);
+        goto fail;
+    }
+    /* Uniform rows: common first, then each snippet's. Rows the compiler
+     * optimised away get location -1 and are skipped by glUniform. */
+    const sky_snippet *all[SKY_MAX_SNIPPETS + 1];
+    all[0] = &sky_common_snippet;
+    for (int i = 0; i < snippet_count; i++) all[i + 1] = snippets[i];
+    for (int i = 0; i <= snippet_count; i++)
+        for (int u = 0; u < all[i]->uniform_count; u++) {
+            if (p->uniform_count == SKY_MAX_UNIFORMS) {
+                sky_format(err, err_len, "too many uniforms in one program");
+                goto fail;
+            }
+            p->uniforms[p->uniform_count] = &all[i]->uniforms[u];
+            p->locations[p->uniform_count] = gl->glGetUniformLocation(p->id, all[i]->uniforms[u].name);
+            p->uniform_count++;
+        }
+    s->program_count++;
+    if (!s->identity_program) s->identity_program = p->id;
+    return 0;
+fail:
+    for (int i = 0; i < 2; i++)
+        if (shaders[i]) gl->glDeleteShader(shaders[i]);
+    if (p->id) gl->glDeleteProgram(p->id);
+    memset(p, 0, sizeof *p);
+    return -1;
+}
+
+void sky_program_destroy(sky_core *s, sky_program *p)
+{
+    if (p->id) {
+        s->gl.glDeleteProgram(p->id);
+        s->program_count--;
+    }
+    memset(p, 0, sizeof *p);
+}
+
+void sky_program_apply(sky_core *s, const sky_program *p)
+{
+    const sky_gl *gl = &s->gl;
+    const unsigned char *base = (const unsigned char *)&s->frame;
+    int unit = 0;
+    gl->glUseProgram(p->id);
+    for (int i = 0; i < p->uniform_count; i++) {
+        const sky_uniform_desc *u = p->uniforms[i];
+        GLint loc = p->locations[i];
+        if (loc < 0) continue;
+        const float *v = (const float *)(const void *)(base + u->offset);
+        float scaled[4];
+        if (u->light && s->frame.light_scale != 1.0f && u->type <= SKY_U_F4) {
+            /* mediump's range: the exposure brings night light up from
+             * below 2^-14, and what it takes past 2^14 is far past white
+             * (the tone map whitens from 8) */
+            for (int k = 0; k <= (int)(u->type - SKY_U_F1); k++)
+                scaled[k] = u->light & (1u << k) ? sky_clampf(v[k] * s->frame.light_scale, -16384.0f, 16384.0f) : v[k];
+            v = scaled;
+        }
+        switch (u->type) {
+        case SKY_U_F1: gl->glUniform1f(loc, v[0]); break;
+        case SKY_U_F2: gl->glUniform2f(loc, v[0], v[1]); break;
+        case SKY_U_F3: gl->glUniform3f(loc, v[0], v[1], v[2]); break;
+        case SKY_U_F4: gl->glUniform4f(loc, v[0], v[1], v[2], v[3]); break;
+        case SKY_U_M4: gl->glUniformMatrix4fv(loc, 1, GL_FALSE, v); break;
+        case SKY_U_F1V: gl->glUniform1fv(loc, u->count, v); break;
+        case SKY_U_TEX:
+            gl->glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+            gl->glBindTexture(s->textures[u->offset].target, s->textures[u->offset].id);
+            gl->glUniform1i(loc, unit);
+            unit++;
+            break;
+        }
+    }
+}
+
+void sky_gl_host_uniforms(sky_core *s, GLuint program, const sky_gl_host_uniform *u, int count, int texture_unit,
+                          GLuint texture)
+{
+    const sky_gl *gl = &s->gl;
+    GLint host_program = 0, host_unit = 0;
+    gl->glGetIntegerv(GL_CURRENT_PROGRAM, &host_program);
+    gl->glGetIntegerv(GL_ACTIVE_TEXTURE, &host_unit);
+    gl->glUseProgram(program);
+    if (texture) {
+        gl->glActiveTexture(GL_TEXTURE0 + (GLenum)texture_unit);
+        gl->glBindTexture(GL_TEXTURE_2D, texture);
+    }
+    for (int i = 0; i < count; i++) {
+        GLint at = gl->glGetUniformLocation(program, u[i].name);
+        const float *v = u[i].v;
+        switch (u[i].n) {
+        case 0: gl->glUniform1i(at, u[i].unit); break;
+        case 1: gl->glUniform1f(at, v[0]); break;
+        case 3: gl->glUniform3f(at, v[0], v[1], v[2]); break;
+        default: gl->glUniform4f(at, v[0], v[1], v[2], v[3]); break;
+        }
+    }
+    gl->glActiveTexture((GLenum)host_unit);
+    gl->glUseProgram((GLuint)host_program);
+}
+
+int sky_gl_texture_units(sky_core *s)
+{
+    GLint units = 0;
+    s->gl.glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+    return (int)units;
+}
