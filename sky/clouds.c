@@ -275,6 +275,7 @@ static void clouds_reset(void *state)
 const double *sky_clouds_offsets(const void *state) { return &((const clouds_state *)state)->offsets[0][0]; }
 
 const sky_layer_class sky_clouds_layer = {
+    .name = "clouds",
     .slot = SKY_LAYER_CLOUDS,
     .feature = SKY_CLOUDS,
     .state_size = sizeof(clouds_state),

@@ -107,7 +107,7 @@ static int flicker_create(sky_core *s, void *state, char *err, size_t err_len)
     if (rc) return -1;
     s->frame.flicker_point_max = sky_gl_point_size_max(s);
     /* the atmosphere's transmittance in front of each star, then its own */
-    const sky_snippet *own[SKY_MAX_SNIPPETS];
+    const sky_snippet *own[SKY_ATMOSPHERE_SNIPPETS + 2];
     int n = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, own);
     own[n++] = &glow_snippet;
     own[n++] = &point_snippet;
@@ -195,6 +195,7 @@ static size_t flicker_buffer_bytes(const sky_core *s, const void *state)
 double sky_flicker_clock(const void *state) { return ((const flicker_state *)state)->phase; }
 
 const sky_layer_class sky_flicker_layer = {
+    .name = "flicker",
     .slot = SKY_LAYER_FLICKER,
     .feature = SKY_FLICKER_STARS,
     .state_size = sizeof(flicker_state),

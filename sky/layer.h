@@ -23,8 +23,16 @@ typedef enum sky_dome_role {
                        the dome's night variants                              */
 } sky_dome_role;
 
+/* The stats index of a layer added after 0.5 (which has no sky_layer
+ * constant): it follows SKY_LAYER_COUNT in the table's order, and the
+ * host finds it by name (sky_layer_index). */
+#define SKY_LAYER_NEXT ((sky_layer)-1)
+
 typedef struct sky_layer_class {
-    sky_layer slot;           /* its row in sky_stats                         */
+    const char *name;         /* sky_layer_name's, the stats' and the command
+                                 line's                                      */
+    sky_layer slot;           /* its stats index: a sky_layer of 0.5, or
+                                 SKY_LAYER_NEXT                              */
     unsigned feature;         /* the SKY_* bit that includes it; 0: always     */
     size_t state_size;        /* bytes of private state (zeroed)              */
     sky_dome_role dome_role;
@@ -52,6 +60,13 @@ typedef struct sky_layer_class {
     /* GPU bytes it holds besides its textures (which are counted by their
      * owner); NULL: none. */
     size_t (*buffer_bytes)(const sky_core *s, const void *state);
+    /* A night glow (NULL: not one): its light above the air in kcd/m^2 per
+     * channel, at the zenith from the date and cfg alone (callable before
+     * the layer's frame: the atmosphere's summary), and from horizon
+     * direction d after its frame (the atmosphere's CPU radiance). The
+     * atmosphere dims both by the air and adds them, knowing no layer. */
+    void (*glow_zenith)(const sky_core *s, const void *state, double rgb[3]);
+    void (*glow_at)(const sky_core *s, const void *state, const double d[3], double rgb[3]);
 } sky_layer_class;
 
 /* The layers, back to front (sky.c's table). */
@@ -67,10 +82,11 @@ extern const sky_layer_class sky_airglow_layer;
 extern const sky_layer_class sky_zodiacal_layer;
 
 /* The dome snippets of the enabled layers, by role (sky.c fills them from
- * the table before any layer is created): the dome composes its programs
- * from them, and each layer drawn over the dome includes the front ones. */
+ * the table before any layer is created, each bound to its layer's
+ * state): the dome composes its programs from them, and each layer drawn
+ * over the dome includes the front ones. As many as the table has rows. */
 typedef struct sky_dome_snippets {
-    const sky_snippet *front[SKY_MAX_SNIPPETS], *night[SKY_MAX_SNIPPETS];
+    const sky_snippet **front, **night;
     int front_count, night_count;
 } sky_dome_snippets;
 /* dome.c: the divisor of the dome's image for this context and output
@@ -158,14 +174,9 @@ void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLu
 double sky_point_limit(const sky_core *s);
 /* planets.c: the planets' places of the last frame (SKY_ASTRO_PLANETS). */
 const sky_astro_planet *sky_planets_places(const void *planets_state);
-/* airglow.c: the airglow's zenith luminance above the air (kcd/m^2, rgb)
- * for the frame's date and cfg (0 without SKY_AIRGLOW); its light from
- * direction d before the air below it dims it (after the layer's frame).
- * zodiacal.c: the same for the zodiacal light (0 without SKY_ZODIACAL). */
-void sky_airglow_zenith(const sky_core *s, double rgb[3]);
-void sky_airglow_at(const sky_core *s, const double d[3], double rgb[3]);
-void sky_zodiacal_zenith(const sky_core *s, double rgb[3]);
-void sky_zodiacal_at(const sky_core *s, const double d[3], double rgb[3]);
+/* zodiacal.c, for the tests: the frame's horizon -> ecliptic rotation
+ * (column-major mat4, +x at the sun) of a zodiacal state. */
+const float *sky_zodiacal_rotation(const void *zodiacal_state);
 
 /* sun.c: the sunlight above the atmosphere that the drawn disc sums to,
  * klx (1 / r^2 with the sun's distance). */

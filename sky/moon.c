@@ -410,6 +410,7 @@ void sky_moon_lighting(const sky_core *s, float moon_color[3])
 /* The moon: added by day; at night it also hides the stars behind it
  * (premultiplied: its coverage times the night factor is its alpha). */
 const sky_layer_class sky_moon_layer = {
+    .name = "moon",
     .slot = SKY_LAYER_MOON,
     .feature = SKY_MOON,
     .state_size = sizeof(moon_state),

@@ -180,6 +180,7 @@ const sky_astro_planet *sky_planets_places(const void *state) { return ((const p
 /* Added over the dome like the stars: dimmed by the atmosphere, hidden by
  * the clouds and the moon. */
 const sky_layer_class sky_planets_layer = {
+    .name = "planets",
     .slot = SKY_LAYER_PLANETS,
     .feature = SKY_PLANETS,
     .state_size = sizeof(planets_state),

@@ -645,6 +645,10 @@ SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
  * sky or output or an index outside 0 .. sky_layer_count() - 1. Since 0.5. */
 SKY_API int sky_layer_count(void);
 SKY_API sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out);
+/* The index of the layer named name (sky_layer_name's names; a layer
+ * added after 0.5 has no sky_layer constant and is found this way), or -1
+ * for NULL or an unknown name. Pure. Since 0.5. */
+SKY_API int sky_layer_index(const char *name);
 
 /* What a game needs to light its scene, for the current state. Directions
  * are unit vectors in the world frame (horizon_to_world applied);

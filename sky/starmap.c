@@ -111,6 +111,7 @@ static int starmap_visible(const sky_core *s, const void *state)
 }
 
 const sky_layer_class sky_starmap_layer = {
+    .name = "starmap",
     .slot = SKY_LAYER_STARMAP,
     .feature = SKY_STARMAP,
     .dome_role = SKY_DOME_NIGHT,

@@ -438,6 +438,7 @@ void sky_stars_draw_whole(void *state, int whole) { ((stars_state *)state)->whol
 /* Catalogue stars, added over the dome: their light dimmed by the
  * atmosphere (extinction in the shader) and hidden by the clouds. */
 const sky_layer_class sky_stars_layer = {
+    .name = "stars",
     .slot = SKY_LAYER_STARS,
     .feature = SKY_STARS,
     .state_size = sizeof(stars_state),

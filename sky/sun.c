@@ -137,6 +137,7 @@ static size_t sun_buffer_bytes(const sky_core *s, const void *state)
 /* The sun quad, added over the dome (it hides behind the clouds by
  * evaluating them itself). */
 const sky_layer_class sky_sun_layer = {
+    .name = "sun",
     .slot = SKY_LAYER_SUN,
     .feature = SKY_SUN,
     .state_size = sizeof(sun_state),
