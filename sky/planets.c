@@ -18,6 +18,7 @@
  * observer's horizon.
  */
 #include "layer.h"
+#include "points.h"
 
 #include <math.h>
 #include <string.h>

@@ -8,6 +8,7 @@
 #include "sky_internal.h"
 #include "aerial.h"
 #include "irradiance.h"
+#include "points.h"
 
 #include <math.h>
 #include <stdio.h>
