@@ -346,6 +346,9 @@ typedef struct sky_core {
     int snippet_binding_count, snippet_binding_capacity;
     sky_glow_source *glows;       /* the enabled night glows (sky.c)          */
     int glow_count;
+    sky_layer creating_layer;     /* the stats index of the layer whose create
+                                     runs: the owner of the textures it makes
+                                     (a layer after 0.5 has no constant)     */
     int program_count, buffer_count; /* live GL objects, for the stats          */
     size_t buffer_bytes;
     double lut_ms;                /* table builds since the last draw          */

@@ -236,9 +236,9 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 
 /* Drawn into the image, the dome writes the clouds' alpha beside the
  * colour. */
-static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL};
+static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL, NULL};
 /* display.glsl's tone map without the scotopic shift */
-static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL};
+static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL, NULL};
 
 static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, int photopic, char *err,
                  size_t err_len)
@@ -277,7 +277,7 @@ int sky_dome_day_divisor_for(const sky_core *s)
 
 /* (The image's uniforms and the corner of a power-of-two image:
  * over_dome.c, which the layers drawn over the dome share.) */
-static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL};
+static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL, NULL};
 
 /* The image for a viewport: 1/divisor of it on each axis, rounded up
  * (used), in a texture of that size, or without NPOT textures of the

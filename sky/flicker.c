@@ -28,12 +28,12 @@ static const sky_uniform_desc glow_uniforms[] = {
     SKY_UL("u_star_luminance", SKY_U_F1, star_luminance, 1u),
 };
 static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow_uniforms,
-                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL};
+                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL, NULL};
 static const sky_uniform_desc point_uniforms[] = {
     SKY_UF("u_flicker_phase", SKY_U_F1, flicker_phase),
     SKY_UF("u_point_max", SKY_U_F1, flicker_point_max),
 };
-static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL};
+static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL, NULL};
 
 /* One star: its texel's centre in the dome coordinate (normalised shorts)
  * and the texel (R brightened by the galaxy and divided by 4, G, B, A). */

@@ -69,17 +69,7 @@ typedef struct sky_layer_class {
     void (*glow_at)(const sky_core *s, const void *state, const double d[3], double rgb[3]);
 } sky_layer_class;
 
-/* The layers, back to front (sky.c's table). */
-extern const sky_layer_class sky_dome_layer;    /* atmosphere, and the dome snippets */
-extern const sky_layer_class sky_clouds_layer;
-extern const sky_layer_class sky_flicker_layer;
-extern const sky_layer_class sky_starmap_layer;
-extern const sky_layer_class sky_stars_layer;
-extern const sky_layer_class sky_moon_layer;
-extern const sky_layer_class sky_sun_layer;
-extern const sky_layer_class sky_planets_layer;
-extern const sky_layer_class sky_airglow_layer;
-extern const sky_layer_class sky_zodiacal_layer;
+/* (The layers' classes are declared where their table is: layers.c.) */
 
 /* The dome snippets of the enabled layers, by role (sky.c fills them from
  * the table before any layer is created, each bound to its layer's

@@ -155,6 +155,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
     if (sky_atmosphere_create(c, err, err_len)) goto fail;
     FOR_EACH_LAYER(s, L, index, state) {
+        c->creating_layer = (sky_layer)index;
         if (L->create && L->create(c, state, err, err_len)) goto fail;
     }
     c->cfg.texture_dir = NULL;

@@ -54,7 +54,7 @@ typedef struct stars_state {
 } stars_state;
 
 static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars)};
-static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL};
+static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL, NULL};
 
 /* A star's place in the buffer: its cell, brightest first within it. */
 typedef struct star_place {

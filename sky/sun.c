@@ -55,7 +55,7 @@ static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
-static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL};
+static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL, NULL};
 
 typedef struct sun_state {
     sky_program program;

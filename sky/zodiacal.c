@@ -73,7 +73,7 @@ static const sky_uniform_desc zodiacal_uniforms[] = {
     SKY_USL("u_zodiacal", SKY_U_F4, zodiacal_state, light, SKY_RGB),
 };
 static const sky_snippet zodiacal_snippet = {"SKY_HAS_ZODIACAL", "zodiacal.glsl", zodiacal_uniforms,
-                                          SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL};
+                                             SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL, "sky_zodiacal"};
 
 /* The table at (longitude from the sun, latitude) in degrees, bilinear
  * over its rows and columns. */
@@ -207,7 +207,7 @@ static int zodiacal_create(sky_core *s, void *state, char *err, size_t err_len)
         sky_format(err, err_len, "out of memory");
         return -1;
     }
-    return sky_texture_create(s, (sky_texture_id)st->texture, sky_zodiacal_layer.slot, texels, 4, ZODI_TEX_W,
+    return sky_texture_create(s, (sky_texture_id)st->texture, s->creating_layer, texels, 4, ZODI_TEX_W,
                               ZODI_TEX_H, 0, err, err_len);
 }
 

@@ -58,6 +58,12 @@ typedef struct sky_snippet {
     const sky_uniform_desc *uniforms;
     int uniform_count;
     const char *vertex_source; /* NULL: fragment stage only                    */
+    /* A night glow's GLSL function, vec3 NAME(vec3 d): its light above the
+     * air from horizon direction d. A program with such snippets gets
+     * sky_night_glows(d), their sum in the snippets' order, and the define
+     * SKY_HAS_NIGHT_GLOWS (dome.frag dims the sum by the air): a new glow
+     * touches no other shader. NULL: not one. */
+    const char *glow_function;
 } sky_snippet;
 
 /* A program and its uniform rows (as many as its snippets bring: no cap),
