@@ -63,6 +63,62 @@
  *  - A name or field to be removed is deprecated first: kept working for
  *    one minor version, marked here ("Deprecated since X.Y, removed in
  *    X.Y+1") and in CHANGELOG.md, then removed.
+ *
+ * Reading this header: each function's comment opens with its name and
+ * what it does (units, ranges, what 0 and NULL mean), then gives four fixed
+ * parts, in this order, as GLFW's reference does with @errors,
+ * @thread_safety and @since:
+ *   Errors:         the sky_result codes it returns, and for what;
+ *   Thread safety:  "any thread (pure)" or "the sky's thread" (Threads);
+ *   GL:             "none" (no GL call, no context needed), or what it needs
+ *                   of the context and which of the host's GL state it
+ *                   changes and puts back;
+ *   Since:          the version that first had it.
+ *
+ * Since, the rule: sky.h's SKY_VERSION_* has been set five times, 0.1.0
+ * by the first commit and then 0.2.0 .. 0.5.0, each number taking in all
+ * that had landed since the one before. A function's version is the first
+ * number set at or after the commit that added it; one added after 0.5.0
+ * was set is 0.5.0's, the version on main. CHANGELOG.md's entries agree
+ * from 0.3.0 on (before it, the git history), and "Since: 0.1.0" marks
+ * what the first commit already had. A later change to a function's
+ * signature is named beside its version.
+ *
+ * Errors: a sky_result below 0 is an error, and the call changed nothing
+ * unless its Errors part says otherwise; above 0 is a warning (SKY_CLAMPED,
+ * SKY_WARN_MIRRORED): the call did its work, and the message says what it
+ * adjusted or what to fix. So `rc < 0` tests for failure. A call on a sky
+ * that returns anything but SKY_OK leaves a message for sky_last_error,
+ * except where its Errors part says "no message"; a NULL sky is always
+ * SKY_ERR_INVALID_ARGUMENT with no message (there is no sky to keep one).
+ * Functions without a sky return a code, or write into an err buffer where
+ * they take one. Nothing prints, asserts or aborts.
+ *
+ * Threads: a sky belongs to the GL context that was current when
+ * sky_create made it (and to the contexts sharing its objects); a context
+ * may hold several skies, which share nothing. The library keeps no global
+ * state and takes no lock.
+ *  - "any thread (pure)": the function takes no sky and makes no GL call;
+ *    it reads only its arguments and constant data, and writes only its
+ *    outputs: call it from any thread at any time.
+ *  - "the sky's thread": call it from the thread where the sky's context is
+ *    current, and never while another call on the same sky runs (a sky has
+ *    no lock). Where the GL part says "none", the function makes no GL
+ *    call and needs no current context: a host may make it on another
+ *    thread (sky_update on a simulation thread, say) if it keeps it from
+ *    overlapping every other call on that sky.
+ *
+ * GL: "needs the sky's context current" means the context sky_create ran
+ * in, or one sharing its objects, current on the calling thread. Only the
+ * drawing calls (sky_draw, sky_draw_fisheye, sky_capture_environment) check
+ * that it is the sky's; the others check only that some context is
+ * current, where their Errors part says so. glGetError returns and clears
+ * the host's pending errors too: sky_create reads it always, sky_draw only
+ * when sky_config.check_gl_errors asks, and the calls that make a texture
+ * outside sky_draw (sky_capture_environment into the library's cube map,
+ * sky_aerial_bind and sky_aerial_froxels, the first time) read it after
+ * creating one, so an error the host left pending then is taken for
+ * theirs.
  */
 #ifndef SKY_H
 #define SKY_H
@@ -88,9 +144,10 @@ extern "C" {
 
 typedef struct sky sky;
 
-/* Results. Negative values are errors (nothing was changed); SKY_CLAMPED
- * means the call succeeded after clamping an out-of-range input, and
- * sky_last_error names which one. */
+/* Results. Negative values are errors (nothing was changed, unless the
+ * function's Errors part says otherwise); SKY_CLAMPED means the call
+ * succeeded after clamping an out-of-range input, and sky_last_error names
+ * which one. */
 typedef enum sky_result {
     SKY_OK = 0,
     SKY_CLAMPED = 1,
