@@ -218,35 +218,11 @@ typedef enum sky_gl_profile {
     SKY_GL_CORE33,     /* OpenGL 3.3 core, GLSL 330                         */
     SKY_GL_COMPAT20,   /* OpenGL 2.0, GLSL 110, RGBA8 power-of-two only     */
     SKY_GL_ES20        /* OpenGL ES 2.0 / WebGL 1, GLSL ES 1.00: COMPAT20's
-                          resources on an ES 2.0 (or later) context. What it
-                          needs of the context: 4 texture units, and
-                          nothing else. What it uses when offered:
-                          OES_standard_derivatives (the clouds' footprint
-                          fade and the sun's edge; without it an estimate
-                          from the pixel's angular size), framebuffer
-                          objects (ES 2.0 core: the dome at a fraction of
-                          the resolution, capture), OES_texture_npot (or
-                          ES 3.0, or WebGL: that image at its own size),
-                          OES_vertex_array_object (or ES 3.0: a VAO of
-                          its own, so the host's attribute arrays need
-                          not be saved one by one), highp in the fragment
-                          stage (glGetShaderPrecisionFormat; without it the
-                          fragment stage runs at mediump, the uniforms both
-                          stages declare are mediump in both, and what
-                          reaches that stage stays within mediump's 2^14:
-                          in LDR the light arrives already times the
-                          exposure, so day, twilight and night are drawn
-                          as with highp; HDR output there holds only
-                          about 6e-5..16384 kcd/m^2, so a night sky
-                          comes out black). HDR output stops at 65504
-                          kcd/m^2 there (gl_FragColor is mediump in GLSL
-                          ES 1.00): the sun's disc saturates. No float
-                          texture, texture LOD or desktop-only entry point
-                          (glPolygonMode, glGetTexImage,
-                          glGetTexLevelParameteriv) is used.
-                          sky_capture_environment into the host's cube map
-                          cannot check its size there (ES 2.0 has no
-                          query): it must be face_size.                  */
+                          resources on an ES 2.0 (or later) context. Needs 4
+                          texture units and nothing else; takes extensions
+                          and highp when offered. Without highp in the
+                          fragment stage HDR output loses the night, and HDR
+                          stops at 65504 kcd/m^2: docs/es20.md             */
 } sky_gl_profile;
 
 /* How LDR output turns the sky's light into 8-bit colour (HDR output is
