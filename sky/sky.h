@@ -312,12 +312,29 @@ typedef enum sky_atmosphere_preset {
     SKY_ATMOSPHERE_HILLAIRE_2020 = SKY_ATMOSPHERE_PRESET_HILLAIRE_2020
 } sky_atmosphere_preset;
 
-/* Fills *out with a preset; SKY_ERR_INVALID_ARGUMENT for an unknown one. */
+/* sky_atmosphere_get_preset: fills *out with a preset's description, to
+ * pass as sky_config.atmosphere_params as it is or with a field changed.
+ * The deprecated names give the same descriptions as the PRESET_ ones.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for out NULL or a value that names no
+ * preset.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_atmosphere_params *out);
-/* Checks a description: every value finite, radii and scale heights
- * positive, top above ground by at least 1 km, coefficients >= 0,
- * extinction >= scattering, |g| <= 0.999, albedo in 0..1. Returns
- * SKY_OK or SKY_ERR_INVALID_ARGUMENT with the first bad field named in err. */
+/* sky_atmosphere_check: checks a description as sky_create does: every
+ * value finite; planet_radius_km 1..1e6; top_radius_km from
+ * planet_radius_km + 1 to twice planet_radius_km; each scattering,
+ * extinction and absorption coefficient 0..10 per km (more makes the air
+ * at sea level opaque within 100 m); mie_extinction >= mie_scattering;
+ * |mie_g| <= 0.999; both scale heights and ozone_half_width_km at least
+ * 0.01 km; ground_albedo 0..1. An all-zero description fails here
+ * (sky_config reads all zero as SKY_ATMOSPHERE_PRESET_EARTH before its
+ * check). err (may be NULL; err_len bytes, the NUL included) gets "" on
+ * success, else the first bad field and its range.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for atm NULL or a value out of range.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_atmosphere_check(const sky_atmosphere_params *atm, char *err, size_t err_len);
 
 /* HILLAIRE and BLEND: the lookup tables' sizes and sample counts (Hillaire
@@ -482,49 +499,186 @@ typedef struct sky_params {
     float cover, height, density, sunset, speed, time;
 } sky_params;
 
-/* The values sky_create starts with. */
+/* sky_default_params: the sliders sky_create starts with: cover 0.45,
+ * height 0.5, density 0.3, sunset 0.1, speed 0.2, time 0.45 (10:48 local
+ * solar time).
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_params sky_default_params(void);
 
+/* sky_create: makes a sky in the GL context current on the calling thread:
+ * checks cfg, loads the GL entry points through cfg->get_proc_address,
+ * settles the profile (cfg->gl_profile) and creates the programs, textures
+ * and buffers of the features asked for, nothing outside the mask (HILLAIRE
+ * and BLEND also build their first two tables: sky_lut_settings). cfg is
+ * copied: neither it nor the texture_dir string need outlive the call. The
+ * sky starts with sky_default_params, exposure bias 0, running time 0 and
+ * the default observer (sky_observer), its frame computed: sky_draw may
+ * follow at once.
+ * Errors: returns NULL and says why in err (may be NULL; err_len bytes,
+ * the NUL included; "" on success), naming the field it refuses: cfg or
+ * get_proc_address NULL; a field outside the range its comment gives (NaN
+ * included); a blend_partner other than 0, RAYLEIGH or PREETHAM;
+ * SKY_FEATURES_NONE with other bits; features outside
+ * SKY_FEATURES_AVAILABLE; SKY_LUNAR_ECLIPSE without SKY_MOON; an
+ * atmosphere_params that sky_atmosphere_check refuses; a horizon_to_world
+ * that is not orthonormal. Then the context: none current, OpenGL below
+ * 2.0, an entry point missing, fewer than 4 texture units, a profile it
+ * cannot run (CORE33 without 3.3 and GLSL 3.30, COMPAT20 in a core context,
+ * ES20 on desktop GL, CORE33 or COMPAT20 on ES), errors that glGetError
+ * never clears (a lost context). Then the resources: a file in texture_dir
+ * that is not a regular file, or a PNG that does not decode or has the
+ * wrong size (the file is named); a shader that does not compile or link
+ * (the driver's log); a GL error while creating; out of memory. What was
+ * made before the failure is released.
+ * Thread safety: the thread where the host's context is current; the sky
+ * is the context's from then on.
+ * GL: needs a current context. It reads glGetError until it returns
+ * GL_NO_ERROR before it starts, so errors the host left pending are
+ * cleared. What it binds and sets while creating (buffers, textures and
+ * the active unit, the pixel store, the vertex array) is the host's again
+ * when it returns, on success or failure.
+ * Since: 0.1.0 */
 SKY_API sky *sky_create(const sky_config *cfg, char *err, size_t err_len);
-SKY_API void sky_destroy(sky *s); /* NULL is fine; needs the creating context current */
+/* sky_destroy: deletes the sky's GL objects and frees it. NULL does
+ * nothing.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (not checked). A texture of the
+ * sky's that the host left bound in that context (sky_aerial_bind's
+ * table, sky_aerial_froxels's volume, the environment cube map) reverts
+ * to 0 as GL does for any deleted texture.
+ * Since: 0.1.0 */
+SKY_API void sky_destroy(sky *s);
 
-/* Text of the most recent non-OK result of this sky ("" if none). */
+/* sky_last_error: the message of this sky's most recent call that returned
+ * anything but SKY_OK and wrote one; "" before any, "sky is NULL" for s
+ * NULL. A later SKY_OK leaves it as it was, so read it straight after the
+ * result it explains. The string is the sky's: valid until sky_destroy,
+ * its text replaced by the next message.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API const char *sky_last_error(const sky *s);
-/* The library's version as built: (MAJOR << 16) | (MINOR << 8) | PATCH;
- * compare with the SKY_VERSION_* macros a host was compiled against. */
+/* sky_version: the library's version as built, (MAJOR << 16) | (MINOR <<
+ * 8) | PATCH: compare with the SKY_VERSION_* macros a host was compiled
+ * against (a shared library found at run time may be another; its soname
+ * keeps incompatible ones apart, Versions above).
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API unsigned sky_version(void);
 
+/* sky_set_params: sets the six sliders and recomputes the frame: the sun
+ * and moon (when the observer follows the time slider), the atmosphere,
+ * the exposure and each layer's state. sky_get_lighting and the queries
+ * below read the new state at once; the next sky_draw shows it. HILLAIRE
+ * and BLEND in COMPAT20 may build part of the sky-view table on the CPU
+ * here (sky_lut_settings).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), p NULL or a
+ * NaN field: nothing changes. SKY_CLAMPED when a field is outside 0..1
+ * (infinities included): it is set to the nearest end, and the message
+ * names it (the last one, if several).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_set_params(sky *s, const sky_params *p);
+/* sky_get_params: the sliders as set (clamped).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or p NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_get_params(const sky *s, sky_params *p);
 
-/* Exposure of the LDR output relative to the automatic one, in stops:
- * +1 doubles the light, -1 halves it. Range -10..10 (clamped; NaN is
- * rejected). Has no effect on HDR output. */
+/* sky_set_exposure_bias: the LDR output's exposure relative to the
+ * automatic one, in stops: +1 doubles the light shown, -1 halves it (0 at
+ * sky_create). It recomputes the frame as sky_set_params does. HDR output
+ * stays the sky's light, but the bias still scales sky_lighting.exposure
+ * and sky_display_bind's exposure, and with them the level below which the
+ * faint layers are skipped: at -10 a night's stars, planets, star map,
+ * airglow and zodiacal light are not drawn in HDR either.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message) or ev NaN:
+ * nothing changes. SKY_CLAMPED outside -10..10 (infinities included): set
+ * to the nearest end.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_set_exposure_bias(sky *s, float ev);
 
-/* Advances animation time (cloud drift, star flicker) by dt seconds. dt must
- * be finite and >= 0. Time is kept in double and wrapped, so a game may run
- * for years without the clouds stuttering. */
+/* sky_update: advances the sky's running clocks by dt_seconds (the clouds'
+ * drift at the speed slider's rate, the flicker stars' flicker, the stars'
+ * and planets' twinkle), then recomputes the frame as sky_set_params does.
+ * It does not move the sun or the moon: the time of day is the time
+ * slider's, or the observer's instant. The clocks are doubles wrapped to
+ * their periods, so a game may run for years without the clouds
+ * stuttering. dt_seconds 0 recomputes without advancing.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), or dt_seconds
+ * NaN, infinite or negative: nothing changes.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_update(sky *s, double dt_seconds);
-/* Sets the animation clock to an absolute value (seconds >= 0). */
+/* sky_set_elapsed: sets those clocks to an absolute running time: back to
+ * zero, then sky_update(s, seconds). Two skies with the same sliders and
+ * seconds show the same clouds and stars, whatever ran before; the clouds
+ * drift over the whole span at the speed slider's present rate.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), or seconds NaN,
+ * infinite or negative: nothing changes.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
 
-/* Draws the sky into the current framebuffer and viewport. view and proj are
- * column-major; only the rotation part of view is used (the sky is
- * centred on the viewer). Depth is neither tested nor written; polygons are
- * filled whatever glPolygonMode says, and GL_FRAMEBUFFER_SRGB is off for its
- * draws (LDR output is sRGB-encoded by the sky itself: into an sRGB target
- * it lands as the encoded bytes); all GL state that the call changes is
- * restored before it returns, as sky_create restores what it binds. With LDR output it
- * first renders the dome into an image of its own through a framebuffer
- * object of its own (sky_config.dome_divisor), and puts the host's draw
- * and read framebuffers and viewport back before drawing into the host's. */
+/* sky_draw: draws the sky's current frame into the current framebuffer
+ * and viewport, seen through the host's view and proj (column-major; only
+ * the rotation part of view is used: the sky is centred on the viewer;
+ * Conventions). Depth is never written, and tested only when
+ * sky_config.depth says where the far plane is; polygons are filled
+ * whatever glPolygonMode says, and GL_FRAMEBUFFER_SRGB is off for its draws
+ * (LDR output is sRGB-encoded by the sky itself: into an sRGB target it
+ * lands as the encoded bytes). With LDR output, framebuffer objects and a
+ * dome_divisor above 1 it first renders the dome into an image of its own
+ * at 1/dome_divisor of the viewport (sky_config.dome_divisor) through a
+ * framebuffer object of its own, then draws into the host's.
+ * sky_get_stats describes the draw afterwards.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), view or proj
+ * NULL, an element not finite, a view without a rotation in it, or a
+ * singular projection: nothing drawn. SKY_ERR_GL when no context is current
+ * or the current one is not the sky's (one holding a program of the name
+ * of the sky's first program, another sky's say, passes for it): nothing
+ * drawn. With sky_config.check_gl_errors also SKY_ERR_GL for an error the
+ * host left pending (read, so cleared, and named as the host's; nothing
+ * drawn), or for one the sky's own calls raised (the frame was drawn).
+ * SKY_WARN_MIRRORED (a warning): drawn, but the projection's and
+ * horizon_to_world's handedness disagree, so the sky is a mirror image.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current. Every state it changes is put back
+ * before it returns: the current program; the active unit and the 2D,
+ * cube-map (and CORE33's 2D-array) bindings of units 0..3; the buffer and
+ * vertex-array bindings, or without a vertex array of its own the
+ * attribute arrays 0..2; the draw and read framebuffers, the viewport,
+ * the scissor box and the clear colour; the blend, depth, cull, scissor,
+ * stencil, rasterizer-discard, program-point-size and framebuffer-sRGB
+ * switches; the blend functions and equations, colour and depth masks,
+ * depth function and polygon mode.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_draw(sky *s, const float view[16], const float proj[16]);
-/* Draws an equidistant all-sky image into the viewport: zenith at the
- * centre, horizon on the inscribed circle, north at the top, east on the
- * left (as seen looking up). Outside the circle is black. An image to
- * look at rather than a frame rate: with LDR output its dome is drawn at
- * every pixel (its image the viewport's size) whatever dome_divisor says. */
+/* sky_draw_fisheye: draws an equidistant all-sky image of the current
+ * frame into the viewport: zenith at the centre, horizon on the inscribed
+ * circle, north at the top, east on the left (as seen looking up). The
+ * viewport is cleared to black first, so outside the circle is black. An
+ * image to look at rather than a frame rate: with LDR output its dome is
+ * drawn at every pixel (its image the viewport's size) whatever
+ * dome_divisor says.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message); SKY_ERR_GL as
+ * for sky_draw. It never warns of a mirror image.
+ * Thread safety: the sky's thread.
+ * GL: as sky_draw.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_draw_fisheye(sky *s);
 
 /* ---- where and when ----------------------------------------------------------
