@@ -700,16 +700,39 @@ typedef struct sky_observer {
     int time_from_params;
 } sky_observer;
 
-/* Julian day of a proleptic Gregorian UTC date and time: years within a
- * million of year 0, month 1..12, day 1..31, hour 0..24, minute 0..60,
- * second 0..61 (with a fraction); NaN for anything else (which
- * sky_set_observer rejects). */
+/* sky_julian_day: the Julian day of a proleptic Gregorian UTC date and
+ * time: years within a million of year 0, month 1..12, day 1..31, hour
+ * 0..24, minute 0..60, second 0..61 with a fraction. A day, hour or minute
+ * past its unit's end runs on into the next (2026-02-31 is 2026-03-03).
+ * Errors: NaN for anything outside those ranges (which sky_set_observer
+ * refuses); no sky_result.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API double sky_julian_day(int year, int month, int day, int hour, int minute, double second);
-/* The calendar date (proleptic Gregorian) of a Julian day, with the
- * fraction of the day since 0h. SKY_ERR_INVALID_ARGUMENT (and zeros) for a
- * day that is not finite or more than a million years from year 0. */
+/* sky_calendar: the proleptic Gregorian date of a Julian day, with the
+ * fraction of the day since 0h UTC. Any output may be NULL.
+ * Errors: SKY_ERR_INVALID_ARGUMENT, the outputs set to zero, for a day
+ * that is not finite or lies more than a million years from year 0.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 (returning void; sky_result since 0.3.0) */
 SKY_API sky_result sky_calendar(double julian_day, int *year, int *month, int *day, double *day_fraction);
+/* sky_set_observer: sets the instant and place (sky_observer, above) and
+ * recomputes the frame as sky_set_params does.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), obs NULL, or
+ * a field outside its range or not finite (the message names it): nothing
+ * changes.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_set_observer(sky *s, const sky_observer *obs);
+/* sky_get_observer: the observer as set (the default one before any
+ * sky_set_observer).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or obs NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_get_observer(const sky *s, sky_observer *obs);
 
 typedef struct sky_body_place {
@@ -729,7 +752,13 @@ typedef enum sky_planet {
     SKY_PLANET_SATURN,
     SKY_PLANET_COUNT
 } sky_planet;
-SKY_API const char *sky_planet_name(sky_planet planet); /* "mercury", ...; "unknown" */
+/* sky_planet_name: a planet's name in lower case ("mercury", ...;
+ * "unknown" for a value that names none); a static string.
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
+SKY_API const char *sky_planet_name(sky_planet planet);
 
 typedef struct sky_planet_place {
     sky_body_place place;          /* distance_km geocentric                    */
@@ -775,12 +804,30 @@ typedef struct sky_star_place {
     double vmag, bv;
 } sky_star_place;
 
-/* Computes the astronomy of an observer without any GL: time_of_day is
- * used when obs->time_from_params is set. hip/stars may be NULL (count 0).
- * Errors: out-of-range observer, NaN. */
+/* sky_compute_astronomy: the astronomy of an observer, without a sky:
+ * *out as sky_get_astronomy gives it (the planets included), and for each
+ * of the count Hipparcos numbers in hip its place in stars[i] (found 0 for
+ * a number not in the catalogue; not an error). time_of_day is the time
+ * slider, used when obs->time_from_params is set (clamped to 0..1
+ * silently). hip and stars may be NULL when count is 0. err (may be NULL;
+ * err_len bytes, the NUL included) gets "" on success, else why.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for obs or out NULL, count negative, hip
+ * or stars NULL with count above 0, time_of_day NaN, an observer that
+ * sky_set_observer would refuse (the same messages); SKY_ERR_ASSET when
+ * the embedded star catalogue does not decode (stars asked for only).
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, const int *hip, int count,
                                          sky_star_place *stars, sky_astronomy *out, char *err, size_t err_len);
-/* The astronomy of the sky's current frame. */
+/* sky_get_astronomy: the astronomy of the sky's current frame: its
+ * observer at the time slider's instant (time_from_params) or its own, as
+ * the last call that recomputed the frame left it. The planets are the
+ * frame's with SKY_PLANETS, else computed in this call.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_get_astronomy(const sky *s, sky_astronomy *out);
 
 /* Layers, for per-layer statistics. */
@@ -797,6 +844,12 @@ typedef enum sky_layer {
     SKY_LAYER_ZODIACAL,
     SKY_LAYER_COUNT
 } sky_layer;
+/* sky_layer_name: a layer's name ("unknown" outside 0 .. SKY_LAYER_COUNT -
+ * 1); a static string.
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API const char *sky_layer_name(sky_layer layer); /* "starmap", "stars", ... */
 
 typedef struct sky_layer_stats {
@@ -825,11 +878,26 @@ typedef struct sky_stats {
     sky_layer_stats layers[SKY_LAYER_COUNT];
 } sky_stats;
 
+/* sky_get_stats: what the sky holds now (profile, features, textures,
+ * programs, buffers and their bytes) and what its last draw did (the last
+ * sky_draw or sky_draw_fisheye, or the last face sky_capture_environment
+ * drew: draws, times, which layers showed).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none (gl_version was read by sky_create).
+ * Since: 0.1.0 */
 SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
 /* The layers by index, so that adding one changes no public struct: how
- * many this build has (SKY_LAYER_COUNT; sky_layer_name names each), and
- * one's statistics for the last frame. SKY_ERR_INVALID_ARGUMENT for a NULL
- * sky or output or an index outside 0 .. sky_layer_count() - 1. Since 0.5. */
+ * many this build has (sky_layer_count: SKY_LAYER_COUNT; sky_layer_name
+ * names each), and one's statistics for the last frame
+ * (sky_get_layer_stats: sky_get_stats's row for it).
+ * Errors: sky_layer_count none; sky_get_layer_stats
+ * SKY_ERR_INVALID_ARGUMENT (no message) for a NULL sky or output or an
+ * index outside 0 .. sky_layer_count() - 1.
+ * Thread safety: sky_layer_count any thread (pure); sky_get_layer_stats
+ * the sky's thread.
+ * GL: none.
+ * Since: 0.5.0 (both) */
 SKY_API int sky_layer_count(void);
 SKY_API sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out);
 /* The index of the layer named name (sky_layer_name's names; a layer
@@ -862,6 +930,15 @@ typedef struct sky_lighting {
                                   multiplies by this lands in the sky's range */
 } sky_lighting;
 
+/* sky_get_lighting: what a game needs to light its scene (sky_lighting,
+ * above) for the sky's current frame, as sky_create or the last call that
+ * recomputed it left it (sky_set_params, sky_set_observer,
+ * sky_set_exposure_bias, sky_update, sky_set_elapsed). The moon's fields
+ * are zero without SKY_MOON.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
 
 /* Environment capture: the sky as sky_draw draws it (every layer, clouds
