@@ -941,12 +941,12 @@ typedef struct sky_lighting {
  * Since: 0.1.0 */
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
 
-/* Environment capture: the sky as sky_draw draws it (every layer, clouds
- * included), seen from the observer in the six directions of a cube map
- * in the world frame (horizon_to_world applied; GL's face order +X, -X,
- * +Y, -Y, +Z, -Z and its face orientation, so that a samplerCube looked
- * up with a world direction finds the sky there), for reflections and
- * image-based lighting.
+/* sky_capture_environment: the sky as sky_draw draws it (every layer,
+ * clouds included), seen from the observer in the six directions of a
+ * cube map in the world frame (horizon_to_world applied; GL's face order
+ * +X, -X, +Y, -Y, +Z, -Z and its face orientation, so that a samplerCube
+ * looked up with a world direction finds the sky there), for reflections
+ * and image-based lighting.
  *   cube_texture  0: the library's own (sky_environment_texture; made or
  *                 remade at face_size), else the host's GL_TEXTURE_CUBE_MAP
  *                 whose level 0 is face_size square on every face captured,
@@ -960,38 +960,68 @@ SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
  *                 sky_get_lighting's beam; left out by default)
  * Each face is the picture sky_draw draws with that face's camera
  * (sky_capture_face_matrices) at dome_divisor 1: the faces are small, and
- * a reduced image's steps would show at their edges.
- * It renders through a framebuffer object of its own; the host's
- * framebuffer bindings, viewport and every state sky_draw restores come
- * back. A COMPAT20 context without framebuffer objects has no such
- * object: there each face is drawn into the host's current draw buffer,
- * face_size square at the lower-left corner of its viewport, and copied
- * from the read buffer into the cube map (glCopyTexSubImage2D; the read
- * buffer must be the draw buffer, as GL_BACK is for both by default).
- * Call it there where those pixels are the host's to lose: before it
- * draws its frame (sky_draw and the scene then cover them) or on a frame
- * it clears; sky_capture_overwrote says which they were. face_size must
- * fit the viewport. HDR output in COMPAT20 is captured into the host's
- * float cube map only (the library's textures there are 8-bit, and the
- * layers blend in linear light, which no 8-bit encoding can be blended
- * in): through a framebuffer object where the context renders into
- * float textures, else copied from a float draw buffer; into the
- * library's own, SKY_ERR_UNSUPPORTED. SKY_ERR_INVALID_ARGUMENT for a
- * bad size, face or flag, or a host texture that is not a cube map of
- * that size. */
+ * a reduced image's steps would show at their edges. sky_get_stats then
+ * describes the last face drawn.
+ * It renders through a framebuffer object of its own. A COMPAT20 context
+ * without framebuffer objects has no such object: there each face is drawn
+ * into the host's current draw buffer, face_size square at the lower-left
+ * corner of its viewport, and copied from the read buffer into the cube map
+ * (glCopyTexSubImage2D; the read buffer must be the draw buffer, as
+ * GL_BACK is for both by default). Call it there where those pixels are
+ * the host's to lose: before it draws its frame (sky_draw and the scene
+ * then cover them) or on a frame it clears; sky_capture_overwrote says
+ * which they were. HDR output in COMPAT20 (and ES20) is captured into the
+ * host's float cube map only (the library's textures there are 8-bit, and
+ * the layers blend in linear light, which no 8-bit encoding can be blended
+ * in): through a framebuffer object where the context renders into float
+ * textures, else copied from a float draw buffer.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), a face_size
+ * that is not a power of two in 4..2048 or is over the context's cube-map
+ * limit (or, without framebuffer objects, does not fit the viewport), a
+ * face other than 0..5 or SKY_CAPTURE_ALL_FACES, an unknown flag, or a
+ * host texture that is not a cube map of that size (not checked on ES 2.0,
+ * which cannot ask: there it must be face_size). SKY_ERR_UNSUPPORTED for
+ * HDR output outside CORE33 into the library's own cube map. SKY_ERR_GL
+ * when no context is current, the current one is not the sky's, the
+ * library's cube map cannot be made (a GL error the host left pending is
+ * taken for this), there is no framebuffer object, or a face cannot be
+ * rendered into (its format): the faces before that one were drawn.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current. The host's framebuffer bindings,
+ * viewport and every state sky_draw puts back come back; without
+ * framebuffer objects the pixels of the host's draw buffer it drew into
+ * are left as drawn (sky_capture_overwrote).
+ * Since: 0.4.0 */
 #define SKY_CAPTURE_ALL_FACES (-1)
 #define SKY_CAPTURE_SUN_DISC 1u
 SKY_API sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size, int face, unsigned flags);
-/* The view and projection sky_capture_environment draws face 0..5 with
- * (world frame, right-handed, 90 degrees square): sky_draw with them at a
- * square viewport draws that face's pixels. */
+/* sky_capture_face_matrices: the view and projection
+ * sky_capture_environment draws face 0..5 with (world frame,
+ * right-handed, 90 degrees square): sky_draw with them at a square
+ * viewport draws that face's pixels.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for face outside 0..5, or view or proj
+ * NULL.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_capture_face_matrices(int face, float view[16], float proj[16]);
-/* The pixels of the host's draw buffer the last sky_capture_environment
- * drew into (a context without framebuffer objects): x, y, width, height
- * in rect (may be NULL), returns 1; 0 (and zeros) when it drew into a
- * framebuffer object of its own, or has not run. */
+/* sky_capture_overwrote: the pixels of the host's draw buffer that the
+ * last sky_capture_environment drew into (a context without framebuffer
+ * objects): x, y, width, height in rect (may be NULL), returns 1; 0 (and
+ * zeros) when it drew into a framebuffer object of its own, has not run,
+ * or s is NULL.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API int sky_capture_overwrote(const sky *s, int rect[4]);
-/* The library's own cube map (0 before the first capture into it). */
+/* sky_environment_texture: the library's own cube map: 0 before the first
+ * capture into it (and for s NULL). A capture at another face_size makes
+ * a new one, whose name may differ; it lives until sky_destroy.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API unsigned sky_environment_texture(const sky *s);
 
 /* The sky as a light for a scene's ambient: the radiance that reaches the
@@ -1013,9 +1043,6 @@ SKY_API unsigned sky_environment_texture(const sky *s);
  * sky (the truncation); sky_irradiance_sh_eval adds degree 4 and the
  * horizon's zonal degrees 6 and 8 and is within 2 % (make test measures
  * both against renders).
- * Projected from the atmosphere's CPU twin over 256 directions, once per
- * change of the sun, sliders, observer, world frame or tables, else
- * cached (sky-bench gives the cost).
  * The basis, for a unit world direction (x, y, z):
  *   [0] 0.282095            [1] 0.488603 y     [2] 0.488603 z
  *   [3] 0.488603 x          [4] 1.092548 x y   [5] 1.092548 y z
@@ -1045,13 +1072,27 @@ typedef struct sky_irradiance_sh {
     float moon_color[3];       /* 0 when the scene has no moon or it is down  */
 } sky_irradiance_sh;
 
+/* sky_get_irradiance_sh: fills *out (above) for the sky's current frame.
+ * The coefficients are projected from the atmosphere's CPU twin over 256
+ * directions, once per change of the sun, sliders, observer, world frame
+ * or tables, and cached in the sky (sky-bench gives the cost); the beams
+ * are sky_get_lighting's.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread (it fills the sky's cache).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_get_irradiance_sh(sky *s, sky_irradiance_sh *out);
-/* Irradiance from the sky alone (beams excluded) on a surface whose unit
- * normal (world frame; any length is normalised) is normal, klx per
- * channel: the sum over the coefficients of A_l radiance Y(normal), A =
- * pi, 2 pi/3, pi/4, -pi/24, pi/64, -pi/128 for degrees 0, 1, 2, 4, 6, 8
- * (Ramamoorthi & Hanrahan 2001 eq. 8); never below 0.
- * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero normal. */
+/* sky_irradiance_sh_eval: the irradiance from the sky alone (beams
+ * excluded) on a surface whose unit normal (world frame; any length is
+ * normalised) is normal, klx per channel: the sum over the coefficients
+ * of A_l radiance Y(normal), A = pi, 2 pi/3, pi/4, -pi/24, pi/64, -pi/128
+ * for degrees 0, 1, 2, 4, 6, 8 (Ramamoorthi & Hanrahan 2001 eq. 8); never
+ * below 0 (a truncated sum can dip below it facing a dark hemisphere).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for sh, normal or irradiance NULL, or
+ * a normal not finite or zero (irradiance then set to 0).
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const float normal[3], float irradiance[3]);
 
 /* Aerial perspective: what the air between the observer and a point of
@@ -1061,87 +1102,132 @@ SKY_API sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const flo
  *     L * transmittance + inscatter
  * instead, then applies the sky's exposure: far hills take the colour of
  * the sky behind them, near ones are untouched.
+ * One atmosphere for every path: Hillaire's ray march stopped at the point
+ * on the description the sky is drawn with (sky_config.atmosphere_params
+ * and turbidity), its light scaled so that at the ray's end it is the sky
+ * the path draws (so it meets the gradient's or Preetham's horizon too;
+ * the night floor is spread along the ray by optical depth). The light
+ * of the ground itself is not in it: the host's ground is the point. */
+typedef struct sky_aerial {
+    float transmittance[3];
+    float inscatter[3];
+} sky_aerial;
+/* sky_get_aerial_perspective: the air's effect (above) on the light of the
+ * point at distance_m along direction, for the sky's current frame:
  *   direction   world frame (horizon_to_world applied), any length
  *   distance_m  metres from the observer, 0 or more (INFINITY: the end of
  *               the view ray, where the air's light is the sky drawn
  *               there, the horizon's colour for a level view)
  *   out         transmittance (0..1 per channel) and inscatter (kcd/m^2,
  *               linear RGB); 0 m: 1 and 0
- * One atmosphere for every path: Hillaire's ray march stopped at the point
- * on the description the sky is drawn with (sky_config.atmosphere_params
- * and turbidity), its light scaled so that at the ray's end it is the sky
- * the path draws (so it meets the gradient's or Preetham's horizon too;
- * the night floor is spread along the ray by optical depth). The light
- * of the ground itself is not in it: the host's ground is the point.
  * The Hillaire and blend paths use their own tables; the others build a
  * transmittance and multiple-scattering table at the first call (about
  * 60 ms on the CPU, once). A call marches three rays (a few us).
- * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero direction, a
- * negative or NaN distance; SKY_ERR_OUT_OF_MEMORY. */
-typedef struct sky_aerial {
-    float transmittance[3];
-    float inscatter[3];
-} sky_aerial;
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), direction or
+ * out NULL, a direction not finite or zero, a distance negative or NaN;
+ * SKY_ERR_OUT_OF_MEMORY for the tables. After any error out (where not
+ * NULL) is transmittance 1, inscatter 0.
+ * Thread safety: the sky's thread (it keeps the tables in the sky).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_get_aerial_perspective(sky *s, const float direction[3], float distance_m, sky_aerial *out);
-/* The same for the host's own shaders: GLSL source to include after its
- * #version line (GLSL 1.10 to 3.30 and ES 1.00; a NUL-terminated static
- * string) that defines
+/* sky_aerial_glsl: the same for the host's own shaders: GLSL source to
+ * include after its #version line (GLSL 1.10 to 3.30 and ES 1.00; a
+ * NUL-terminated static string, "" in a build without it) that defines
  *     vec3 sky_aerial_apply(vec3 radiance, vec3 direction, float distance_m);
  *     void sky_aerial(vec3 direction, float distance_m,
  *                     out vec3 transmittance, out vec3 inscatter);
  * with the arguments and units of sky_get_aerial_perspective, from a
  * 256 x 64 RGBA8 table (directions about the sun by 16 slices of distance
- * to 50 km and the ray's end; aerial.glsl describes it). It declares the
+ * to 50 km and the ray's end; aerial.glsl describes it), and outside GLSL
+ * ES sky_aerial_froxel_apply (sky_aerial_froxels). It declares the
  * uniforms sky_aerial_table (sampler2D), sky_aerial_up, sky_aerial_sun
- * and sky_aerial_params. */
+ * and sky_aerial_params, which sky_aerial_bind sets.
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API const char *sky_aerial_glsl(void);
-/* Makes the table current for the frame (remade on the CPU when the sun,
- * sliders, observer or world frame moved: 1.3-2.7 ms; sky-bench gives
- * the cost), binds it to texture_unit and sets the uniforms of program
- * (a linked program that includes sky_aerial_glsl; uniforms it optimised
- * away are skipped). Call it after sky_update, before drawing with the
- * program. The host's current program and active texture unit come back;
- * the table stays bound to GL_TEXTURE_2D of texture_unit, which is the
- * point: the host keeps that unit for it while it draws.
- * SKY_ERR_INVALID_ARGUMENT for program 0 or a unit outside the context's;
- * SKY_ERR_GL without a current context. */
+/* sky_aerial_bind: makes the table current for the frame (remade on the
+ * CPU when the sun, sliders, observer or world frame moved: 1.3-2.7 ms;
+ * sky-bench gives the cost), binds it to texture_unit and sets the
+ * uniforms of program (a linked program that includes sky_aerial_glsl;
+ * uniforms it optimised away are skipped). Call it after sky_update,
+ * before drawing with the program.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), program 0, or
+ * a texture_unit below 0 or not below the context's
+ * GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS. SKY_ERR_GL when no context is
+ * current, or the table's texture cannot be made (the first call; a GL
+ * error the host left pending is taken for this). SKY_ERR_OUT_OF_MEMORY
+ * for the table. Not detected: a program that is not a linked program of
+ * the current context returns SKY_OK with no uniform set and glUseProgram's
+ * error left pending for the host.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (only some context is checked). The
+ * host's current program and active texture unit come back, and what the
+ * table's upload binds on unit 0; the table stays bound to GL_TEXTURE_2D
+ * of texture_unit, which is the point: the host keeps that unit for it
+ * while it draws.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit);
-/* The 8-bit output's display stages for a host that takes the sky's HDR
- * output (or lights its own scene in kcd/m^2) and wants it shown as the
- * sky shows itself: GLSL source to include after the #version line (GLSL
- * 1.10 to 3.30 and ES 1.00 with highp; a NUL-terminated static string)
- * that defines
+/* sky_display_glsl: the 8-bit output's display stages for a host that
+ * takes the sky's HDR output (or lights its own scene in kcd/m^2) and
+ * wants it shown as the sky shows itself: GLSL source to include after the
+ * #version line (GLSL 1.10 to 3.30 and ES 1.00 with highp; a
+ * NUL-terminated static string, "" in a build without it) that defines
  *     vec3 sky_display(vec3 radiance_kcd);
  * returning display values 0..1: the automatic exposure with its partial
  * adaptation at the day's end and at night (sky_config.exposure_range),
- * the rods' blue shift of night vision, and the tone map (the hue map; a
- * #define SKY_TONE_MAP_FILMIC or SKY_TONE_MAP_NEUTRAL before it picks
- * the others). The library's own 8-bit frames are these values plus a
- * dither of one step. It declares the uniforms sky_display_exposure,
- * sky_display_rods and sky_display_cd. (docs/DUSK.md) */
+ * the rods' blue shift of night vision (Jensen et al. 2000), and the tone
+ * map (the hue map; a #define SKY_TONE_MAP_FILMIC or SKY_TONE_MAP_NEUTRAL
+ * before it picks the others). The library's own 8-bit frames are these
+ * values plus a dither of one step. It declares the uniforms
+ * sky_display_exposure, sky_display_rods and sky_display_cd, which
+ * sky_display_bind sets. (docs/DUSK.md)
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.5.0 */
 SKY_API const char *sky_display_glsl(void);
-/* Sets those uniforms in program (a linked program that includes
- * sky_display_glsl; uniforms it optimised away are skipped) for the
- * frame: call it after sky_update. The host's current program comes back.
- * SKY_ERR_INVALID_ARGUMENT for NULL or program 0; SKY_ERR_GL without a
- * current context. */
+/* sky_display_bind: sets those uniforms in program (a linked program that
+ * includes sky_display_glsl; uniforms it optimised away are skipped) for
+ * the sky's current frame: call it after sky_update, before drawing with
+ * the program.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message) or program 0;
+ * SKY_ERR_GL when no context is current. Not detected: a program that is
+ * not a linked program of the current context returns SKY_OK with no
+ * uniform set and glUseProgram's error left pending for the host.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (only some context is checked). The
+ * host's current program and active texture unit come back.
+ * Since: 0.5.0 */
 SKY_API sky_result sky_display_bind(sky *s, unsigned program);
-/* Hillaire's froxel volume (Hillaire 2020 sec. 5.4; Unreal's aerial
- * perspective table), CORE33 on the hillaire and blend paths: the same
- * air for one camera (view and proj as sky_draw takes them), marched on
- * the GPU into a 32 x 32 x 32 RGBA16F GL_TEXTURE_3D that *texture names
- * (the library's; valid until the next call or sky_destroy): x and y
- * across the viewport, slice k the air between the observer and
- * (k + 1) km along the view (32 km in all): RGB the in-scattered light
- * (kcd/m^2), A the mean transmittance of the three channels. The
- * physical march alone: no path's drawn-sky scale, night floor or
- * eclipse. sky_aerial_glsl's sky_aerial_froxel_apply(volume, radiance,
- * screen_uv, distance_m) reads it (the first km from the identity,
- * beyond 32 km the last slice). Rebuild it when the camera turns or the
- * sun moves; sky-bench gives its cost. The host's framebuffer, program,
- * viewport and texture bindings come back. SKY_ERR_UNSUPPORTED elsewhere
- * (sky_aerial_bind serves every path and profile);
- * SKY_ERR_INVALID_ARGUMENT for NULL or a degenerate camera. */
+/* sky_aerial_froxels: Hillaire's froxel volume (Hillaire 2020 sec. 5.4;
+ * Unreal's aerial perspective table), CORE33 on the hillaire and blend
+ * paths: the same air for one camera (view and proj as sky_draw takes
+ * them), marched on the GPU into a 32 x 32 x 32 RGBA16F GL_TEXTURE_3D that
+ * *texture names (the library's; valid until the next call or
+ * sky_destroy): x and y across the viewport, slice k the air between the
+ * observer and (k + 1) km along the view (32 km in all): RGB the
+ * in-scattered light (kcd/m^2), A the mean transmittance of the three
+ * channels. The physical march alone: no path's drawn-sky scale, night
+ * floor or eclipse. sky_aerial_glsl's sky_aerial_froxel_apply(volume,
+ * radiance, screen_uv, distance_m) reads it (the first km from the
+ * identity, beyond 32 km the last slice). Rebuild it when the camera turns
+ * or the sun moves; sky-bench gives its cost.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), view, proj or
+ * texture NULL, or a camera that is not finite or is degenerate.
+ * SKY_ERR_UNSUPPORTED outside CORE33's HILLAIRE and BLEND paths
+ * (sky_aerial_bind serves every path and profile). SKY_ERR_GL when no
+ * context is current or the build fails (the message says why; the
+ * volume's texture is made at the first call, and a GL error the host
+ * left pending then is taken for the build's). *texture is 0 after any
+ * error (where texture is not NULL).
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (only some context is checked). The
+ * host's framebuffers, program, viewport, vertex array and texture bindings
+ * (unit 0's 3D one included) come back.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16], unsigned *texture);
 
 #ifdef __cplusplus
