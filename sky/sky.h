@@ -69,7 +69,8 @@
  * parts, in this order, as GLFW's reference does with @errors,
  * @thread_safety and @since:
  *   Errors:         the sky_result codes it returns, and for what;
- *   Thread safety:  "any thread (pure)" or "the sky's thread" (Threads);
+ *   Thread safety:  "any thread (pure)" or "the sky's thread" (Threads;
+ *                   sky_create runs where the sky's context is to be);
  *   GL:             "none" (no GL call, no context needed), or what it needs
  *                   of the context and which of the host's GL state it
  *                   changes and puts back;
@@ -91,8 +92,9 @@
  * that returns anything but SKY_OK leaves a message for sky_last_error,
  * except where its Errors part says "no message"; a NULL sky is always
  * SKY_ERR_INVALID_ARGUMENT with no message (there is no sky to keep one).
- * Functions without a sky return a code, or write into an err buffer where
- * they take one. Nothing prints, asserts or aborts.
+ * Functions without a sky report through their return value, and write
+ * into an err buffer where they take one. Nothing prints, asserts or
+ * aborts.
  *
  * Threads: a sky belongs to the GL context that was current when
  * sky_create made it (and to the contexts sharing its objects); a context
@@ -646,8 +648,8 @@ SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
  * framebuffer object of its own, then draws into the host's.
  * sky_get_stats describes the draw afterwards.
  * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), view or proj
- * NULL, an element not finite, a view without a rotation in it, or a
- * singular projection: nothing drawn. SKY_ERR_GL when no context is current
+ * NULL, an element not finite, a view whose rotation part is degenerate,
+ * or a singular projection: nothing drawn. SKY_ERR_GL when no context is current
  * or the current one is not the sky's (one holding a program of the name
  * of the sky's first program, another sky's say, passes for it): nothing
  * drawn. With sky_config.check_gl_errors also SKY_ERR_GL for an error the
@@ -887,10 +889,10 @@ typedef struct sky_stats {
  * GL: none (gl_version was read by sky_create).
  * Since: 0.1.0 */
 SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
-/* The layers by index, so that adding one changes no public struct: how
- * many this build has (sky_layer_count: SKY_LAYER_COUNT; sky_layer_name
- * names each), and one's statistics for the last frame
- * (sky_get_layer_stats: sky_get_stats's row for it).
+/* sky_layer_count, sky_get_layer_stats: the layers by index, so that
+ * adding one changes no public struct: how many this build has
+ * (SKY_LAYER_COUNT; sky_layer_name names each), and one's statistics for
+ * the last frame (sky_get_stats's row for it).
  * Errors: sky_layer_count none; sky_get_layer_stats
  * SKY_ERR_INVALID_ARGUMENT (no message) for a NULL sky or output or an
  * index outside 0 .. sky_layer_count() - 1.
@@ -984,8 +986,8 @@ SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
  * HDR output outside CORE33 into the library's own cube map. SKY_ERR_GL
  * when no context is current, the current one is not the sky's, the
  * library's cube map cannot be made (a GL error the host left pending is
- * taken for this), there is no framebuffer object, or a face cannot be
- * rendered into (its format): the faces before that one were drawn.
+ * taken for this) or its framebuffer object cannot, or a face cannot be
+ * rendered into (its format?): the faces before that one were drawn.
  * Thread safety: the sky's thread.
  * GL: needs the sky's context current. The host's framebuffer bindings,
  * viewport and every state sky_draw puts back come back; without
