@@ -846,8 +846,8 @@ typedef enum sky_layer {
     SKY_LAYER_ZODIACAL,
     SKY_LAYER_COUNT
 } sky_layer;
-/* sky_layer_name: a layer's name ("unknown" outside 0 .. SKY_LAYER_COUNT -
- * 1); a static string.
+/* sky_layer_name: a layer's name by its index ("unknown" outside 0 ..
+ * sky_layer_count() - 1); a static string.
  * Errors: none.
  * Thread safety: any thread (pure).
  * GL: none.
@@ -891,8 +891,9 @@ typedef struct sky_stats {
 SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
 /* sky_layer_count, sky_get_layer_stats: the layers by index, so that
  * adding one changes no public struct: how many this build has
- * (SKY_LAYER_COUNT; sky_layer_name names each), and one's statistics for
- * the last frame (sky_get_stats's row for it).
+ * (SKY_LAYER_COUNT or more: a layer added after 0.5 has an index but no
+ * sky_layer constant; sky_layer_name names each), and one's statistics
+ * for the last frame (for the layers of 0.5, sky_get_stats's row).
  * Errors: sky_layer_count none; sky_get_layer_stats
  * SKY_ERR_INVALID_ARGUMENT (no message) for a NULL sky or output or an
  * index outside 0 .. sky_layer_count() - 1.
@@ -902,9 +903,13 @@ SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
  * Since: 0.5.0 (both) */
 SKY_API int sky_layer_count(void);
 SKY_API sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out);
-/* The index of the layer named name (sky_layer_name's names; a layer
- * added after 0.5 has no sky_layer constant and is found this way), or -1
- * for NULL or an unknown name. Pure. Since 0.5. */
+/* sky_layer_index: the index of the layer named name (sky_layer_name's
+ * names; a layer added after 0.5 has no sky_layer constant and is found
+ * this way).
+ * Errors: -1 for name NULL or a name no layer of this build has.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.5.0 */
 SKY_API int sky_layer_index(const char *name);
 
 /* What a game needs to light its scene, for the current state. Directions
