@@ -111,10 +111,11 @@
  *    overlapping every other call on that sky.
  *
  * GL: "needs the sky's context current" means the context sky_create ran
- * in, or one sharing its objects, current on the calling thread. Only the
- * drawing calls (sky_draw, sky_draw_fisheye, sky_capture_environment) check
- * that it is the sky's; the others check only that some context is
- * current, where their Errors part says so. glGetError returns and clears
+ * in, or one sharing its objects, current on the calling thread. The
+ * drawing calls (sky_draw, sky_draw_fisheye, sky_capture_environment), the
+ * binders (sky_display_bind, sky_aerial_bind) and sky_aerial_froxels check
+ * that it is the sky's, without glGetError; the others check only that
+ * some context is current, where their Errors part says so. glGetError returns and clears
  * the host's pending errors too: sky_create reads it always, sky_draw only
  * when sky_config.check_gl_errors asks, and the calls that make a texture
  * outside sky_draw (sky_capture_environment into the library's cube map,
@@ -1161,16 +1162,15 @@ SKY_API const char *sky_aerial_glsl(void);
  * uniforms of program (a linked program that includes sky_aerial_glsl;
  * uniforms it optimised away are skipped). Call it after sky_update,
  * before drawing with the program.
- * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), program 0, or
- * a texture_unit below 0 or not below the context's
- * GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS. SKY_ERR_GL when no context is
- * current, or the table's texture cannot be made (the first call; a GL
- * error the host left pending is taken for this). SKY_ERR_OUT_OF_MEMORY
- * for the table. Not detected: a program that is not a linked program of
- * the current context returns SKY_OK with no uniform set and glUseProgram's
- * error left pending for the host.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), program 0 or
+ * a name that is no program of the current context (glIsProgram; whether
+ * it linked is not checked), or a texture_unit below 0 or not below the
+ * context's GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS. SKY_ERR_GL when no
+ * context is current or the current one is not the sky's, or the table's
+ * texture cannot be made (the first call; a GL error the host left pending
+ * is taken for this). SKY_ERR_OUT_OF_MEMORY for the table.
  * Thread safety: the sky's thread.
- * GL: needs the sky's context current (only some context is checked). The
+ * GL: needs the sky's context current. The
  * host's current program and active texture unit come back, and what the
  * table's upload binds on unit 0; the table stays bound to GL_TEXTURE_2D
  * of texture_unit, which is the point: the host keeps that unit for it
@@ -1200,13 +1200,13 @@ SKY_API const char *sky_display_glsl(void);
  * includes sky_display_glsl; uniforms it optimised away are skipped) for
  * the sky's current frame: call it after sky_update, before drawing with
  * the program.
- * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message) or program 0;
- * SKY_ERR_GL when no context is current. Not detected: a program that is
- * not a linked program of the current context returns SKY_OK with no
- * uniform set and glUseProgram's error left pending for the host.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), program 0 or
+ * a name that is no program of the current context (glIsProgram; whether
+ * it linked is not checked); SKY_ERR_GL when no context is current or the
+ * current one is not the sky's.
  * Thread safety: the sky's thread.
- * GL: needs the sky's context current (only some context is checked). The
- * host's current program and active texture unit come back.
+ * GL: needs the sky's context current. The host's current program and
+ * active texture unit come back.
  * Since: 0.5.0 */
 SKY_API sky_result sky_display_bind(sky *s, unsigned program);
 /* sky_aerial_froxels: Hillaire's froxel volume (Hillaire 2020 sec. 5.4;
@@ -1226,12 +1226,12 @@ SKY_API sky_result sky_display_bind(sky *s, unsigned program);
  * texture NULL, or a camera that is not finite or is degenerate.
  * SKY_ERR_UNSUPPORTED outside CORE33's HILLAIRE and BLEND paths
  * (sky_aerial_bind serves every path and profile). SKY_ERR_GL when no
- * context is current or the build fails (the message says why; the
+ * context is current, the current one is not the sky's, or the build fails (the message says why; the
  * volume's texture is made at the first call, and a GL error the host
  * left pending then is taken for the build's). *texture is 0 after any
  * error (where texture is not NULL).
  * Thread safety: the sky's thread.
- * GL: needs the sky's context current (only some context is checked). The
+ * GL: needs the sky's context current. The
  * host's framebuffers, program, viewport, vertex array and texture bindings
  * (unit 0's 3D one included) come back.
  * Since: 0.4.0 */

@@ -111,6 +111,14 @@ TEST(display_bind_checks)
         return;
     }
     CHECK(sky_display_bind(f.s, 0) == SKY_ERR_INVALID_ARGUMENT, "program 0 is refused");
+    /* a name that is no program: refused, and no GL error left behind for
+     * the host (glUseProgram would have left GL_INVALID_VALUE) */
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    CHECK(sky_display_bind(f.s, 54321u) == SKY_ERR_INVALID_ARGUMENT && strstr(sky_last_error(f.s), "54321"),
+          "a name that is no program is refused by name: %s", sky_last_error(f.s));
+    GLenum left = glGetError();
+    CHECK(left == GL_NO_ERROR, "no GL error left pending (0x%04x)", left);
     CHECK(strstr(sky_display_glsl(), "vec3 sky_display(vec3") != NULL, "the snippet defines sky_display");
     fixture_close(&f);
 }
