@@ -153,7 +153,8 @@ static void moon_destroy(sky_core *s, void *state)
  * 18 % too bright. Retaken only when the geometry has moved by 1e-3 (a
  * twentieth of a degree; the sum changes by under 0.1 % over that, a
  * thin crescent's by about 1 %): with the clock running it is 2304 texel
- * lookups that every frame would otherwise pay (9 us of sky_update). */
+ * lookups that every frame would otherwise pay (their cost:
+ * docs/validation.md). */
 static double lit_sum(moon_state *st, const double l[3], const double body[9])
 {
     double key[12] = {l[0], l[1], l[2]};

@@ -158,7 +158,8 @@ static int planets_visible(const sky_core *s, const void *state)
 }
 
 /* No draw when no planet can show in this view: a draw of five points
- * costs a browser's WebGL about 0.2 ms whatever they cover. */
+ * costs a browser's WebGL a fixed price whatever they cover
+ * (docs/validation.md). */
 static int planets_draw(sky_core *s, void *state)
 {
     planets_state *st = state;

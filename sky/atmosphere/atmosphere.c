@@ -145,9 +145,9 @@ int sky_atmosphere_is_physical(sky_atmosphere_path path)
  * through his tables (sky_hillaire_ray), the blend's mix of the two. The
  * dome carries it per vertex (dome.c) and u_moonlit_light, the moon's light
  * above the air (phase, distance, colour), scales it: a step costs the
- * upper dome's 1537 vertices of the model, 2.5 ms for Rayleigh's and 3.5
- * to 4.5 ms for Hillaire's on this machine's CPU, once for every quarter
- * degree the moon moves (a minute of its motion). Only while the sun is
+ * upper dome's 1537 vertices of the model (milliseconds of CPU:
+ * docs/validation.md), once for every quarter degree the moon moves (a
+ * minute of its motion). Only while the sun is
  * down (faded in over its last 5 degrees): by day it is a millionth of
  * the sky. */
 #define MOONLIT_STEP_DEG 0.25
@@ -408,7 +408,8 @@ static void apply_summary(sky_core *s, const sky_summary *sum)
 }
 
 /* The analytic paths summarise every frame (32 closed-form evaluations);
- * the tables' paths march rays, 85 us a frame, so their summary is kept
+ * the tables' paths march 32 rays, dearer than a frame should pay (tens
+ * of microseconds: docs/validation.md), so their summary is kept
  * until the sky-view table is rebuilt: it depends on the sun's elevation
  * and the observer's altitude alone (azimuthal means), like the table. */
 static void summarise_path(sky_core *s, void (*eval)(const sky_core *, const double d[3], double rgb[3]), int cached)

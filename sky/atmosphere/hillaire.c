@@ -25,8 +25,9 @@
 #define SKYVIEW_SUN_THRESHOLD (0.05 * SKY_PI / 180.0)
 #define SKYVIEW_ALTITUDE_THRESHOLD_KM 0.01
 /* COMPAT20 builds the sky-view table on the CPU, on the host's render
- * thread: 6-8 ms with the default sizes here, and a time-lapse moves the
- * sun past the threshold above every frame. Two cases:
+ * thread: milliseconds with the default sizes (docs/validation.md), and a
+ * time-lapse moves the sun past the threshold above every frame. Two
+ * cases:
  *  - a jump: no table yet, the observer's altitude moved past its
  *    threshold, or the sun's elevation moved more than SKYVIEW_SUN_JUMP
  *    since the last frame drawn (since creation before the first). The
@@ -53,7 +54,7 @@
  * sky_set_params and sky_update) spends under 1 ms a frame on the table. A
  * slice ends before the unit (a row built, or a row encoded) that would
  * take it past the budget, judged by the dearest unit of the slice so far;
- * every slice does at least one (a default row: about 0.07 ms). */
+ * every slice does at least one. */
 #define SKYVIEW_SLICE_MS 0.4
 /* the 8-bit encoding covers this many stops below the table's brightest
  * value (the sun's aureole): 2^-24 is darker than anything the tone map

@@ -113,9 +113,8 @@ static double ozone_column_above(double h, double peak, double half)
  *    thin columns of a clear sky (within 5 % up to tau_s 0.3; capped at 1);
  *  - f_ms, the share of that light scattered again, ~ the same hemisphere
  *    average of the sky plus the ground's albedo times the air's half.
- * No gain is fitted here: with the estimate as it stands the path's mean
- * relative error against the CPU reference by day is 9 % (sky-bench
- * --only-atmosphere). */
+ * No gain is fitted here: the estimate stands as derived (its error
+ * against the CPU reference: docs/validation.md). */
 static void multiple_scattering(const sky_atmosphere_params *a, double mu_s, sky_frame *f)
 {
     for (int i = 0; i < 3; i++) {
@@ -217,11 +216,9 @@ static double sun_column(double tau, double H, double r, double mu, double dr0, 
  * linear in each species' own column (the difference quotient above):
  * exact for one species under a high sun, and the sun's grazing depth
  * under the horizon is nearly linear in the column too, its tangent
- * height rising with the point's height. Against the same model
- * integrated on a fine march (every 50 m near the ground), the nodes
- * hold the sky to 4-6 % on average by day and 11-15 % in twilight (sun
- * 0 to -9 deg); the worst direction is 25 % off by day and 1.8 times in
- * twilight (near the horizon, sun -2 deg). */
+ * height rising with the point's height. (How closely three nodes each
+ * side hold the sky against the same model on a fine march:
+ * docs/validation.md.) */
 #define RL_SHADOW_NODES 3
 #define RL_LIT_NODES 3
 #define RL_NODES (RL_SHADOW_NODES + RL_LIT_NODES + 1)
@@ -319,14 +316,10 @@ static void node_at(const sky_frame *f, double t, double mu, double c, double m_
          * assumes). In the shadow, times e^-climb/(4 H_R): the lit air
          * that lights a shadowed point lies up and toward the sun, along
          * a slant, nearer than the vertical climb to the edge says. Both
-         * numbers fitted against the reference of the realistic Earth
-         * (aerosol optical depth 0.085) and Bond & Henderson's twilight:
-         * s_0 3 and 4 H_R give 6.6 lx at sun -6 deg and 0.0069 lx at -12
-         * (3.4 and 0.008 measured), twilight error 23 % (s_0 2 and H_R,
-         * fitted against the clean Earth's reference: 6.66 lx and
-         * 0.0027 lx, x3 too dark, 25 %); day error 12.3 -> 12.8 %. With
-         * the Earth's gases at a 7.5 km scale height (params.c): 4.5 lx
-         * and 0.0042 lx, day error 8.3 %. */
+         * numbers (s_0 = 3, 4 H_R) are fitted against the reference of
+         * the realistic Earth (aerosol optical depth 0.085) and Bond &
+         * Henderson's twilight illuminance (the fit's figures:
+         * docs/validation.md). */
         n->ms[i] = (s > 3.0 ? 3.0 + 3.0 * log(s / 3.0) : s) + 0.25 * raise / HR;
         /* The knee alone leaves the air near the ground, where the sun's
          * own column grazes (sunset, the shadow), far darker than the
@@ -341,9 +334,9 @@ static void node_at(const sky_frame *f, double t, double mu, double c, double m_
          * knee's, in full at the observer's height and fading over a
          * Rayleigh scale height above it (a point up there sees less of
          * the ground and of the low air's glow; the floor taken
-         * everywhere brightens the twilight zenith: error at sun -2/-4
-         * deg 25/34 % instead of 19/25 %). By day it lifts only the
-         * lowest rays a little (day error 12.8 -> 9.1 %). */
+         * everywhere brightens the twilight zenith). By day it lifts only
+         * the lowest rays a little (its effect on the error:
+         * docs/validation.md). */
         n->ms[i] -= low * fmax(n->ms[i] - f->rl_skylight[i], 0.0);
     }
 }
