@@ -98,8 +98,14 @@ $(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) 
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) -lpthread $(LDLIBS_M)
 
+# The full benchmark: its charts into docs/img and its report into
+# docs/benchmarks.md (written beside and moved, so a failed run leaves
+# the page as it was).
 bench: all
-	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png
+	$(BIN)/sky-bench --markdown --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png \
+		> $(BUILD)/benchmarks.md
+	mv $(BUILD)/benchmarks.md docs/benchmarks.md
+	@cat docs/benchmarks.md
 
 $(BIN)/catgen: tools/catgen.c
 	@mkdir -p $(@D)
