@@ -347,7 +347,8 @@ planet-tables: $(BIN)/vsopgen
 	/usr/bin/python3 tools/planet-reference.py > tests/data/planets_reference.txt.tmp
 	mv tests/data/planets_reference.txt.tmp tests/data/planets_reference.txt
 
-# The README's pictures, rendered by sky-render.
+# The pictures of README.md and docs/ (docs/img), rendered by sky-render and
+# the programs.
 screenshots: all $(BIN)/pngcrop
 	@sh tools/screenshots.sh
 

@@ -1,5 +1,6 @@
 #!/bin/sh
-# Regenerates the README's screenshots with sky-render (make screenshots).
+# Regenerates the pictures of README.md and docs/ (docs/img) with sky-render
+# and the programs (make screenshots); it edits no Markdown.
 set -e
 cd "$(dirname "$0")/.."
 out=docs/img
