@@ -2021,7 +2021,9 @@ static void renderer_of(sky_gl_profile gl, char *out, size_t len)
 }
 
 /* The header, once, before the first table (called where each report
- * starts printing, after its measurements: a run that fails prints none). */
+ * starts printing, after its measurements: a run that fails prints none).
+ * timed: 0 for reports of their own sizes, 1 for frames of the --size
+ * asked, 2 for those timed in interleaved rounds. */
 static void md_begin(int timed)
 {
     static int done;
@@ -2054,7 +2056,8 @@ static void md_begin(int timed)
         renderer_of(md.pr->gl[p], gl[p], sizeof gl[p]);
         printf("| renderer, %s | %s |\n", prof_name(md.pr, p), gl[p]);
     }
-    if (timed)
+    if (timed == 1) printf("| frames | %dx%d, median of %d frames a measurement |\n", md.w, md.h, md.frames);
+    if (timed == 2)
         printf("| frames | %dx%d, median of %d frames a measurement, %d interleaved rounds |\n", md.w, md.h, md.frames,
                md.rounds);
 }
@@ -2313,7 +2316,7 @@ int main(int argc, char **argv)
         return 0;
     }
     if (only_presets) {
-        md_begin(1);
+        md_begin(2);
         heading("Presets");
         print_baseline("", w, h, frames, &pr, base, pinfo);
         printf("\n");
@@ -2325,7 +2328,7 @@ int main(int argc, char **argv)
         return 0;
     }
     if (only_night) {
-        md_begin(1);
+        md_begin(2);
         heading("Night layers");
         print_baseline("", w, h, frames, &pr, base, pinfo);
         print_night_table(&pr, night, base);
@@ -2333,7 +2336,7 @@ int main(int argc, char **argv)
     }
     if (only_atmosphere) {
         if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
-        md_begin(1);
+        md_begin(2);
         heading("Atmosphere paths");
         print_baseline("", w, h, frames, &pr, base_atmo, ainfo);
         print_atmosphere_table(atmo, natmo, &ref);
@@ -2389,7 +2392,7 @@ int main(int argc, char **argv)
         printf("\n}\n");
         return 0;
     }
-    md_begin(1);
+    md_begin(2);
     if (!md.on) /* (the Markdown header says this in its table) */
         printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then "
                "each\nrow; a row's figures are medians over the rounds), llvmpipe or whatever GL OSMesa provides\n",
