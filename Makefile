@@ -13,16 +13,20 @@ LDLIBS_M := -lm
 # the headless contexts (demo/osmesa_ctx.c): OSMesa, and EGL for ES 2.0
 HEADLESS_LIBS := -lOSMesa -lEGL
 
-SKY_SRC := sky/sky.c sky/config.c sky/capture.c sky/host_bind.c sky/lighting.c sky/core.c sky/light_units.c sky/moonlight.c sky/camera.c sky/disc.c sky/exposure.c sky/solar_eclipse.c sky/astro.c sky/astro_tables.c sky/planet_tables.c sky/observer.c sky/catalog.c sky/dome.c sky/over_dome.c sky/sun.c sky/stars.c sky/planets.c sky/airglow.c sky/zodiacal.c sky/starmap.c sky/moon.c sky/clouds.c sky/flicker.c sky/irradiance.c sky/aerial.c sky/atmosphere/gradient.c sky/atmosphere/params.c sky/atmosphere/airmass.c sky/atmosphere/atmosphere.c sky/atmosphere/preetham.c sky/atmosphere/rayleigh.c sky/atmosphere/spectrum.c sky/atmosphere/hillaire_cpu.c sky/atmosphere/hillaire.c sky/gl/load.c sky/gl/program.c sky/gl/texture.c sky/gl/asset.c sky/gl/state.c sky/gl/target.c sky/gl/image.c
+# The library's sources and the assets it embeds are found, not listed: a
+# new layer's .c, shader and texture join the build by being there. (The
+# double-precision reference, sky/atmosphere/reference.c, is not part of
+# the library: see REF_SRC.)
+SKY_SRC := $(filter-out sky/atmosphere/reference.c,$(sort $(wildcard sky/*.c sky/atmosphere/*.c sky/gl/*.c)))
 SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
-TEXTURES := textures/clouds.png textures/flicker.png textures/galaxy.png textures/gradient.png textures/stars.dat textures/starmap.png textures/moon.png
+TEXTURES := $(sort $(wildcard textures/*.png textures/*.dat))
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
 # The double-precision spectral reference is a yardstick, not part of the
 # library: only the programs that measure against it (sky-bench, the test
 # runners) compile it in.
 REF_SRC := sky/atmosphere/reference.c
 REF_HDR := sky/atmosphere/reference.h sky/atmosphere/spectrum.h sky/sky.h
-SKY_HDR := sky/sky.h sky/sky_internal.h sky/core.h sky/light_units.h sky/layer.h sky/camera.h sky/disc.h sky/exposure.h sky/solar_eclipse.h sky/observer.h sky/catalog.h sky/gl/gl.h sky/atmosphere/atmosphere.h sky/atmosphere/spectrum.h sky/atmosphere/hillaire.h sky/gl/glapi.h sky/astro.h sky/astro_tables.h
+SKY_HDR := $(sort $(wildcard sky/*.h sky/atmosphere/*.h sky/gl/*.h))
 
 BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib

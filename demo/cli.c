@@ -674,8 +674,11 @@ static const char *profile_name(sky_gl_profile p)
     return p == SKY_GL_CORE33 ? "core" : p == SKY_GL_ES20 ? "es20" : "compat";
 }
 
-void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
+void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
 {
+    sky_stats stats;
+    sky_get_stats(s, &stats);
+    const sky_stats *st = &stats;
     fprintf(out, "{\"gl_version\":\"");
     for (const char *p = st->gl_version ? st->gl_version : ""; *p; p++)
         if (*p == '"' || *p == '\\')
@@ -693,9 +696,10 @@ void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms)
                  "\"draws_per_frame\":%d, \"layers\":{",
             frame_ms, st->lut_ms, st->gpu_bytes, st->textures, st->programs, st->draws_per_frame);
     first = 1;
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) {
-        const sky_layer_stats *ls = &st->layers[l];
-        if (!ls->enabled) continue;
+    for (int l = 0; l < sky_layer_count(); l++) {
+        sky_layer_stats layer;
+        const sky_layer_stats *ls = &layer;
+        if (sky_get_layer_stats(s, l, &layer) != SKY_OK || !ls->enabled) continue;
         fprintf(out, "%s\"%s\":{\"ms\":", first ? "" : ", ", sky_layer_name((sky_layer)l));
         if (ls->ms >= 0.0)
             fprintf(out, "%.4f", ls->ms);

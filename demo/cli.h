@@ -76,8 +76,9 @@ void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int heig
  * their meaning: sky_astronomy in sky.h). */
 void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count);
 
-/* Prints sky_get_stats as a JSON object (sky_stats in sky.h). frame_ms overrides
- * the sky's own figure (sky-render passes a median). */
-void sky_cli_print_stats(FILE *out, const sky_stats *st, double frame_ms);
+/* Prints sky_get_stats as a JSON object (sky_stats in sky.h), with every
+ * layer of this build by name (sky_layer_count, sky_get_layer_stats).
+ * frame_ms overrides the sky's own figure (sky-render passes a median). */
+void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms);
 
 #endif

@@ -504,11 +504,13 @@ static void readout(demo *d, char *lines, size_t len)
                      timer_method(&d->timer), fps_text, 0);
     used += snprintf(lines + used, len - (size_t)used, "%zu KiB GPU memory  %d draws%c",
                      st.gpu_bytes / 1024, st.draws_per_frame, 0);
-    for (int l = 0; l < SKY_LAYER_COUNT && (size_t)used < room; l++)
-        if (st.layers[l].enabled)
-            used += snprintf(lines + used, len - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
-                             st.layers[l].ms >= 0 ? (snprintf(layer_ms, sizeof layer_ms, "%.2f ms", st.layers[l].ms), layer_ms)
-                                                  : (st.layers[l].drawn ? "on" : "idle"), 0);
+    for (int l = 0; l < sky_layer_count() && (size_t)used < room; l++) {
+        sky_layer_stats ls;
+        if (sky_get_layer_stats(d->s, l, &ls) != SKY_OK || !ls.enabled) continue;
+        used += snprintf(lines + used, len - (size_t)used, "%s %s%c", sky_layer_name((sky_layer)l),
+                         ls.ms >= 0 ? (snprintf(layer_ms, sizeof layer_ms, "%.2f ms", ls.ms), layer_ms)
+                                    : (ls.drawn ? "on" : "idle"), 0);
+    }
     if (d->message[0] && (size_t)used < room)
         used += snprintf(lines + used, len - (size_t)used, "%.100s%c", d->message, 0);
     lines[used] = '\0';

@@ -89,9 +89,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     }
     if (cli->frames > 1) fprintf(stderr, "\n");
     if (!rc && print_stats) {
-        sky_stats st;
-        sky_get_stats(s, &st);
-        sky_cli_print_stats(stdout, &st, sky_cli_median(times, cli->frames));
+        sky_cli_print_stats(stdout, s, sky_cli_median(times, cli->frames));
     }
     free(times);
     sky_destroy(s);

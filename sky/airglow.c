@@ -22,7 +22,6 @@
  * B - V of 0.8 (Benn & Ellison), through the stars' B - V map.
  */
 #include "layer.h"
-#include "atmosphere/atmosphere.h"
 
 #include <math.h>
 
@@ -35,11 +34,15 @@
 #define SOLAR_MINIMUM_YEAR 2019.9   /* the start of cycle 25 (and 2008.9 of 24) */
 #define EARTH_RADIUS_KM 6371.0
 
+typedef struct airglow_state {
+    float light[4]; /* rgb: zenith kcd/m^2 above the air; a: (R / (R + h))^2 */
+} airglow_state;
+
 static const sky_uniform_desc airglow_uniforms[] = {
-    SKY_UL("u_airglow", SKY_U_F4, airglow, SKY_RGB),
+    SKY_USL("u_airglow", SKY_U_F4, airglow_state, light, SKY_RGB),
 };
 static const sky_snippet airglow_snippet = {"SKY_HAS_AIRGLOW", "airglow.glsl", airglow_uniforms,
-                                         SKY_UNIFORM_COUNT(airglow_uniforms), NULL};
+                                            SKY_UNIFORM_COUNT(airglow_uniforms), NULL, "sky_airglow"};
 
 /* 0 at solar minimum .. 1 at maximum: cfg's, or the date's place in a
  * cycle of 11 years from the minimum of 2019.9. */
@@ -51,10 +54,11 @@ static double solar_activity(const sky_core *s)
     return 0.5 - 0.5 * cos(2.0 * SKY_PI * (phase - floor(phase)));
 }
 
-void sky_airglow_zenith(const sky_core *s, double rgb[3])
+/* Its zenith from the date and cfg alone: for the atmosphere's summary,
+ * before this layer's frame. */
+static void airglow_zenith(const sky_core *s, const void *state, double rgb[3])
 {
-    rgb[0] = rgb[1] = rgb[2] = 0.0;
-    if (!(s->features & SKY_AIRGLOW)) return;
+    (void)state;
     double level = sky_mag_arcsec2_to_kcd(AIRGLOW_ZENITH_MAG - SITE_EXTINCTION_MAG) *
                    (1.0 + AIRGLOW_CYCLE_GAIN * solar_activity(s));
     float colour[3];
@@ -70,38 +74,51 @@ static double shell_ratio2(const sky_core *s)
     return c * c;
 }
 
-void sky_airglow_at(const sky_core *s, const double d[3], double rgb[3])
+/* From direction d, as airglow.glsl has it (after this layer's frame). */
+static void airglow_at(const sky_core *s, const void *state, const double d[3], double rgb[3])
 {
-    const sky_frame *f = &s->frame;
+    (void)s;
+    const airglow_state *st = state;
     double y = sky_clampd(d[1], 0.0, 1.0);
-    double van_rhijn = d[1] > 0.0 ? 1.0 / sqrt(fmax(1.0 - f->airglow[3] * (1.0 - y * y), 1e-6)) : 0.0;
-    for (int i = 0; i < 3; i++) rgb[i] = f->airglow[i] * van_rhijn;
+    double van_rhijn = d[1] > 0.0 ? 1.0 / sqrt(fmax(1.0 - st->light[3] * (1.0 - y * y), 1e-6)) : 0.0;
+    for (int i = 0; i < 3; i++) rgb[i] = st->light[i] * van_rhijn;
+}
+
+static int airglow_create(sky_core *s, void *state, char *err, size_t err_len)
+{
+    if (sky_snippet_bind(s, &airglow_snippet, state) == 0) return 0;
+    sky_format(err, err_len, "out of memory");
+    return -1;
 }
 
 static void airglow_frame(sky_core *s, void *state)
 {
-    (void)state;
+    airglow_state *st = state;
     double z[3];
-    sky_airglow_zenith(s, z);
-    for (int i = 0; i < 3; i++) s->frame.airglow[i] = (float)z[i];
-    s->frame.airglow[3] = (float)shell_ratio2(s);
+    airglow_zenith(s, state, z);
+    for (int i = 0; i < 3; i++) st->light[i] = (float)z[i];
+    st->light[3] = (float)shell_ratio2(s);
 }
 
 /* In the dome's night variant while it would add a quarter of an 8-bit
  * step at the exposure (at its zenith, its faintest) */
 static int airglow_visible(const sky_core *s, const void *state)
 {
-    (void)state;
-    const sky_frame *f = &s->frame;
-    double y = 0.2126 * f->airglow[0] + 0.7152 * f->airglow[1] + 0.0722 * f->airglow[2];
-    return y * f->exposure >= 1.0 / 1024.0;
+    const airglow_state *st = state;
+    double y = 0.2126 * st->light[0] + 0.7152 * st->light[1] + 0.0722 * st->light[2];
+    return y * s->frame.exposure >= 1.0 / 1024.0;
 }
 
 const sky_layer_class sky_airglow_layer = {
+    .name = "airglow",
     .slot = SKY_LAYER_AIRGLOW,
     .feature = SKY_AIRGLOW,
+    .state_size = sizeof(airglow_state),
     .dome_role = SKY_DOME_NIGHT,
     .dome_snippet = &airglow_snippet,
+    .create = airglow_create,
     .frame = airglow_frame,
     .visible = airglow_visible,
+    .glow_zenith = airglow_zenith,
+    .glow_at = airglow_at,
 };

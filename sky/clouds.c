@@ -43,7 +43,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
 /* clouds.glsl in both stages: the dome finds its cloud coordinates and
  * sunset per vertex */
 static const sky_snippet clouds_snippet = {"SKY_HAS_CLOUDS", "clouds.glsl", cloud_uniforms,
-                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl"};
+                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl", NULL};
 
 /* Drift of each layer in texture periods per second at speed 1. The two
  * primary layers differ by about 13 degrees and 20 % in speed (R-P 3.2), so
@@ -275,6 +275,7 @@ static void clouds_reset(void *state)
 const double *sky_clouds_offsets(const void *state) { return &((const clouds_state *)state)->offsets[0][0]; }
 
 const sky_layer_class sky_clouds_layer = {
+    .name = "clouds",
     .slot = SKY_LAYER_CLOUDS,
     .feature = SKY_CLOUDS,
     .state_size = sizeof(clouds_state),

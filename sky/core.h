@@ -86,7 +86,6 @@ typedef enum sky_texture_id {
     SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
     SKY_TEX_AERIAL,        /* sky_aerial_bind's table (aerial.c), RGBA8          */
     SKY_TEX_FROXELS,       /* sky_aerial_froxels' volume (CORE33, Hillaire)      */
-    SKY_TEX_ZODIACAL,      /* Leinert et al.'s zodiacal light table, log-encoded  */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
     SKY_TEX_COUNT
@@ -273,11 +272,6 @@ typedef struct sky_frame {
     /* catalogue stars (stars.c) and planets (planets.c): each its own
      * copy of stars.vert's uniforms (sky_point_frame) */
     sky_point_frame stars, planets;
-    /* airglow (airglow.c): rgb zenith kcd/m^2 above the air, a: (R/(R+h))^2 */
-    float airglow[4];
-    /* zodiacal light (zodiacal.c) */
-    float zodiacal_rot[16];  /* horizon -> ecliptic of date, +x at the sun    */
-    float zodiacal[4];       /* rgb: kcd/m^2 at the encoding's 0; a: ln range  */
     /* star map (starmap.c) */
     float starmap_rot[16], starmap_scale;
     /* moon (moon.c) */
@@ -306,7 +300,21 @@ _Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "ecli
  * struct, which sky.c allocates and hands back to it. */
 struct sky_atmosphere_state; /* atmosphere/atmosphere.c */
 struct sky_dome_snippets;    /* layer.h */
-#define SKY_ZODIACAL_TEXELS (64 * 32)
+struct sky_snippet;          /* gl/gl.h */
+struct sky_layer_class;      /* layer.h */
+/* A snippet whose in_state uniform rows read from a layer's state
+ * (sky_snippet_bind, gl/program.c). */
+typedef struct sky_snippet_binding {
+    const struct sky_snippet *snippet;
+    const void *state;
+} sky_snippet_binding;
+/* A night glow (a layer whose class has glow functions) and its state:
+ * the atmosphere adds their light to its summary and its CPU radiance
+ * without knowing which layers they are (sky.c fills the list). */
+typedef struct sky_glow_source {
+    const struct sky_layer_class *layer;
+    const void *state;
+} sky_glow_source;
 typedef struct sky_core {
     sky_config cfg;               /* texture_dir: during sky_create only        */
     unsigned features;            /* resolved: never 0                          */
@@ -328,13 +336,19 @@ typedef struct sky_core {
     sky_atmosphere_params atm_rgb;   /* atm averaged over the sRGB channels     */
     double sun_irradiance_klx[3];    /* sky_sun_irradiance_rgb, once            */
     struct sky_atmosphere_state *atmosphere_state; /* atmosphere.c's own      */
-    unsigned char zodiacal_texels[SKY_ZODIACAL_TEXELS]; /* the zodiacal light's
-                                     table as its texture holds it, for its CPU
-                                     twin (zodiacal.c, at create)            */
     unsigned char gradient_texels[256 * 4]; /* the day gradient (gradient.png),
                                      for the gradient path's CPU twin (dome.c) */
 
-    sky_texture textures[SKY_TEX_COUNT];
+    sky_texture *textures;        /* by sky_texture_id, then those registered at
+                                     run time (sky_texture_register)         */
+    int texture_count, texture_capacity;
+    sky_snippet_binding *snippet_bindings; /* sky_snippet_bind's             */
+    int snippet_binding_count, snippet_binding_capacity;
+    sky_glow_source *glows;       /* the enabled night glows (sky.c)          */
+    int glow_count;
+    sky_layer creating_layer;     /* the stats index of the layer whose create
+                                     runs: the owner of the textures it makes
+                                     (a layer after 0.5 has no constant)     */
     int program_count, buffer_count; /* live GL objects, for the stats          */
     size_t buffer_bytes;
     double lut_ms;                /* table builds since the last draw          */

@@ -236,18 +236,24 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 
 /* Drawn into the image, the dome writes the clouds' alpha beside the
  * colour. */
-static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL};
+static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL, NULL};
 /* display.glsl's tone map without the scotopic shift */
-static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL};
+static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL, NULL};
 
 static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, int photopic, char *err,
                  size_t err_len)
 {
-    const sky_snippet *list[SKY_MAX_SNIPPETS + 2];
+    const sky_snippet **list = malloc(sizeof *list * (size_t)(n + 2));
+    if (!list) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
+    }
     for (int i = 0; i < n; i++) list[i] = snippets[i];
     if (s->dome_divisor) list[n++] = &into_image_snippet;
     if (photopic) list[n++] = &photopic_snippet;
-    return sky_program_build(s, p, "dome.vert", "dome.frag", list, n, err, err_len);
+    int rc = sky_program_build(s, p, "dome.vert", "dome.frag", list, n, err, err_len);
+    free(list);
+    return rc;
 }
 
 /* A day program with the shift and without it. */
@@ -271,7 +277,7 @@ int sky_dome_day_divisor_for(const sky_core *s)
 
 /* (The image's uniforms and the corner of a power-of-two image:
  * over_dome.c, which the layers drawn over the dome share.) */
-static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL};
+static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL, NULL};
 
 /* The image for a viewport: 1/divisor of it on each axis, rounded up
  * (used), in a texture of that size, or without NPOT textures of the
@@ -309,42 +315,46 @@ static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_
     return st->fbo ? 0 : -1;
 }
 
-static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
+/* The dome's variants: the day's (with and without the scotopic shift),
+ * the ground's, the night's and the night's without the front layers,
+ * composed in list (room for all the snippets). */
+static int build_dome_programs(sky_core *s, dome_state *st, const sky_dome_snippets *d, const sky_snippet **list,
+                               char *err, size_t err_len)
 {
-    dome_state *st = state;
-    const sky_dome_snippets *d = s->dome_snippets;
-    if (create_mesh(s, st, err, err_len)) return -1;
-    if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
-    const sky_snippet *list[SKY_MAX_SNIPPETS];
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list), n = atmosphere;
-    /* the most any program takes: the atmosphere's, the front's, the
-     * image's (build adds it) and the night layers' or the day's photopic
-     * one */
-    int beyond_front = d->night_count > 1 ? d->night_count : 1;
-    if (n + d->front_count + (s->dome_divisor ? 1 : 0) + beyond_front > SKY_MAX_SNIPPETS) {
-        sky_format(err, err_len, "too many shader snippets for the dome");
-        return -1;
-    }
     for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
     if (build_day(s, &st->day, &st->day_photopic, list, n, err, err_len)) return -1;
     /* Below the horizon there are no clouds and no stars: the lower
      * hemisphere gets the atmosphere alone (the host's terrain usually
      * covers it; what shows in a gap is the horizon haze). */
     if (d->front_count && build_day(s, &st->ground, &st->ground_photopic, list, atmosphere, err, err_len)) return -1;
-    if (d->night_count) {
-        for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
-        if (build(s, &st->night, list, n, 0, err, err_len)) return -1;
-        /* and the night without the front layers, when none shows (by day
-         * the atmosphere-only program serves) */
-        if (d->front_count) {
-            const sky_snippet *clear[SKY_MAX_SNIPPETS];
-            int c = 0;
-            for (int i = 0; i < atmosphere; i++) clear[c++] = list[i];
-            for (int i = 0; i < d->night_count; i++) clear[c++] = d->night[i];
-            if (build(s, &st->night_clear, clear, c, 0, err, err_len)) return -1;
-        }
+    if (!d->night_count) return 0;
+    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+    if (build(s, &st->night, list, n, 0, err, err_len)) return -1;
+    /* and the night without the front layers, when none shows (by day the
+     * atmosphere-only program serves): the night layers moved down over
+     * the front ones */
+    if (!d->front_count) return 0;
+    for (int i = 0; i < d->night_count; i++) list[atmosphere + i] = d->night[i];
+    return build(s, &st->night_clear, list, atmosphere + d->night_count, 0, err, err_len);
+}
+
+static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
+{
+    dome_state *st = state;
+    const sky_dome_snippets *d = s->dome_snippets;
+    if (create_mesh(s, st, err, err_len)) return -1;
+    if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
+    /* the atmosphere's, the front layers', the night layers' (and build's
+     * own): as many as the enabled layers bring */
+    const sky_snippet **list = malloc(sizeof *list * (size_t)(SKY_ATMOSPHERE_SNIPPETS + d->front_count + d->night_count));
+    if (!list) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
     }
-    return 0;
+    int rc = build_dome_programs(s, st, d, list, err, err_len);
+    free(list);
+    return rc;
 }
 
 static void dome_destroy(sky_core *s, void *state)
@@ -476,6 +486,7 @@ static size_t dome_buffer_bytes(const sky_core *s, const void *state)
 }
 
 const sky_layer_class sky_dome_layer = {
+    .name = "atmosphere",
     .slot = SKY_LAYER_ATMOSPHERE,
     .state_size = sizeof(dome_state),
     .blend = SKY_BLEND_NONE,

@@ -28,12 +28,12 @@ static const sky_uniform_desc glow_uniforms[] = {
     SKY_UL("u_star_luminance", SKY_U_F1, star_luminance, 1u),
 };
 static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow_uniforms,
-                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL};
+                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL, NULL};
 static const sky_uniform_desc point_uniforms[] = {
     SKY_UF("u_flicker_phase", SKY_U_F1, flicker_phase),
     SKY_UF("u_point_max", SKY_U_F1, flicker_point_max),
 };
-static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL};
+static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL, NULL};
 
 /* One star: its texel's centre in the dome coordinate (normalised shorts)
  * and the texel (R brightened by the galaxy and divided by 4, G, B, A). */
@@ -107,7 +107,7 @@ static int flicker_create(sky_core *s, void *state, char *err, size_t err_len)
     if (rc) return -1;
     s->frame.flicker_point_max = sky_gl_point_size_max(s);
     /* the atmosphere's transmittance in front of each star, then its own */
-    const sky_snippet *own[SKY_MAX_SNIPPETS];
+    const sky_snippet *own[SKY_ATMOSPHERE_SNIPPETS + 2];
     int n = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, own);
     own[n++] = &glow_snippet;
     own[n++] = &point_snippet;
@@ -195,6 +195,7 @@ static size_t flicker_buffer_bytes(const sky_core *s, const void *state)
 double sky_flicker_clock(const void *state) { return ((const flicker_state *)state)->phase; }
 
 const sky_layer_class sky_flicker_layer = {
+    .name = "flicker",
     .slot = SKY_LAYER_FLICKER,
     .feature = SKY_FLICKER_STARS,
     .state_size = sizeof(flicker_state),

@@ -23,8 +23,16 @@ typedef enum sky_dome_role {
                        the dome's night variants                              */
 } sky_dome_role;
 
+/* The stats index of a layer added after 0.5 (which has no sky_layer
+ * constant): it follows SKY_LAYER_COUNT in the table's order, and the
+ * host finds it by name (sky_layer_index). */
+#define SKY_LAYER_NEXT ((sky_layer)-1)
+
 typedef struct sky_layer_class {
-    sky_layer slot;           /* its row in sky_stats                         */
+    const char *name;         /* sky_layer_name's, the stats' and the command
+                                 line's                                      */
+    sky_layer slot;           /* its stats index: a sky_layer of 0.5, or
+                                 SKY_LAYER_NEXT                              */
     unsigned feature;         /* the SKY_* bit that includes it; 0: always     */
     size_t state_size;        /* bytes of private state (zeroed)              */
     sky_dome_role dome_role;
@@ -52,25 +60,23 @@ typedef struct sky_layer_class {
     /* GPU bytes it holds besides its textures (which are counted by their
      * owner); NULL: none. */
     size_t (*buffer_bytes)(const sky_core *s, const void *state);
+    /* A night glow (NULL: not one): its light above the air in kcd/m^2 per
+     * channel, at the zenith from the date and cfg alone (callable before
+     * the layer's frame: the atmosphere's summary), and from horizon
+     * direction d after its frame (the atmosphere's CPU radiance). The
+     * atmosphere dims both by the air and adds them, knowing no layer. */
+    void (*glow_zenith)(const sky_core *s, const void *state, double rgb[3]);
+    void (*glow_at)(const sky_core *s, const void *state, const double d[3], double rgb[3]);
 } sky_layer_class;
 
-/* The layers, back to front (sky.c's table). */
-extern const sky_layer_class sky_dome_layer;    /* atmosphere, and the dome snippets */
-extern const sky_layer_class sky_clouds_layer;
-extern const sky_layer_class sky_flicker_layer;
-extern const sky_layer_class sky_starmap_layer;
-extern const sky_layer_class sky_stars_layer;
-extern const sky_layer_class sky_moon_layer;
-extern const sky_layer_class sky_sun_layer;
-extern const sky_layer_class sky_planets_layer;
-extern const sky_layer_class sky_airglow_layer;
-extern const sky_layer_class sky_zodiacal_layer;
+/* (The layers' classes are declared where their table is: layers.c.) */
 
 /* The dome snippets of the enabled layers, by role (sky.c fills them from
- * the table before any layer is created): the dome composes its programs
- * from them, and each layer drawn over the dome includes the front ones. */
+ * the table before any layer is created, each bound to its layer's
+ * state): the dome composes its programs from them, and each layer drawn
+ * over the dome includes the front ones. As many as the table has rows. */
 typedef struct sky_dome_snippets {
-    const sky_snippet *front[SKY_MAX_SNIPPETS], *night[SKY_MAX_SNIPPETS];
+    const sky_snippet **front, **night;
     int front_count, night_count;
 } sky_dome_snippets;
 /* dome.c: the divisor of the dome's image for this context and output
@@ -120,52 +126,12 @@ void sky_stars_reload(void *stars_state);
 /* stars.c, for the tests: every star through stars.vert (1), or only the
  * cells' selection (0, the default) */
 void sky_stars_draw_whole(void *stars_state, int whole);
-/* stars.c: stars.vert's uniform rows for a set of points in the frame's
- * sky_point_frame `member` (stars, planets). */
-#define SKY_POINT_UNIFORMS(member)                                                                       \
-    SKY_UF("u_star_rot", SKY_U_M4, member.rot), SKY_UF("u_star_aberration", SKY_U_F3, member.aberration), \
-        SKY_UF("u_star_size", SKY_U_F4, member.size), SKY_UF("u_star_pressure", SKY_U_F3, member.pressure), \
-        SKY_UL("u_star_flux_scale", SKY_U_F1, member.flux_scale, 1u),                                         \
-        SKY_UF("u_star_extinction", SKY_U_F3, member.extinction), SKY_UF("u_star_shell", SKY_U_F3, member.shell), \
-        SKY_UF("u_star_seed", SKY_U_F1, member.seed), SKY_UF("u_star_occulter", SKY_U_F4, member.occulter)
-/* stars.c: for the view being drawn, what every set of points shares: the
- * sizes of Mueller eq. 9 (q, glare c_k, largest radius in pixels, control
- * magnitude), the refraction's pressure factor and the faintest V drawn,
- * the peak luminance of a V = 0 point on its PSF (eq. 10, kcd/m^2), the
- * zenith optical depths and the shell of eq. 11, and the moon's disc that
- * hides them, and the seed of the set's scintillation clock (its phase,
- * sky_scintillation_advance). Leaves rot and aberration, the set's own. */
-void sky_point_view(sky_core *s, float point_max, double scintillation, sky_point_frame *p);
-/* A point's vertex for stars.vert: a_pos (scintillation seed, the share of
- * the twinkle a disc averages away), a_dir (3), a_color (rgb, V). */
-#define SKY_POINT_FLOATS 9
-/* stars.c: a set of points' scintillation clock, a phase wrapped in 0..1,
- * moved on by dt seconds. */
-double sky_scintillation_advance(double phase, double dt);
-/* stars.c: whether a point of magnitude vmag at the horizon direction d
- * (before refraction) can show in this view: above the horizon and within
- * the frustum's sides, with refraction, aberration and its point's radius
- * (p's sizes) for margin. */
-int sky_point_in_view(const sky_core *s, const sky_point_frame *p, const double d[3], double vmag);
-/* stars.c: draws count points of that layout from buffer with program. */
-void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLuint elements, int count);
-/* stars.c: the faintest V a point source is drawn at: the naked eye's
- * limit against the zenith's sky (Schaefer 1990), as the finished frame
- * has it (sky.c keeps it in frame.naked_eye_limit after every layer's
- * frame). Whatever the view's field: Mueller's PSF already gives a zoomed
- * view's points more contrast, as binoculars do, but not the points the
- * eye would not see. */
-double sky_point_limit(const sky_core *s);
+/* (What the sets of points share, stars.c's and planets.c's: points.h.) */
 /* planets.c: the planets' places of the last frame (SKY_ASTRO_PLANETS). */
 const sky_astro_planet *sky_planets_places(const void *planets_state);
-/* airglow.c: the airglow's zenith luminance above the air (kcd/m^2, rgb)
- * for the frame's date and cfg (0 without SKY_AIRGLOW); its light from
- * direction d before the air below it dims it (after the layer's frame).
- * zodiacal.c: the same for the zodiacal light (0 without SKY_ZODIACAL). */
-void sky_airglow_zenith(const sky_core *s, double rgb[3]);
-void sky_airglow_at(const sky_core *s, const double d[3], double rgb[3]);
-void sky_zodiacal_zenith(const sky_core *s, double rgb[3]);
-void sky_zodiacal_at(const sky_core *s, const double d[3], double rgb[3]);
+/* zodiacal.c, for the tests: the frame's horizon -> ecliptic rotation
+ * (column-major mat4, +x at the sun) of a zodiacal state. */
+const float *sky_zodiacal_rotation(const void *zodiacal_state);
 
 /* sun.c: the sunlight above the atmosphere that the drawn disc sums to,
  * klx (1 / r^2 with the sun's distance). */

@@ -45,7 +45,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
     SKY_UF("u_moon_brighter", SKY_U_F1, moon_brighter),
 };
-static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL};
+static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL, NULL};
 
 static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
@@ -54,7 +54,7 @@ static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UF("u_shadow", SKY_U_F4, shadow),
 };
 static const sky_snippet eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
-                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL};
+                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL, NULL};
 
 typedef struct moon_state {
     sky_program program;
@@ -410,6 +410,7 @@ void sky_moon_lighting(const sky_core *s, float moon_color[3])
 /* The moon: added by day; at night it also hides the stars behind it
  * (premultiplied: its coverage times the night factor is its alpha). */
 const sky_layer_class sky_moon_layer = {
+    .name = "moon",
     .slot = SKY_LAYER_MOON,
     .feature = SKY_MOON,
     .state_size = sizeof(moon_state),

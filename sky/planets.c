@@ -18,6 +18,7 @@
  * observer's horizon.
  */
 #include "layer.h"
+#include "points.h"
 
 #include <math.h>
 #include <string.h>
@@ -40,7 +41,7 @@ typedef struct planets_state {
 } planets_state;
 
 static const sky_uniform_desc planet_uniforms[] = {SKY_POINT_UNIFORMS(planets)};
-static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms), NULL};
+static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms), NULL, NULL};
 
 static const size_t planet_bytes = sizeof(float) * SKY_ASTRO_PLANETS * PLANET_FLOATS;
 
@@ -180,6 +181,7 @@ const sky_astro_planet *sky_planets_places(const void *state) { return ((const p
 /* Added over the dome like the stars: dimmed by the atmosphere, hidden by
  * the clouds and the moon. */
 const sky_layer_class sky_planets_layer = {
+    .name = "planets",
     .slot = SKY_LAYER_PLANETS,
     .feature = SKY_PLANETS,
     .state_size = sizeof(planets_state),

@@ -8,30 +8,12 @@
 #include "sky_internal.h"
 #include "aerial.h"
 #include "irradiance.h"
+#include "points.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The layers, back to front: the dome (the atmosphere with the night
- * backdrop behind and the clouds in front), the catalogue stars added over
- * it, the moon, the sun. Layers with a dome role live in the dome's
- * program and draw nothing themselves. */
-static const sky_layer_class *const layer_table[] = {
-    &sky_dome_layer, &sky_clouds_layer, &sky_flicker_layer, &sky_starmap_layer,
-    &sky_airglow_layer, &sky_zodiacal_layer, &sky_stars_layer, &sky_planets_layer,
-    &sky_moon_layer, &sky_sun_layer,
-};
-#define LAYER_COUNT ((int)(sizeof layer_table / sizeof layer_table[0]))
-
-/* Runs its body for each layer this sky has (those its features left out
- * have no state), in the table's order, with L its class and state its
- * state; `continue` goes on to the next layer. */
-#define FOR_EACH_LAYER(s, L, state)                                                                     \
-    for (int layer_i_ = 0; layer_i_ < LAYER_COUNT; layer_i_++)                                         \
-        for (const sky_layer_class *L = layer_table[layer_i_]; L; L = NULL)                             \
-            for (void *state = (s)->layer_state[L->slot]; state; state = NULL)
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
@@ -50,14 +32,6 @@ const char *sky_last_error(const sky *s) { return s ? s->error : "sky is NULL"; 
 unsigned sky_version(void)
 {
     return ((unsigned)SKY_VERSION_MAJOR << 16) | ((unsigned)SKY_VERSION_MINOR << 8) | (unsigned)SKY_VERSION_PATCH;
-}
-
-const char *sky_layer_name(sky_layer layer)
-{
-    static const char *const names[SKY_LAYER_COUNT] = {"starmap", "stars", "flicker", "moon",
-                                                       "atmosphere", "sun", "clouds", "planets",
-                                                       "airglow",    "zodiacal"};
-    return (unsigned)layer < SKY_LAYER_COUNT ? names[layer] : "unknown";
 }
 
 sky_params sky_default_params(void)
@@ -102,7 +76,7 @@ static void compute_frame(sky *s)
     f->daylight = (float)sky_smoothstep(sin(-6.0 * SKY_PI / 180.0), sin(10.0 * SKY_PI / 180.0), sin_alt) *
                   (float)sky_solar_eclipse_light_left(c);
     sky_exposure_frame(c);
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
         if (L->frame) L->frame(c, state);
     }
     /* the naked eye's limit against the finished sky (the layers' glows
@@ -144,17 +118,30 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     c->frame.far_z = cfg->depth == SKY_DEPTH_FAR_ZERO ? -1.0f : cfg->depth == SKY_DEPTH_FAR_ZERO_CLIP01 ? 0.0f : 1.0f;
     c->observer = sky_default_observer();
     c->dome_snippets = &s->dome_snippets;
-    for (int i = 0; i < LAYER_COUNT; i++) {
-        const sky_layer_class *L = layer_table[i];
+    sky_dome_snippets *d = &s->dome_snippets;
+    c->texture_count = c->texture_capacity = SKY_TEX_COUNT;
+    c->textures = calloc(SKY_TEX_COUNT, sizeof *c->textures);
+    s->layer_state = calloc(sky_layer_table_size, sizeof *s->layer_state);
+    s->layer_stats = calloc(sky_layer_table_size, sizeof *s->layer_stats);
+    d->front = calloc(sky_layer_table_size, sizeof *d->front);
+    d->night = calloc(sky_layer_table_size, sizeof *d->night);
+    c->glows = calloc(sky_layer_table_size, sizeof *c->glows);
+    if (!c->textures || !s->layer_state || !s->layer_stats || !d->front || !d->night || !c->glows) {
+        sky_format(err, err_len, "sky_create: out of memory");
+        goto fail;
+    }
+    for (int row = 0; row < sky_layer_table_size; row++) {
+        const sky_layer_class *L = sky_layer_table[row];
+        int index = sky_layer_table_index(row);
         if (L->feature && !(features & L->feature)) continue;
-        s->layer_state[L->slot] = calloc(1, L->state_size ? L->state_size : 1);
-        if (!s->layer_state[L->slot]) {
+        void *state = s->layer_state[index] = calloc(1, L->state_size ? L->state_size : 1);
+        if (!state || (L->dome_role != SKY_DOME_NONE && sky_snippet_bind(c, L->dome_snippet, state))) {
             sky_format(err, err_len, "sky_create: out of memory");
             goto fail;
         }
-        sky_dome_snippets *d = &s->dome_snippets;
         if (L->dome_role == SKY_DOME_FRONT) d->front[d->front_count++] = L->dome_snippet;
         if (L->dome_role == SKY_DOME_NIGHT) d->night[d->night_count++] = L->dome_snippet;
+        if (L->glow_at) c->glows[c->glow_count++] = (sky_glow_source){L, state};
     }
 
     if (sky_gl_init(c, err, err_len)) goto fail;
@@ -167,7 +154,8 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     c->dome_day_divisor = sky_dome_day_divisor_for(c);
     astronomy_stage(c); /* the default observer's: the stars start at its epoch */
     if (sky_atmosphere_create(c, err, err_len)) goto fail;
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
+        c->creating_layer = (sky_layer)index;
         if (L->create && L->create(c, state, err, err_len)) goto fail;
     }
     c->cfg.texture_dir = NULL;
@@ -190,14 +178,22 @@ void sky_destroy(sky *s)
 {
     if (!s) return;
     sky_core *c = &s->core;
-    for (int i = LAYER_COUNT - 1; i >= 0; i--) {
-        const sky_layer_class *L = layer_table[i];
-        if (s->layer_state[L->slot] && L->destroy) L->destroy(c, s->layer_state[L->slot]);
-        free(s->layer_state[L->slot]);
+    for (int row = sky_layer_table_size - 1; row >= 0 && s->layer_state; row--) {
+        const sky_layer_class *L = sky_layer_table[row];
+        void *state = s->layer_state[sky_layer_table_index(row)];
+        if (state && L->destroy) L->destroy(c, state);
+        free(state);
     }
+    free(s->layer_state);
+    free(s->layer_stats);
+    free(s->dome_snippets.front);
+    free(s->dome_snippets.night);
     sky_atmosphere_destroy(c);
     if (c->gl.glDeleteTextures) /* NULL when sky_gl_init failed early */
-        for (int i = 0; i < SKY_TEX_COUNT; i++) sky_texture_destroy(c, (sky_texture_id)i);
+        for (int i = 0; i < c->texture_count; i++) sky_texture_destroy(c, (sky_texture_id)i);
+    free(c->textures);
+    free(c->snippet_bindings);
+    free(c->glows);
     if (s->vao) sky_gl_vertex_array_destroy(c, s->vao);
     sky_gl_target_destroy(c, s->capture_fbo);
     sky_aerial_free(&s->aerial);
@@ -287,7 +283,7 @@ sky_result sky_update(sky *s, double dt)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(dt) || dt < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_update: dt = %g must be finite and >= 0", dt);
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
         if (L->advance) L->advance(&s->core, state, dt);
     }
     compute_frame(s);
@@ -299,7 +295,7 @@ sky_result sky_set_elapsed(sky *s, double seconds)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(seconds) || seconds < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_elapsed: %g must be finite and >= 0", seconds);
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
         if (L->reset_clock) L->reset_clock(state);
     }
     return sky_update(s, seconds);
@@ -309,10 +305,10 @@ sky_result sky_set_elapsed(sky *s, double seconds)
 
 static void reset_layer_stats(sky *s)
 {
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) {
-        s->stats.layers[l].drawn = 0;
-        s->stats.layers[l].draws = 0;
-        s->stats.layers[l].ms = -1.0;
+    for (int l = 0; l < sky_layer_table_size; l++) {
+        s->layer_stats[l].drawn = 0;
+        s->layer_stats[l].draws = 0;
+        s->layer_stats[l].ms = -1.0;
     }
     s->stats.draws_per_frame = 0;
     /* table builds since the last draw (sky_update, sky_set_params, ...) */
@@ -321,10 +317,10 @@ static void reset_layer_stats(sky *s)
 }
 
 /* Draws one layer, timed when the host asked for per-layer timings. */
-static void draw_layer(sky *s, const sky_layer_class *L, void *state)
+static void draw_layer(sky *s, const sky_layer_class *L, int index, void *state)
 {
     sky_core *c = &s->core;
-    sky_layer_stats *st = &s->stats.layers[L->slot];
+    sky_layer_stats *st = &s->layer_stats[index];
     double t0 = 0.0;
     if (c->cfg.profile_layers) {
         sky_gl_finish(c);
@@ -345,21 +341,21 @@ static sky_result draw_frame(sky *s)
 {
     sky_core *c = &s->core;
     sky_gl_frame_begin(c, s->vao);
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
         if (L->view) L->view(c, state);
     }
     /* which of the dome's snippets show: the dome picks its variant */
     c->dome_front_shows = c->dome_night_shows = 0;
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
         if (L->dome_role == SKY_DOME_NONE) continue;
         int shows = L->visible(c, state);
-        s->stats.layers[L->slot].drawn = shows;
+        s->layer_stats[index].drawn = shows;
         if (L->dome_role == SKY_DOME_FRONT) c->dome_front_shows |= shows;
         if (L->dome_role == SKY_DOME_NIGHT) c->dome_night_shows |= shows;
     }
-    FOR_EACH_LAYER(s, L, state) {
+    FOR_EACH_LAYER(s, L, index, state) {
         if (c->capture_without_sun && L->slot == SKY_LAYER_SUN) continue;
-        if (L->draw && L->visible(c, state)) draw_layer(s, L, state);
+        if (L->draw && L->visible(c, state)) draw_layer(s, L, index, state);
     }
     if (!c->cfg.check_gl_errors) return SKY_OK;
     GLenum e = sky_gl_error(c);
@@ -428,45 +424,3 @@ sky_result sky_draw_fisheye(sky *s)
     return sky_draw_view(s, NULL, NULL);
 }
 
-/* ---- queries ----------------------------------------------------------------------- */
-
-sky_result sky_get_stats(const sky *s, sky_stats *out)
-{
-    if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
-    const sky_core *c = &s->core;
-    *out = s->stats;
-    out->gl_version = c->gl_version;
-    out->profile = c->profile;
-    out->features = c->features;
-    out->lut_ms = s->stats.lut_ms;
-    out->textures = 0;
-    out->gpu_bytes = c->buffer_bytes;
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) {
-        out->layers[l].bytes = 0;
-        out->layers[l].enabled = 0;
-    }
-    for (int i = 0; i < SKY_TEX_COUNT; i++)
-        if (c->textures[i].id) {
-            out->textures++;
-            out->gpu_bytes += c->textures[i].bytes;
-            out->layers[c->textures[i].owner].bytes += c->textures[i].bytes;
-        }
-    FOR_EACH_LAYER(s, L, state) {
-        out->layers[L->slot].enabled = 1;
-        if (L->buffer_bytes) out->layers[L->slot].bytes += L->buffer_bytes(c, state);
-    }
-    out->programs = c->program_count;
-    out->buffers = c->buffer_count;
-    return SKY_OK;
-}
-
-int sky_layer_count(void) { return SKY_LAYER_COUNT; }
-
-sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out)
-{
-    if (!s || !out || layer < 0 || layer >= SKY_LAYER_COUNT) return SKY_ERR_INVALID_ARGUMENT;
-    sky_stats all;
-    sky_get_stats(s, &all);
-    *out = all.layers[layer];
-    return SKY_OK;
-}

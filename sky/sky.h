@@ -63,6 +63,64 @@
  *  - A name or field to be removed is deprecated first: kept working for
  *    one minor version, marked here ("Deprecated since X.Y, removed in
  *    X.Y+1") and in CHANGELOG.md, then removed.
+ *
+ * Reading this header: each function's comment opens with its name and
+ * what it does (units, ranges, what 0 and NULL mean), then gives four fixed
+ * parts, in this order, as GLFW's reference does with @errors,
+ * @thread_safety and @since:
+ *   Errors:         the sky_result codes it returns, and for what;
+ *   Thread safety:  "any thread (pure)" or "the sky's thread" (Threads;
+ *                   sky_create runs where the sky's context is to be);
+ *   GL:             "none" (no GL call, no context needed), or what it needs
+ *                   of the context and which of the host's GL state it
+ *                   changes and puts back;
+ *   Since:          the version that first had it.
+ *
+ * Since, the rule: sky.h's SKY_VERSION_* has been set five times, 0.1.0
+ * by the first commit and then 0.2.0 .. 0.5.0, each number taking in all
+ * that had landed since the one before. A function's version is the first
+ * number set at or after the commit that added it; one added after 0.5.0
+ * was set is 0.5.0's, the version on main. CHANGELOG.md's entries agree
+ * from 0.3.0 on (before it, the git history), and "Since: 0.1.0" marks
+ * what the first commit already had. A later change to a function's
+ * signature is named beside its version.
+ *
+ * Errors: a sky_result below 0 is an error, and the call changed nothing
+ * unless its Errors part says otherwise; above 0 is a warning (SKY_CLAMPED,
+ * SKY_WARN_MIRRORED): the call did its work, and the message says what it
+ * adjusted or what to fix. So `rc < 0` tests for failure. A call on a sky
+ * that returns anything but SKY_OK leaves a message for sky_last_error,
+ * except where its Errors part says "no message"; a NULL sky is always
+ * SKY_ERR_INVALID_ARGUMENT with no message (there is no sky to keep one).
+ * Functions without a sky report through their return value, and write
+ * into an err buffer where they take one. Nothing prints, asserts or
+ * aborts.
+ *
+ * Threads: a sky belongs to the GL context that was current when
+ * sky_create made it (and to the contexts sharing its objects); a context
+ * may hold several skies, which share nothing. The library keeps no global
+ * state and takes no lock.
+ *  - "any thread (pure)": the function takes no sky and makes no GL call;
+ *    it reads only its arguments and constant data, and writes only its
+ *    outputs: call it from any thread at any time.
+ *  - "the sky's thread": call it from the thread where the sky's context is
+ *    current, and never while another call on the same sky runs (a sky has
+ *    no lock). Where the GL part says "none", the function makes no GL
+ *    call and needs no current context: a host may make it on another
+ *    thread (sky_update on a simulation thread, say) if it keeps it from
+ *    overlapping every other call on that sky.
+ *
+ * GL: "needs the sky's context current" means the context sky_create ran
+ * in, or one sharing its objects, current on the calling thread. Only the
+ * drawing calls (sky_draw, sky_draw_fisheye, sky_capture_environment) check
+ * that it is the sky's; the others check only that some context is
+ * current, where their Errors part says so. glGetError returns and clears
+ * the host's pending errors too: sky_create reads it always, sky_draw only
+ * when sky_config.check_gl_errors asks, and the calls that make a texture
+ * outside sky_draw (sky_capture_environment into the library's cube map,
+ * sky_aerial_bind and sky_aerial_froxels, the first time) read it after
+ * creating one, so an error the host left pending then is taken for
+ * theirs.
  */
 #ifndef SKY_H
 #define SKY_H
@@ -88,9 +146,10 @@ extern "C" {
 
 typedef struct sky sky;
 
-/* Results. Negative values are errors (nothing was changed); SKY_CLAMPED
- * means the call succeeded after clamping an out-of-range input, and
- * sky_last_error names which one. */
+/* Results. Negative values are errors (nothing was changed, unless the
+ * function's Errors part says otherwise); SKY_CLAMPED means the call
+ * succeeded after clamping an out-of-range input, and sky_last_error names
+ * which one. */
 typedef enum sky_result {
     SKY_OK = 0,
     SKY_CLAMPED = 1,
@@ -161,35 +220,11 @@ typedef enum sky_gl_profile {
     SKY_GL_CORE33,     /* OpenGL 3.3 core, GLSL 330                         */
     SKY_GL_COMPAT20,   /* OpenGL 2.0, GLSL 110, RGBA8 power-of-two only     */
     SKY_GL_ES20        /* OpenGL ES 2.0 / WebGL 1, GLSL ES 1.00: COMPAT20's
-                          resources on an ES 2.0 (or later) context. What it
-                          needs of the context: 4 texture units, and
-                          nothing else. What it uses when offered:
-                          OES_standard_derivatives (the clouds' footprint
-                          fade and the sun's edge; without it an estimate
-                          from the pixel's angular size), framebuffer
-                          objects (ES 2.0 core: the dome at a fraction of
-                          the resolution, capture), OES_texture_npot (or
-                          ES 3.0, or WebGL: that image at its own size),
-                          OES_vertex_array_object (or ES 3.0: a VAO of
-                          its own, so the host's attribute arrays need
-                          not be saved one by one), highp in the fragment
-                          stage (glGetShaderPrecisionFormat; without it the
-                          fragment stage runs at mediump, the uniforms both
-                          stages declare are mediump in both, and what
-                          reaches that stage stays within mediump's 2^14:
-                          in LDR the light arrives already times the
-                          exposure, so day, twilight and night are drawn
-                          as with highp; HDR output there holds only
-                          about 6e-5..16384 kcd/m^2, so a night sky
-                          comes out black). HDR output stops at 65504
-                          kcd/m^2 there (gl_FragColor is mediump in GLSL
-                          ES 1.00): the sun's disc saturates. No float
-                          texture, texture LOD or desktop-only entry point
-                          (glPolygonMode, glGetTexImage,
-                          glGetTexLevelParameteriv) is used.
-                          sky_capture_environment into the host's cube map
-                          cannot check its size there (ES 2.0 has no
-                          query): it must be face_size.                  */
+                          resources on an ES 2.0 (or later) context. Needs 4
+                          texture units and nothing else; takes extensions
+                          and highp when offered. Without highp in the
+                          fragment stage HDR output loses the night, and HDR
+                          stops at 65504 kcd/m^2: docs/es20.md             */
 } sky_gl_profile;
 
 /* How LDR output turns the sky's light into 8-bit colour (HDR output is
@@ -279,12 +314,29 @@ typedef enum sky_atmosphere_preset {
     SKY_ATMOSPHERE_HILLAIRE_2020 = SKY_ATMOSPHERE_PRESET_HILLAIRE_2020
 } sky_atmosphere_preset;
 
-/* Fills *out with a preset; SKY_ERR_INVALID_ARGUMENT for an unknown one. */
+/* sky_atmosphere_get_preset: fills *out with a preset's description, to
+ * pass as sky_config.atmosphere_params as it is or with a field changed.
+ * The deprecated names give the same descriptions as the PRESET_ ones.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for out NULL or a value that names no
+ * preset.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_atmosphere_params *out);
-/* Checks a description: every value finite, radii and scale heights
- * positive, top above ground by at least 1 km, coefficients >= 0,
- * extinction >= scattering, |g| <= 0.999, albedo in 0..1. Returns
- * SKY_OK or SKY_ERR_INVALID_ARGUMENT with the first bad field named in err. */
+/* sky_atmosphere_check: checks a description as sky_create does: every
+ * value finite; planet_radius_km 1..1e6; top_radius_km from
+ * planet_radius_km + 1 to twice planet_radius_km; each scattering,
+ * extinction and absorption coefficient 0..10 per km (more makes the air
+ * at sea level opaque within 100 m); mie_extinction >= mie_scattering;
+ * |mie_g| <= 0.999; both scale heights and ozone_half_width_km at least
+ * 0.01 km; ground_albedo 0..1. An all-zero description fails here
+ * (sky_config reads all zero as SKY_ATMOSPHERE_PRESET_EARTH before its
+ * check). err (may be NULL; err_len bytes, the NUL included) gets "" on
+ * success, else the first bad field and its range.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for atm NULL or a value out of range.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_atmosphere_check(const sky_atmosphere_params *atm, char *err, size_t err_len);
 
 /* HILLAIRE and BLEND: the lookup tables' sizes and sample counts (Hillaire
@@ -449,49 +501,186 @@ typedef struct sky_params {
     float cover, height, density, sunset, speed, time;
 } sky_params;
 
-/* The values sky_create starts with. */
+/* sky_default_params: the sliders sky_create starts with: cover 0.45,
+ * height 0.5, density 0.3, sunset 0.1, speed 0.2, time 0.45 (10:48 local
+ * solar time).
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_params sky_default_params(void);
 
+/* sky_create: makes a sky in the GL context current on the calling thread:
+ * checks cfg, loads the GL entry points through cfg->get_proc_address,
+ * settles the profile (cfg->gl_profile) and creates the programs, textures
+ * and buffers of the features asked for, nothing outside the mask (HILLAIRE
+ * and BLEND also build their first two tables: sky_lut_settings). cfg is
+ * copied: neither it nor the texture_dir string need outlive the call. The
+ * sky starts with sky_default_params, exposure bias 0, running time 0 and
+ * the default observer (sky_observer), its frame computed: sky_draw may
+ * follow at once.
+ * Errors: returns NULL and says why in err (may be NULL; err_len bytes,
+ * the NUL included; "" on success), naming the field it refuses: cfg or
+ * get_proc_address NULL; a field outside the range its comment gives (NaN
+ * included); a blend_partner other than 0, RAYLEIGH or PREETHAM;
+ * SKY_FEATURES_NONE with other bits; features outside
+ * SKY_FEATURES_AVAILABLE; SKY_LUNAR_ECLIPSE without SKY_MOON; an
+ * atmosphere_params that sky_atmosphere_check refuses; a horizon_to_world
+ * that is not orthonormal. Then the context: none current, OpenGL below
+ * 2.0, an entry point missing, fewer than 4 texture units, a profile it
+ * cannot run (CORE33 without 3.3 and GLSL 3.30, COMPAT20 in a core context,
+ * ES20 on desktop GL, CORE33 or COMPAT20 on ES), errors that glGetError
+ * never clears (a lost context). Then the resources: a file in texture_dir
+ * that is not a regular file, or a PNG that does not decode or has the
+ * wrong size (the file is named); a shader that does not compile or link
+ * (the driver's log); a GL error while creating; out of memory. What was
+ * made before the failure is released.
+ * Thread safety: the thread where the host's context is current; the sky
+ * is the context's from then on.
+ * GL: needs a current context. It reads glGetError until it returns
+ * GL_NO_ERROR before it starts, so errors the host left pending are
+ * cleared. What it binds and sets while creating (buffers, textures and
+ * the active unit, the pixel store, the vertex array) is the host's again
+ * when it returns, on success or failure.
+ * Since: 0.1.0 */
 SKY_API sky *sky_create(const sky_config *cfg, char *err, size_t err_len);
-SKY_API void sky_destroy(sky *s); /* NULL is fine; needs the creating context current */
+/* sky_destroy: deletes the sky's GL objects and frees it. NULL does
+ * nothing.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (not checked). A texture of the
+ * sky's that the host left bound in that context (sky_aerial_bind's
+ * table, sky_aerial_froxels's volume, the environment cube map) reverts
+ * to 0 as GL does for any deleted texture.
+ * Since: 0.1.0 */
+SKY_API void sky_destroy(sky *s);
 
-/* Text of the most recent non-OK result of this sky ("" if none). */
+/* sky_last_error: the message of this sky's most recent call that returned
+ * anything but SKY_OK and wrote one; "" before any, "sky is NULL" for s
+ * NULL. A later SKY_OK leaves it as it was, so read it straight after the
+ * result it explains. The string is the sky's: valid until sky_destroy,
+ * its text replaced by the next message.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API const char *sky_last_error(const sky *s);
-/* The library's version as built: (MAJOR << 16) | (MINOR << 8) | PATCH;
- * compare with the SKY_VERSION_* macros a host was compiled against. */
+/* sky_version: the library's version as built, (MAJOR << 16) | (MINOR <<
+ * 8) | PATCH: compare with the SKY_VERSION_* macros a host was compiled
+ * against (a shared library found at run time may be another; its soname
+ * keeps incompatible ones apart, Versions above).
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API unsigned sky_version(void);
 
+/* sky_set_params: sets the six sliders and recomputes the frame: the sun
+ * and moon (when the observer follows the time slider), the atmosphere,
+ * the exposure and each layer's state. sky_get_lighting and the queries
+ * below read the new state at once; the next sky_draw shows it. HILLAIRE
+ * and BLEND in COMPAT20 may build part of the sky-view table on the CPU
+ * here (sky_lut_settings).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), p NULL or a
+ * NaN field: nothing changes. SKY_CLAMPED when a field is outside 0..1
+ * (infinities included): it is set to the nearest end, and the message
+ * names it (the last one, if several).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_set_params(sky *s, const sky_params *p);
+/* sky_get_params: the sliders as set (clamped).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or p NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_get_params(const sky *s, sky_params *p);
 
-/* Exposure of the LDR output relative to the automatic one, in stops:
- * +1 doubles the light, -1 halves it. Range -10..10 (clamped; NaN is
- * rejected). Has no effect on HDR output. */
+/* sky_set_exposure_bias: the LDR output's exposure relative to the
+ * automatic one, in stops: +1 doubles the light shown, -1 halves it (0 at
+ * sky_create). It recomputes the frame as sky_set_params does. HDR output
+ * stays the sky's light, but the bias still scales sky_lighting.exposure
+ * and sky_display_bind's exposure, and with them the level below which the
+ * faint layers are skipped: at -10 a night's stars, planets, star map,
+ * airglow and zodiacal light are not drawn in HDR either.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message) or ev NaN:
+ * nothing changes. SKY_CLAMPED outside -10..10 (infinities included): set
+ * to the nearest end.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_set_exposure_bias(sky *s, float ev);
 
-/* Advances animation time (cloud drift, star flicker) by dt seconds. dt must
- * be finite and >= 0. Time is kept in double and wrapped, so a game may run
- * for years without the clouds stuttering. */
+/* sky_update: advances the sky's running clocks by dt_seconds (the clouds'
+ * drift at the speed slider's rate, the flicker stars' flicker, the stars'
+ * and planets' twinkle), then recomputes the frame as sky_set_params does.
+ * It does not move the sun or the moon: the time of day is the time
+ * slider's, or the observer's instant. The clocks are doubles wrapped to
+ * their periods, so a game may run for years without the clouds
+ * stuttering. dt_seconds 0 recomputes without advancing.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), or dt_seconds
+ * NaN, infinite or negative: nothing changes.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_update(sky *s, double dt_seconds);
-/* Sets the animation clock to an absolute value (seconds >= 0). */
+/* sky_set_elapsed: sets those clocks to an absolute running time: back to
+ * zero, then sky_update(s, seconds). Two skies with the same sliders and
+ * seconds show the same clouds and stars, whatever ran before; the clouds
+ * drift over the whole span at the speed slider's present rate.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), or seconds NaN,
+ * infinite or negative: nothing changes.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_set_elapsed(sky *s, double seconds);
 
-/* Draws the sky into the current framebuffer and viewport. view and proj are
- * column-major; only the rotation part of view is used (the sky is
- * centred on the viewer). Depth is neither tested nor written; polygons are
- * filled whatever glPolygonMode says, and GL_FRAMEBUFFER_SRGB is off for its
- * draws (LDR output is sRGB-encoded by the sky itself: into an sRGB target
- * it lands as the encoded bytes); all GL state that the call changes is
- * restored before it returns, as sky_create restores what it binds. With LDR output it
- * first renders the dome into an image of its own through a framebuffer
- * object of its own (sky_config.dome_divisor), and puts the host's draw
- * and read framebuffers and viewport back before drawing into the host's. */
+/* sky_draw: draws the sky's current frame into the current framebuffer
+ * and viewport, seen through the host's view and proj (column-major; only
+ * the rotation part of view is used: the sky is centred on the viewer;
+ * Conventions). Depth is never written, and tested only when
+ * sky_config.depth says where the far plane is; polygons are filled
+ * whatever glPolygonMode says, and GL_FRAMEBUFFER_SRGB is off for its draws
+ * (LDR output is sRGB-encoded by the sky itself: into an sRGB target it
+ * lands as the encoded bytes). With LDR output, framebuffer objects and a
+ * dome_divisor above 1 it first renders the dome into an image of its own
+ * at 1/dome_divisor of the viewport (sky_config.dome_divisor) through a
+ * framebuffer object of its own, then draws into the host's.
+ * sky_get_stats describes the draw afterwards.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), view or proj
+ * NULL, an element not finite, a view whose rotation part is degenerate,
+ * or a singular projection: nothing drawn. SKY_ERR_GL when no context is current
+ * or the current one is not the sky's (one holding a program of the name
+ * of the sky's first program, another sky's say, passes for it): nothing
+ * drawn. With sky_config.check_gl_errors also SKY_ERR_GL for an error the
+ * host left pending (read, so cleared, and named as the host's; nothing
+ * drawn), or for one the sky's own calls raised (the frame was drawn).
+ * SKY_WARN_MIRRORED (a warning): drawn, but the projection's and
+ * horizon_to_world's handedness disagree, so the sky is a mirror image.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current. Every state it changes is put back
+ * before it returns: the current program; the active unit and the 2D,
+ * cube-map (and CORE33's 2D-array) bindings of units 0..3; the buffer and
+ * vertex-array bindings, or without a vertex array of its own the
+ * attribute arrays 0..2; the draw and read framebuffers, the viewport,
+ * the scissor box and the clear colour; the blend, depth, cull, scissor,
+ * stencil, rasterizer-discard, program-point-size and framebuffer-sRGB
+ * switches; the blend functions and equations, colour and depth masks,
+ * depth function and polygon mode.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_draw(sky *s, const float view[16], const float proj[16]);
-/* Draws an equidistant all-sky image into the viewport: zenith at the
- * centre, horizon on the inscribed circle, north at the top, east on the
- * left (as seen looking up). Outside the circle is black. An image to
- * look at rather than a frame rate: with LDR output its dome is drawn at
- * every pixel (its image the viewport's size) whatever dome_divisor says. */
+/* sky_draw_fisheye: draws an equidistant all-sky image of the current
+ * frame into the viewport: zenith at the centre, horizon on the inscribed
+ * circle, north at the top, east on the left (as seen looking up). The
+ * viewport is cleared to black first, so outside the circle is black. An
+ * image to look at rather than a frame rate: with LDR output its dome is
+ * drawn at every pixel (its image the viewport's size) whatever
+ * dome_divisor says.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message); SKY_ERR_GL as
+ * for sky_draw. It never warns of a mirror image.
+ * Thread safety: the sky's thread.
+ * GL: as sky_draw.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_draw_fisheye(sky *s);
 
 /* ---- where and when ----------------------------------------------------------
@@ -513,16 +702,39 @@ typedef struct sky_observer {
     int time_from_params;
 } sky_observer;
 
-/* Julian day of a proleptic Gregorian UTC date and time: years within a
- * million of year 0, month 1..12, day 1..31, hour 0..24, minute 0..60,
- * second 0..61 (with a fraction); NaN for anything else (which
- * sky_set_observer rejects). */
+/* sky_julian_day: the Julian day of a proleptic Gregorian UTC date and
+ * time: years within a million of year 0, month 1..12, day 1..31, hour
+ * 0..24, minute 0..60, second 0..61 with a fraction. A day, hour or minute
+ * past its unit's end runs on into the next (2026-02-31 is 2026-03-03).
+ * Errors: NaN for anything outside those ranges (which sky_set_observer
+ * refuses); no sky_result.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API double sky_julian_day(int year, int month, int day, int hour, int minute, double second);
-/* The calendar date (proleptic Gregorian) of a Julian day, with the
- * fraction of the day since 0h. SKY_ERR_INVALID_ARGUMENT (and zeros) for a
- * day that is not finite or more than a million years from year 0. */
+/* sky_calendar: the proleptic Gregorian date of a Julian day, with the
+ * fraction of the day since 0h UTC. Any output may be NULL.
+ * Errors: SKY_ERR_INVALID_ARGUMENT, the outputs set to zero, for a day
+ * that is not finite or lies more than a million years from year 0.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 (returning void; sky_result since 0.3.0) */
 SKY_API sky_result sky_calendar(double julian_day, int *year, int *month, int *day, double *day_fraction);
+/* sky_set_observer: sets the instant and place (sky_observer, above) and
+ * recomputes the frame as sky_set_params does.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), obs NULL, or
+ * a field outside its range or not finite (the message names it): nothing
+ * changes.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_set_observer(sky *s, const sky_observer *obs);
+/* sky_get_observer: the observer as set (the default one before any
+ * sky_set_observer).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or obs NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_get_observer(const sky *s, sky_observer *obs);
 
 typedef struct sky_body_place {
@@ -542,7 +754,13 @@ typedef enum sky_planet {
     SKY_PLANET_SATURN,
     SKY_PLANET_COUNT
 } sky_planet;
-SKY_API const char *sky_planet_name(sky_planet planet); /* "mercury", ...; "unknown" */
+/* sky_planet_name: a planet's name in lower case ("mercury", ...;
+ * "unknown" for a value that names none); a static string.
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
+SKY_API const char *sky_planet_name(sky_planet planet);
 
 typedef struct sky_planet_place {
     sky_body_place place;          /* distance_km geocentric                    */
@@ -588,12 +806,30 @@ typedef struct sky_star_place {
     double vmag, bv;
 } sky_star_place;
 
-/* Computes the astronomy of an observer without any GL: time_of_day is
- * used when obs->time_from_params is set. hip/stars may be NULL (count 0).
- * Errors: out-of-range observer, NaN. */
+/* sky_compute_astronomy: the astronomy of an observer, without a sky:
+ * *out as sky_get_astronomy gives it (the planets included), and for each
+ * of the count Hipparcos numbers in hip its place in stars[i] (found 0 for
+ * a number not in the catalogue; not an error). time_of_day is the time
+ * slider, used when obs->time_from_params is set (clamped to 0..1
+ * silently). hip and stars may be NULL when count is 0. err (may be NULL;
+ * err_len bytes, the NUL included) gets "" on success, else why.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for obs or out NULL, count negative, hip
+ * or stars NULL with count above 0, time_of_day NaN, an observer that
+ * sky_set_observer would refuse (the same messages); SKY_ERR_ASSET when
+ * the embedded star catalogue does not decode (stars asked for only).
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, const int *hip, int count,
                                          sky_star_place *stars, sky_astronomy *out, char *err, size_t err_len);
-/* The astronomy of the sky's current frame. */
+/* sky_get_astronomy: the astronomy of the sky's current frame: its
+ * observer at the time slider's instant (time_from_params) or its own, as
+ * the last call that recomputed the frame left it. The planets are the
+ * frame's with SKY_PLANETS, else computed in this call.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.2.0 */
 SKY_API sky_result sky_get_astronomy(const sky *s, sky_astronomy *out);
 
 /* Layers, for per-layer statistics. */
@@ -610,6 +846,12 @@ typedef enum sky_layer {
     SKY_LAYER_ZODIACAL,
     SKY_LAYER_COUNT
 } sky_layer;
+/* sky_layer_name: a layer's name by its index ("unknown" outside 0 ..
+ * sky_layer_count() - 1); a static string.
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API const char *sky_layer_name(sky_layer layer); /* "starmap", "stars", ... */
 
 typedef struct sky_layer_stats {
@@ -638,13 +880,37 @@ typedef struct sky_stats {
     sky_layer_stats layers[SKY_LAYER_COUNT];
 } sky_stats;
 
+/* sky_get_stats: what the sky holds now (profile, features, textures,
+ * programs, buffers and their bytes) and what its last draw did (the last
+ * sky_draw or sky_draw_fisheye, or the last face sky_capture_environment
+ * drew: draws, times, which layers showed).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none (gl_version was read by sky_create).
+ * Since: 0.1.0 */
 SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
-/* The layers by index, so that adding one changes no public struct: how
- * many this build has (SKY_LAYER_COUNT; sky_layer_name names each), and
- * one's statistics for the last frame. SKY_ERR_INVALID_ARGUMENT for a NULL
- * sky or output or an index outside 0 .. sky_layer_count() - 1. Since 0.5. */
+/* sky_layer_count, sky_get_layer_stats: the layers by index, so that
+ * adding one changes no public struct: how many this build has
+ * (SKY_LAYER_COUNT or more: a layer added after 0.5 has an index but no
+ * sky_layer constant; sky_layer_name names each), and one's statistics
+ * for the last frame (for the layers of 0.5, sky_get_stats's row).
+ * Errors: sky_layer_count none; sky_get_layer_stats
+ * SKY_ERR_INVALID_ARGUMENT (no message) for a NULL sky or output or an
+ * index outside 0 .. sky_layer_count() - 1.
+ * Thread safety: sky_layer_count any thread (pure); sky_get_layer_stats
+ * the sky's thread.
+ * GL: none.
+ * Since: 0.5.0 (both) */
 SKY_API int sky_layer_count(void);
 SKY_API sky_result sky_get_layer_stats(const sky *s, int layer, sky_layer_stats *out);
+/* sky_layer_index: the index of the layer named name (sky_layer_name's
+ * names; a layer added after 0.5 has no sky_layer constant and is found
+ * this way).
+ * Errors: -1 for name NULL or a name no layer of this build has.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.5.0 */
+SKY_API int sky_layer_index(const char *name);
 
 /* What a game needs to light its scene, for the current state. Directions
  * are unit vectors in the world frame (horizon_to_world applied);
@@ -671,14 +937,23 @@ typedef struct sky_lighting {
                                   multiplies by this lands in the sky's range */
 } sky_lighting;
 
+/* sky_get_lighting: what a game needs to light its scene (sky_lighting,
+ * above) for the sky's current frame, as sky_create or the last call that
+ * recomputed it left it (sky_set_params, sky_set_observer,
+ * sky_set_exposure_bias, sky_update, sky_set_elapsed). The moon's fields
+ * are zero without SKY_MOON.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.1.0 */
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
 
-/* Environment capture: the sky as sky_draw draws it (every layer, clouds
- * included), seen from the observer in the six directions of a cube map
- * in the world frame (horizon_to_world applied; GL's face order +X, -X,
- * +Y, -Y, +Z, -Z and its face orientation, so that a samplerCube looked
- * up with a world direction finds the sky there), for reflections and
- * image-based lighting.
+/* sky_capture_environment: the sky as sky_draw draws it (every layer,
+ * clouds included), seen from the observer in the six directions of a
+ * cube map in the world frame (horizon_to_world applied; GL's face order
+ * +X, -X, +Y, -Y, +Z, -Z and its face orientation, so that a samplerCube
+ * looked up with a world direction finds the sky there), for reflections
+ * and image-based lighting.
  *   cube_texture  0: the library's own (sky_environment_texture; made or
  *                 remade at face_size), else the host's GL_TEXTURE_CUBE_MAP
  *                 whose level 0 is face_size square on every face captured,
@@ -692,38 +967,68 @@ SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
  *                 sky_get_lighting's beam; left out by default)
  * Each face is the picture sky_draw draws with that face's camera
  * (sky_capture_face_matrices) at dome_divisor 1: the faces are small, and
- * a reduced image's steps would show at their edges.
- * It renders through a framebuffer object of its own; the host's
- * framebuffer bindings, viewport and every state sky_draw restores come
- * back. A COMPAT20 context without framebuffer objects has no such
- * object: there each face is drawn into the host's current draw buffer,
- * face_size square at the lower-left corner of its viewport, and copied
- * from the read buffer into the cube map (glCopyTexSubImage2D; the read
- * buffer must be the draw buffer, as GL_BACK is for both by default).
- * Call it there where those pixels are the host's to lose: before it
- * draws its frame (sky_draw and the scene then cover them) or on a frame
- * it clears; sky_capture_overwrote says which they were. face_size must
- * fit the viewport. HDR output in COMPAT20 is captured into the host's
- * float cube map only (the library's textures there are 8-bit, and the
- * layers blend in linear light, which no 8-bit encoding can be blended
- * in): through a framebuffer object where the context renders into
- * float textures, else copied from a float draw buffer; into the
- * library's own, SKY_ERR_UNSUPPORTED. SKY_ERR_INVALID_ARGUMENT for a
- * bad size, face or flag, or a host texture that is not a cube map of
- * that size. */
+ * a reduced image's steps would show at their edges. sky_get_stats then
+ * describes the last face drawn.
+ * It renders through a framebuffer object of its own. A COMPAT20 context
+ * without framebuffer objects has no such object: there each face is drawn
+ * into the host's current draw buffer, face_size square at the lower-left
+ * corner of its viewport, and copied from the read buffer into the cube map
+ * (glCopyTexSubImage2D; the read buffer must be the draw buffer, as
+ * GL_BACK is for both by default). Call it there where those pixels are
+ * the host's to lose: before it draws its frame (sky_draw and the scene
+ * then cover them) or on a frame it clears; sky_capture_overwrote says
+ * which they were. HDR output in COMPAT20 (and ES20) is captured into the
+ * host's float cube map only (the library's textures there are 8-bit, and
+ * the layers blend in linear light, which no 8-bit encoding can be blended
+ * in): through a framebuffer object where the context renders into float
+ * textures, else copied from a float draw buffer.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), a face_size
+ * that is not a power of two in 4..2048 or is over the context's cube-map
+ * limit (or, without framebuffer objects, does not fit the viewport), a
+ * face other than 0..5 or SKY_CAPTURE_ALL_FACES, an unknown flag, or a
+ * host texture that is not a cube map of that size (not checked on ES 2.0,
+ * which cannot ask: there it must be face_size). SKY_ERR_UNSUPPORTED for
+ * HDR output outside CORE33 into the library's own cube map. SKY_ERR_GL
+ * when no context is current, the current one is not the sky's, the
+ * library's cube map cannot be made (a GL error the host left pending is
+ * taken for this) or its framebuffer object cannot, or a face cannot be
+ * rendered into (its format?): the faces before that one were drawn.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current. The host's framebuffer bindings,
+ * viewport and every state sky_draw puts back come back; without
+ * framebuffer objects the pixels of the host's draw buffer it drew into
+ * are left as drawn (sky_capture_overwrote).
+ * Since: 0.4.0 */
 #define SKY_CAPTURE_ALL_FACES (-1)
 #define SKY_CAPTURE_SUN_DISC 1u
 SKY_API sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size, int face, unsigned flags);
-/* The view and projection sky_capture_environment draws face 0..5 with
- * (world frame, right-handed, 90 degrees square): sky_draw with them at a
- * square viewport draws that face's pixels. */
+/* sky_capture_face_matrices: the view and projection
+ * sky_capture_environment draws face 0..5 with (world frame,
+ * right-handed, 90 degrees square): sky_draw with them at a square
+ * viewport draws that face's pixels.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for face outside 0..5, or view or proj
+ * NULL.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_capture_face_matrices(int face, float view[16], float proj[16]);
-/* The pixels of the host's draw buffer the last sky_capture_environment
- * drew into (a context without framebuffer objects): x, y, width, height
- * in rect (may be NULL), returns 1; 0 (and zeros) when it drew into a
- * framebuffer object of its own, or has not run. */
+/* sky_capture_overwrote: the pixels of the host's draw buffer that the
+ * last sky_capture_environment drew into (a context without framebuffer
+ * objects): x, y, width, height in rect (may be NULL), returns 1; 0 (and
+ * zeros) when it drew into a framebuffer object of its own, has not run,
+ * or s is NULL.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API int sky_capture_overwrote(const sky *s, int rect[4]);
-/* The library's own cube map (0 before the first capture into it). */
+/* sky_environment_texture: the library's own cube map: 0 before the first
+ * capture into it (and for s NULL). A capture at another face_size makes
+ * a new one, whose name may differ; it lives until sky_destroy.
+ * Errors: none.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API unsigned sky_environment_texture(const sky *s);
 
 /* The sky as a light for a scene's ambient: the radiance that reaches the
@@ -745,9 +1050,6 @@ SKY_API unsigned sky_environment_texture(const sky *s);
  * sky (the truncation); sky_irradiance_sh_eval adds degree 4 and the
  * horizon's zonal degrees 6 and 8 and is within 2 % (make test measures
  * both against renders).
- * Projected from the atmosphere's CPU twin over 256 directions, once per
- * change of the sun, sliders, observer, world frame or tables, else
- * cached (sky-bench gives the cost).
  * The basis, for a unit world direction (x, y, z):
  *   [0] 0.282095            [1] 0.488603 y     [2] 0.488603 z
  *   [3] 0.488603 x          [4] 1.092548 x y   [5] 1.092548 y z
@@ -777,13 +1079,27 @@ typedef struct sky_irradiance_sh {
     float moon_color[3];       /* 0 when the scene has no moon or it is down  */
 } sky_irradiance_sh;
 
+/* sky_get_irradiance_sh: fills *out (above) for the sky's current frame.
+ * The coefficients are projected from the atmosphere's CPU twin over 256
+ * directions, once per change of the sun, sliders, observer, world frame
+ * or tables, and cached in the sky (sky-bench gives the cost); the beams
+ * are sky_get_lighting's.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread (it fills the sky's cache).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_get_irradiance_sh(sky *s, sky_irradiance_sh *out);
-/* Irradiance from the sky alone (beams excluded) on a surface whose unit
- * normal (world frame; any length is normalised) is normal, klx per
- * channel: the sum over the coefficients of A_l radiance Y(normal), A =
- * pi, 2 pi/3, pi/4, -pi/24, pi/64, -pi/128 for degrees 0, 1, 2, 4, 6, 8
- * (Ramamoorthi & Hanrahan 2001 eq. 8); never below 0.
- * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero normal. */
+/* sky_irradiance_sh_eval: the irradiance from the sky alone (beams
+ * excluded) on a surface whose unit normal (world frame; any length is
+ * normalised) is normal, klx per channel: the sum over the coefficients
+ * of A_l radiance Y(normal), A = pi, 2 pi/3, pi/4, -pi/24, pi/64, -pi/128
+ * for degrees 0, 1, 2, 4, 6, 8 (Ramamoorthi & Hanrahan 2001 eq. 8); never
+ * below 0 (a truncated sum can dip below it facing a dark hemisphere).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for sh, normal or irradiance NULL, or
+ * a normal not finite or zero (irradiance then set to 0).
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const float normal[3], float irradiance[3]);
 
 /* Aerial perspective: what the air between the observer and a point of
@@ -793,87 +1109,132 @@ SKY_API sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const flo
  *     L * transmittance + inscatter
  * instead, then applies the sky's exposure: far hills take the colour of
  * the sky behind them, near ones are untouched.
+ * One atmosphere for every path: Hillaire's ray march stopped at the point
+ * on the description the sky is drawn with (sky_config.atmosphere_params
+ * and turbidity), its light scaled so that at the ray's end it is the sky
+ * the path draws (so it meets the gradient's or Preetham's horizon too;
+ * the night floor is spread along the ray by optical depth). The light
+ * of the ground itself is not in it: the host's ground is the point. */
+typedef struct sky_aerial {
+    float transmittance[3];
+    float inscatter[3];
+} sky_aerial;
+/* sky_get_aerial_perspective: the air's effect (above) on the light of the
+ * point at distance_m along direction, for the sky's current frame:
  *   direction   world frame (horizon_to_world applied), any length
  *   distance_m  metres from the observer, 0 or more (INFINITY: the end of
  *               the view ray, where the air's light is the sky drawn
  *               there, the horizon's colour for a level view)
  *   out         transmittance (0..1 per channel) and inscatter (kcd/m^2,
  *               linear RGB); 0 m: 1 and 0
- * One atmosphere for every path: Hillaire's ray march stopped at the point
- * on the description the sky is drawn with (sky_config.atmosphere_params
- * and turbidity), its light scaled so that at the ray's end it is the sky
- * the path draws (so it meets the gradient's or Preetham's horizon too;
- * the night floor is spread along the ray by optical depth). The light
- * of the ground itself is not in it: the host's ground is the point.
  * The Hillaire and blend paths use their own tables; the others build a
  * transmittance and multiple-scattering table at the first call (about
  * 60 ms on the CPU, once). A call marches three rays (a few us).
- * SKY_ERR_INVALID_ARGUMENT for NULL, a non-finite or zero direction, a
- * negative or NaN distance; SKY_ERR_OUT_OF_MEMORY. */
-typedef struct sky_aerial {
-    float transmittance[3];
-    float inscatter[3];
-} sky_aerial;
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), direction or
+ * out NULL, a direction not finite or zero, a distance negative or NaN;
+ * SKY_ERR_OUT_OF_MEMORY for the tables. After any error out (where not
+ * NULL) is transmittance 1, inscatter 0.
+ * Thread safety: the sky's thread (it keeps the tables in the sky).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_get_aerial_perspective(sky *s, const float direction[3], float distance_m, sky_aerial *out);
-/* The same for the host's own shaders: GLSL source to include after its
- * #version line (GLSL 1.10 to 3.30 and ES 1.00; a NUL-terminated static
- * string) that defines
+/* sky_aerial_glsl: the same for the host's own shaders: GLSL source to
+ * include after its #version line (GLSL 1.10 to 3.30 and ES 1.00; a
+ * NUL-terminated static string, "" in a build without it) that defines
  *     vec3 sky_aerial_apply(vec3 radiance, vec3 direction, float distance_m);
  *     void sky_aerial(vec3 direction, float distance_m,
  *                     out vec3 transmittance, out vec3 inscatter);
  * with the arguments and units of sky_get_aerial_perspective, from a
  * 256 x 64 RGBA8 table (directions about the sun by 16 slices of distance
- * to 50 km and the ray's end; aerial.glsl describes it). It declares the
+ * to 50 km and the ray's end; aerial.glsl describes it), and outside GLSL
+ * ES sky_aerial_froxel_apply (sky_aerial_froxels). It declares the
  * uniforms sky_aerial_table (sampler2D), sky_aerial_up, sky_aerial_sun
- * and sky_aerial_params. */
+ * and sky_aerial_params, which sky_aerial_bind sets.
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.4.0 */
 SKY_API const char *sky_aerial_glsl(void);
-/* Makes the table current for the frame (remade on the CPU when the sun,
- * sliders, observer or world frame moved: 1.3-2.7 ms; sky-bench gives
- * the cost), binds it to texture_unit and sets the uniforms of program
- * (a linked program that includes sky_aerial_glsl; uniforms it optimised
- * away are skipped). Call it after sky_update, before drawing with the
- * program. The host's current program and active texture unit come back;
- * the table stays bound to GL_TEXTURE_2D of texture_unit, which is the
- * point: the host keeps that unit for it while it draws.
- * SKY_ERR_INVALID_ARGUMENT for program 0 or a unit outside the context's;
- * SKY_ERR_GL without a current context. */
+/* sky_aerial_bind: makes the table current for the frame (remade on the
+ * CPU when the sun, sliders, observer or world frame moved: 1.3-2.7 ms;
+ * sky-bench gives the cost), binds it to texture_unit and sets the
+ * uniforms of program (a linked program that includes sky_aerial_glsl;
+ * uniforms it optimised away are skipped). Call it after sky_update,
+ * before drawing with the program.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), program 0, or
+ * a texture_unit below 0 or not below the context's
+ * GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS. SKY_ERR_GL when no context is
+ * current, or the table's texture cannot be made (the first call; a GL
+ * error the host left pending is taken for this). SKY_ERR_OUT_OF_MEMORY
+ * for the table. Not detected: a program that is not a linked program of
+ * the current context returns SKY_OK with no uniform set and glUseProgram's
+ * error left pending for the host.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (only some context is checked). The
+ * host's current program and active texture unit come back, and what the
+ * table's upload binds on unit 0; the table stays bound to GL_TEXTURE_2D
+ * of texture_unit, which is the point: the host keeps that unit for it
+ * while it draws.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit);
-/* The 8-bit output's display stages for a host that takes the sky's HDR
- * output (or lights its own scene in kcd/m^2) and wants it shown as the
- * sky shows itself: GLSL source to include after the #version line (GLSL
- * 1.10 to 3.30 and ES 1.00 with highp; a NUL-terminated static string)
- * that defines
+/* sky_display_glsl: the 8-bit output's display stages for a host that
+ * takes the sky's HDR output (or lights its own scene in kcd/m^2) and
+ * wants it shown as the sky shows itself: GLSL source to include after the
+ * #version line (GLSL 1.10 to 3.30 and ES 1.00 with highp; a
+ * NUL-terminated static string, "" in a build without it) that defines
  *     vec3 sky_display(vec3 radiance_kcd);
  * returning display values 0..1: the automatic exposure with its partial
  * adaptation at the day's end and at night (sky_config.exposure_range),
- * the rods' blue shift of night vision, and the tone map (the hue map; a
- * #define SKY_TONE_MAP_FILMIC or SKY_TONE_MAP_NEUTRAL before it picks
- * the others). The library's own 8-bit frames are these values plus a
- * dither of one step. It declares the uniforms sky_display_exposure,
- * sky_display_rods and sky_display_cd. (docs/DUSK.md) */
+ * the rods' blue shift of night vision (Jensen et al. 2000), and the tone
+ * map (the hue map; a #define SKY_TONE_MAP_FILMIC or SKY_TONE_MAP_NEUTRAL
+ * before it picks the others). The library's own 8-bit frames are these
+ * values plus a dither of one step. It declares the uniforms
+ * sky_display_exposure, sky_display_rods and sky_display_cd, which
+ * sky_display_bind sets. (docs/DUSK.md)
+ * Errors: none.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.5.0 */
 SKY_API const char *sky_display_glsl(void);
-/* Sets those uniforms in program (a linked program that includes
- * sky_display_glsl; uniforms it optimised away are skipped) for the
- * frame: call it after sky_update. The host's current program comes back.
- * SKY_ERR_INVALID_ARGUMENT for NULL or program 0; SKY_ERR_GL without a
- * current context. */
+/* sky_display_bind: sets those uniforms in program (a linked program that
+ * includes sky_display_glsl; uniforms it optimised away are skipped) for
+ * the sky's current frame: call it after sky_update, before drawing with
+ * the program.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message) or program 0;
+ * SKY_ERR_GL when no context is current. Not detected: a program that is
+ * not a linked program of the current context returns SKY_OK with no
+ * uniform set and glUseProgram's error left pending for the host.
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (only some context is checked). The
+ * host's current program and active texture unit come back.
+ * Since: 0.5.0 */
 SKY_API sky_result sky_display_bind(sky *s, unsigned program);
-/* Hillaire's froxel volume (Hillaire 2020 sec. 5.4; Unreal's aerial
- * perspective table), CORE33 on the hillaire and blend paths: the same
- * air for one camera (view and proj as sky_draw takes them), marched on
- * the GPU into a 32 x 32 x 32 RGBA16F GL_TEXTURE_3D that *texture names
- * (the library's; valid until the next call or sky_destroy): x and y
- * across the viewport, slice k the air between the observer and
- * (k + 1) km along the view (32 km in all): RGB the in-scattered light
- * (kcd/m^2), A the mean transmittance of the three channels. The
- * physical march alone: no path's drawn-sky scale, night floor or
- * eclipse. sky_aerial_glsl's sky_aerial_froxel_apply(volume, radiance,
- * screen_uv, distance_m) reads it (the first km from the identity,
- * beyond 32 km the last slice). Rebuild it when the camera turns or the
- * sun moves; sky-bench gives its cost. The host's framebuffer, program,
- * viewport and texture bindings come back. SKY_ERR_UNSUPPORTED elsewhere
- * (sky_aerial_bind serves every path and profile);
- * SKY_ERR_INVALID_ARGUMENT for NULL or a degenerate camera. */
+/* sky_aerial_froxels: Hillaire's froxel volume (Hillaire 2020 sec. 5.4;
+ * Unreal's aerial perspective table), CORE33 on the hillaire and blend
+ * paths: the same air for one camera (view and proj as sky_draw takes
+ * them), marched on the GPU into a 32 x 32 x 32 RGBA16F GL_TEXTURE_3D that
+ * *texture names (the library's; valid until the next call or
+ * sky_destroy): x and y across the viewport, slice k the air between the
+ * observer and (k + 1) km along the view (32 km in all): RGB the
+ * in-scattered light (kcd/m^2), A the mean transmittance of the three
+ * channels. The physical march alone: no path's drawn-sky scale, night
+ * floor or eclipse. sky_aerial_glsl's sky_aerial_froxel_apply(volume,
+ * radiance, screen_uv, distance_m) reads it (the first km from the
+ * identity, beyond 32 km the last slice). Rebuild it when the camera turns
+ * or the sun moves; sky-bench gives its cost.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), view, proj or
+ * texture NULL, or a camera that is not finite or is degenerate.
+ * SKY_ERR_UNSUPPORTED outside CORE33's HILLAIRE and BLEND paths
+ * (sky_aerial_bind serves every path and profile). SKY_ERR_GL when no
+ * context is current or the build fails (the message says why; the
+ * volume's texture is made at the first call, and a GL error the host
+ * left pending then is taken for the build's). *texture is 0 after any
+ * error (where texture is not NULL).
+ * Thread safety: the sky's thread.
+ * GL: needs the sky's context current (only some context is checked). The
+ * host's framebuffers, program, viewport, vertex array and texture bindings
+ * (unit 0's 3D one included) come back.
+ * Since: 0.4.0 */
 SKY_API sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16], unsigned *texture);
 
 #ifdef __cplusplus

@@ -20,7 +20,9 @@
 
 struct sky {
     sky_core core;                        /* what every room reads          */
-    void *layer_state[SKY_LAYER_COUNT];   /* each layer's own, by its slot  */
+    void **layer_state;                   /* each layer's own, by its stats
+                                             index (sky_layer_count())       */
+    sky_layer_stats *layer_stats;         /* this draw's, by stats index     */
     sky_dome_snippets dome_snippets;      /* of the enabled layers          */
     GLuint vao;                           /* CORE33 only                    */
     char error[256];
@@ -33,6 +35,23 @@ struct sky {
     sky_aerial_state aerial;              /* sky_get_aerial_perspective's and
                                              sky_aerial_bind's                */
 };
+
+/* layers.c: the layer table, back to front, and a row's stats index (its
+ * class's slot, or for SKY_LAYER_NEXT the next after SKY_LAYER_COUNT in
+ * the table's order). */
+extern const sky_layer_class *const sky_layer_table[];
+extern const int sky_layer_table_size;
+int sky_layer_table_index(int row);
+
+/* Runs its body for each layer this sky has (those its features left out
+ * have no state), in the table's order, with L its class, index its stats
+ * index and state its state; `continue` goes on to the next layer. */
+#define FOR_EACH_LAYER(s, L, index, state)                                                           \
+    for (int layer_row_ = 0; layer_row_ < sky_layer_table_size; layer_row_++)                      \
+        for (const sky_layer_class *L = sky_layer_table[layer_row_]; L; L = NULL)                    \
+            for (int index = sky_layer_table_index(layer_row_), layer_once_ = 1; layer_once_;       \
+                 layer_once_ = 0)                                                                    \
+                for (void *state = (s)->layer_state[index]; state; state = NULL)
 
 /* sky.c: writes the message sky_last_error returns, and returns code. */
 sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)

@@ -21,7 +21,7 @@ static const sky_uniform_desc starmap_uniforms[] = {
     SKY_UL("u_starmap_scale", SKY_U_F1, starmap_scale, 1u),
 };
 static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
-                                         SKY_UNIFORM_COUNT(starmap_uniforms), NULL};
+                                         SKY_UNIFORM_COUNT(starmap_uniforms), NULL, NULL};
 
 /* The map ships as an equirectangular image (u = right ascension / 2 pi,
  * v = 0.5 - declination / pi); the GPU gets it as a cube map, so a pixel
@@ -111,6 +111,7 @@ static int starmap_visible(const sky_core *s, const void *state)
 }
 
 const sky_layer_class sky_starmap_layer = {
+    .name = "starmap",
     .slot = SKY_LAYER_STARMAP,
     .feature = SKY_STARMAP,
     .dome_role = SKY_DOME_NIGHT,

@@ -9,6 +9,7 @@
 #include "catalog.h"
 #include "exposure.h"
 #include "layer.h"
+#include "points.h"
 #include "atmosphere/atmosphere.h"
 
 #include <math.h>
@@ -16,22 +17,7 @@
 #include <string.h>
 
 #define STAR_FLOATS SKY_POINT_FLOATS /* a_pos (index, 0), a_dir (3), a_color (rgb, V) */
-/* Illuminance of a V = 0 star (layer.h), in klx so that luminance comes
- * out in kcd/m^2. */
-#define STAR_E0_KLX SKY_V0_ILLUMINANCE_KLX
-/* Mueller's minimum billboard radius, sqrt(2) pixels (eq. 9). */
-#define STAR_Q_PX 1.41421356
-/* Glare radius coefficient c_k in pixels: Sirius at m_a = 4 gets ~17 px. */
-#define STAR_GLARE_CK_PX 1.5
-/* Integral of T(l) = 2l^3 - 3l^2 + 1 over the unit disc: 2 pi (2/5 - 3/4 +
- * 1/2) = 0.3 pi. Dividing by it makes a star's light add up to its
- * illuminance, whatever its pixel size. */
-#define STAR_PSF_INTEGRAL (0.3 * SKY_PI)
-/* The scintillation clock (stars.frag): RATE new random values a second,
- * counted modulo PERIOD so the float uniform keeps its fraction after
- * years of running. */
-#define SCINTILLATION_RATE 10.0
-#define SCINTILLATION_PERIOD 997.0
+
 /* The buffer holds the stars in cells of about equal area, STAR_BANDS in
  * sin(dec) by STAR_COLUMNS in right ascension (about 8 stars each, 4 to
  * 12 degrees across), brightest first within each; a draw takes, through
@@ -43,10 +29,6 @@
 #define STAR_BANDS 24
 #define STAR_COLUMNS 48
 #define STAR_CELLS (STAR_BANDS * STAR_COLUMNS)
-/* what moves a star from its cell on the way to the screen: refraction
- * (under 0.6 degrees) and aberration (20"), in radians, with margin */
-#define STAR_CELL_MARGIN (1.0 * SKY_PI / 180.0)
-
 typedef struct star_cell {
     int first, count;  /* its stars in the buffer                        */
     float dir[3];      /* their mean direction, J2000                   */
@@ -72,7 +54,7 @@ typedef struct stars_state {
 } stars_state;
 
 static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars)};
-static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL};
+static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL, NULL};
 
 /* A star's place in the buffer: its cell, brightest first within it. */
 typedef struct star_place {
@@ -211,11 +193,6 @@ static void stars_destroy(sky_core *s, void *state)
     sky_catalog_free(&st->catalog);
 }
 
-double sky_scintillation_advance(double phase, double dt)
-{
-    return sky_phase_advance(phase, SCINTILLATION_RATE / SCINTILLATION_PERIOD, dt);
-}
-
 static void stars_advance(sky_core *s, void *state, double dt)
 {
     stars_state *st = state;
@@ -230,70 +207,6 @@ static void stars_frame(sky_core *s, void *state)
 {
     (void)state;
     sky_j2000_to_horizon_mat4(&s->astro, 0, s->frame.stars.rot);
-}
-
-double sky_point_limit(const sky_core *s)
-{
-    /* the sky at the zenith as the paths' CPU twin has it (after every
-     * layer's frame: eclipse, light pollution and night glows included) */
-    const double up[3] = {0.0, 1.0, 0.0};
-    double z[3];
-    sky_atmosphere_radiance(s, up, z);
-    return sky_naked_eye_limit(0.2126 * z[0] + 0.7152 * z[1] + 0.0722 * z[2]);
-}
-
-void sky_point_view(sky_core *s, float point_max, double scintillation, sky_point_frame *p)
-{
-    const sky_frame *f = &s->frame;
-    const sky_astro *a = &s->astro;
-    float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
-    p->size.q = (float)STAR_Q_PX;
-    p->size.glare_ck = (float)STAR_GLARE_CK_PX;
-    p->size.max_radius = 0.5f * point_max - 1.0f;
-    p->size.control_magnitude = m_a;
-    p->pressure[0] = (float)a->pressure_factor;
-    p->pressure[1] = f->naked_eye_limit;
-    p->pressure[2] = 0.0f;
-    /* eq. 10 in physical units: peak luminance of a V = 0 point on a PSF
-     * of radius q pixels (pixel_angle radians each). No day-night fade:
-     * a point's light is added to the sky as it is, and what the naked eye
-     * would not see against the sky is left out (pressure[1]). */
-    double r = STAR_Q_PX * f->pixel_angle;
-    double peak = STAR_E0_KLX * pow(2.512, m_a - 4.0) / (STAR_PSF_INTEGRAL * r * r);
-    p->flux_scale = (float)(peak * f->star_local_gain);
-    /* the air above the observer, as the atmosphere stage has it */
-    for (int i = 0; i < 3; i++) {
-        p->extinction[i] = f->night_depth[i];
-        p->shell[i] = f->night_shell[i];
-    }
-    /* The moon hides what is behind its disc, whatever the sky's
-     * brightness (the disc itself only adds light by day, moon.c, so it
-     * cannot hide them): the test is in true directions, at the disc's
-     * drawn size. */
-    p->occulter[0] = p->occulter[1] = p->occulter[2] = 0.0f;
-    p->occulter[3] = 2.0f;
-    if (s->features & SKY_MOON) {
-        for (int i = 0; i < 3; i++) p->occulter[i] = (float)a->moon.dir_geometric[i];
-        p->occulter[3] = (float)cos(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
-    }
-    /* the scintillation clock, in random values */
-    p->seed = (float)(SCINTILLATION_PERIOD * scintillation);
-}
-
-void sky_points_draw(sky_core *s, const sky_program *program, GLuint buffer, GLuint elements, int count)
-{
-    static const sky_gl_layout layout = {STAR_FLOATS * sizeof(float),
-                                         {{2, GL_FLOAT, GL_FALSE, 0},
-                                          {3, GL_FLOAT, GL_FALSE, 2 * sizeof(float)},
-                                          {4, GL_FLOAT, GL_FALSE, 5 * sizeof(float)}}};
-    sky_program_apply(s, program);
-    sky_gl_vertices_bind(s, buffer, elements, &layout);
-    sky_gl_program_point_size(s, 1);
-    if (elements)
-        sky_gl_draw_elements(s, GL_POINTS, 0, count);
-    else
-        sky_gl_draw_arrays(s, GL_POINTS, 0, count);
-    sky_gl_program_point_size(s, 0);
 }
 
 /* Per draw, from the observer's astronomy and the camera. */
@@ -339,28 +252,6 @@ static int in_reach(const float *first, size_t stride, int n, float limit)
     return lo;
 }
 
-/* The radius in pixels of a star's point (stars.vert's k, Mueller eq. 9):
- * q, or for a star brighter than the control magnitude its glare's
- * c_k sqrt(I_G); at most the largest point. */
-static double point_radius(const sky_point_frame *p, double vmag)
-{
-    double glare = pow(2.512, p->size.control_magnitude - vmag - 0.167) - 1.0;
-    return fmin(fmax(p->size.q, p->size.glare_ck * sqrt(fmax(glare, 0.0))), p->size.max_radius);
-}
-
-/* The margin around a point of magnitude vmag in radians: what moves it
- * from its catalogue place on the way to the screen, and its radius. */
-static double point_margin(const sky_frame *f, const sky_point_frame *p, double vmag)
-{
-    return STAR_CELL_MARGIN + (point_radius(p, vmag) + 1.0) * f->pixel_angle;
-}
-
-int sky_point_in_view(const sky_core *s, const sky_point_frame *p, const double d[3], double vmag)
-{
-    sky_view_bounds b = sky_camera_bounds(&s->frame);
-    return sky_camera_inside_by(&b, d) >= -point_margin(&s->frame, p, vmag);
-}
-
 /* The draw's index list (STAR_CELLS): the stars the eye reaches in the
  * cells that reach above the horizon and, with a perspective camera, into
  * the view (a cone of the cell's radius and the margin against each side
@@ -379,7 +270,7 @@ static int stars_select(const sky_core *s, stars_state *st)
      * star's bounds every cell's for a first test, then the cell's own
      * (its brightest star's) for the rest. Angles stand in for their
      * sines: never smaller, so nothing in view is left out. */
-    double widest = point_margin(f, pf, st->vmag_least);
+    double widest = sky_point_margin(f, pf, st->vmag_least);
     for (int c = 0; c < STAR_CELLS; c++) {
         const star_cell *cell = &st->cells[c];
         if (!cell->count) continue;
@@ -387,7 +278,7 @@ static int stars_select(const sky_core *s, stars_state *st)
         for (int i = 0; i < 3; i++) d[i] = rot[i] * cell->dir[0] + rot[4 + i] * cell->dir[1] + rot[8 + i] * cell->dir[2];
         double inside = sky_camera_inside_by(&b, d);
         if (inside < -(cell->radius + widest)) continue;
-        double margin = point_margin(f, pf, st->vmag[cell->first]);
+        double margin = sky_point_margin(f, pf, st->vmag[cell->first]);
         if (inside < -(cell->radius + margin)) continue;
         int count = in_reach(st->vmag + cell->first, sizeof(float), cell->count, pf->pressure[1]);
         int whole = inside >= cell->radius; /* every star inside */
@@ -438,6 +329,7 @@ void sky_stars_draw_whole(void *state, int whole) { ((stars_state *)state)->whol
 /* Catalogue stars, added over the dome: their light dimmed by the
  * atmosphere (extinction in the shader) and hidden by the clouds. */
 const sky_layer_class sky_stars_layer = {
+    .name = "stars",
     .slot = SKY_LAYER_STARS,
     .feature = SKY_STARS,
     .state_size = sizeof(stars_state),

@@ -55,7 +55,7 @@ static const sky_uniform_desc sun_uniforms[] = {
     SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
-static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL};
+static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL, NULL};
 
 typedef struct sun_state {
     sky_program program;
@@ -137,6 +137,7 @@ static size_t sun_buffer_bytes(const sky_core *s, const void *state)
 /* The sun quad, added over the dome (it hides behind the clouds by
  * evaluating them itself). */
 const sky_layer_class sky_sun_layer = {
+    .name = "sun",
     .slot = SKY_LAYER_SUN,
     .feature = SKY_SUN,
     .state_size = sizeof(sun_state),

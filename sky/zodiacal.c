@@ -32,7 +32,6 @@
  * and the sine of the latitude, 0..1, down. */
 #define ZODI_TEX_W 64
 #define ZODI_TEX_H 32
-_Static_assert(ZODI_TEX_W * ZODI_TEX_H == SKY_ZODIACAL_TEXELS, "the core keeps the texture's texels");
 #define ZODI_UNITS_PER_S10 1.28
 #define ZODI_FLOOR 60.0   /* the encoding's 0 */
 #define ZODI_RANGE 200.0  /* and its 255: 12 000 */
@@ -60,13 +59,21 @@ static const double leinert_table17[ZODI_ROWS][ZODI_COLS] = {
     {230, 212, 195, 178, 163, 148, 134, 105, 83, 72, 77},
 };
 
+typedef struct zodiacal_state {
+    int texture;       /* its texture (registered at create)               */
+    float rot[16];     /* horizon -> ecliptic of date, +x at the sun        */
+    float light[4];    /* rgb: kcd/m^2 at the encoding's 0; a: ln range     */
+    unsigned char texels[ZODI_TEX_W * ZODI_TEX_H]; /* as the texture holds
+                          them, for the CPU twin                           */
+} zodiacal_state;
+
 static const sky_uniform_desc zodiacal_uniforms[] = {
-    SKY_UT("u_zodiacal_tex", SKY_TEX_ZODIACAL),
-    SKY_UF("u_zodiacal_rot", SKY_U_M4, zodiacal_rot),
-    SKY_UL("u_zodiacal", SKY_U_F4, zodiacal, SKY_RGB),
+    SKY_UTS("u_zodiacal_tex", zodiacal_state, texture),
+    SKY_US("u_zodiacal_rot", SKY_U_M4, zodiacal_state, rot),
+    SKY_USL("u_zodiacal", SKY_U_F4, zodiacal_state, light, SKY_RGB),
 };
 static const sky_snippet zodiacal_snippet = {"SKY_HAS_ZODIACAL", "zodiacal.glsl", zodiacal_uniforms,
-                                          SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL};
+                                             SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL, "sky_zodiacal"};
 
 /* The table at (longitude from the sun, latitude) in degrees, bilinear
  * over its rows and columns. */
@@ -83,8 +90,8 @@ static double table_at(double lon, double lat)
 /* Texel (i, j) of the texture: the table where the pixel's u = (i + 1/2)
  * / W and sine of the latitude (j + 1/2) / H, as an 8-bit logarithm over
  * the encoding's range. The pixel's x (= cos latitude cos lambda) comes
- * back as 2 u^2 - 1. Made once at create into the core, whose copy the CPU
- * twin reads: it sees what the GPU interpolates. */
+ * back as 2 u^2 - 1. Made once at create into the state, whose copy the
+ * CPU twin reads: it sees what the GPU interpolates. */
 static unsigned char make_texel(int i, int j)
 {
     double u = (i + 0.5) / ZODI_TEX_W, sb = (j + 0.5) / ZODI_TEX_H, cx = 2.0 * u * u - 1.0;
@@ -126,107 +133,117 @@ static void floor_colour(double rgb[3])
     for (int i = 0; i < 3; i++) rgb[i] = per_unit * colour[i] * ZODI_FLOOR;
 }
 
-/* The core's copy of texel (i, j), clamped to the edges as GL does. */
-static double texel(const sky_core *s, int i, int j)
+/* The state's copy of texel (i, j), clamped to the edges as GL does. */
+static double texel(const zodiacal_state *st, int i, int j)
 {
     i = i < 0 ? 0 : (i >= ZODI_TEX_W ? ZODI_TEX_W - 1 : i);
     j = j < 0 ? 0 : (j >= ZODI_TEX_H ? ZODI_TEX_H - 1 : j);
-    return s->zodiacal_texels[j * ZODI_TEX_W + i];
+    return st->texels[j * ZODI_TEX_W + i];
 }
 
 /* The texture for a pixel's x and |z| in the frame, as GL's bilinear
  * filter with clamped edges reads it, decoded: the light over the
  * encoding's 0. */
-static double texture_at(const sky_core *s, double cx, double sb)
+static double texture_at(const zodiacal_state *st, double cx, double sb)
 {
     double x = sqrt(fmax(0.5 + 0.5 * cx, 0.0)) * ZODI_TEX_W - 0.5, y = sb * ZODI_TEX_H - 0.5;
     int i0 = (int)floor(x), j0 = (int)floor(y);
     double fx = x - i0, fy = y - j0;
-    double v = (texel(s, i0, j0) * (1 - fx) + texel(s, i0 + 1, j0) * fx) * (1 - fy) +
-               (texel(s, i0, j0 + 1) * (1 - fx) + texel(s, i0 + 1, j0 + 1) * fx) * fy;
+    double v = (texel(st, i0, j0) * (1 - fx) + texel(st, i0 + 1, j0) * fx) * (1 - fy) +
+               (texel(st, i0, j0 + 1) * (1 - fx) + texel(st, i0 + 1, j0 + 1) * fx) * fy;
     return exp(v / 255.0 * log(ZODI_RANGE));
 }
 
 /* zodiacal.glsl's sky_zodiacal: the light from direction d for a
  * rotation m (row-major) and the light at the encoding's 0. */
-static void zodiacal_in(const sky_core *s, const double m[9], const double floor_rgb[3], const double d[3],
+static void zodiacal_in(const zodiacal_state *st, const double m[9], const double floor_rgb[3], const double d[3],
                         double rgb[3])
 {
     rgb[0] = rgb[1] = rgb[2] = 0.0;
-    if (!(s->features & SKY_ZODIACAL) || d[1] <= 0.0) return;
+    if (d[1] <= 0.0) return;
     double e[3];
     for (int r = 0; r < 3; r++) e[r] = m[r * 3] * d[0] + m[r * 3 + 1] * d[1] + m[r * 3 + 2] * d[2];
-    double over = texture_at(s, sky_clampd(e[0], -1.0, 1.0), sky_clampd(fabs(e[2]), 0.0, 1.0));
+    double over = texture_at(st, sky_clampd(e[0], -1.0, 1.0), sky_clampd(fabs(e[2]), 0.0, 1.0));
     for (int i = 0; i < 3; i++) rgb[i] = over * floor_rgb[i];
 }
 
 /* For the atmosphere stage, before this layer's frame: from the astronomy. */
-void sky_zodiacal_zenith(const sky_core *s, double rgb[3])
+static void zodiacal_zenith(const sky_core *s, const void *state, double rgb[3])
 {
     double m[9], floor_rgb[3];
     ecliptic_frame(&s->astro, m);
     floor_colour(floor_rgb);
     const double up[3] = {0.0, 1.0, 0.0};
-    zodiacal_in(s, m, floor_rgb, up, rgb);
+    zodiacal_in(state, m, floor_rgb, up, rgb);
 }
 
 /* After it: the frame's rotation and scale, as the shader has them. */
-void sky_zodiacal_at(const sky_core *s, const double d[3], double rgb[3])
+static void zodiacal_at(const sky_core *s, const void *state, const double d[3], double rgb[3])
 {
-    const sky_frame *f = &s->frame;
-    double m[9], floor_rgb[3] = {f->zodiacal[0], f->zodiacal[1], f->zodiacal[2]};
+    (void)s;
+    const zodiacal_state *st = state;
+    double m[9], floor_rgb[3] = {st->light[0], st->light[1], st->light[2]};
     for (int row = 0; row < 3; row++)
-        for (int c = 0; c < 3; c++) m[row * 3 + c] = f->zodiacal_rot[c * 4 + row]; /* column-major mat4 */
-    zodiacal_in(s, m, floor_rgb, d, rgb);
+        for (int c = 0; c < 3; c++) m[row * 3 + c] = st->rot[c * 4 + row]; /* column-major mat4 */
+    zodiacal_in(st, m, floor_rgb, d, rgb);
 }
+
+const float *sky_zodiacal_rotation(const void *zodiacal_state_) { return ((const zodiacal_state *)zodiacal_state_)->rot; }
 
 static int zodiacal_create(sky_core *s, void *state, char *err, size_t err_len)
 {
-    (void)state;
+    zodiacal_state *st = state;
     unsigned char texels[ZODI_TEX_W * ZODI_TEX_H * 4];
     for (int row = 0; row < ZODI_TEX_H; row++)
         for (int col = 0; col < ZODI_TEX_W; col++) {
             unsigned char v = make_texel(col, row);
-            s->zodiacal_texels[row * ZODI_TEX_W + col] = v;
+            st->texels[row * ZODI_TEX_W + col] = v;
             unsigned char *p = texels + 4 * (row * ZODI_TEX_W + col);
             p[0] = p[1] = p[2] = v;
             p[3] = 255;
         }
-    return sky_texture_create(s, SKY_TEX_ZODIACAL, SKY_LAYER_ZODIACAL, texels, 4, ZODI_TEX_W, ZODI_TEX_H, 0, err,
-                              err_len);
+    st->texture = sky_texture_register(s);
+    if (st->texture < 0 || sky_snippet_bind(s, &zodiacal_snippet, state)) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
+    }
+    return sky_texture_create(s, (sky_texture_id)st->texture, s->creating_layer, texels, 4, ZODI_TEX_W,
+                              ZODI_TEX_H, 0, err, err_len);
 }
 
 static void zodiacal_frame(sky_core *s, void *state)
 {
-    (void)state;
-    sky_frame *f = &s->frame;
+    zodiacal_state *st = state;
     double m[9], floor_rgb[3];
     ecliptic_frame(&s->astro, m);
-    memset(f->zodiacal_rot, 0, sizeof f->zodiacal_rot);
+    memset(st->rot, 0, sizeof st->rot);
     for (int row = 0; row < 3; row++)
-        for (int c = 0; c < 3; c++) f->zodiacal_rot[c * 4 + row] = (float)m[row * 3 + c];
-    f->zodiacal_rot[15] = 1.0f;
+        for (int c = 0; c < 3; c++) st->rot[c * 4 + row] = (float)m[row * 3 + c];
+    st->rot[15] = 1.0f;
     floor_colour(floor_rgb);
-    for (int i = 0; i < 3; i++) f->zodiacal[i] = (float)floor_rgb[i];
-    f->zodiacal[3] = (float)log(ZODI_RANGE);
+    for (int i = 0; i < 3; i++) st->light[i] = (float)floor_rgb[i];
+    st->light[3] = (float)log(ZODI_RANGE);
 }
 
 /* In the night variant while its faintest, the ecliptic pole's 60 S10,
  * would add a quarter of an 8-bit step */
 static int zodiacal_visible(const sky_core *s, const void *state)
 {
-    (void)state;
-    const sky_frame *f = &s->frame;
-    double pole = 77.0 / ZODI_FLOOR * (0.2126 * f->zodiacal[0] + 0.7152 * f->zodiacal[1] + 0.0722 * f->zodiacal[2]);
-    return pole * f->exposure >= 1.0 / 1024.0;
+    const zodiacal_state *st = state;
+    double pole = 77.0 / ZODI_FLOOR * (0.2126 * st->light[0] + 0.7152 * st->light[1] + 0.0722 * st->light[2]);
+    return pole * s->frame.exposure >= 1.0 / 1024.0;
 }
 
 const sky_layer_class sky_zodiacal_layer = {
+    .name = "zodiacal",
     .slot = SKY_LAYER_ZODIACAL,
     .feature = SKY_ZODIACAL,
+    .state_size = sizeof(zodiacal_state),
     .dome_role = SKY_DOME_NIGHT,
     .dome_snippet = &zodiacal_snippet,
     .create = zodiacal_create,
     .frame = zodiacal_frame,
     .visible = zodiacal_visible,
+    .glow_zenith = zodiacal_zenith,
+    .glow_at = zodiacal_at,
 };

@@ -26,7 +26,7 @@ static const sky_uniform_desc atmosphere_uniforms[] = {
 };
 /* in both stages: pure arithmetic, which a path evaluated per vertex needs */
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
-                                            SKY_UNIFORM_COUNT(atmosphere_uniforms), "atmosphere.glsl"};
+                                            SKY_UNIFORM_COUNT(atmosphere_uniforms), "atmosphere.glsl", NULL};
 
 /* A physical path's sky in a few numbers: the mean luminance over the
  * upper hemisphere, the irradiance on an upward surface and the horizon's
@@ -54,7 +54,7 @@ static const sky_uniform_desc blend_uniforms[] = {
     SKY_UF("u_blend_weight", SKY_U_F1, blend_weight),
 };
 const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
-                                       SKY_UNIFORM_COUNT(blend_uniforms), NULL};
+                                       SKY_UNIFORM_COUNT(blend_uniforms), NULL, NULL};
 
 sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested)
 {
@@ -255,11 +255,14 @@ static void night_frame(sky_core *s)
                               sky_mag_arcsec2_to_kcd(DARK_SKY_ZENITH_MAG), 0.0);
     sky_star_color(ARTIFICIAL_BV, glow);
     for (int i = 0; i < 3; i++) f->artificial_glow[i] = (float)(artificial * glow[i]);
-    double airglow[3], zodiacal[3], floor_rgb[3] = {f->night_floor[0], f->night_floor[1], f->night_floor[2]};
-    sky_airglow_zenith(s, airglow);
-    sky_zodiacal_zenith(s, zodiacal);
+    double glows[3] = {0.0, 0.0, 0.0}, floor_rgb[3] = {f->night_floor[0], f->night_floor[1], f->night_floor[2]};
+    for (int g = 0; g < s->glow_count; g++) {
+        double rgb[3];
+        s->glows[g].layer->glow_zenith(s, s->glows[g].state, rgb);
+        for (int i = 0; i < 3; i++) glows[i] += rgb[i];
+    }
     double through[3];
-    for (int i = 0; i < 3; i++) through[i] = (airglow[i] + zodiacal[i]) * exp(-depth[i]);
+    for (int i = 0; i < 3; i++) through[i] = glows[i] * exp(-depth[i]);
     f->night_luminance = (float)(luminance(floor_rgb) + luminance(through) + artificial + moon_sky);
     f->moon_sky_luminance = (float)moon_sky;
 }
@@ -345,13 +348,17 @@ void sky_atmosphere_radiance(const sky_core *s, const double d[3], double rgb[3]
     double e = 1.0 - sky_clampd(d[1], 0.0, 1.0), e8 = pow(e, 8.0), y = 1.0 - e;
     int polluted = f->artificial_glow[0] > 0.0f || f->artificial_glow[1] > 0.0f || f->artificial_glow[2] > 0.0f;
     double artificial = polluted ? pow(1.15 / (y + 0.15), 0.7) : 0.0;
-    double glow[3], zodiacal[3], t[3] = {0.0, 0.0, 0.0};
-    sky_airglow_at(s, d, glow);
-    sky_zodiacal_at(s, d, zodiacal);
-    if (glow[0] + glow[1] + glow[2] + zodiacal[0] + zodiacal[1] + zodiacal[2] > 0.0) sky_night_extinction(s, d, t);
+    /* the night glows (the layers with glow functions), through the air */
+    double glow[3] = {0.0, 0.0, 0.0}, t[3] = {0.0, 0.0, 0.0};
+    for (int g = 0; g < s->glow_count; g++) {
+        double one[3];
+        s->glows[g].layer->glow_at(s, s->glows[g].state, d, one);
+        for (int i = 0; i < 3; i++) glow[i] += one[i];
+    }
+    if (glow[0] + glow[1] + glow[2] > 0.0) sky_night_extinction(s, d, t);
     for (int i = 0; i < 3; i++)
         rgb[i] = rgb[i] * (f->eclipse_sky[0] + f->eclipse_sky[1 + i] * e8) + f->night_floor[i] * (2.0 - y) +
-                 f->artificial_glow[i] * artificial + (glow[i] + zodiacal[i]) * t[i];
+                 f->artificial_glow[i] * artificial + glow[i] * t[i];
 }
 
 /* A physical path's sky summarised from its own CPU twin: Gauss-Legendre

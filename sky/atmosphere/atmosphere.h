@@ -22,8 +22,9 @@ void sky_atmosphere_frame(sky_core *s);
 /* Before the dome is drawn: a sky-view table rebuilt since the last draw
  * goes to the GPU. */
 void sky_atmosphere_upload(sky_core *s);
-/* The snippets of the selected path (up to 5, in order; encoded_tables:
- * COMPAT20's 8-bit sky-view table). */
+/* The snippets of the selected path (at most SKY_ATMOSPHERE_SNIPPETS, in
+ * order; encoded_tables: COMPAT20's 8-bit sky-view table). */
+#define SKY_ATMOSPHERE_SNIPPETS 5
 int sky_atmosphere_snippets(sky_atmosphere_path path, sky_atmosphere_path blend_partner, int encoded_tables,
                             const sky_snippet **out);
 /* BLEND's analytic path: cfg.blend_partner with 0 resolved (RAYLEIGH) */

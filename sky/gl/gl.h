@@ -18,24 +18,33 @@ typedef enum sky_uniform_type {
     SKY_U_F1V /* a float array: its element count in the row's count */
 } sky_uniform_type;
 
-/* One row per uniform: the GLSL name, its type, and where its value lives
- * (an offset into sky_frame, or a texture id). Each room owns its rows; a
+/* One row per uniform: the GLSL name, its type, and where its value lives:
+ * an offset into sky_frame, or into the state of the layer that owns the
+ * snippet (in_state: a layer keeps its uniforms' values in its own state,
+ * bound to its snippets with sky_snippet_bind), or a texture id (for
+ * SKY_U_TEX: the id itself, or with in_state the offset of an int holding
+ * one, for a texture registered at run time). Each room owns its rows; a
  * program built from several snippets sets the rows of each. */
 typedef struct sky_uniform_desc {
     const char *name;
     sky_uniform_type type;
-    size_t offset;           /* into sky_frame; texture id for SKY_U_TEX      */
+    size_t offset;           /* into sky_frame or the state; texture id      */
     int count;               /* SKY_U_F1V: elements                          */
     unsigned light;          /* components (bit i: component i) that are light
                                 in kcd/m^2, sent times sky_frame.light_scale */
+    int in_state;            /* offset is into the snippet's bound state      */
 } sky_uniform_desc;
-#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field), 1, 0 }
+#define SKY_UF(name, type, field) { name, type, offsetof(sky_frame, field), 1, 0, 0 }
 /* a row whose components in mask (SKY_RGB, or 1 << i) are light */
-#define SKY_UL(name, type, field, mask) { name, type, offsetof(sky_frame, field), 1, mask }
+#define SKY_UL(name, type, field, mask) { name, type, offsetof(sky_frame, field), 1, mask, 0 }
 #define SKY_RGB 7u
-#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex), 1, 0 }
+#define SKY_UT(name, tex) { name, SKY_U_TEX, (size_t)(tex), 1, 0, 0 }
+/* rows whose values live in a layer's state (of type state_type) */
+#define SKY_US(name, type, state_type, field) { name, type, offsetof(state_type, field), 1, 0, 1 }
+#define SKY_USL(name, type, state_type, field, mask) { name, type, offsetof(state_type, field), 1, mask, 1 }
+#define SKY_UTS(name, state_type, field) { name, SKY_U_TEX, offsetof(state_type, field), 1, 0, 1 }
 #define SKY_UFV(name, field) \
-    { name, SKY_U_F1V, offsetof(sky_frame, field), (int)(sizeof(((sky_frame *)0)->field) / sizeof(float)), 0 }
+    { name, SKY_U_F1V, offsetof(sky_frame, field), (int)(sizeof(((sky_frame *)0)->field) / sizeof(float)), 0, 0 }
 #define SKY_UNIFORM_COUNT(rows) ((int)(sizeof rows / sizeof rows[0]))
 
 /* A snippet: the GLSL functions of one phenomenon plus its uniform rows.
@@ -49,18 +58,28 @@ typedef struct sky_snippet {
     const sky_uniform_desc *uniforms;
     int uniform_count;
     const char *vertex_source; /* NULL: fragment stage only                    */
+    /* A night glow's GLSL function, vec3 NAME(vec3 d): its light above the
+     * air from horizon direction d. A program with such snippets gets
+     * sky_night_glows(d), their sum in the snippets' order, and the define
+     * SKY_HAS_NIGHT_GLOWS (dome.frag dims the sum by the air): a new glow
+     * touches no other shader. NULL: not one. */
+    const char *glow_function;
 } sky_snippet;
 
-/* a program's snippets: the dome's night with every layer and the blend
- * takes 9 (the atmosphere's 5, the clouds, two night layers, the image) */
-#define SKY_MAX_SNIPPETS 12
-#define SKY_MAX_UNIFORMS 64
+/* A program and its uniform rows (as many as its snippets bring: no cap),
+ * each with its location and the state its values are read from (NULL:
+ * sky_frame). */
 typedef struct sky_program {
     GLuint id;
     int uniform_count;
-    const sky_uniform_desc *uniforms[SKY_MAX_UNIFORMS];
-    GLint locations[SKY_MAX_UNIFORMS];
+    const sky_uniform_desc **uniforms;
+    const void **states;
+    GLint *locations;
 } sky_program;
+/* A snippet's rows marked in_state read from state in every program built
+ * with the snippet after this call (a layer binds its snippets in its
+ * create, before building). -1 when out of memory. */
+int sky_snippet_bind(sky_core *s, const sky_snippet *snippet, const void *state);
 
 /* The common prologue's uniforms (exposure, camera, sun): every program. */
 extern const sky_snippet sky_common_snippet;
@@ -129,6 +148,10 @@ int sky_texture_create_volume(sky_core *s, sky_texture_id id, sky_layer owner, i
  * float's 65504 kcd/m^2). */
 int sky_texture_create_cube(sky_core *s, sky_texture_id id, sky_layer owner, const unsigned char *faces, int size,
                             int is_float, char *err, size_t err_len);
+/* A texture id beyond sky_texture_id's, for a layer's own texture (kept
+ * in its state, read by SKY_UTS rows): made at create, freed with the sky.
+ * -1 when out of memory. */
+int sky_texture_register(sky_core *s);
 /* A new size for such an image; on failure the old one stays. */
 int sky_texture_resize_image(sky_core *s, sky_texture_id id, int w, int h);
 void sky_texture_destroy(sky_core *s, sky_texture_id id);

@@ -27,7 +27,7 @@ static const sky_uniform_desc common_uniforms[] = {
 };
 /* (display.glsl, the display stages hosts can include too, comes first) */
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
-                                        SKY_UNIFORM_COUNT(common_uniforms), NULL};
+                                        SKY_UNIFORM_COUNT(common_uniforms), NULL, NULL};
 
 
 /* The version prologue: one GLSL source per stage serves every profile.
@@ -99,31 +99,117 @@ static const char *blob_text(const char *name, char *err, size_t err_len)
     return b ? (const char *)b->data : NULL;
 }
 
+int sky_snippet_bind(sky_core *s, const sky_snippet *snippet, const void *state)
+{
+    if (s->snippet_binding_count == s->snippet_binding_capacity) {
+        int capacity = s->snippet_binding_capacity ? 2 * s->snippet_binding_capacity : 16;
+        sky_snippet_binding *grown = realloc(s->snippet_bindings, (size_t)capacity * sizeof *grown);
+        if (!grown) return -1;
+        s->snippet_bindings = grown;
+        s->snippet_binding_capacity = capacity;
+    }
+    s->snippet_bindings[s->snippet_binding_count].snippet = snippet;
+    s->snippet_bindings[s->snippet_binding_count].state = state;
+    s->snippet_binding_count++;
+    return 0;
+}
+
+/* The state a snippet's in_state rows read from, NULL if none is bound. */
+static const void *snippet_state(const sky_core *s, const sky_snippet *snippet)
+{
+    for (int i = 0; i < s->snippet_binding_count; i++)
+        if (s->snippet_bindings[i].snippet == snippet) return s->snippet_bindings[i].state;
+    return NULL;
+}
+
+/* The uniform rows of the common snippet and then each snippet's, with
+ * their locations in the linked program p->id. */
+static int collect_uniforms(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int snippet_count,
+                            char *err, size_t err_len)
+{
+    int rows = sky_common_snippet.uniform_count;
+    for (int i = 0; i < snippet_count; i++) rows += snippets[i]->uniform_count;
+    p->uniforms = malloc(sizeof *p->uniforms * (size_t)(rows ? rows : 1));
+    p->states = malloc(sizeof *p->states * (size_t)(rows ? rows : 1));
+    p->locations = malloc(sizeof *p->locations * (size_t)(rows ? rows : 1));
+    if (!p->uniforms || !p->states || !p->locations) {
+        sky_format(err, err_len, "out of memory for a program's uniforms");
+        return -1;
+    }
+    /* Rows the compiler optimised away get location -1 and are skipped. */
+    for (int i = -1; i < snippet_count; i++) {
+        const sky_snippet *sn = i < 0 ? &sky_common_snippet : snippets[i];
+        const void *state = snippet_state(s, sn);
+        for (int u = 0; u < sn->uniform_count; u++) {
+            const sky_uniform_desc *row = &sn->uniforms[u];
+            if (row->in_state && !state) {
+                sky_format(err, err_len, "uniform %s reads a layer's state, but its snippet is not bound to one",
+                           row->name);
+                return -1;
+            }
+            p->uniforms[p->uniform_count] = row;
+            p->states[p->uniform_count] = row->in_state ? state : NULL;
+            p->locations[p->uniform_count] = s->gl.glGetUniformLocation(p->id, row->name);
+            p->uniform_count++;
+        }
+    }
+    return 0;
+}
+
+/* Writes sky_night_glows(d), the sum of the snippets' glow functions in
+ * their order, into out (len bytes; out NULL: nothing written), or ""
+ * when no snippet is a glow. Returns the length of the whole text. */
+static size_t night_glows(const sky_snippet *const *snippets, int count, char *out, size_t len)
+{
+    static const char head[] = "vec3 sky_night_glows(vec3 d)\n{\n    vec3 glow = vec3(0.0);\n";
+    static const char tail[] = "    return glow;\n}\n";
+    size_t need = 0;
+    int any = 0;
+    for (int i = 0; i < count; i++)
+        if (snippets[i]->glow_function) need += strlen(snippets[i]->glow_function) + 20, any = 1;
+    need = any ? need + sizeof head + sizeof tail : 0;
+    if (!out) return need;
+    out[0] = '\0';
+    if (!any) return 0;
+    size_t used = (size_t)snprintf(out, len, "%s", head);
+    for (int i = 0; i < count; i++)
+        if (snippets[i]->glow_function)
+            used += (size_t)snprintf(out + used, len - used, "    glow += %s(d);\n", snippets[i]->glow_function);
+    snprintf(out + used, len - used, "%s", tail);
+    return need;
+}
+
 int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const char *frag_main,
                       const sky_snippet *const *snippets, int snippet_count, char *err, size_t err_len)
 {
     const sky_gl *gl = &s->gl;
     memset(p, 0, sizeof *p);
-    if (snippet_count > SKY_MAX_SNIPPETS) {
-        sky_format(err, err_len, "too many shader snippets (%d)", snippet_count);
-        return -1;
-    }
     /* prologue, feature defines, display and common code, snippets, main */
-    const char *parts[4 + SKY_MAX_SNIPPETS + 1];
+    const char **parts = malloc(sizeof *parts * (size_t)(6 + snippet_count));
     /* the tone map (display.glsl), then the snippets' defines */
     static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
-    char defines[64 + 48 * SKY_MAX_SNIPPETS];
-    size_t used = (size_t)snprintf(defines, sizeof defines, "%s", tone_maps[s->cfg.tone_map]);
+    size_t defines_size = 96;
+    char *glows = NULL; /* sky_night_glows, if any snippet is a glow */
     for (int i = 0; i < snippet_count; i++)
-        if (snippets[i]->define) {
-            int n = snprintf(defines + used, sizeof defines - used, "#define %s 1\n", snippets[i]->define);
-            if (n < 0 || (size_t)n >= sizeof defines - used) { /* a define dropped would build another shader */
-                sky_format(err, err_len, "shader defines overflow at %s", snippets[i]->define);
-                return -1;
-            }
-            used += (size_t)n;
-        }
+        if (snippets[i]->define) defines_size += strlen(snippets[i]->define) + 16;
+    char *defines = malloc(defines_size);
     GLuint shaders[2] = {0, 0};
+    if (!parts || !defines) {
+        sky_format(err, err_len, "out of memory for a program's sources");
+        goto fail;
+    }
+    size_t used = (size_t)snprintf(defines, defines_size, "%s", tone_maps[s->cfg.tone_map]);
+    for (int i = 0; i < snippet_count; i++)
+        if (snippets[i]->define)
+            used += (size_t)snprintf(defines + used, defines_size - used, "#define %s 1\n", snippets[i]->define);
+    if (night_glows(snippets, snippet_count, NULL, 0))
+        used += (size_t)snprintf(defines + used, defines_size - used, "#define SKY_HAS_NIGHT_GLOWS 1\n");
+    glows = malloc(night_glows(snippets, snippet_count, NULL, 0) + 1);
+    if (!glows) {
+        sky_format(err, err_len, "out of memory for a program's sources");
+        goto fail;
+    }
+    night_glows(snippets, snippet_count, glows, night_glows(snippets, snippet_count, NULL, 0) + 1);
     for (int stage = 0; stage < 2; stage++) {
         int n = 0;
         parts[n++] = prologue(s, stage);
@@ -134,10 +220,17 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
             const char *source = stage ? snippets[i]->source : snippets[i]->vertex_source;
             if (source && !(parts[n++] = blob_text(source, err, err_len))) goto fail;
         }
+        if (stage && glows[0]) parts[n++] = glows;
         if (!(parts[n++] = blob_text(stage ? frag_main : vert_main, err, err_len))) goto fail;
         shaders[stage] = compile(s, stage ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER, parts, n, err, err_len);
         if (!shaders[stage]) goto fail;
     }
+    free(parts);
+    free(defines);
+    free(glows);
+    parts = NULL;
+    defines = NULL;
+    glows = NULL;
     p->id = gl->glCreateProgram();
     gl->glAttachShader(p->id, shaders[0]);
     gl->glAttachShader(p->id, shaders[1]);
@@ -159,28 +252,20 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
         sky_format(err, err_len, "shader program failed to link: %s", log);
         goto fail;
     }
-    /* Uniform rows: common first, then each snippet's. Rows the compiler
-     * optimised away get location -1 and are skipped by glUniform. */
-    const sky_snippet *all[SKY_MAX_SNIPPETS + 1];
-    all[0] = &sky_common_snippet;
-    for (int i = 0; i < snippet_count; i++) all[i + 1] = snippets[i];
-    for (int i = 0; i <= snippet_count; i++)
-        for (int u = 0; u < all[i]->uniform_count; u++) {
-            if (p->uniform_count == SKY_MAX_UNIFORMS) {
-                sky_format(err, err_len, "too many uniforms in one program");
-                goto fail;
-            }
-            p->uniforms[p->uniform_count] = &all[i]->uniforms[u];
-            p->locations[p->uniform_count] = gl->glGetUniformLocation(p->id, all[i]->uniforms[u].name);
-            p->uniform_count++;
-        }
+    if (collect_uniforms(s, p, snippets, snippet_count, err, err_len)) goto fail;
     s->program_count++;
     if (!s->identity_program) s->identity_program = p->id;
     return 0;
 fail:
+    free(parts);
+    free(defines);
+    free(glows);
     for (int i = 0; i < 2; i++)
         if (shaders[i]) gl->glDeleteShader(shaders[i]);
     if (p->id) gl->glDeleteProgram(p->id);
+    free(p->uniforms);
+    free(p->states);
+    free(p->locations);
     memset(p, 0, sizeof *p);
     return -1;
 }
@@ -191,19 +276,23 @@ void sky_program_destroy(sky_core *s, sky_program *p)
         s->gl.glDeleteProgram(p->id);
         s->program_count--;
     }
+    free(p->uniforms);
+    free(p->states);
+    free(p->locations);
     memset(p, 0, sizeof *p);
 }
 
 void sky_program_apply(sky_core *s, const sky_program *p)
 {
     const sky_gl *gl = &s->gl;
-    const unsigned char *base = (const unsigned char *)&s->frame;
     int unit = 0;
     gl->glUseProgram(p->id);
     for (int i = 0; i < p->uniform_count; i++) {
         const sky_uniform_desc *u = p->uniforms[i];
         GLint loc = p->locations[i];
         if (loc < 0) continue;
+        const unsigned char *base = p->states[i] ? (const unsigned char *)p->states[i]
+                                                 : (const unsigned char *)&s->frame;
         const float *v = (const float *)(const void *)(base + u->offset);
         float scaled[4];
         if (u->light && s->frame.light_scale != 1.0f && u->type <= SKY_U_F4) {
@@ -221,12 +310,17 @@ void sky_program_apply(sky_core *s, const sky_program *p)
         case SKY_U_F4: gl->glUniform4f(loc, v[0], v[1], v[2], v[3]); break;
         case SKY_U_M4: gl->glUniformMatrix4fv(loc, 1, GL_FALSE, v); break;
         case SKY_U_F1V: gl->glUniform1fv(loc, u->count, v); break;
-        case SKY_U_TEX:
+        case SKY_U_TEX: {
+            /* the id itself, or a state's int holding one (registered at
+             * run time) */
+            int id = (int)u->offset;
+            if (u->in_state) memcpy(&id, base + u->offset, sizeof id);
             gl->glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-            gl->glBindTexture(s->textures[u->offset].target, s->textures[u->offset].id);
+            gl->glBindTexture(s->textures[id].target, s->textures[id].id);
             gl->glUniform1i(loc, unit);
             unit++;
             break;
+        }
         }
     }
 }

@@ -288,3 +288,16 @@ void sky_buffers_destroy(sky_core *s, const GLuint *buffers, const size_t *bytes
             s->buffer_bytes -= bytes[i];
         }
 }
+
+int sky_texture_register(sky_core *s)
+{
+    if (s->texture_count == s->texture_capacity) {
+        int capacity = s->texture_capacity ? 2 * s->texture_capacity : SKY_TEX_COUNT + 4;
+        sky_texture *grown = realloc(s->textures, (size_t)capacity * sizeof *grown);
+        if (!grown) return -1;
+        memset(grown + s->texture_capacity, 0, (size_t)(capacity - s->texture_capacity) * sizeof *grown);
+        s->textures = grown;
+        s->texture_capacity = capacity;
+    }
+    return s->texture_count++;
+}

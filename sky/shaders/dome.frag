@@ -55,16 +55,11 @@ void main()
 #ifdef SKY_HAS_STARMAP
     L += sky_starmap(d) * night_t;
 #endif
-    /* the night's glows above the air, dimmed by it per channel */
-#if defined(SKY_HAS_AIRGLOW) || defined(SKY_HAS_ZODIACAL)
-    vec3 glow = vec3(0.0);
-#ifdef SKY_HAS_AIRGLOW
-    glow += sky_airglow(d);
-#endif
-#ifdef SKY_HAS_ZODIACAL
-    glow += sky_zodiacal(d);
-#endif
-    L += glow * sky_night_extinction(d);
+    /* the night's glows above the air (the snippets with a glow function,
+     * summed by sky_night_glows, which the program build writes), dimmed
+     * by it per channel */
+#ifdef SKY_HAS_NIGHT_GLOWS
+    L += sky_night_glows(d) * sky_night_extinction(d);
 #endif
     float cover = 0.0;
 #ifdef SKY_HAS_CLOUDS
