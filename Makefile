@@ -102,8 +102,14 @@ $(BIN)/sky-bench: tools/bench.c tools/plot.c tools/plot.h $(CLI_SRC) $(CLI_HDR) 
 	@mkdir -p $(@D)
 	$(CC) $(DEMO_CFLAGS) -o $@ tools/bench.c tools/plot.c $(CLI_SRC) $(STAB_SRC) $(REF_SRC) $(LIB)/libsky.a $(HEADLESS_LIBS) -lpthread $(LDLIBS_M)
 
+# The full benchmark: its charts into docs/img and its report into
+# docs/benchmarks.md (written beside and moved, so a failed run leaves
+# the page as it was).
 bench: all
-	$(BIN)/sky-bench --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png
+	$(BIN)/sky-bench --markdown --plot docs/img/atmosphere-pareto.png --plot-photometry docs/img/photometry.png \
+		> $(BUILD)/benchmarks.md
+	mv $(BUILD)/benchmarks.md docs/benchmarks.md
+	@cat docs/benchmarks.md
 
 $(BIN)/catgen: tools/catgen.c
 	@mkdir -p $(@D)
@@ -345,7 +351,8 @@ planet-tables: $(BIN)/vsopgen
 	/usr/bin/python3 tools/planet-reference.py > tests/data/planets_reference.txt.tmp
 	mv tests/data/planets_reference.txt.tmp tests/data/planets_reference.txt
 
-# The README's pictures, rendered by sky-render.
+# The pictures of README.md and docs/ (docs/img), rendered by sky-render and
+# the programs.
 screenshots: all $(BIN)/pngcrop
 	@sh tools/screenshots.sh
 

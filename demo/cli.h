@@ -1,6 +1,6 @@
 /*
  * The command line shared by sky-render, sky-demo and sky-game (the
- * contract is README's sky-render section: exit 0 on success, 2 for a bad
+ * contract is docs/guide.md's sky-render section: exit 0 on success, 2 for a bad
  * argument, named with its range, 1 for a runtime failure): parsing,
  * presets and the camera it describes.
  */
@@ -72,7 +72,7 @@ void sky_cli_camera(const sky_cli *cli, float view[16], float proj[16]);
 int sky_cli_take_out(int *i, int argc, char **argv, const char *prog, const char **out);
 void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int height, float view[16], float proj[16]);
 
-/* Prints the --query JSON object (its fields: README's "Where and when";
+/* Prints the --query JSON object (its fields: docs/guide.md, "Where and when";
  * their meaning: sky_astronomy in sky.h). */
 void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count);
 

@@ -1,7 +1,9 @@
 /*
  * sky-bench's preset table as a program: the interleaved rounds, the
  * Roden & Parberry rows and sky_update's figure are all there and
- * consistent. Speed itself is never asserted here: sky-bench reports it.
+ * consistent, and the Markdown form (docs/benchmarks.md) holds the same
+ * rows as the JSON. Speed itself is never asserted here: sky-bench
+ * reports it.
  */
 #include "test.h"
 
@@ -156,4 +158,119 @@ SLOW_TEST(bench_es20_presets)
     snprintf(cmd, sizeof cmd, "%s --only-presets --gl core,metal 2>&1", bin_path("sky-bench", path, sizeof path));
     rc = run_command(cmd, out, sizeof out);
     CHECK(rc == 2, "an unknown profile is a bad argument (exit %d)", rc);
+}
+
+/* The (preset, profile) pairs of the preset table, in order, from the
+ * JSON's "presets" list or from the Markdown table's rows whose
+ * sky_update cell is a figure (the R-P and baseline rows have "-"). Each
+ * pair is written "preset|profile;" into out. Returns how many. */
+static int json_presets(const char *json, char *out, size_t len)
+{
+    int n = 0;
+    out[0] = '\0';
+    const char *rp = strstr(json, "\"rp_rows\":");
+    for (const char *r = strstr(json, "{\"preset\":\""); r && (!rp || r < rp); r = strstr(r + 1, "{\"preset\":\"")) {
+        const char *name = r + strlen("{\"preset\":\""), *prof = strstr(r, "\"profile\":\"");
+        if (!prof) break;
+        prof += strlen("\"profile\":\"");
+        size_t used = strlen(out);
+        snprintf(out + used, len - used, "%.*s|%.*s;", (int)strcspn(name, "\""), name, (int)strcspn(prof, "\""), prof);
+        n++;
+    }
+    return n;
+}
+
+/* The Markdown table under the header line `head`: its rows' cells, split
+ * at " | ". Checks every row has as many cells as the header, and writes
+ * the pairs as json_presets does. Returns the number of preset rows, or
+ * -1 when the table is not there or a row is malformed. */
+static int markdown_presets(const char *md, const char *head, char *out, size_t len)
+{
+    out[0] = '\0';
+    const char *t = strstr(md, head);
+    if (!t) return -1;
+    int cols = 0;
+    for (const char *p = t; *p && *p != '\n'; p++) cols += *p == '|';
+    const char *line = strchr(t, '\n');
+    if (!line || strncmp(line + 1, "|---|", 5)) return -1;
+    line = strchr(line + 1, '\n');
+    int n = 0;
+    while (line && line[1] == '|') {
+        line++;
+        const char *end = strchr(line, '\n');
+        if (!end) end = line + strlen(line);
+        int bars = 0;
+        const char *cell[16];
+        for (const char *p = line; p < end; p++)
+            if (*p == '|' && bars < 16) cell[bars++] = p;
+        if (bars != cols) return -1;
+        /* cells 0: preset, 1: profile, last: sky_update us ("-" for the quads) */
+        const char *upd = cell[bars - 2] + 2;
+        if (*upd != '-') {
+            size_t used = strlen(out);
+            snprintf(out + used, len - used, "%.*s|%.*s;", (int)(cell[1] - line - 3), line + 2,
+                     (int)(cell[2] - cell[1] - 3), cell[1] + 2);
+            n++;
+        }
+        line = *end ? end : NULL;
+    }
+    return n;
+}
+
+/* --markdown writes the same preset table as --json, as a Markdown page:
+ * a "# " title, a header table naming the command and each profile's
+ * renderer, a "## Presets" section (the anchor the README and the docs
+ * cite) with the table's header line and a row per preset and profile.
+ * Structure only: never a speed. */
+SLOW_TEST(bench_markdown_matches_json)
+{
+    char path[512], cmd[1024];
+    static char md[32768], json[32768];
+    static const char args[] = "--only-presets --rounds 1 --frames 3 --size 64x36 --gl core,compat "
+                               "--presets 'minimal;noon --dome-divisor 2;noon + scene over half, sky after'";
+    snprintf(cmd, sizeof cmd, "%s --markdown %s 2>&1", bin_path("sky-bench", path, sizeof path), args);
+    int rc = run_command(cmd, md, sizeof md);
+    CHECK(rc == 0, "sky-bench --markdown exits 0 (exit %d): %.300s", rc, md);
+    snprintf(cmd, sizeof cmd, "%s --json %s 2>&1", bin_path("sky-bench", path, sizeof path), args);
+    int rc2 = run_command(cmd, json, sizeof json);
+    CHECK(rc2 == 0, "sky-bench --json exits 0 (exit %d): %.300s", rc2, json);
+    if (rc || rc2) return;
+
+    CHECK(!strncmp(md, "# Benchmarks\n", 13), "the page starts with its title: %.60s", md);
+    CHECK(strstr(md, "Written by `sky-bench --markdown --only-presets") != NULL, "the header names the command");
+    CHECK(strstr(md, "`build/bin/sky-bench --markdown > docs/benchmarks.md`") != NULL,
+          "the header says how to write the page again");
+    char version[64];
+    snprintf(version, sizeof version, "| libsky | %d.%d.%d", SKY_VERSION_MAJOR, SKY_VERSION_MINOR, SKY_VERSION_PATCH);
+    CHECK(strstr(md, version) != NULL, "the header gives the library's version (%s)", version);
+    CHECK(strstr(md, "| renderer, core | ") && strstr(md, "| renderer, compat | ") && !strstr(md, "| renderer, es20"),
+          "the header names the renderer of each profile run, and only those");
+    CHECK(strstr(md, "| frames | 64x36, median of 3 frames a measurement, 1 interleaved rounds |") != NULL,
+          "the header gives the size, frames and rounds");
+    const char *sec = strstr(md, "\n## Presets\n\n");
+    CHECK(sec != NULL, "a \"## Presets\" section");
+    CHECK(!strstr(md, "\"preset\""), "no JSON in the page");
+
+    static const char head[] = "| preset | profile | GPU bytes | textures | programs | draws | frame ms | x baseline | "
+                               "x baseline, rounds min-max | sky_update us |";
+    char from_md[2048], from_json[2048];
+    int n_md = markdown_presets(sec ? sec : md, head, from_md, sizeof from_md);
+    int n_json = json_presets(json, from_json, sizeof from_json);
+    CHECK(n_md == 6 && n_json == 6, "3 presets in 2 profiles in each form (Markdown %d, JSON %d rows)", n_md, n_json);
+    CHECK(!strcmp(from_md, from_json), "the same presets and profiles in the same order:\n      Markdown %s\n      JSON     %s",
+          from_md, from_json);
+    /* the quads timed beside them: the baseline after a scene and R-P's shader, in both profiles */
+    int rp = 0;
+    for (const char *p = strstr(md, "| R-P 2005 as printed | "); p; p = strstr(p + 1, "| R-P 2005 as printed | ")) rp++;
+    CHECK(rp == 2, "Roden & Parberry's shader as printed in both profiles (%d rows)", rp);
+}
+
+/* The two forms of the report are one or the other. */
+TEST(bench_markdown_or_json)
+{
+    char path[512], cmd[1024], out[2048];
+    snprintf(cmd, sizeof cmd, "%s --only-presets --json --markdown 2>&1", bin_path("sky-bench", path, sizeof path));
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 2 && strstr(out, "--markdown"), "--json with --markdown is a usage error naming them (exit %d): %.200s",
+          rc, out);
 }

@@ -12,7 +12,7 @@
 
 double image_psnr(const image *a, const image *b);
 
-/* Mesa pretending to be a 2004-class GPU (README's "Old GPUs"). */
+/* Mesa pretending to be a 2004-class GPU (docs/guide.md, "Old GPUs"). */
 #define OLD_GPU                                                                                  \
     "MESA_GL_VERSION_OVERRIDE=2.0 MESA_GLSL_VERSION_OVERRIDE=110 MESA_EXTENSION_MAX_YEAR=2004 " \
     "MESA_EXTENSION_OVERRIDE='-GL_ARB_texture_float -GL_ARB_framebuffer_object "               \

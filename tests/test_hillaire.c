@@ -300,7 +300,7 @@ static void sky_vs_reference(const sky_atmosphere_params *atm, const char *name,
  * four, 2.7 % at sun 30 deg); the default Earth, whose aerosol is 16
  * times denser, within 6 % at each sun on this coarser grid (3.4 % over
  * the four, 4.1 % at sun 10 deg; sky-bench's equal-area grid, the issue's
- * measure, is the README's): a forward aerosol's multiple scattering is
+ * measure, is docs/benchmarks.md's): a forward aerosol's multiple scattering is
  * the harder to carry. Isotropic beyond the second order, as Hillaire has
  * it, the table erred by 5.7 % (Hillaire's constants, sun 60 deg) and 5.4
  * % (Earth, sun 10 deg). */

@@ -1,5 +1,5 @@
 /*
- * sky-render's outputs (README, sky-render): an image reaches its path
+ * sky-render's outputs (docs/guide.md, sky-render): an image reaches its path
  * whole or not at all, a failed write leaves the path as it was, a path
  * that is not a regular file is refused untouched, and any byte of an
  * image or of stdout not written is exit status 1.

@@ -3,12 +3,16 @@
  * measured in the same run — a full-screen quad with one texture fetch,
  * the cheapest thing a sky could possibly be.
  *
- *   sky-bench [--json] [--size WxH] [--frames N] [--rounds R] [--reference FILE]
+ *   sky-bench [--json | --markdown] [--size WxH] [--frames N] [--rounds R] [--reference FILE]
  *             [--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting |
  *              --only-night]
  *             [--tone-map NAME] [--plot FILE.png]
- *   sky-bench --stability [--json]
+ *   sky-bench --stability [--json | --markdown]
  *   sky-bench --make-reference FILE [--paths N]
+ *
+ * --markdown writes the same tables as a Markdown document with a header
+ * saying which command wrote it, when, on what machine and renderer:
+ * docs/benchmarks.md is `sky-bench --markdown` (make bench writes it).
  *
  * Prints, per scene preset and GL profile: GPU bytes, textures, programs,
  * draws, frame ms and its ratio to the baseline of the same profile, and
@@ -49,6 +53,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/utsname.h>
 #include <unistd.h>
 
 enum { MAX_ROUNDS = 50, MAX_SUBJECTS = 24 };
@@ -88,6 +93,7 @@ enum { MAX_ROUNDS = 50, MAX_SUBJECTS = 24 };
     X(void, GetProgramiv, (GLuint, GLenum, GLint *))                                                       \
     X(void, GetShaderInfoLog, (GLuint, GLsizei, GLsizei *, GLchar *))                                      \
     X(void, GetShaderiv, (GLuint, GLenum, GLint *))                                                        \
+    X(const GLubyte *, GetString, (GLenum))                                                                \
     X(GLint, GetUniformLocation, (GLuint, const GLchar *))                                                 \
     X(void, LinkProgram, (GLuint))                                                                         \
     X(void, ShaderSource, (GLuint, GLsizei, const GLchar *const *, const GLint *))                         \
@@ -146,6 +152,7 @@ static void bench_gl_use(const sky_osmesa *o)
 #define glGetProgramiv bench_gl.GetProgramiv
 #define glGetShaderInfoLog bench_gl.GetShaderInfoLog
 #define glGetShaderiv bench_gl.GetShaderiv
+#define glGetString bench_gl.GetString
 #define glGetUniformLocation bench_gl.GetUniformLocation
 #define glLinkProgram bench_gl.LinkProgram
 #define glShaderSource bench_gl.ShaderSource
@@ -1167,9 +1174,6 @@ static void print_preset_table(const row *rows, int nrows)
            UPDATE_CALLS);
 }
 
-/* The baseline's medians over the rounds, then per round its figure and
- * the CPUs that other processes were using meanwhile (a figure near 1 on
- * two cores: llvmpipe had one of them). */
 /* The profiles the preset and night tables run on (--gl), in order. */
 enum { MAX_PROFS = 3 };
 typedef struct profiles {
@@ -1179,6 +1183,29 @@ typedef struct profiles {
 
 static const char *prof_name(const profiles *pr, int i) { return kind_names[kind_of(pr->gl[i])]; }
 
+/* ---- --markdown: the report as a document ----------------------------------------------------
+ * docs/benchmarks.md is this output. Its header says what wrote it, so that
+ * a reader can tell a run on llvmpipe from one on a GPU and knows which
+ * checkout it measured; each table gets a "## " heading, whose anchor the
+ * README and the other docs link to (tests/test_docs.c checks those links
+ * and that the README's figures occur in the section they cite), so the
+ * headings are part of the output's contract. */
+static struct markdown {
+    int on, argc;
+    char **argv;
+    const profiles *pr;
+    int w, h, frames, rounds;
+} md;
+
+/* A section's heading; nothing in the plain report. */
+static void heading(const char *title)
+{
+    if (md.on) printf("\n## %s\n\n", title);
+}
+
+/* The baseline's medians over the rounds, then per round its figure and
+ * the CPUs that other processes were using meanwhile (a figure near 1 on
+ * two cores: llvmpipe had one of them). */
 static void print_baseline(const char *what, int w, int h, int frames, const profiles *pr, const double *base,
                            const rounds_info *info)
 {
@@ -1186,7 +1213,8 @@ static void print_baseline(const char *what, int w, int h, int frames, const pro
     for (int prof = 0; prof < pr->n; prof++) printf("%s %s %.2f ms", prof ? "," : "", prof_name(pr, prof), base[prof]);
     printf(", medians of %d interleaved rounds of %d frames\n", info[0].n, frames);
     for (int prof = 0; prof < pr->n; prof++) {
-        printf("  %s, per round: ms", prof_name(pr, prof));
+        printf(md.on ? "%s- %s, per round: ms" : "%s  %s, per round: ms", md.on && !prof ? "\n" : "",
+               prof_name(pr, prof));
         for (int k = 0; k < info[prof].n; k++) printf(" %.2f", info[prof].base_ms[k]);
         printf("; other processes' CPUs");
         for (int k = 0; k < info[prof].n; k++) printf(" %.1f", info[prof].others_cpus[k]);
@@ -1854,13 +1882,15 @@ static int parse_profiles(const char *list, profiles *pr)
 static void bench_usage(FILE *out)
 {
     fprintf(out,
-            "usage: sky-bench [--json] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
+            "usage: sky-bench [--json | --markdown] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
             "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting\n"
             "       | --only-night] [--gl LIST of core,compat,es20 (default core,compat; es20 with --only-presets\n"
             "       or --only-night or --only-sharpness)] [--only-sharpness] [--presets 'ROW;ROW...' (with --only-presets: these rows, each a preset and\n"
             "       sky-render's options, in place of the table's)]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
-            "       sky-bench --stability [--json]\n"
+            "       sky-bench --stability [--json | --markdown]\n"
+            "       (--markdown: the report as a Markdown page with a header naming the command, machine and\n"
+            "       renderer; docs/benchmarks.md is `sky-bench --markdown`)\n"
             "       sky-bench --soak FRAMES (1000..50000: resident memory over a long run)\n"
             "       sky-bench --make-reference FILE [--paths N]\n",
             MAX_ROUNDS);
@@ -1946,6 +1976,92 @@ static void print_night_table(const profiles *pr, double night[MAX_PROFS][NIGHT_
         }
 }
 
+/* ---- --markdown: the header ---------------------------------------------------------------- */
+
+/* The first line of a command's output, without its newline, or "". */
+static void command_line_of(const char *cmd, char *out, size_t len)
+{
+    out[0] = '\0';
+    FILE *p = popen(cmd, "r");
+    if (!p) return;
+    if (!fgets(out, (int)len, p)) out[0] = '\0';
+    pclose(p);
+    out[strcspn(out, "\r\n")] = '\0';
+}
+
+/* The CPU's model name from /proc/cpuinfo, or "". */
+static void cpu_model(char *out, size_t len)
+{
+    out[0] = '\0';
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f) return;
+    char line[256];
+    while (fgets(line, sizeof line, f)) {
+        const char *colon = strchr(line, ':');
+        if (strncmp(line, "model name", 10) || !colon) continue;
+        snprintf(out, len, "%s", colon + 2 - (colon[1] != ' '));
+        out[strcspn(out, "\r\n")] = '\0';
+        break;
+    }
+    fclose(f);
+}
+
+/* What a profile's context reports: renderer and version strings, from a
+ * small context of its own made for the purpose. */
+static void renderer_of(sky_gl_profile gl, char *out, size_t len)
+{
+    sky_osmesa o;
+    char err[256];
+    snprintf(out, len, "(no context)");
+    if (sky_osmesa_create(&o, 16, 16, gl, 0, err, sizeof err)) return;
+    bench_gl_use(&o);
+    const GLubyte *renderer = glGetString(GL_RENDERER), *version = glGetString(GL_VERSION);
+    snprintf(out, len, "%s, %s", renderer ? (const char *)renderer : "?", version ? (const char *)version : "?");
+    sky_osmesa_destroy(&o);
+}
+
+/* The header, once, before the first table (called where each report
+ * starts printing, after its measurements: a run that fails prints none).
+ * timed: 0 for reports of their own sizes, 1 for frames of the --size
+ * asked, 2 for those timed in interleaved rounds. */
+static void md_begin(int timed)
+{
+    static int done;
+    if (!md.on || done) return;
+    done = 1;
+    time_t now = time(NULL);
+    char when[64] = "?", checkout[128], cpu[160], gl[MAX_PROFS][256];
+    struct tm tm;
+    if (gmtime_r(&now, &tm)) strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", &tm);
+    command_line_of("git describe --always --dirty 2>/dev/null", checkout, sizeof checkout);
+    cpu_model(cpu, sizeof cpu);
+    printf("# Benchmarks\n\nWritten by `sky-bench");
+    for (int i = 1; i < md.argc; i++) {
+        const char *a = md.argv[i];
+        printf(strpbrk(a, " ;'\"*?$") ? " '%s'" : " %s", a);
+    }
+    printf("` on %s.\n`build/bin/sky-bench --markdown > docs/benchmarks.md` writes this page again (the full run\n"
+           "takes minutes; `make bench` runs it). Times move from run to run on a shared machine; the ratios\n"
+           "to the baseline measured in the same round move less.\n\n",
+           when);
+    struct utsname u;
+    int have_u = uname(&u) == 0;
+    printf("| | |\n|---|---|\n");
+    unsigned v = sky_version();
+    printf("| libsky | %u.%u.%u%s%s |\n", v >> 16, (v >> 8) & 255u, v & 255u, checkout[0] ? ", checkout " : "",
+           checkout);
+    printf("| machine | %s %s %s, %ld CPUs%s%s |\n", have_u ? u.sysname : "?", have_u ? u.release : "",
+           have_u ? u.machine : "", sysconf(_SC_NPROCESSORS_ONLN), cpu[0] ? ", " : "", cpu);
+    for (int p = 0; p < md.pr->n; p++) {
+        renderer_of(md.pr->gl[p], gl[p], sizeof gl[p]);
+        printf("| renderer, %s | %s |\n", prof_name(md.pr, p), gl[p]);
+    }
+    if (timed == 1) printf("| frames | %dx%d, median of %d frames a measurement |\n", md.w, md.h, md.frames);
+    if (timed == 2)
+        printf("| frames | %dx%d, median of %d frames a measurement, %d interleaved rounds |\n", md.w, md.h, md.frames,
+               md.rounds);
+}
+
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
@@ -1962,6 +2078,8 @@ int main(int argc, char **argv)
             return 0;
         } else if (!strcmp(argv[i], "--json"))
             json = 1;
+        else if (!strcmp(argv[i], "--markdown"))
+            md.on = 1;
         else if (!strcmp(argv[i], "--only-atmosphere"))
             only_atmosphere = 1;
         else if (!strcmp(argv[i], "--only-presets"))
@@ -2013,7 +2131,22 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (stability) return stability_table(json);
+    if (json && md.on) {
+        fprintf(stderr, "sky-bench: --json and --markdown are two forms of one report: choose one\n");
+        return 2;
+    }
+    md.argc = argc;
+    md.argv = argv;
+    md.pr = &pr;
+    md.w = w;
+    md.h = h;
+    md.frames = frames;
+    md.rounds = rounds;
+    if (stability) {
+        md_begin(0);
+        heading("Numerical stability");
+        return stability_table(json);
+    }
     int es = 0;
     for (int p = 0; p < pr.n; p++) es |= pr.gl[p] == SKY_GL_ES20;
     if (es && !only_presets && !only_night && !only_sharpness) {
@@ -2025,7 +2158,11 @@ int main(int argc, char **argv)
     /* ES20 on what an ES 2.0 device reports (Mesa offers ES 3.2 otherwise);
      * a value the user set stands */
     if (es) setenv("MESA_GLES_VERSION_OVERRIDE", "2.0", 0);
-    if (soak) return soak_table(soak, SKY_GL_CORE33);
+    if (soak) {
+        md_begin(0);
+        heading("Memory over a long run");
+        return soak_table(soak, SKY_GL_CORE33);
+    }
     static sharp_row sharp[MAX_PROFS * SHARP_PRESETS * SHARP_SIZES];
     int nsharp = 0;
     if (only_sharpness) {
@@ -2034,8 +2171,11 @@ int main(int argc, char **argv)
             printf("{\n");
             print_sharpness_json(sharp, nsharp);
             printf("\n}\n");
-        } else
+        } else {
+            md_begin(0);
+            heading("Sharpness");
             print_sharpness_table(sharp, nsharp);
+        }
         return 0;
     }
     static sky_colour_row colour[COLOUR_ROWS];
@@ -2049,6 +2189,8 @@ int main(int argc, char **argv)
             print_photometry_json(phot);
             printf("\n}\n");
         } else {
+            md_begin(0);
+            heading("Photometry");
             printf("Photometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
             print_photometry_table(phot);
         }
@@ -2063,6 +2205,8 @@ int main(int argc, char **argv)
             print_lighting_json(lighting, &capture, w, h);
             printf("\n}\n");
         } else {
+            md_begin(1);
+            heading("Scene lighting");
             printf("Scene lighting: sky_get_irradiance_sh (core profile):\n\n");
             print_lighting_table(lighting);
             print_capture(&capture, w, h);
@@ -2078,8 +2222,11 @@ int main(int argc, char **argv)
             print_dusk_json(&dusk);
             printf("\n}\n");
         } else {
+            md_begin(0);
+            heading("Colour");
             printf("Colour (tone map %s):\n\n", tone_map_names[tone_map]);
             print_colour_table(colour, COLOUR_ROWS);
+            heading("The day's end and the night");
             printf("\nThe day's end and the night:\n\n");
             print_dusk_table(&dusk);
         }
@@ -2169,19 +2316,28 @@ int main(int argc, char **argv)
         return 0;
     }
     if (only_presets) {
+        md_begin(2);
+        heading("Presets");
         print_baseline("", w, h, frames, &pr, base, pinfo);
         printf("\n");
         print_preset_table(rows, nrows);
-        if (nsharp) print_sharpness_table(sharp, nsharp);
+        if (nsharp) {
+            heading("Sharpness");
+            print_sharpness_table(sharp, nsharp);
+        }
         return 0;
     }
     if (only_night) {
+        md_begin(2);
+        heading("Night layers");
         print_baseline("", w, h, frames, &pr, base, pinfo);
         print_night_table(&pr, night, base);
         return 0;
     }
     if (only_atmosphere) {
         if (plot && plot_atmosphere(plot, atmo, natmo)) return 1;
+        md_begin(2);
+        heading("Atmosphere paths");
         print_baseline("", w, h, frames, &pr, base_atmo, ainfo);
         print_atmosphere_table(atmo, natmo, &ref);
         return 0;
@@ -2236,26 +2392,43 @@ int main(int argc, char **argv)
         printf("\n}\n");
         return 0;
     }
-    printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then each\n"
-           "row; a row's figures are medians over the rounds), llvmpipe or whatever GL OSMesa provides\n",
-           w, h, frames, rounds);
+    md_begin(2);
+    if (!md.on) /* (the Markdown header says this in its table) */
+        printf("sky-bench: %dx%d, median of %d frames per measurement, %d interleaved rounds (the baseline, then "
+               "each\nrow; a row's figures are medians over the rounds), llvmpipe or whatever GL OSMesa provides\n",
+               w, h, frames, rounds);
+    heading("Presets");
     print_baseline(" in the preset rounds", w, h, frames, &pr, base, pinfo);
-    printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n\n", astro);
+    if (!md.on) printf("astronomy: %.1f us of CPU per full update (median of 2000; time slider mode)\n", astro);
+    printf("\n");
     print_preset_table(rows, nrows);
+    heading("Sharpness");
     print_sharpness_table(sharp, nsharp);
+    heading("Night layers");
     print_night_table(&pr, night, base);
+    if (md.on) { /* a section of its own, which docs/validation.md cites */
+        heading("Astronomy");
+        printf("Astronomy: %.1f us of CPU per full update (`sky_compute_astronomy`, the planets' series included;\n"
+               "median of 2000 calls, time slider mode).\n",
+               astro);
+    }
+    heading("Atmosphere paths");
     printf("\n");
     print_baseline(" in the atmosphere rounds", w, h, frames, &pr, base_atmo, ainfo);
     print_atmosphere_table(atmo, natmo, &ref);
+    heading("Colour");
     printf("\nColour: what the 8-bit output (tone map %s) keeps of the sky's own, per pixel against the HDR\n"
            "frame (the atmosphere and the sun):\n\n",
            tone_map_names[tone_map]);
     print_colour_table(colour, COLOUR_ROWS);
+    heading("The day's end and the night");
     printf("\nThe day's end and the night: the sky's display brightness over noon's as the sun sets, and two\n"
            "nights' colours:\n\n");
     print_dusk_table(&dusk);
+    heading("Photometry");
     printf("\nPhotometry: the paths against published measurements of real skies (HDR, core profile):\n\n");
     print_photometry_table(phot);
+    heading("Scene lighting");
     printf("\nScene lighting: sky_get_irradiance_sh (core profile):\n\n");
     print_lighting_table(lighting);
     print_capture(&capture, w, h);

@@ -1,7 +1,7 @@
 /*
  * pngcrop: the same region of several PNG frames side by side, at 1:1 or
  * enlarged by whole pixels (no filtering: what a player sees, pixel for
- * pixel), with a 4-pixel black gap between them. For the README's
+ * pixel), with a 4-pixel black gap between them. For the guide's
  * before/after pictures (tools/screenshots.sh).
  *
  *   pngcrop X,Y,W,H SCALE OUT.png IN.png...

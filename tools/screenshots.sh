@@ -1,5 +1,6 @@
 #!/bin/sh
-# Regenerates the README's screenshots with sky-render (make screenshots).
+# Regenerates the pictures of README.md and docs/ (docs/img) with sky-render
+# and the programs (make screenshots); it edits no Markdown.
 set -e
 cd "$(dirname "$0")/.."
 out=docs/img
@@ -12,7 +13,7 @@ $r --size 640x360 --preset starry --date 2024-01-15T21:00:00Z --lat 45 --lon 10 
 $r --size 640x360 --preset starry --cover 0 --date 2024-08-10T21:00:00Z --lat 45 --lon 10 --yaw 180 --pitch 30 --fov 90 --out $out/milkyway.png
 $r --size 640x360 --preset minimal --time 0.02 --pitch 35 --out $out/flicker.png
 $r --size 360x360 --fisheye --time 0.3 --cover 0.5 --out $out/fisheye.png
-$r --size 640x360 --preset minimal --pitch 25 --out $out/minimal-compat.png
+$r --size 640x360 --preset minimal --pitch 25 --gl compat --out $out/minimal-compat.png
 $r --size 640x360 --preset moonlit --out $out/moonlit.png
 # the planets (Night sky II): Venus and Jupiter half a degree apart in the
 # evening twilight of 2023-03-01 over Munich

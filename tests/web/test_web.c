@@ -67,7 +67,7 @@ static int visit(const char *query, image *shot, char *console, size_t len)
         return -1;
     }
     /* SKY_WEB_SHOT: the default page's screenshot is kept there (the
-     * README's picture, make screenshots), written beside it first */
+     * guide's picture, make screenshots), written beside it first */
     const char *keep = getenv("SKY_WEB_SHOT") && !query[0] ? getenv("SKY_WEB_SHOT") : NULL;
     char png[1024], cmd[2048];
     if (keep)
