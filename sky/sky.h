@@ -225,7 +225,7 @@ typedef enum sky_gl_profile {
                           texture units and nothing else; takes extensions
                           and highp when offered. Without highp in the
                           fragment stage HDR output loses the night, and HDR
-                          stops at 65504 kcd/m^2: docs/es20.md             */
+                          stops at 65504 kcd/m^2: docs/guide.md, ES 2.0    */
 } sky_gl_profile;
 
 /* How LDR output turns the sky's light into 8-bit colour (HDR output is
@@ -470,7 +470,7 @@ typedef struct sky_config {
     float solar_activity;
     /* Light pollution: the artificial sky glow of a Bortle class, 1 (an
      * excellent dark site) .. 9 (an inner city), fractions allowed; its
-     * zenith brightness is the class's published one (README, "The night
+     * zenith brightness is the class's published one (docs/guide.md, "The night
      * sky") less the natural sky's, rising toward the horizon. 0 = none;
      * sky_create rejects anything else. */
     float bortle;
@@ -774,7 +774,8 @@ typedef struct sky_planet_place {
 } sky_planet_place;
 
 /* The astronomical state of an instant and place (Meeus-class theories;
- * see README for the measured accuracy against ERFA and PyEphem). */
+ * docs/validation.md, "Astronomy", gives the measured accuracy against
+ * ERFA and PyEphem). */
 typedef struct sky_astronomy {
     double julian_day_ut, delta_t_s, lmst_deg;
     sky_body_place sun, moon;
