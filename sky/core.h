@@ -239,16 +239,6 @@ typedef struct sky_frame {
     /* the dome's image (dome.c) */
     float dome_texel[2];     /* 1 / its texture's width, height                  */
     float dome_scale[2];     /* the share of the texture it uses, per axis       */
-    /* the sun (sun.c) */
-    float sun_luminance;     /* kcd/m^2 at the disc centre, before extinction    */
-    float sun_disc[3];       /* the disc's centre as drawn: sun_luminance x the
-                                transmittance, kcd/m^2 (under mediump kept
-                                within its 2^14, where the disc is white
-                                anyway)                                          */
-    float sun_glare[3];      /* the glare's peak, 5e-6 of the unclamped centre
-                                x the transmittance                              */
-    float sun_radius;        /* angular radius of the drawn disc, radians        */
-    float sun_true_dir[3];   /* the sun's centre without refraction              */
     /* clouds (clouds.c, R-P sec. 3.1) */
     float cover, density, sunset;
     float cloud_uv_scale;    /* from height                                      */
@@ -265,15 +255,6 @@ typedef struct sky_frame {
     float sunset_color[3];
     float sunset_gradient[SKY_SUNSET_SAMPLES]; /* R-P's sunset gradient by the
                                 angle from the sun, from the texture's alpha */
-    /* flicker stars (flicker.c, R-P sec. 4) */
-    float flicker_phase;     /* flicker time in rate units, wrapped             */
-    float flicker_point_max; /* the largest point size the context draws         */
-    float star_luminance;    /* kcd/m^2 of a full-intensity star texel; 0: off   */
-    /* catalogue stars (stars.c) and planets (planets.c): each its own
-     * copy of stars.vert's uniforms (sky_point_frame) */
-    sky_point_frame stars, planets;
-    /* star map (starmap.c) */
-    float starmap_rot[16], starmap_scale;
     /* moon (moon.c) */
     float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_earthshine[3];
     struct {                 /* u_moon_terms                                   */

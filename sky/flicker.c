@@ -24,16 +24,6 @@
 #define FLICKER_SIZE 256
 #define FLICKER_TILES 4
 
-static const sky_uniform_desc glow_uniforms[] = {
-    SKY_UL("u_star_luminance", SKY_U_F1, star_luminance, 1u),
-};
-static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow_uniforms,
-                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL, NULL};
-static const sky_uniform_desc point_uniforms[] = {
-    SKY_UF("u_flicker_phase", SKY_U_F1, flicker_phase),
-    SKY_UF("u_point_max", SKY_U_F1, flicker_point_max),
-};
-static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL, NULL};
 
 /* One star: its texel's centre in the dome coordinate (normalised shorts)
  * and the texel (R brightened by the galaxy and divided by 4, G, B, A). */
@@ -43,11 +33,25 @@ typedef struct flicker_vertex {
 } flicker_vertex;
 
 typedef struct flicker_state {
-    double phase; /* the flicker clock, wrapped (see flicker_advance) */
+    double phase;          /* the flicker clock, wrapped (see flicker_advance) */
     sky_program program;
     GLuint buffer;
     int count;
+    float star_luminance;  /* kcd/m^2 of a full-intensity star texel; 0: off */
+    float phase_uniform;   /* the clock in rate units, wrapped                */
+    float point_max;       /* the largest point size the context draws        */
 } flicker_state;
+
+static const sky_uniform_desc glow_uniforms[] = {
+    SKY_USL("u_star_luminance", SKY_U_F1, flicker_state, star_luminance, 1u),
+};
+static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow_uniforms,
+                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL, NULL};
+static const sky_uniform_desc point_uniforms[] = {
+    SKY_US("u_flicker_phase", SKY_U_F1, flicker_state, phase_uniform),
+    SKY_US("u_point_max", SKY_U_F1, flicker_state, point_max),
+};
+static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL, NULL};
 
 /* Every star of every tile that falls inside the horizon circle. */
 static int upload_stars(sky_core *s, flicker_state *st, const unsigned char *tex, const unsigned char *galaxy,
@@ -105,7 +109,11 @@ static int flicker_create(sky_core *s, void *state, char *err, size_t err_len)
     sky_png_free(tex);
     sky_png_free(galaxy);
     if (rc) return -1;
-    s->frame.flicker_point_max = sky_gl_point_size_max(s);
+    st->point_max = sky_gl_point_size_max(s);
+    if (sky_snippet_bind(s, &point_snippet, state)) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
+    }
     /* the atmosphere's transmittance in front of each star, then its own */
     const sky_snippet *own[SKY_ATMOSPHERE_SNIPPETS + 2];
     int n = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, own);
@@ -155,19 +163,24 @@ static void flicker_reset(void *state) { ((flicker_state *)state)->phase = 0.0; 
 
 static void flicker_frame(sky_core *s, void *state)
 {
-    const flicker_state *st = state;
-    sky_frame *f = &s->frame;
-    f->flicker_phase = (float)(255.0 * st->phase);
-    f->star_luminance = (float)SKY_FLICKER_STAR_LUMINANCE * f->night * f->star_local_gain;
+    flicker_state *st = state;
+    const sky_frame *f = &s->frame;
+    st->phase_uniform = (float)(255.0 * st->phase);
+    st->star_luminance = (float)SKY_FLICKER_STAR_LUMINANCE * f->night * f->star_local_gain;
     /* Leave out what adds nothing: a star layer whose brightest texel would
      * not reach a quarter of an 8-bit step is not evaluated at all. */
-    if (f->star_luminance * f->exposure < 1.0f / 1024.0f) f->star_luminance = 0.0f;
+    if (st->star_luminance * f->exposure < 1.0f / 1024.0f) st->star_luminance = 0.0f;
+}
+
+float sky_flicker_star_luminance(const void *flicker_state_)
+{
+    return ((const flicker_state *)flicker_state_)->star_luminance;
 }
 
 static int flicker_visible(const sky_core *s, const void *state)
 {
-    (void)state;
-    return s->frame.star_luminance > 0.0f;
+    (void)s;
+    return ((const flicker_state *)state)->star_luminance > 0.0f;
 }
 
 static int flicker_draw(sky_core *s, void *state)

@@ -117,6 +117,9 @@ void sky_clouds_image_step(sky_core *s, int step_pixels);
  * galaxy image stretched over the dome (R-P sec. 4); the flicker clock. */
 float sky_flicker_galaxy_vertex(const unsigned char *galaxy_rgba, const float dir[3]);
 double sky_flicker_clock(const void *flicker_state);
+/* flicker.c: kcd/m^2 of a full-intensity star texel this frame (0: the
+ * layer is off, not just dim). */
+float sky_flicker_star_luminance(const void *flicker_state);
 /* stars.c: the scintillation clock; the catalogue it draws, and a
  * request to upload it again (after a test changed it). (A B - V's colour:
  * light_units.h.) */

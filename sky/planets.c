@@ -38,9 +38,10 @@ typedef struct planets_state {
     double places_jd_tt;      /* the instant of the places' geocentric part */
     float vertices[SKY_ASTRO_PLANETS * PLANET_FLOATS];
     int dirty; /* vertices changed since the last upload */
+    sky_point_frame points;   /* stars.vert's uniforms for the planets     */
 } planets_state;
 
-static const sky_uniform_desc planet_uniforms[] = {SKY_POINT_UNIFORMS(planets)};
+static const sky_uniform_desc planet_uniforms[] = {SKY_POINT_UNIFORMS(planets_state, points)};
 static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms), NULL, NULL};
 
 static const size_t planet_bytes = sizeof(float) * SKY_ASTRO_PLANETS * PLANET_FLOATS;
@@ -81,6 +82,10 @@ static int planets_create(sky_core *s, void *state, char *err, size_t err_len)
         v[0] = (float)(100000 + p); /* a seed no catalogue star has */
         sky_star_color(sky_astro_planet_bv(p), v + 5);
     }
+    if (sky_snippet_bind(s, &planets_snippet, state)) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
+    }
     const sky_snippet *own[1] = {&planets_snippet};
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
                                        err_len);
@@ -105,7 +110,6 @@ static void planets_reset(void *state) { ((planets_state *)state)->scintillation
 static void planets_frame(sky_core *s, void *state)
 {
     planets_state *st = state;
-    sky_frame *f = &s->frame;
     double jd_tt = s->astro.jd_tt;
     int geocentric = !(fabs(jd_tt - st->places_jd_tt) <= GEOCENTRIC_DAYS);
     if (geocentric) {
@@ -127,20 +131,19 @@ static void planets_frame(sky_core *s, void *state)
     }
     st->dirty = 1;
     /* the places are apparent in the horizon frame already */
-    memset(f->planets.rot, 0, sizeof f->planets.rot);
-    f->planets.rot[0] = f->planets.rot[5] = f->planets.rot[10] = f->planets.rot[15] = 1.0f;
-    f->planets.aberration[0] = f->planets.aberration[1] = f->planets.aberration[2] = 0.0f;
+    memset(st->points.rot, 0, sizeof st->points.rot);
+    st->points.rot[0] = st->points.rot[5] = st->points.rot[10] = st->points.rot[15] = 1.0f;
+    st->points.aberration[0] = st->points.aberration[1] = st->points.aberration[2] = 0.0f;
 }
 
 static void planets_view(sky_core *s, void *state)
 {
     planets_state *st = state;
-    sky_frame *f = &s->frame;
     if (st->dirty) {
         sky_buffer_update(s, GL_ARRAY_BUFFER, st->buffer, st->vertices, planet_bytes, GL_DYNAMIC_DRAW);
         st->dirty = 0;
     }
-    sky_point_view(s, st->point_max, st->scintillation, &f->planets);
+    sky_point_view(s, st->point_max, st->scintillation, &st->points);
 }
 
 /* Drawn when the brightest planet above the horizon is within the naked
@@ -153,8 +156,8 @@ static int planets_visible(const sky_core *s, const void *state)
     double brightest = 99.0;
     for (int p = 0; p < SKY_ASTRO_PLANETS; p++)
         if (st->places[p].body.alt > -0.01) brightest = fmin(brightest, st->places[p].vmag);
-    return f->planets.flux_scale * pow(2.512, -brightest) * f->exposure >= 1.0 / 1024.0 &&
-           brightest < f->planets.pressure[1] + 0.25;
+    return st->points.flux_scale * pow(2.512, -brightest) * f->exposure >= 1.0 / 1024.0 &&
+           brightest < st->points.pressure[1] + 0.25;
 }
 
 /* No draw when no planet can show in this view: a draw of five points
@@ -165,7 +168,7 @@ static int planets_draw(sky_core *s, void *state)
     planets_state *st = state;
     int in_view = 0;
     for (int p = 0; !in_view && p < SKY_ASTRO_PLANETS; p++)
-        in_view = sky_point_in_view(s, &s->frame.planets, st->places[p].body.dir_geometric, st->places[p].vmag);
+        in_view = sky_point_in_view(s, &st->points, st->places[p].body.dir_geometric, st->places[p].vmag);
     if (!in_view) return 0;
     sky_points_draw(s, &st->program, st->buffer, 0, SKY_ASTRO_PLANETS);
     return 1;

@@ -9,14 +9,17 @@
 #include "core.h"
 #include "gl/gl.h"
 
-/* stars.vert's uniform rows for a set of points in the frame's
- * sky_point_frame `member` (stars, planets). */
-#define SKY_POINT_UNIFORMS(member)                                                                       \
-    SKY_UF("u_star_rot", SKY_U_M4, member.rot), SKY_UF("u_star_aberration", SKY_U_F3, member.aberration), \
-        SKY_UF("u_star_size", SKY_U_F4, member.size), SKY_UF("u_star_pressure", SKY_U_F3, member.pressure), \
-        SKY_UL("u_star_flux_scale", SKY_U_F1, member.flux_scale, 1u),                                         \
-        SKY_UF("u_star_extinction", SKY_U_F3, member.extinction), SKY_UF("u_star_shell", SKY_U_F3, member.shell), \
-        SKY_UF("u_star_seed", SKY_U_F1, member.seed), SKY_UF("u_star_occulter", SKY_U_F4, member.occulter)
+/* stars.vert's uniform rows for a set of points: the sky_point_frame
+ * `member` of the layer's state_type (stars, planets: each its own). */
+#define SKY_POINT_UNIFORMS(state_type, member)                                                              \
+    SKY_US("u_star_rot", SKY_U_M4, state_type, member.rot),                                                 \
+        SKY_US("u_star_aberration", SKY_U_F3, state_type, member.aberration),                               \
+        SKY_US("u_star_size", SKY_U_F4, state_type, member.size),                                           \
+        SKY_US("u_star_pressure", SKY_U_F3, state_type, member.pressure),                                   \
+        SKY_USL("u_star_flux_scale", SKY_U_F1, state_type, member.flux_scale, 1u),                          \
+        SKY_US("u_star_extinction", SKY_U_F3, state_type, member.extinction),                               \
+        SKY_US("u_star_shell", SKY_U_F3, state_type, member.shell), SKY_US("u_star_seed", SKY_U_F1, state_type, member.seed), \
+        SKY_US("u_star_occulter", SKY_U_F4, state_type, member.occulter)
 /* For the view being drawn, what every set of points shares: the
  * sizes of Mueller eq. 9 (q, glare c_k, largest radius in pixels, control
  * magnitude), the refraction's pressure factor and the faintest V drawn,

@@ -15,10 +15,15 @@
 #define STARMAP_PEAK 1.2e-6
 #define STARMAP_REF_PIXEL_ANGLE (2.0 * 0.57735026919 / 720.0)
 
+typedef struct starmap_state {
+    float rot[16]; /* J2000 -> horizon                                      */
+    float scale;   /* kcd/m^2 of a full texel in this view; 0: off          */
+} starmap_state;
+
 static const sky_uniform_desc starmap_uniforms[] = {
     SKY_UT("u_starmap_tex", SKY_TEX_STARMAP),
-    SKY_UF("u_starmap_rot", SKY_U_M4, starmap_rot),
-    SKY_UL("u_starmap_scale", SKY_U_F1, starmap_scale, 1u),
+    SKY_US("u_starmap_rot", SKY_U_M4, starmap_state, rot),
+    SKY_USL("u_starmap_scale", SKY_U_F1, starmap_state, scale, 1u),
 };
 static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
                                          SKY_UNIFORM_COUNT(starmap_uniforms), NULL, NULL};
@@ -82,15 +87,15 @@ static int starmap_create(sky_core *s, void *state, char *err, size_t err_len)
  * the inverse of the sky's rotation. */
 static void starmap_frame(sky_core *s, void *state)
 {
-    (void)state;
-    sky_j2000_to_horizon_mat4(&s->astro, 1, s->frame.starmap_rot);
+    starmap_state *st = state;
+    sky_j2000_to_horizon_mat4(&s->astro, 1, st->rot);
 }
 
 /* After the camera: the brightness depends on the pixel size. */
 static void starmap_view(sky_core *s, void *state)
 {
-    (void)state;
-    sky_frame *f = &s->frame;
+    starmap_state *st = state;
+    const sky_frame *f = &s->frame;
     float m_a = s->cfg.star_control_magnitude > 0.0f ? sky_clampf(s->cfg.star_control_magnitude, 1.0f, 10.0f) : 4.0f;
     double fov = f->pixel_angle > 0.0f ? sqrt(STARMAP_REF_PIXEL_ANGLE / f->pixel_angle) : 1.0;
     /* it fades with the naked eye's limit, from the limit a dark site's
@@ -101,19 +106,20 @@ static void starmap_view(sky_core *s, void *state)
     double scale = STARMAP_PEAK * pow(2.512, m_a - 4.0) * fov * seen * f->star_local_gain;
     /* nothing a quarter of an 8-bit step could show at the automatic
      * exposure: off (for HDR output too, as for the stars) */
-    f->starmap_scale = scale * f->exposure < 1.0 / 1024.0 ? 0.0f : (float)scale;
+    st->scale = scale * f->exposure < 1.0 / 1024.0 ? 0.0f : (float)scale;
 }
 
 static int starmap_visible(const sky_core *s, const void *state)
 {
-    (void)state;
-    return s->frame.starmap_scale > 0.0f;
+    (void)s;
+    return ((const starmap_state *)state)->scale > 0.0f;
 }
 
 const sky_layer_class sky_starmap_layer = {
     .name = "starmap",
     .slot = SKY_LAYER_STARMAP,
     .feature = SKY_STARMAP,
+    .state_size = sizeof(starmap_state),
     .dome_role = SKY_DOME_NIGHT,
     .dome_snippet = &starmap_snippet,
     .create = starmap_create,

@@ -51,9 +51,10 @@ typedef struct stars_state {
     unsigned short *indices;  /* the draw's list                           */
     GLuint elements;          /* and its buffer                            */
     int whole;                /* tests: every star, without the cells      */
+    sky_point_frame points;   /* stars.vert's uniforms for the catalogue   */
 } stars_state;
 
-static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars)};
+static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars_state, points)};
 static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL, NULL};
 
 /* A star's place in the buffer: its cell, brightest first within it. */
@@ -175,6 +176,10 @@ static int stars_create(sky_core *s, void *state, char *err, size_t err_len)
         }
     }
     if (upload_stars(s, st, s->astro.years_since_j2000, err, err_len)) return -1;
+    if (sky_snippet_bind(s, &stars_snippet, state)) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
+    }
     const sky_snippet *own[1] = {&stars_snippet};
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "stars.vert", "stars.frag", own, 1, err,
                                        err_len);
@@ -205,22 +210,22 @@ static void stars_reset(void *state) { ((stars_state *)state)->scintillation = 0
 /* The catalogue is in J2000: the sky's rotation takes it to the horizon. */
 static void stars_frame(sky_core *s, void *state)
 {
-    (void)state;
-    sky_j2000_to_horizon_mat4(&s->astro, 0, s->frame.stars.rot);
+    stars_state *st = state;
+    sky_j2000_to_horizon_mat4(&s->astro, 0, st->points.rot);
 }
 
 /* Per draw, from the observer's astronomy and the camera. */
 static void stars_view(sky_core *s, void *state)
 {
     stars_state *st = state;
-    sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
     /* proper motion moves Arcturus 0.1" a month: refresh past half a year */
     if (fabs(a->years_since_j2000 - st->epoch) > 0.5) upload_stars(s, st, a->years_since_j2000, NULL, 0);
     for (int i = 0; i < 3; i++)
-        f->stars.aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] + a->horizon[i * 3 + 1] * a->aberration[1] +
-                                        a->horizon[i * 3 + 2] * a->aberration[2]);
-    sky_point_view(s, st->point_max, st->scintillation, &f->stars);
+        st->points.aberration[i] = (float)(a->horizon[i * 3] * a->aberration[0] +
+                                           a->horizon[i * 3 + 1] * a->aberration[1] +
+                                           a->horizon[i * 3 + 2] * a->aberration[2]);
+    sky_point_view(s, st->point_max, st->scintillation, &st->points);
 }
 
 /* The brightest star (Sirius, V -1.46) is past the naked eye's limit, or
@@ -233,7 +238,7 @@ static int stars_visible(const sky_core *s, const void *state)
     const stars_state *st = state;
     if (!st->buffer) return 0;
     const sky_frame *f = &s->frame;
-    return f->stars.flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0 && -1.46 < f->stars.pressure[1] + 0.25;
+    return st->points.flux_scale * pow(2.512, 1.46) * f->exposure >= 1.0 / 1024.0 && -1.46 < st->points.pressure[1] + 0.25;
 }
 
 /* How many of n magnitudes (brightest first, stride bytes apart from
@@ -262,8 +267,8 @@ static int in_reach(const float *first, size_t stride, int n, float limit)
 static int stars_select(const sky_core *s, stars_state *st)
 {
     const sky_frame *f = &s->frame;
-    const float *rot = f->stars.rot;
-    const sky_point_frame *pf = &f->stars;
+    const float *rot = st->points.rot;
+    const sky_point_frame *pf = &st->points;
     sky_view_bounds b = sky_camera_bounds(f);
     int n = 0;
     /* A point spreads over its radius in pixels: the catalogue's brightest
@@ -302,7 +307,7 @@ static int stars_draw(sky_core *s, void *state)
          * the limit; one in another order is drawn whole */
         int count = st->catalog.count;
         if (st->brightest_first && !st->elements && count > 0)
-            count = in_reach(&st->catalog.stars[0].vmag, sizeof(sky_star), count, s->frame.stars.pressure[1]);
+            count = in_reach(&st->catalog.stars[0].vmag, sizeof(sky_star), count, st->points.pressure[1]);
         sky_points_draw(s, &st->program, st->buffer, 0, count);
         return 1;
     }

@@ -47,25 +47,36 @@ double sky_sun_illuminance_klx(const sky_core *s)
     return sun_centre_luminance() * SKY_SUN_LIMB_MEAN * cap_solid_angle(s->astro.sun_topo_semidiameter);
 }
 
+typedef struct sun_state {
+    sky_program program;
+    sky_disc_grid grid;  /* the sun's quad, tessellated                       */
+    float radius;        /* angular radius of the drawn disc, radians         */
+    float disc[3];       /* the disc's centre as drawn: its luminance x the
+                            transmittance, kcd/m^2 (under mediump kept within
+                            its 2^14, where the disc is white anyway)         */
+    float glare[3];      /* the glare's peak, 5e-6 of the unclamped centre x
+                            the transmittance                                 */
+    float true_dir[3];   /* the sun's centre without refraction               */
+} sun_state;
+
 static const sky_uniform_desc sun_uniforms[] = {
-    SKY_UF("u_sun_radius", SKY_U_F1, sun_radius),
-    SKY_UL("u_sun_disc", SKY_U_F3, sun_disc, SKY_RGB),
-    SKY_UL("u_sun_glare", SKY_U_F3, sun_glare, SKY_RGB),
+    SKY_US("u_sun_radius", SKY_U_F1, sun_state, radius),
+    SKY_USL("u_sun_disc", SKY_U_F3, sun_state, disc, SKY_RGB),
+    SKY_USL("u_sun_glare", SKY_U_F3, sun_state, glare, SKY_RGB),
     SKY_UF("u_sun_transmittance", SKY_U_F3, sun_transmittance),
-    SKY_UF("u_sun_true_dir", SKY_U_F3, sun_true_dir),
+    SKY_US("u_sun_true_dir", SKY_U_F3, sun_state, true_dir),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
 static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL, NULL};
-
-typedef struct sun_state {
-    sky_program program;
-    sky_disc_grid grid; /* the sun's quad, tessellated */
-} sun_state;
 
 static int sun_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     sun_state *st = state;
     if (sky_disc_grid_create(s, &st->grid, "sun", err, err_len)) return -1;
+    if (sky_snippet_bind(s, &sun_snippet, state)) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
+    }
     const sky_snippet *own[2] = {&sun_snippet, &sky_solar_eclipse_sun_snippet};
     return sky_program_build_over_dome(s, s->dome_snippets, &st->program, "sun.vert", "sun.frag", own, 2, err,
                                        err_len);
@@ -80,12 +91,11 @@ static void sun_destroy(sky_core *s, void *state)
 
 static void sun_frame(sky_core *s, void *state)
 {
-    (void)state;
-    sky_frame *f = &s->frame;
+    sun_state *st = state;
+    const sky_frame *f = &s->frame;
     const sky_astro *a = &s->astro;
-    f->sun_radius = (float)a->sun_topo_semidiameter;
+    st->radius = (float)a->sun_topo_semidiameter;
     double centre = sun_centre_luminance();
-    f->sun_luminance = (float)centre;
     /* The light reaches the shader as drawn: luminance 1.6e6 kcd/m^2 is
      * past the 2^14 of a mediump fragment stage (GLSL ES 1.00 without
      * highp), and the glare's 5e-6 of it must not be taken from a clamped
@@ -93,12 +103,12 @@ static void sun_frame(sky_core *s, void *state)
     double most = s->caps.fragment_highp ? 3e38 : 16384.0;
     for (int i = 0; i < 3; i++) {
         double t = f->sun_transmittance[i];
-        f->sun_disc[i] = (float)fmin(centre * t, most);
-        f->sun_glare[i] = (float)(5e-6 * centre * t);
+        st->disc[i] = (float)fmin(centre * t, most);
+        st->glare[i] = (float)(5e-6 * centre * t);
     }
     /* the disc is drawn where refraction puts each of its points
      * (sun.frag): it needs the centre's true direction */
-    for (int i = 0; i < 3; i++) f->sun_true_dir[i] = (float)a->sun.dir_geometric[i];
+    for (int i = 0; i < 3; i++) st->true_dir[i] = (float)a->sun.dir_geometric[i];
     sky_solar_eclipse_sun(s, centre); /* the moon in front */
 }
 
@@ -106,7 +116,7 @@ static int sun_visible(const sky_core *s, const void *state)
 {
     const sun_state *st = state;
     /* The whole quad, glare included, below the horizon: nothing to draw. */
-    return st->grid.vertices && s->frame.sun_altitude > -(float)SKY_SUN_QUAD_RADII * s->frame.sun_radius;
+    return st->grid.vertices && s->frame.sun_altitude > -(float)SKY_SUN_QUAD_RADII * st->radius;
 }
 
 static int sun_draw(sky_core *s, void *state)
@@ -121,7 +131,7 @@ static int sun_draw(sky_core *s, void *state)
     double tl = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
     for (int i = 0; i < 3; i++) t[i] /= tl;
     double b[3] = {d[1] * t[2] - d[2] * t[1], d[2] * t[0] - d[0] * t[2], d[0] * t[1] - d[1] * t[0]};
-    double half = SKY_SUN_QUAD_RADII * s->frame.sun_radius;
+    double half = SKY_SUN_QUAD_RADII * st->radius;
     sky_disc_grid_update(s, &st->grid, d, t, b, tan(half), 1.0);
     sky_program_apply(s, &st->program);
     sky_disc_grid_draw(s, &st->grid, a->sun.alt, half);

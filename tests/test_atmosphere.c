@@ -741,7 +741,7 @@ TEST(atmosphere_setting_sun_flattened)
         while (left < c && hdr_pixel(&h, c - 1 - left, row)[1] > edge) left++;
         while (right < c && hdr_pixel(&h, c + right, row)[1] > edge) right++;
         double half_width = 0.5 * (left + right);
-        double r = h.s->core.frame.sun_radius, ht = a->sun.alt_geometric, pf = a->pressure_factor;
+        double r = (float)h.s->core.astro.sun_topo_semidiameter, ht = a->sun.alt_geometric, pf = a->pressure_factor;
         double top = ht + r + sky_refraction(ht + r, pf), bottom = ht - r + sky_refraction(ht - r, pf);
         double centre_app = ht + sky_refraction(ht, pf);
         double measured, expected;

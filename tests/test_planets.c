@@ -276,11 +276,11 @@ TEST(planets_light_sums_to_magnitude)
     double got = (sums[0] - sums[1]) * fr.pixel_angle * fr.pixel_angle;
     float rgb[3];
     sky_star_color(0.82, rgb);
-    double cos_t = sin(v->place.alt_deg * DEG), sa = fr.planets.shell[0], sb = fr.planets.shell[1];
-    double airmass = (sqrt(sb * sb - sa * sa * (1.0 - cos_t * cos_t)) - sa * cos_t) / fr.planets.shell[2];
+    double cos_t = sin(v->place.alt_deg * DEG), sa = fr.night_shell[0], sb = fr.night_shell[1];
+    double airmass = (sqrt(sb * sb - sa * sa * (1.0 - cos_t * cos_t)) - sa * cos_t) / fr.night_shell[2];
     static const double w[3] = {0.2126, 0.7152, 0.0722};
     double ext = 0.0;
-    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr.planets.extinction[c] * airmass);
+    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr.night_depth[c] * airmass);
     double expect = 2.54e-9 * pow(2.512, m_a - 4.0 - v->vmag) * ext;
     NOTE("Venus V %.2f at %.1f deg sums to %.4g lx, physical %.4g lx (%+.1f %%)", v->vmag, v->place.alt_deg,
          got * 1e3, expect * 1e3, 100.0 * (got / expect - 1.0));

@@ -433,11 +433,11 @@ static double star_flux(const sky_observer *o, const sky_star_place *p, float m_
     double pa = fr->pixel_angle;
     float rgb[3];
     sky_star_color(p->bv, rgb);
-    double cos_t = sin(p->alt_deg * DEG), a = fr->stars.shell[0], b = fr->stars.shell[1];
-    double airmass = (sqrt(b * b - a * a * (1.0 - cos_t * cos_t)) - a * cos_t) / fr->stars.shell[2];
+    double cos_t = sin(p->alt_deg * DEG), a = fr->night_shell[0], b = fr->night_shell[1];
+    double airmass = (sqrt(b * b - a * a * (1.0 - cos_t * cos_t)) - a * cos_t) / fr->night_shell[2];
     static const double w[3] = {0.2126, 0.7152, 0.0722};
     double ext = 0.0;
-    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr->stars.extinction[c] * airmass);
+    for (int c = 0; c < 3; c++) ext += w[c] * rgb[c] * exp(-fr->night_depth[c] * airmass);
     *expect = 2.54e-9 * pow(2.512, m_a - 4.0 - p->vmag) * ext;
     fixture_close(&f);
     return sum * pa * pa;
