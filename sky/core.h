@@ -255,20 +255,8 @@ typedef struct sky_frame {
     float sunset_color[3];
     float sunset_gradient[SKY_SUNSET_SAMPLES]; /* R-P's sunset gradient by the
                                 angle from the sun, from the texture's alpha */
-    /* moon (moon.c) */
-    float moon_body[16], moon_view[16], moon_light[3], moon_color[3], moon_earthshine[3];
-    struct {                 /* u_moon_terms                                   */
-        float phase_factor;  /* HLS phase factor relative to full (eq. 3)      */
-        float unused;        /* (the lit side's own LDR exposure is in moon_color) */
-        float halo;          /* the night halo's share of the disc's light     */
-        float hides;         /* 0..1: the disc hides what is behind it        */
-    } moon_terms;
-    float moon_radius_tan;   /* the drawn disc's radius on its tangent plane     */
-    float moon_brighter;     /* LDR: 1 / the sunlit disc's own exposure scale    */
-    float shadow_offset[3], shadow_axis[3], shadow[4];
 } sky_frame;
 /* The uniform table reads each packed vec4 above as four floats in a row. */
-_Static_assert(sizeof(((sky_frame *)0)->moon_terms) == 4 * sizeof(float), "moon_terms is a vec4");
 _Static_assert(sizeof(((sky_point_frame *)0)->size) == 4 * sizeof(float), "a point's size is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->hl_misc) == 4 * sizeof(float), "hl_misc is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "eclipse_sun is a vec4");

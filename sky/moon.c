@@ -34,28 +34,6 @@ static void moon_extinction(const sky_core *s, double ext[3]) { sky_night_extinc
  * a photographer would lengthen the exposure */
 #define ECLIPSE_BOOST 30.0
 
-static const sky_uniform_desc moon_uniforms[] = {
-    SKY_UT("u_moon_tex", SKY_TEX_MOON),
-    SKY_UF("u_moon_body", SKY_U_M4, moon_body),
-    SKY_UF("u_moon_view", SKY_U_M4, moon_view),
-    SKY_UF("u_moon_light", SKY_U_F3, moon_light),
-    SKY_UL("u_moon_color", SKY_U_F3, moon_color, SKY_RGB),
-    SKY_UF("u_moon_terms", SKY_U_F4, moon_terms),
-    SKY_UF("u_moon_earthshine", SKY_U_F3, moon_earthshine),
-    SKY_UF("u_moon_radius_tan", SKY_U_F1, moon_radius_tan),
-    SKY_UF("u_moon_brighter", SKY_U_F1, moon_brighter),
-};
-static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL, NULL};
-
-static const sky_uniform_desc eclipse_uniforms[] = {
-    SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
-    SKY_UF("u_shadow_offset", SKY_U_F3, shadow_offset),
-    SKY_UF("u_shadow_axis", SKY_U_F3, shadow_axis),
-    SKY_UF("u_shadow", SKY_U_F4, shadow),
-};
-static const sky_snippet eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
-                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL, NULL};
-
 typedef struct moon_state {
     sky_program program;
     sky_disc_grid grid;       /* the moon's quad, tessellated               */
@@ -65,7 +43,42 @@ typedef struct moon_state {
     double lit_sum;           /* mean over the disc of albedo x the LS law  */
     double axes[3][3];        /* billboard x (right), y (up), moon direction */
     double radius_tan;        /* drawn disc radius on the tangent plane     */
+    /* its uniforms (moon.vert/.frag) */
+    float body[16], view[16], light[3], color[3], earthshine[3];
+    struct {                  /* u_moon_terms                               */
+        float phase_factor;   /* HLS phase factor relative to full (eq. 3)  */
+        float unused;         /* (the lit side's own LDR exposure is in color) */
+        float halo;           /* the night halo's share of the disc's light */
+        float hides;          /* 0..1: the disc hides what is behind it    */
+    } terms;
+    float drawn_radius_tan;   /* radius_tan as the shader takes it          */
+    float brighter;           /* LDR: 1 / the sunlit disc's own exposure scale */
+    float shadow_offset[3], shadow_axis[3], shadow[4]; /* a lunar eclipse   */
 } moon_state;
+/* The uniform table reads the packed vec4 as four floats in a row. */
+_Static_assert(sizeof(((moon_state *)0)->terms) == 4 * sizeof(float), "the moon's terms are a vec4");
+
+static const sky_uniform_desc moon_uniforms[] = {
+    SKY_UT("u_moon_tex", SKY_TEX_MOON),
+    SKY_US("u_moon_body", SKY_U_M4, moon_state, body),
+    SKY_US("u_moon_view", SKY_U_M4, moon_state, view),
+    SKY_US("u_moon_light", SKY_U_F3, moon_state, light),
+    SKY_USL("u_moon_color", SKY_U_F3, moon_state, color, SKY_RGB),
+    SKY_US("u_moon_terms", SKY_U_F4, moon_state, terms),
+    SKY_US("u_moon_earthshine", SKY_U_F3, moon_state, earthshine),
+    SKY_US("u_moon_radius_tan", SKY_U_F1, moon_state, drawn_radius_tan),
+    SKY_US("u_moon_brighter", SKY_U_F1, moon_state, brighter),
+};
+static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL, NULL};
+
+static const sky_uniform_desc eclipse_uniforms[] = {
+    SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
+    SKY_US("u_shadow_offset", SKY_U_F3, moon_state, shadow_offset),
+    SKY_US("u_shadow_axis", SKY_U_F3, moon_state, shadow_axis),
+    SKY_US("u_shadow", SKY_U_F4, moon_state, shadow),
+};
+static const sky_snippet eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
+                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL, NULL};
 
 /* Mueller's h(t) (sec. 3.2, fig. 5), our own fit of its four phenomena:
  * t in [0, 1/2] is the umbra (centre to edge), [1/2, 1] the penumbra.
@@ -125,6 +138,10 @@ static int moon_create(sky_core *s, void *state, char *err, size_t err_len)
             lut[4 * i + 3] = 255;
         }
         if (sky_texture_create(s, SKY_TEX_ECLIPSE, SKY_LAYER_MOON, lut, 4, 128, 1, 0, err, err_len)) return -1;
+    }
+    if (sky_snippet_bind(s, &moon_snippet, state) || sky_snippet_bind(s, &eclipse_snippet, state)) {
+        sky_format(err, err_len, "out of memory");
+        return -1;
     }
     const sky_snippet *own[2];
     int n = 0;
@@ -242,16 +259,16 @@ static void moon_frame(sky_core *s, void *state)
         st->axes[1][i] = y[i];
         st->axes[2][i] = m[i];
     }
-    memset(f->moon_view, 0, sizeof f->moon_view);
-    for (int i = 0; i < 3; i++) f->moon_view[0 * 4 + i] = (float)x[i], f->moon_view[1 * 4 + i] = (float)y[i],
-                                f->moon_view[2 * 4 + i] = (float)z[i];
-    f->moon_view[15] = 1.0f;
+    memset(st->view, 0, sizeof st->view);
+    for (int i = 0; i < 3; i++) st->view[0 * 4 + i] = (float)x[i], st->view[1 * 4 + i] = (float)y[i],
+                                st->view[2 * 4 + i] = (float)z[i];
+    st->view[15] = 1.0f;
     /* sun seen from the moon: the exact phase geometry */
     double l[3];
     double phase = sky_moon_sun_from_moon(a, l);
     double l_view[3] = {l[0] * x[0] + l[1] * x[1] + l[2] * x[2], l[0] * y[0] + l[1] * y[1] + l[2] * y[2],
                         l[0] * z[0] + l[1] * z[1] + l[2] * z[2]};
-    for (int i = 0; i < 3; i++) f->moon_light[i] = (float)l_view[i];
+    for (int i = 0; i < 3; i++) st->light[i] = (float)l_view[i];
     /* orientation (eq. 2): body = Ry(l) Rx(-b) Rz(-(P - q)) view */
     double alpha = a->moon_axis_angle - a->moon_parallactic, lb = a->moon_libration_lat, ll = a->moon_libration_lon;
     double ca = cos(-alpha), sa = sin(-alpha), cb = cos(-lb), sb = sin(-lb), cl = cos(ll), sl = sin(ll);
@@ -261,10 +278,10 @@ static void moon_frame(sky_core *s, void *state)
     double t1[9], body[9];
     sky_mat3_mul(rx, rz, t1);
     sky_mat3_mul(ry, t1, body);
-    memset(f->moon_body, 0, sizeof f->moon_body);
+    memset(st->body, 0, sizeof st->body);
     for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) f->moon_body[j * 4 + i] = (float)body[i * 3 + j];
-    f->moon_body[15] = 1.0f;
+        for (int j = 0; j < 3; j++) st->body[j * 4 + i] = (float)body[i * 3 + j];
+    st->body[15] = 1.0f;
     /* brightness: moon.frag shapes the lit part with Lommel-Seeliger
      * (Mueller eq. 3); the factor scales it so the disc sums to the
      * published phase law, the one sky_moon_lighting uses (Mueller's
@@ -303,15 +320,15 @@ static void moon_frame(sky_core *s, void *state)
     double fade = f->output_hdr > 0.5f ? 1.0 : a->moon_visibility;
     double full = sky_moon_full_luminance();
     double scale = full / (st->albedo_mean > 0.01f ? st->albedo_mean : 0.01f);
-    for (int i = 0; i < 3; i++) f->moon_color[i] = (float)(scale * sky_moon_k_lambda[i] * ext[i] * fade);
-    f->moon_terms.phase_factor = (float)phase_factor;
-    for (int i = 0; i < 3; i++) f->moon_earthshine[i] = (float)(e * beta_e[i]); /* bluish */
-    f->moon_terms.halo = (float)halo;
+    for (int i = 0; i < 3; i++) st->color[i] = (float)(scale * sky_moon_k_lambda[i] * ext[i] * fade);
+    st->terms.phase_factor = (float)phase_factor;
+    for (int i = 0; i < 3; i++) st->earthshine[i] = (float)(e * beta_e[i]); /* bluish */
+    st->terms.halo = (float)halo;
     /* In a dark sky the disc hides what is behind it (stars). While the
      * sky is brighter than about 1e-6 kcd/m^2 (the sun above -15 degrees)
      * the air in front of the moon shines too: the disc only adds, so its
      * dark side is never darker than the sky around it. */
-    f->moon_terms.hides = (float)sky_smoothstep(1e-5, 1e-6, f->sky_luminance);
+    st->terms.hides = (float)sky_smoothstep(1e-5, 1e-6, f->sky_luminance);
     /* LDR: expose the sunlit moon on its own, as the eye adapts to it
      * locally: its lit mean lands at the tone curve's shoulder instead of
      * pure white. The earthshine keeps the scene's exposure, so the ashen
@@ -326,24 +343,24 @@ static void moon_frame(sky_core *s, void *state)
         double es_mean = full * fade * e;
         double cap = 0.25 * (0.5 * f->sky_luminance + f->night_luminance);
         if (es_mean > cap)
-            for (int i = 0; i < 3; i++) f->moon_earthshine[i] *= (float)(cap / es_mean);
+            for (int i = 0; i < 3; i++) st->earthshine[i] *= (float)(cap / es_mean);
     }
     /* moon.frag takes k in the colour and the earthshine over it: the
      * colour times the exposure alone is past a mediump fragment stage's
      * 2^14 under a full moon at night (sky_frame.light_scale) */
     for (int i = 0; i < 3; i++) {
-        f->moon_color[i] *= (float)k;
-        f->moon_earthshine[i] /= (float)k;
+        st->color[i] *= (float)k;
+        st->earthshine[i] /= (float)k;
     }
     /* the disc is as bright as it is for the eye's cones, whatever its
      * own exposure: the blue shift of night vision leaves its colour
      * (display.glsl) */
-    f->moon_brighter = (float)(1.0 / k);
+    st->brighter = (float)(1.0 / k);
     /* quad size (eq. 1): the disc's tangent-plane radius tan(c_d delta / 2),
      * delta the topocentric diameter (up to 2 % larger than the
      * geocentric one with the moon high: an eclipse's totality needs it) */
     st->radius_tan = tan(sky_moon_drawn_scale(s) * a->moon_topo_semidiameter);
-    f->moon_radius_tan = (float)st->radius_tan;
+    st->drawn_radius_tan = (float)st->radius_tan;
     /* eclipse: geocentric geometry in the horizon frame */
     if (s->features & SKY_LUNAR_ECLIPSE) {
         double mg[3], sg[3], v[3];
@@ -358,17 +375,17 @@ static void moon_frame(sky_core *s, void *state)
          * sun's side of the earth is far from the shadow. */
         double km = a->moon.distance_km, along = km * (mg[0] * sg[0] + mg[1] * sg[1] + mg[2] * sg[2]);
         for (int i = 0; i < 3; i++) {
-            f->shadow_axis[i] = (float)sg[i];
-            f->shadow_offset[i] = along < 0.0 ? (float)((km * mg[i] - along * sg[i]) / SKY_MOON_RADIUS_KM) : 0.0f;
+            st->shadow_axis[i] = (float)sg[i];
+            st->shadow_offset[i] = along < 0.0 ? (float)((km * mg[i] - along * sg[i]) / SKY_MOON_RADIUS_KM) : 0.0f;
         }
-        if (along >= 0.0) f->shadow_offset[0] = 1e3f;
-        f->shadow[0] = (float)(km * tan(a->umbra_radius) / SKY_MOON_RADIUS_KM);
-        f->shadow[1] = (float)(km * tan(a->penumbra_radius) / SKY_MOON_RADIUS_KM);
-        f->shadow[2] = f->shadow[1] - f->shadow[0];
+        if (along >= 0.0) st->shadow_offset[0] = 1e3f;
+        st->shadow[0] = (float)(km * tan(a->umbra_radius) / SKY_MOON_RADIUS_KM);
+        st->shadow[1] = (float)(km * tan(a->penumbra_radius) / SKY_MOON_RADIUS_KM);
+        st->shadow[2] = st->shadow[1] - st->shadow[0];
         /* i(t_m): brighten a deep eclipse in LDR (Mueller sec. 3.2.1) */
         double tm = a->umbral_magnitude;
         double boost = 1.0 + (ECLIPSE_BOOST - 1.0) * sky_smoothstep(0.0, 1.0, tm);
-        f->shadow[3] = f->output_hdr > 0.5f ? 1.0f : (float)boost;
+        st->shadow[3] = f->output_hdr > 0.5f ? 1.0f : (float)boost;
     }
 }
 
