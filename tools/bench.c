@@ -522,6 +522,11 @@ static double quad_time(int frames)
 
 /* ---- skies ------------------------------------------------------------------------------------ */
 
+/* The layers a row times, by stats index: this build has sky_layer_count()
+ * (ten before 0.6, more as layers are added); past this many the rest go
+ * untimed. */
+#define BENCH_LAYERS 32
+
 typedef struct row {
     const char *preset;
     const char *profile;
@@ -529,7 +534,8 @@ typedef struct row {
     double ratio_min, ratio_max; /* over the rounds */
     double update_us;            /* sky_set_params + sky_update, time slider moving; -1: not measured */
     int fetches;                 /* a quad of our own: texture fetches per pixel; 0: a sky */
-    double layer_ms[SKY_LAYER_COUNT]; /* medians with profile_layers, -1 if never drawn alone */
+    double layer_ms[BENCH_LAYERS]; /* by stats index (sky_get_layer_stats): medians with profile_layers,
+                                      -1 if never drawn alone */
     double lut_start_ms, lut_rebuild_ms; /* tables built by creation; a rebuild after the sun moved */
     sky_stats st;
 } row;
@@ -620,9 +626,10 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     sky_cli_camera(cli, sub->view, sub->proj);
     sky_config cfg = sky_cli_config(cli, sky_headless_loader(&sub->ctx));
     cfg.depth = depth;
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) out->layer_ms[l] = -1.0;
+    int layers = sky_layer_count() < BENCH_LAYERS ? sky_layer_count() : BENCH_LAYERS;
+    for (int l = 0; l < BENCH_LAYERS; l++) out->layer_ms[l] = -1.0;
     out->update_us = -1.0;
-    double *lt = extras ? malloc(sizeof(double) * (size_t)frames * SKY_LAYER_COUNT) : NULL;
+    double *lt = extras ? malloc(sizeof(double) * (size_t)frames * (size_t)layers) : NULL;
     /* per-layer GPU time: a sky with profile_layers (it waits for the GPU
      * around each draw, so it is kept out of the frame timing) */
     sky_config pcfg = cfg;
@@ -632,15 +639,15 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
         sky_set_params(ps, &cli->params);
         sky_set_observer(ps, &cli->observer);
         sky_draw(ps, sub->view, sub->proj);
-        int n[SKY_LAYER_COUNT] = {0};
+        int n[BENCH_LAYERS] = {0};
         for (int i = 0; i < frames; i++) {
             sky_draw(ps, sub->view, sub->proj);
-            sky_stats st;
-            sky_get_stats(ps, &st);
-            for (int l = 0; l < SKY_LAYER_COUNT; l++)
-                if (st.layers[l].ms >= 0.0) lt[l * frames + n[l]++] = st.layers[l].ms;
+            for (int l = 0; l < layers; l++) {
+                sky_layer_stats ls;
+                if (sky_get_layer_stats(ps, l, &ls) == SKY_OK && ls.ms >= 0.0) lt[l * frames + n[l]++] = ls.ms;
+            }
         }
-        for (int l = 0; l < SKY_LAYER_COUNT; l++)
+        for (int l = 0; l < layers; l++)
             if (n[l]) out->layer_ms[l] = sky_cli_median(lt + l * frames, n[l]);
         /* a table rebuild, on the profiling sky (its GPU builds are timed
          * to completion): the sun moved 0.36 degree a frame, past every
