@@ -1130,8 +1130,9 @@ typedef struct sky_aerial {
  *   out         transmittance (0..1 per channel) and inscatter (kcd/m^2,
  *               linear RGB); 0 m: 1 and 0
  * The Hillaire and blend paths use their own tables; the others build a
- * transmittance and multiple-scattering table at the first call (about
- * 60 ms on the CPU, once). A call marches three rays (a few us).
+ * transmittance and multiple-scattering table on the CPU at the first
+ * call, once. A call marches three rays. (Their costs: sky-bench's
+ * aerial perspective table, docs/benchmarks.md.)
  * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), direction or
  * out NULL, a direction not finite or zero, a distance negative or NaN;
  * SKY_ERR_OUT_OF_MEMORY for the tables. After any error out (where not
@@ -1158,11 +1159,11 @@ SKY_API sky_result sky_get_aerial_perspective(sky *s, const float direction[3], 
  * Since: 0.4.0 */
 SKY_API const char *sky_aerial_glsl(void);
 /* sky_aerial_bind: makes the table current for the frame (remade on the
- * CPU when the sun, sliders, observer or world frame moved: 1.3-2.7 ms;
- * sky-bench gives the cost), binds it to texture_unit and sets the
- * uniforms of program (a linked program that includes sky_aerial_glsl;
- * uniforms it optimised away are skipped). Call it after sky_update,
- * before drawing with the program.
+ * CPU when the sun, sliders, observer or world frame moved: sky-bench's
+ * aerial perspective table gives the cost), binds it to texture_unit and
+ * sets the uniforms of program (a linked program that includes
+ * sky_aerial_glsl; uniforms it optimised away are skipped). Call it after
+ * sky_update, before drawing with the program.
  * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), program 0 or
  * a name that is no program of the current context (glIsProgram; whether
  * it linked is not checked), or a texture_unit below 0 or not below the
