@@ -137,6 +137,9 @@ void test_fullscreen_triangle(int core, unsigned *vao, unsigned *buf);
 void test_fullscreen_free(unsigned vao, unsigned buf);
 
 /* Path of a built program (SKY_BIN or build/bin). */
+/* A file's whole text (NUL-terminated; free it), or NULL; *len its size
+ * when len is given. */
+char *read_text_file(const char *path, size_t *len);
 const char *bin_path(const char *name, char *buf, size_t len);
 /* A file name of this run's own in TMPDIR (or /tmp): sky-test-PID-name. */
 const char *tmp_path(const char *name, char *buf, size_t len);

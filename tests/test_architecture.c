@@ -6,6 +6,7 @@
  * and string literals blanked first.
  */
 #include "test.h"
+#include "sky_internal.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -50,20 +51,6 @@ static void blank_comments_and_strings(char *s)
     }
 }
 
-static char *read_text(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *buf = size >= 0 ? malloc((size_t)size + 1) : NULL;
-    size_t got = buf ? fread(buf, 1, (size_t)size, f) : 0;
-    fclose(f);
-    if (buf) buf[got] = '\0';
-    return buf;
-}
-
 /* The library's .c files (sky/, sky/atmosphere/, sky/gl/), without the
  * reference, which only the tools link. */
 static int load_sources(source *out, int max)
@@ -79,7 +66,7 @@ static int load_sources(source *out, int max)
             if (len < 3 || strcmp(e->d_name + len - 2, ".c") || !strcmp(e->d_name, "reference.c")) continue;
             source *s = &out[n];
             snprintf(s->path, sizeof s->path, "%s/%s", dirs[d], e->d_name);
-            s->code = read_text(s->path);
+            s->code = read_text_file(s->path, NULL);
             if (!s->code) continue;
             blank_comments_and_strings(s->code);
             s->lines = 0;
@@ -281,4 +268,28 @@ TEST(architecture_hubs_small)
     }
     CHECK(saw_sky && saw_gl >= 2, "sky/sky.c and sky/gl/*.c found (%d in gl/)", saw_gl);
     free_sources(src, n);
+}
+
+/* The layer table gives every row its own stats index, 0 .. count - 1 (a
+ * layer after 0.5 that left .slot at 0 would share the star map's), and
+ * every row its own name, which sky_layer_name and sky_layer_index
+ * answer. */
+TEST(architecture_layer_table_indices)
+{
+    int n = sky_layer_table_size, seen[64] = {0};
+    CHECK(n == sky_layer_count() && n >= SKY_LAYER_COUNT && n <= 64, "%d rows, sky_layer_count %d", n,
+          sky_layer_count());
+    for (int row = 0; row < n && n <= 64; row++) {
+        const sky_layer_class *L = sky_layer_table[row];
+        int index = sky_layer_table_index(row);
+        CHECK(index >= 0 && index < n, "%s: stats index %d outside 0..%d", L->name, index, n - 1);
+        if (index < 0 || index >= n) continue;
+        CHECK(!seen[index]++, "%s: stats index %d given twice", L->name, index);
+        CHECK(L->name && !strcmp(sky_layer_name((sky_layer)index), L->name) && sky_layer_index(L->name) == index,
+              "row %d: name %s, index %d, sky_layer_name %s, sky_layer_index %d", row, L->name ? L->name : "(none)",
+              index, sky_layer_name((sky_layer)index), L->name ? sky_layer_index(L->name) : -2);
+        CHECK(!L->glow_at == !L->glow_zenith, "%s: a night glow has both glow functions", L->name);
+        CHECK(L->dome_role == SKY_DOME_NONE || L->dome_snippet, "%s: a dome role without a snippet", L->name);
+    }
+    CHECK(sky_layer_index("no such layer") == -1 && sky_layer_index(NULL) == -1, "unknown names give -1");
 }

@@ -28,21 +28,6 @@ static int list_files(char *list, size_t len)
     return rc == 0 && list[0] ? 0 : -1;
 }
 
-/* A file's whole text, or NULL; *len its size when len is given. */
-static char *read_text(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *buf = size >= 0 ? malloc((size_t)size + 1) : NULL;
-    size_t got = buf ? fread(buf, 1, (size_t)size, f) : 0;
-    fclose(f);
-    if (buf) buf[got] = '\0';
-    if (len) *len = got;
-    return buf;
-}
 
 TEST(docs_no_paths_outside_the_repository)
 {
@@ -57,7 +42,7 @@ TEST(docs_no_paths_outside_the_repository)
         if (!strncmp(path, "build/", 6) || !strncmp(path, ".git/", 5)) continue;
         files++;
         size_t got;
-        char *buf = read_text(path, &got);
+        char *buf = read_text_file(path, &got);
         if (!buf) continue; /* listed but absent (deleted in the work tree) */
         /* text only: a PNG or a star catalogue may hold any bytes */
         if (memchr(buf, '\0', got)) {
@@ -320,7 +305,7 @@ static void check_link(const char *target, size_t len, const char *at, void *ctx
               (int)len, target, path);
         return;
     }
-    char *doc = read_text(path, NULL);
+    char *doc = read_text_file(path, NULL);
     const char *from, *to;
     CHECK(doc && md_section(doc, slug, &from, &to) == 0, "%s:%d: the link %.*s: %s has no heading whose anchor is #%s",
           c->file, line_of(c->text, at), (int)len, target, path, slug);
@@ -347,7 +332,7 @@ TEST(docs_links_resolve)
     CHECK(list_markdown(list, sizeof list) == 0, "cannot list the Markdown files");
     int files = 0, links = 0, anchors = 0, readme_links = 0;
     for (char *line = strtok(list, "\n"); line; line = strtok(NULL, "\n")) {
-        char *text = read_text(line, NULL);
+        char *text = read_text_file(line, NULL);
         if (!text) continue;
         link_check c = {line, text, 0, 0, 0};
         md_links(text, check_link, &c);
@@ -512,7 +497,7 @@ static void check_block(const char *from, const char *to, void *ctx)
         counted = 1;
         int found = 0;
         for (int k = 0; k < links.n && !found; k++) {
-            char *doc = read_text(links.path[k], NULL);
+            char *doc = read_text_file(links.path[k], NULL);
             const char *sf = doc, *st = doc ? doc + strlen(doc) : NULL;
             if (doc && (!links.slug[k][0] || md_section(doc, links.slug[k], &sf, &st) == 0))
                 found = number_in(p, len, sf, st);
@@ -535,7 +520,7 @@ static void check_block(const char *from, const char *to, void *ctx)
  * figures moved fails here until the README says the same. */
 TEST(docs_readme_figures_quoted_from_docs)
 {
-    char *readme = read_text("README.md", NULL);
+    char *readme = read_text_file("README.md", NULL);
     CHECK(readme != NULL, "README.md readable from the working directory");
     if (!readme) return;
     figure_check c = {readme, 0, 0, 0};
@@ -568,8 +553,8 @@ TEST(docs_readme_figures_quoted_from_docs)
  * guide's Colour table has a row for each. */
 TEST(docs_figures_agree)
 {
-    char *validation = read_text("docs/validation.md", NULL), *bench = read_text("docs/benchmarks.md", NULL);
-    char *guide = read_text("docs/guide.md", NULL), *readme = read_text("README.md", NULL);
+    char *validation = read_text_file("docs/validation.md", NULL), *bench = read_text_file("docs/benchmarks.md", NULL);
+    char *guide = read_text_file("docs/guide.md", NULL), *readme = read_text_file("README.md", NULL);
     CHECK(validation && bench && guide && readme, "README.md and docs/ readable from the working directory");
     if (validation && bench && guide && readme) {
         const char *prose = strstr(validation, "astronomy update costs ");
@@ -603,7 +588,7 @@ TEST(docs_figures_agree)
  * build line, the feature table. */
 TEST(docs_readme_is_a_front_door)
 {
-    char *readme = read_text("README.md", NULL);
+    char *readme = read_text_file("README.md", NULL);
     CHECK(readme != NULL, "README.md readable from the working directory");
     if (!readme) return;
     int lines = 0;
@@ -632,7 +617,7 @@ TEST(docs_readme_is_a_front_door)
  * nothing under -Wall -Wextra. */
 TEST(docs_quick_start_builds)
 {
-    char *readme = read_text("README.md", NULL);
+    char *readme = read_text_file("README.md", NULL);
     CHECK(readme != NULL, "README.md readable");
     if (!readme) return;
     struct stat st;
@@ -704,7 +689,7 @@ TEST(docs_commands_are_real)
     int tests = 0, options = 0;
     for (char *line = strtok(list, "\n"); line; line = strtok(NULL, "\n")) {
         if (strcmp(line, "README.md") && strncmp(line, "docs/", 5)) continue;
-        char *text = read_text(line, NULL);
+        char *text = read_text_file(line, NULL);
         if (!text) continue;
         for (const char *p = strstr(text, "sky-tests"); p; p = strstr(p + 1, "sky-tests")) {
             const char *q = p + strlen("sky-tests");

@@ -232,6 +232,21 @@ int image_load_png(const char *path, image *out)
     return 0;
 }
 
+char *read_text_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = size >= 0 ? malloc((size_t)size + 1) : NULL;
+    size_t got = buf ? fread(buf, 1, (size_t)size, f) : 0;
+    fclose(f);
+    if (buf) buf[got] = '\0';
+    if (len) *len = got;
+    return buf;
+}
+
 const char *bin_path(const char *name, char *buf, size_t len)
 {
     const char *dir = getenv("SKY_BIN");
