@@ -532,9 +532,8 @@ static double phase_cs(double c, double g)
 /* Hillaire 2020 Fig. 7 / sec. 5.5 maps u = 0.5 + 0.5 mu_s; here u = 0.5 +
  * 0.5 sign(mu_s) sqrt|mu_s|, so that the columns crowd where Psi_ms
  * changes fastest, the sun at the horizon (32 columns: 0.004 apart in
- * mu_s there instead of 0.065). Measured against the spectral reference
- * with the sun at 0 degrees: 12 -> 4.5 % mean error (a 128-column linear
- * table gives 5.3 %). v = altitude over the shell's thickness. Both go
+ * mu_s there instead of 0.065; what it gained against the reference:
+ * docs/validation.md). v = altitude over the shell's thickness. Both go
  * through the texel-centre map. */
 static double ms_u(double mu_s)
 {
@@ -552,10 +551,9 @@ static double ms_mu_s(double u)
 /* The multiple-scattering tables are interpolated in Psi^(1/16) and the
  * moments' ratios to Psi (hillaire.h). In the Earth's shadow Psi falls
  * by a factor of ten or more from one column to the next, and a linear
- * interpolation between them overshoots the geometric mean up to 80 %;
- * the sixteenth root, 4.5 %. Measured on the sky's light on the ground
- * with the sun 12 deg down: 2.9 times too much with a 32-column table
- * against a 64-column one when Psi itself was interpolated. */
+ * interpolation between them overshoots the geometric mean several
+ * times over where the sixteenth root stays close (docs/validation.md
+ * has the figures). */
 static double ms_root(double psi)
 {
     return psi > 0.0 ? pow(psi, 1.0 / 16.0) : 0.0;
@@ -617,9 +615,8 @@ static double hg_density(double g, double c)
  * ground's to the whole sky's, falls between rings; the n_peak others
  * distributed about the sun like Henyey-Greenstein with the aerosol's g,
  * for the first bounce's forward peak. Evenly spread directions alone
- * alias the two: their 64-direction table was 2.7 % from the
- * 128-direction one at sun 10 deg, and did not converge monotonically;
- * these are 0.5 %. Azimuths are a
+ * alias the two (they did not converge monotonically with their number:
+ * docs/validation.md). Azimuths are a
  * golden-ratio sequence on 0..pi. The plane z = 0 holds the sun and the
  * observer, so the mirror image (x, y, -z) of each direction sees the
  * same light: the builder traces the half (z >= 0) and counts it twice.
@@ -817,9 +814,9 @@ static void ray_light(const sky_hillaire_tables *t, const hl_medium *m, double r
  * row's scratch, n x 27 doubles.
  * Hillaire 2020 sec. 5.5 sums the orders after the first as a geometric
  * series of the first's mean, scattered isotropically; with a forward
- * aerosol and a low sun that left the light near the ground 25 % short,
- * and a degree-2 first bounce rang from the sun's aureole to its far
- * side (39 % too much second order there): see sky_hillaire_add_order. */
+ * aerosol and a low sun that left the light near the ground short, and a
+ * degree-2 first bounce rang from the sun's aureole to its far side
+ * (docs/validation.md): see sky_hillaire_add_order. */
 static void order_row(const sky_hillaire_tables *t, const hl_medium *m, double r, const float *prev, float *row,
                       double *sums)
 {
@@ -1076,9 +1073,8 @@ static void ms_texel(const sky_hillaire_tables *t, int y0, int y1, double fy, in
  * (scatter_moments). An aerosol scatters forward (chi_1 0.71, chi_2 0.52
  * at g 0.65), so it sends the observer the light that arrives from
  * beyond the view rather than the sky's mean: the isotropic second order
- * made a high sun's sky 4-8 % too bright and a low sun's horizon too
- * dark (against the spectral reference, the default Earth: daytime error
- * 6.7 % -> 2.9 % with the dipole and quadrupole). The first bounce's
+ * made a high sun's sky too bright and a low sun's horizon too dark
+ * (docs/validation.md). The first bounce's
  * aureole about a sun near the horizon needs the zonal terms: cut at
  * degree 2 it rang to the aureole's far side. */
 /* What a single ray asks of skyview_row beyond the table's row (NULL for

@@ -191,9 +191,8 @@ void sky_atmosphere_effective(const sky_atmosphere_params *in, sky_atmosphere_pa
      * around 600 nm (three times its 680 nm value), which is what
      * reddens and dims the light that grazes the ozone layer at sunrise.
      * One shared wavelength per channel (the lambda^-4 one, 642/548/442
-     * nm) left ozone's red at a third. Against the spectral reference
-     * (Hillaire path, Earth, sun 0-90 degrees): mean CIEDE2000 3.5 -> 2.3,
-     * luminance error unchanged (7.6 / 7.7 %). */
+     * nm) left ozone's red at a third (what the bands gained against the
+     * spectral reference: docs/validation.md). */
     double e[SKY_SPECTRUM_SAMPLES], spectra[4][SKY_SPECTRUM_SAMPLES], xyz[3], sun[3], band[4][3];
     for (int i = 0; i < SKY_SPECTRUM_SAMPLES; i++) {
         double l = sky_spectrum_wavelength_nm(i), r, ms, me, oz;
