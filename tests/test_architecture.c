@@ -16,7 +16,7 @@
 enum { MAX_FILES = 96, MAX_DEFS = 4096 };
 
 typedef struct source {
-    char path[128];
+    char path[512];
     char *code; /* comments and strings blanked, newlines kept */
     int lines;
 } source;
@@ -65,7 +65,8 @@ static int load_sources(source *out, int max)
             size_t len = strlen(e->d_name);
             if (len < 3 || strcmp(e->d_name + len - 2, ".c") || !strcmp(e->d_name, "reference.c")) continue;
             source *s = &out[n];
-            snprintf(s->path, sizeof s->path, "%s/%s", dirs[d], e->d_name);
+            int w = snprintf(s->path, sizeof s->path, "%s/%s", dirs[d], e->d_name);
+            if (w < 0 || (size_t)w >= sizeof s->path) continue; /* (no such name in the tree) */
             s->code = read_text_file(s->path, NULL);
             if (!s->code) continue;
             blank_comments_and_strings(s->code);
