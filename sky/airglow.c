@@ -32,7 +32,7 @@
 #define AIRGLOW_BV 0.8
 #define SOLAR_CYCLE_YEARS 11.0
 #define SOLAR_MINIMUM_YEAR 2019.9   /* the start of cycle 25 (and 2008.9 of 24) */
-#define EARTH_RADIUS_KM 6371.0
+#define EARTH_MEAN_RADIUS_KM 6371.0
 
 typedef struct airglow_state {
     float light[4]; /* rgb: zenith kcd/m^2 above the air; a: (R / (R + h))^2 */
@@ -69,8 +69,8 @@ static void airglow_zenith(const sky_core *s, const void *state, double rgb[3])
 /* (R / (R + h))^2 for the observer's height */
 static double shell_ratio2(const sky_core *s)
 {
-    double r = EARTH_RADIUS_KM + sky_clampd(s->observer.altitude_m / 1000.0, -0.5, AIRGLOW_HEIGHT_KM - 1.0);
-    double c = r / (EARTH_RADIUS_KM + AIRGLOW_HEIGHT_KM);
+    double r = EARTH_MEAN_RADIUS_KM + sky_clampd(s->observer.altitude_m / 1000.0, -0.5, AIRGLOW_HEIGHT_KM - 1.0);
+    double c = r / (EARTH_MEAN_RADIUS_KM + AIRGLOW_HEIGHT_KM);
     return c * c;
 }
 

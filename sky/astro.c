@@ -21,9 +21,9 @@
 #define MOON_RADIUS_KM 1737.4
 #define SUN_RADIUS_KM 696000.0       /* IAU nominal: 959.63" at 1 au */
 
-static double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+static double astro_clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 /* asin/acos of a value rounding may have pushed past +-1 */
-static double safe_asin(double x) { return asin(clamp(x, -1.0, 1.0)); }
+static double safe_asin(double x) { return asin(astro_clamp(x, -1.0, 1.0)); }
 static double wrap_2pi(double a)
 {
     a = fmod(a, TWO_PI);
@@ -402,7 +402,7 @@ double sky_refraction(double h, double pressure_factor)
     double hc = hd > -1.0 ? hd : -1.0;
     double r_arcmin = 1.02 / tan((hc + 10.3 / (hc + 5.11)) * DEG) + 0.0019279;
     if (hd >= 89.999) r_arcmin = 0.0;
-    double taper = hd >= -1.0 ? 1.0 : clamp((hd + 6.0) / 5.0, 0.0, 1.0);
+    double taper = hd >= -1.0 ? 1.0 : astro_clamp((hd + 6.0) / 5.0, 0.0, 1.0);
     return r_arcmin / 60.0 * DEG * taper * pressure_factor;
 }
 
@@ -463,7 +463,7 @@ static double separation(double ra1, double dec1, double ra2, double dec2)
 {
     double sd = sin((dec2 - dec1) / 2), sr = sin((ra2 - ra1) / 2);
     double h = sd * sd + cos(dec1) * cos(dec2) * sr * sr;
-    return 2.0 * safe_asin(sqrt(clamp(h, 0.0, 1.0)));
+    return 2.0 * safe_asin(sqrt(astro_clamp(h, 0.0, 1.0)));
 }
 
 /* Area of the lens where two discs of radii r1, r2 at distance d overlap. */
@@ -472,8 +472,8 @@ static double overlap_area(double r1, double r2, double d)
     if (d >= r1 + r2) return 0.0;
     double rmin = fmin(r1, r2);
     if (d <= fabs(r1 - r2)) return PI * rmin * rmin;
-    double c1 = clamp((d * d + r1 * r1 - r2 * r2) / (2.0 * d * r1), -1.0, 1.0);
-    double c2 = clamp((d * d + r2 * r2 - r1 * r1) / (2.0 * d * r2), -1.0, 1.0);
+    double c1 = astro_clamp((d * d + r1 * r1 - r2 * r2) / (2.0 * d * r1), -1.0, 1.0);
+    double c2 = astro_clamp((d * d + r2 * r2 - r1 * r1) / (2.0 * d * r2), -1.0, 1.0);
     double k = (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2);
     return r1 * r1 * acos(c1) + r2 * r2 * acos(c2) - 0.5 * sqrt(fmax(k, 0.0));
 }
@@ -488,7 +488,7 @@ void sky_solar_eclipse(double sun_radius, double moon_radius, double separation,
     double d = sane ? fmax(separation, 0.0) : 1.0;
     double covered = 0.0, mag = 0.0, flux = 1.0;
     if (rm > 0.0 && d < rs + rm) {
-        covered = clamp(overlap_area(rs, rm, d) / (PI * rs * rs), 0.0, 1.0);
+        covered = astro_clamp(overlap_area(rs, rm, d) / (PI * rs * rs), 0.0, 1.0);
         mag = (rs + rm - d) / (2.0 * rs);
         /* The limb-darkened light behind the moon (Schneegans et al.
          * eq. 1), over rings of the sun's disc at mu = sqrt(1 - (rho/R)^2),
@@ -510,14 +510,14 @@ void sky_solar_eclipse(double sun_radius, double moon_radius, double separation,
         for (int i = 0; h > 0.0 && i < n; i++) {
             double t = (i + 0.5) * PI / n, mu = c + h * cos(t), rho = rs * sqrt(fmax(1.0 - mu * mu, 0.0));
             double arc = rho > 0.0 && d > 0.0
-                             ? 2.0 * acos(clamp((rho * rho + d * d - rm * rm) / (2.0 * rho * d), -1.0, 1.0))
+                             ? 2.0 * acos(astro_clamp((rho * rho + d * d - rm * rm) / (2.0 * rho * d), -1.0, 1.0))
                              : 0.0;
             partial += (1.0 - u * (1.0 - mu)) * arc * mu * h * sin(t);
         }
         hidden += partial * PI / n;
         /* per unit R^2; the whole disc gives pi (1 - u/3) */
         hidden *= rs * rs;
-        flux = clamp(1.0 - hidden / (PI * rs * rs * (1.0 - u / 3.0)), 0.0, 1.0);
+        flux = astro_clamp(1.0 - hidden / (PI * rs * rs * (1.0 - u / 3.0)), 0.0, 1.0);
     }
     if (obscuration) *obscuration = covered;
     if (magnitude) *magnitude = mag;
@@ -527,8 +527,8 @@ void sky_solar_eclipse(double sun_radius, double moon_radius, double separation,
 /* Mueller sec. 5's day-night fades of the stars and the moon for a sun
  * whose up component is s_z; the powers act on clamped bases so they stay
  * finite. */
-static double star_fade(double s_z) { return 1.0 / sqrt(1.0 + pow(clamp(s_z + 1.14, 0.0, 2.14), 32.0)); }
-static double moon_fade(double s_z) { return 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(clamp(s_z + 1.05, 0.0, 2.05), 32.0)); }
+static double star_fade(double s_z) { return 1.0 / sqrt(1.0 + pow(astro_clamp(s_z + 1.14, 0.0, 2.14), 32.0)); }
+static double moon_fade(double s_z) { return 0.5 + 1.0 / sqrt(2.0 + 2.0 * pow(astro_clamp(s_z + 1.05, 0.0, 2.05), 32.0)); }
 
 static void set_error(char *err, size_t len, const char *fmt, ...)
 {
@@ -572,7 +572,7 @@ int sky_astro_compute_cached(double jd_ut, double delta_t, const sky_astro_obser
         set_error(err, err_len, "altitude %.6g m is outside -500..100000", obs->altitude_m);
         return -1;
     }
-    double lat = clamp(obs->latitude, -PI / 2, PI / 2);
+    double lat = astro_clamp(obs->latitude, -PI / 2, PI / 2);
     a->jd_ut = jd_ut;
     a->delta_t = delta_t;
     a->jd_tt = jd_ut + a->delta_t / 86400.0;
@@ -620,7 +620,7 @@ int sky_astro_compute_cached(double jd_ut, double delta_t, const sky_astro_obser
     ecl_to_eq(ml_app, mb, eps, &a->moon.ra, &a->moon.dec);
     a->moon.distance_km = md;
     body_place(a, obs_eq, &a->moon);
-    a->moon_semidiameter = asin(clamp(MOON_RADIUS_KM / md, 0.0, 1.0));
+    a->moon_semidiameter = asin(astro_clamp(MOON_RADIUS_KM / md, 0.0, 1.0));
 
     /* phase (Meeus 48.2-48.5, geocentric) */
     double psi = separation(a->sun.ra, a->sun.dec, a->moon.ra, a->moon.dec);
@@ -683,7 +683,7 @@ int sky_astro_compute_cached(double jd_ut, double delta_t, const sky_astro_obser
      * stars come out. */
     double residual = a->solar_flux_fraction + (1.0 - a->solar_flux_fraction) * SKY_ECLIPSE_ZENITH_RESIDUAL;
     double dark = log10(fmax(residual, 1e-12));
-    dark = clamp((dark + 2.0) / -1.0, 0.0, 1.0);
+    dark = astro_clamp((dark + 2.0) / -1.0, 0.0, 1.0);
     dark = dark * dark * (3.0 - 2.0 * dark);
     if (dark > 0.0) {
         double s8 = sin(-8.0 * DEG);
@@ -815,7 +815,7 @@ double sky_astro_planet_magnitude(int planet, double r_au, double delta_au, doub
      * 3-4, Mars 6-7 with the season term (not the rotation term of Mallama
      * 2007, +-0.06, which needs the planet's central meridian), Jupiter
      * 8-9, Saturn 10 (globe and rings). */
-    double a = clamp(alpha / DEG, 0.0, 180.0), a2 = a * a, a3 = a2 * a, a4 = a3 * a, v;
+    double a = astro_clamp(alpha / DEG, 0.0, 180.0), a2 = a * a, a3 = a2 * a, a4 = a3 * a, v;
     switch (planet) {
     case SKY_ASTRO_MERCURY:
         v = -0.613 + 6.3280e-02 * a - 1.6336e-03 * a2 + 3.3644e-05 * a3 - 3.4265e-07 * a4 + 1.6893e-09 * a4 * a -
@@ -850,7 +850,7 @@ double sky_astro_planet_magnitude(int planet, double r_au, double delta_au, doub
         break;
     default: {
         /* from the Earth, a < 6.5 and the latitude < 27 degrees: eq. 10 holds */
-        double sb = sin(clamp(ring_lat, 0.0, 27.0 * DEG));
+        double sb = sin(astro_clamp(ring_lat, 0.0, 27.0 * DEG));
         v = -8.914 - 1.825 * sb + 0.026 * a - 0.378 * sb * exp(-2.25 * a);
     }
     }
@@ -922,9 +922,18 @@ void sky_astro_planet_place(const sky_astro *a, int planet, const sky_planet_sta
     double r = fmax(norm3(p), 1e-9), big_r = fmax(norm3(earth), 1e-9);
     out->distance_au = delta;
     out->sun_distance_au = r;
-    out->phase_angle = acos(clamp((r * r + delta * delta - big_r * big_r) / (2.0 * r * delta), -1.0, 1.0));
+    out->phase_angle = acos(astro_clamp((r * r + delta * delta - big_r * big_r) / (2.0 * r * delta), -1.0, 1.0));
     out->illuminated = (1.0 + cos(out->phase_angle)) / 2.0;
     out->diameter = 2.0 * atan(pd->radius_km / out->body.distance_km);
     out->bv = pd->bv;
     out->vmag = sky_astro_planet_magnitude(planet, r, delta, out->phase_angle, ring_lat, atan2(p[1], p[0]));
 }
+
+/* This file's constants are its own (the amalgamation, one translation
+ * unit, holds sky/observer.c's DEG after it). */
+#undef PI
+#undef TWO_PI
+#undef DEG
+#undef ARCSEC
+#undef J2000
+#undef EARTH_RADIUS_KM

@@ -60,6 +60,15 @@ static const config_rule rules[] = {
     FLOAT_WHEN(solar_activity, 0.0, 1.0, solar_activity_manual, "0 = minimum .. 1 = maximum"),
     FLOAT(bortle, 1.0, 9.0, 1, "0 = no light pollution, or 1..9"),
 };
+/* (the table's helpers end with it: in the amalgamation, one translation
+ * unit, names this generic would reach every file after this one) */
+#undef LUT_STEPS
+#undef LUT_SIZE
+#undef FLOAT_WHEN
+#undef FLOAT
+#undef INT
+#undef ENUM
+#undef AT
 
 /* 0 when the field passes its rule, else -1 with the message. */
 static int check_rule(const sky_config *cfg, const config_rule *r, char *err, size_t err_len)

@@ -54,7 +54,7 @@ static const sky_uniform_desc point_uniforms[] = {
 static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL, NULL};
 
 /* Every star of every tile that falls inside the horizon circle. */
-static int upload_stars(sky_core *s, flicker_state *st, const unsigned char *tex, const unsigned char *galaxy,
+static int upload_flicker_stars(sky_core *s, flicker_state *st, const unsigned char *tex, const unsigned char *galaxy,
                         char *err, size_t err_len)
 {
     enum { TEXELS = FLICKER_SIZE * FLICKER_TILES }; /* across the coordinate's unit */
@@ -105,7 +105,7 @@ static int flicker_create(sky_core *s, void *state, char *err, size_t err_len)
         sky_png_free(tex);
         return -1;
     }
-    int rc = upload_stars(s, st, tex, galaxy, err, err_len);
+    int rc = upload_flicker_stars(s, st, tex, galaxy, err, err_len);
     sky_png_free(tex);
     sky_png_free(galaxy);
     if (rc) return -1;

@@ -3,6 +3,11 @@
  */
 #include "light_units.h"
 
+double sky_kcd_to_mag_arcsec2(double kcd)
+{
+    return -2.5 * log10(kcd > 1e-30 ? kcd * SKY_ARCSEC2_SR / SKY_V0_ILLUMINANCE_KLX : 1e-30);
+}
+
 static double clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
 /* B-V to linear sRGB of unit luminance: temperature after Ballesteros

@@ -82,7 +82,8 @@ sky_result sky_irradiance_sh_eval(const sky_irradiance_sh *sh, const float norma
     for (int k = 0; k < SKY_SH_COUNT; k++)
         for (int i = 0; i < 3; i++)
             c[k][i] = k < 9 ? sh->radiance[k][i] : k < 18 ? sh->radiance_l4[k - 9][i] : sh->radiance_zonal[k - 18][i];
-    sky_irradiance_eval(c, n, up, e);
+    /* (the cast: C before C23 makes no implicit double (*)[3] -> const double (*)[3]) */
+    sky_irradiance_eval((const double(*)[3])c, n, up, e);
     /* a degree-2 sum can dip below zero facing a dark hemisphere */
     for (int i = 0; i < 3; i++) irradiance[i] = (float)fmax(e[i], 0.0);
     return SKY_OK;

@@ -206,3 +206,7 @@ sky_result sky_compute_astronomy(const sky_observer *obs, float time_of_day, con
     sky_catalog_free(&cat);
     return SKY_OK;
 }
+
+/* (sky/astro.c has a DEG of its own: in the amalgamation's one
+ * translation unit each file's ends with it) */
+#undef DEG

@@ -187,7 +187,8 @@ void sky_preetham_frame(sky_core *s)
     perez_coefficients(T, coef);
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < 5; k++) f->perez[k][c] = (float)coef[c][k];
-    perez_zenith_at(f, coef, T, f->sun_altitude, zenith);
+    /* (the cast: C before C23 makes no implicit double (*)[5] -> const double (*)[5]) */
+    perez_zenith_at(f, (const double(*)[5])coef, T, f->sun_altitude, zenith);
     for (int c = 0; c < 3; c++) f->perez_zenith[c] = (float)zenith[c];
 }
 
@@ -206,7 +207,7 @@ double sky_preetham_moon(sky_core *s)
     if (!(s->features & SKY_MOON) || night <= 0.0) return 0.0;
     double T = sky_preetham_turbidity(s->cfg.turbidity), coef[3][5], zenith[3], top[3], ratio[3];
     perez_coefficients(T, coef);
-    perez_zenith_at(f, coef, T, s->astro.moon.alt, zenith);
+    perez_zenith_at(f, (const double(*)[5])coef, T, s->astro.moon.alt, zenith);
     sky_moon_light_above_air(s, top);
     for (int c = 0; c < 3; c++) ratio[c] = top[c] / s->sun_irradiance_klx[c];
     double r = 0.2126 * ratio[0] + 0.7152 * ratio[1] + 0.0722 * ratio[2];

@@ -32,7 +32,7 @@
  * isotropic phase term in the same integral (multiple_scattering below).
  *
  * Limits, by design: multiple scattering isotropic, from a one-layer
- * estimate, and its light in the shadow a fit (node_at); the nodes' few
+ * estimate, and its light in the shadow a fit (rl_node_at); the nodes' few
  * segments (their error against a fine march is given below). Everything stays finite and non-negative: slant depths are
  * capped at 1e4 (a transmittance of exactly 0 in float).
  */
@@ -242,7 +242,7 @@ static double distance_at(const sky_frame *f, double u, double mu)
     return w / fmax(r0 * mu + sqrt(r0 * r0 * mu * mu + w), 1e-9);
 }
 
-static void node_at(const sky_frame *f, double t, double mu, double c, double m_r, double m_m, rl_node *n)
+static void rl_node_at(const sky_frame *f, double t, double mu, double c, double m_r, double m_m, rl_node *n)
 {
     double sy = f->sun_dir[1];
     double r0 = f->rl_geometry[0], R = f->rl_geometry[1], HR = f->rl_geometry[2], HM = f->rl_geometry[3];
@@ -345,7 +345,7 @@ static void node_at(const sky_frame *f, double t, double mu, double c, double m_
  * ground, half the sky's mean radiance over the upper hemisphere and half
  * the ground's (albedo times the sky's irradiance over pi), written as
  * the exponent that multiple scattering's phase term and the sun's
- * irradiance would need to give it (node_at's floor). From the sky
+ * irradiance would need to give it (rl_node_at's floor). From the sky
  * itself: one pass of the same 4 x 8 quadrature as the frame's summary
  * (atmosphere.c), taken without the floor; 32 closed-form evaluations a
  * frame on the CPU, nothing on the GPU but a min per node. */
@@ -419,9 +419,9 @@ void sky_rayleigh_eval(const sky_frame *f, const double d[3], double rgb[3])
     /* an eye in sunlight: the shadow's segments have no length (skipped) */
     int k0 = t_lit > 0.0 ? 0 : RL_SHADOW_NODES;
     rl_node n[RL_NODES];
-    for (int k = k0; k < RL_SHADOW_NODES; k++) node_at(f, fmin(t_lit, rl_shadow_node[k] * HR), mu, c, m_rayleigh, m_mie, &n[k]);
+    for (int k = k0; k < RL_SHADOW_NODES; k++) rl_node_at(f, fmin(t_lit, rl_shadow_node[k] * HR), mu, c, m_rayleigh, m_mie, &n[k]);
     for (int k = 0; k < RL_LIT_NODES; k++)
-        node_at(f, k ? distance_at(f, u_lit * rl_lit_node[k], mu) : t_lit, mu, c, m_rayleigh, m_mie,
+        rl_node_at(f, k ? distance_at(f, u_lit * rl_lit_node[k], mu) : t_lit, mu, c, m_rayleigh, m_mie,
                 &n[RL_SHADOW_NODES + k]);
     memset(&n[RL_NODES - 1], 0, sizeof n[0]); /* the top: u = 0, no depth */
 

@@ -29,13 +29,27 @@ static void *sky_stbi_realloc_sized(void *p, size_t old_size, size_t new_size)
 #define STBI_REALLOC(p, size) realloc((p), (size))
 #define STBI_REALLOC_SIZED(p, old_size, new_size) sky_stbi_realloc_sized((p), (old_size), (new_size))
 #define STBI_FREE(p) free(p)
-/* stb declares static helpers this file does not call; the warning about
- * them is reported at the end of the file, so it is silenced file-wide in
- * this file, which holds nothing but the wrappers below. */
+/* stb defines static functions this file does not call: the warning is
+ * silenced for stb's lines alone (push and pop), so that in the
+ * amalgamation, one translation unit, it reaches no other file. GCC judges
+ * a static function declared and never defined at the end of the
+ * translation unit, past the pop, so none may be left: STBI_NO_GIF drops
+ * the GIF loader's declaration (STBI_ONLY_PNG leaves out its body), and
+ * stb_image 2.27 (Debian 12) declares stbi_set_unpremultiply_on_load_thread
+ * but defines it as stbi__unpremultiply_on_load_thread, which the macro
+ * renames to match (later versions fixed the name; the macro then names
+ * nothing). */
+#define STBI_NO_GIF
+#define stbi__unpremultiply_on_load_thread stbi_set_unpremultiply_on_load_thread
 #if defined(__GNUC__)
+#pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #endif
 #include <stb/stb_image.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+#undef stbi__unpremultiply_on_load_thread
 
 int sky_png_info(const unsigned char *data, size_t size, int *w, int *h)
 {
