@@ -33,7 +33,7 @@ LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
 .PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples \
-	web test-web bench-web
+	web test-web bench-web amalgamation
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
 deps:
@@ -75,6 +75,19 @@ $(LIB)/libsky.so: $(SKY_OBJ)
 $(BUILD)/include/sky.h: sky/sky.h
 	@mkdir -p $(@D)
 	cp $< $@
+
+# ---- the amalgamation: the library as two files ---------------------------
+# build/amalgamation/sky.c and sky.h, for projects that drop sources in: one
+# translation unit of SKY_SRC (the same list as the library's), the
+# internal headers inlined, the shaders and textures as tools/embed gives
+# them, and stb_image's decoder from Debian's libstb-dev (docs/guide.md,
+# "Drop in two files").
+AMALG := $(BUILD)/amalgamation
+STB_IMAGE_H := /usr/include/stb/stb_image.h
+amalgamation: $(AMALG)/sky.c $(AMALG)/sky.h
+
+$(AMALG)/sky.c $(AMALG)/sky.h &: tools/amalgamate.sh $(SKY_SRC) $(SKY_HDR) $(BUILD)/gen/sky_blobs.c
+	sh tools/amalgamate.sh $(AMALG) $(BUILD)/gen/sky_blobs.c $(STB_IMAGE_H) $(SKY_SRC)
 
 # ---- programs -------------------------------------------------------------
 DEMO_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE -Isky -Idemo
@@ -149,7 +162,9 @@ $(TEST_DIR)/%.o: %.c
 $(TEST_DIR)/tests/test_main.o: $(BUILD)/gen/tests/test_list.h
 -include $(TEST_OBJ:.o=.d)
 
-$(BIN)/sky-tests: $(TEST_OBJ) $(LIB)/libsky.a
+# (the amalgamation's tests read build/amalgamation: made with the runner,
+# order-only, as a new amalgamation needs no relink)
+$(BIN)/sky-tests: $(TEST_OBJ) $(LIB)/libsky.a | $(AMALG)/sky.c $(AMALG)/sky.h
 	@mkdir -p $(@D)
 	$(CC) -o $@ $(TEST_OBJ) $(LIB)/libsky.a $(HEADLESS_LIBS) -lerfa -lpthread $(LDLIBS_M)
 
