@@ -743,7 +743,7 @@ typedef struct planet_data {
                          Astrophysical Quantities (4th ed., 2000) lists it */
 } planet_data;
 
-static const planet_data planets[SKY_ASTRO_PLANETS] = {
+static const planet_data planet_data_table[SKY_ASTRO_PLANETS] = {
     {"mercury", &sky_vsop_mercury, 2440.53, 0.93}, {"venus", &sky_vsop_venus, 6051.8, 0.82},
     {"mars", &sky_vsop_mars, 3396.19, 1.36},       {"jupiter", &sky_vsop_jupiter, 71492.0, 0.83},
     {"saturn", &sky_vsop_saturn, 60268.0, 1.04},
@@ -751,11 +751,14 @@ static const planet_data planets[SKY_ASTRO_PLANETS] = {
 
 void sky_astro_topocentric(const sky_astro *a, sky_astro_body *b) { body_place(a, a->observer_eq, b); }
 
-double sky_astro_planet_bv(int planet) { return planets[planet >= 0 && planet < SKY_ASTRO_PLANETS ? planet : 0].bv; }
+double sky_astro_planet_bv(int planet)
+{
+    return planet_data_table[planet >= 0 && planet < SKY_ASTRO_PLANETS ? planet : 0].bv;
+}
 
 const char *sky_astro_planet_name(int planet)
 {
-    return planet >= 0 && planet < SKY_ASTRO_PLANETS ? planets[planet].name : NULL;
+    return planet >= 0 && planet < SKY_ASTRO_PLANETS ? planet_data_table[planet].name : NULL;
 }
 
 /* A VSOP87 coordinate and its rate (per millennium) at tau: the sum over
@@ -782,7 +785,7 @@ static void vsop_value_rate(const sky_vsop_series *series, int n, double tau, do
 
 void sky_planet_state_at(int planet, double jd_tt, sky_planet_state *st)
 {
-    const sky_vsop_planet *p = planets[planet < 0 ? 0 : (planet >= SKY_ASTRO_PLANETS ? 0 : planet)].series;
+    const sky_vsop_planet *p = planet_data_table[planet < 0 ? 0 : (planet >= SKY_ASTRO_PLANETS ? 0 : planet)].series;
     double tau = (jd_tt - J2000) / DAYS_PER_MILLENNIUM, lbr[3], rate[3];
     for (int c = 0; c < 3; c++) {
         vsop_value_rate(p->series[c], p->powers[c], tau, &lbr[c], &rate[c]);
@@ -872,7 +875,7 @@ static double saturn_ring_latitude(double t, double lambda, double beta)
 void sky_astro_planet_place(const sky_astro *a, int planet, const sky_planet_state *st, sky_astro_planet *out)
 {
     if (planet < 0 || planet >= SKY_ASTRO_PLANETS) planet = 0;
-    const planet_data *pd = &planets[planet];
+    const planet_data *pd = &planet_data_table[planet];
     const double *earth = a->earth_helio;
     /* The Taylor step: position, velocity and the sun's pull at the
      * state's instant (the planets' pulls on each other change the path by

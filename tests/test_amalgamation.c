@@ -92,7 +92,8 @@ static unsigned char *read_ppm(const char *path, int *w, int *h)
 
 /* A program built from the two files alone: tests/amalgamation/frame.c
  * copied into an empty directory beside sky.c and sky.h and compiled there
- * at -std=c11 -Wall -Wextra -pedantic -Wvla -Werror (no -I, no -D) with gcc
+ * at -std=c11 -Wall -Wextra -Wshadow -pedantic -Wvla -Werror (no -I, no
+ * -D; -Wshadow: no file's statics shadow a later file's locals) with gcc
  * and with clang, linked with OSMesa and libm; its fisheye frame equals,
  * byte for byte, sky-render's (the library as make builds it) for the same
  * inputs: a day with clouds and the sun in a 3.3 core context, a night
@@ -111,7 +112,7 @@ SLOW_TEST(amalgamation_frames_match_sky_render)
     int built[2] = {0, 0};
     for (int k = 0; k < 2; k++) {
         snprintf(cmd, sizeof cmd,
-                 "cd %s && %s -std=c11 -Wall -Wextra -pedantic -Wvla -Werror -o frame-%s frame.c sky.c -lOSMesa -lm 2>&1",
+                 "cd %s && %s -std=c11 -Wall -Wextra -Wshadow -pedantic -Wvla -Werror -o frame-%s frame.c sky.c -lOSMesa -lm 2>&1",
                  dir, compilers[k], compilers[k]);
         int rc = run_command(cmd, out, sizeof out);
         built[k] = rc == 0;

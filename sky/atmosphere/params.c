@@ -38,7 +38,7 @@
  * layer, single-scattering albedo 0.9, asymmetry 0.65. Chosen against published
  * photometry (sky-bench's photometry section): the CIE clear skies'
  * shape, gensky's clear zenith, the IES illuminances. */
-static const sky_atmosphere_params earth = {
+static const sky_atmosphere_params earth_preset = {
     EARTH_GASES, AEROSOL(0.085f, 1.5f, 0.9f), 0.65f, EARTH_OZONE, EARTH_GROUND,
 };
 
@@ -84,7 +84,7 @@ sky_result sky_atmosphere_get_preset(sky_atmosphere_preset preset, sky_atmospher
 {
     if (!out) return SKY_ERR_INVALID_ARGUMENT;
     switch (preset) {
-    case SKY_ATMOSPHERE_PRESET_EARTH: *out = earth; return SKY_OK;
+    case SKY_ATMOSPHERE_PRESET_EARTH: *out = earth_preset; return SKY_OK;
     case SKY_ATMOSPHERE_PRESET_HAZY: *out = hazy; return SKY_OK;
     case SKY_ATMOSPHERE_PRESET_MARS: *out = mars; return SKY_OK;
     case SKY_ATMOSPHERE_PRESET_VERY_CLEAN: *out = very_clean; return SKY_OK;
@@ -157,12 +157,12 @@ void sky_atmosphere_with_turbidity(const sky_atmosphere_params *in, double turbi
     double aod = in->mie_extinction[1] * in->mie_scale_height_km;
     if (aod <= 0.0) { /* nothing to scale: the clear Earth's aerosol */
         for (int c = 0; c < 3; c++) {
-            out->mie_scattering[c] = earth.mie_scattering[c];
-            out->mie_extinction[c] = earth.mie_extinction[c];
+            out->mie_scattering[c] = earth_preset.mie_scattering[c];
+            out->mie_extinction[c] = earth_preset.mie_extinction[c];
         }
-        out->mie_scale_height_km = earth.mie_scale_height_km;
-        out->mie_g = earth.mie_g;
-        aod = earth.mie_extinction[1] * earth.mie_scale_height_km;
+        out->mie_scale_height_km = earth_preset.mie_scale_height_km;
+        out->mie_g = earth_preset.mie_g;
+        aod = earth_preset.mie_extinction[1] * earth_preset.mie_scale_height_km;
     }
     /* held within the description's limits: extinction <= 10/km */
     double k = target / aod, largest = fmax(out->mie_extinction[0], fmax(out->mie_extinction[1], out->mie_extinction[2]));

@@ -355,17 +355,17 @@ static void skylight(const sky_core *s, sky_frame *f)
     for (int i = 0; i < 3; i++) f->rl_skylight[i] = RL_NO_SKYLIGHT;
     /* Hillaire's path reads only the frame's extinction from here */
     if (s->atmosphere != SKY_ATMOSPHERE_RAYLEIGH && s->atmosphere != SKY_ATMOSPHERE_BLEND) return;
-    static const double mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
-    static const double mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
+    static const double rl_mu_node[4] = {0.0694318442, 0.3300094782, 0.6699905218, 0.9305681558};
+    static const double rl_mu_weight[4] = {0.1739274226, 0.3260725774, 0.3260725774, 0.1739274226};
     double mean[3] = {0, 0, 0}, irradiance[3] = {0, 0, 0};
     for (int k = 0; k < 4; k++) {
-        double c = sqrt(1.0 - mu_node[k] * mu_node[k]);
+        double c = sqrt(1.0 - rl_mu_node[k] * rl_mu_node[k]);
         for (int a = 0; a < 8; a++) {
-            double az = 2.0 * SKY_PI * (a + 0.5) / 8.0, d[3] = {c * sin(az), mu_node[k], -c * cos(az)}, rgb[3];
+            double az = 2.0 * SKY_PI * (a + 0.5) / 8.0, d[3] = {c * sin(az), rl_mu_node[k], -c * cos(az)}, rgb[3];
             sky_rayleigh_eval(f, d, rgb);
             for (int i = 0; i < 3; i++) {
-                mean[i] += mu_weight[k] * rgb[i] / 8.0;
-                irradiance[i] += 2.0 * SKY_PI * mu_weight[k] * mu_node[k] * rgb[i] / 8.0;
+                mean[i] += rl_mu_weight[k] * rgb[i] / 8.0;
+                irradiance[i] += 2.0 * SKY_PI * rl_mu_weight[k] * rl_mu_node[k] * rgb[i] / 8.0;
             }
         }
     }
