@@ -32,7 +32,7 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples \
+.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples windows \
 	web test-web bench-web amalgamation
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
@@ -334,6 +334,46 @@ $(WEB)/web-tests: tests/web/test_web.c tests/test_main.c tests/test.h $(WEB)/gen
 
 test-web: web $(WEB)/web-tests
 	@SKY_WEB=$(WEB) $(WEB)/web-tests
+
+# ---- Windows: make windows ---------------------------------------------------------
+# The library cross-built with MinGW-w64 (x86_64) into build/windows/: libsky.a (static,
+# no SKY_DLL), sky.dll with its import library libsky.dll.a (hosts define SKY_DLL), sky.h.
+# The embedder runs natively (build/gen/sky_blobs.c is the one every build embeds); stb
+# comes from libstb-dev through a directory of its own, as in the browser build.
+WIN := $(BUILD)/windows
+WIN_CC := x86_64-w64-mingw32-gcc
+WIN_AR := x86_64-w64-mingw32-ar
+WIN_CFLAGS := -std=c11 $(WARN) -O2 -Isky -I$(BUILD)/gen -I$(WIN)/include
+WIN_STATIC_OBJ := $(SKY_SRC:%.c=$(WIN)/obj/static/%.o) $(WIN)/obj/static/gen/sky_blobs.o
+WIN_DLL_OBJ := $(SKY_SRC:%.c=$(WIN)/obj/dll/%.o) $(WIN)/obj/dll/gen/sky_blobs.o
+
+windows: $(BUILD)/gen/sky_blobs.c
+	@sh tools/deps.sh mingw-w64
+	@$(MAKE) --no-print-directory $(WIN)/libsky.a $(WIN)/sky.dll $(WIN)/include/sky.h
+
+$(WIN)/include/sky.h: sky/sky.h
+	@mkdir -p $(@D) && ln -sfn /usr/include/stb $(@D)/stb
+	cp $< $@
+
+$(WIN)/obj/static/gen/sky_blobs.o $(WIN)/obj/dll/gen/sky_blobs.o: $(BUILD)/gen/sky_blobs.c $(WIN)/include/sky.h
+	@mkdir -p $(@D)
+	$(WIN_CC) $(WIN_CFLAGS) $(if $(findstring /dll/,$@),-DSKY_SHARED_BUILD) -Wno-missing-prototypes -c -o $@ $<
+
+$(WIN)/obj/static/%.o: %.c $(WIN)/include/sky.h
+	@mkdir -p $(@D)
+	$(WIN_CC) $(WIN_CFLAGS) -MMD -MP -c -o $@ $<
+
+$(WIN)/obj/dll/%.o: %.c $(WIN)/include/sky.h
+	@mkdir -p $(@D)
+	$(WIN_CC) $(WIN_CFLAGS) -DSKY_SHARED_BUILD -MMD -MP -c -o $@ $<
+
+$(WIN)/libsky.a: $(WIN_STATIC_OBJ)
+	rm -f $@ && $(WIN_AR) rcs $@ $^
+
+$(WIN)/sky.dll: $(WIN_DLL_OBJ)
+	$(WIN_CC) -shared -static-libgcc -o $@ $^ -Wl,--out-implib,$(WIN)/libsky.dll.a
+
+-include $(WIN_STATIC_OBJ:.o=.d) $(WIN_DLL_OBJ:.o=.d)
 
 # ---- install ----------------------------------------------------------------------
 install: all

@@ -35,7 +35,8 @@ int sky_catalog_parse(sky_catalog *cat, const unsigned char *data, size_t size, 
     }
     uint32_t count = get_u32(data + 8);
     if (count == 0 || count > MAX_STARS || (size - 12) / RECORD_BYTES < count) {
-        sky_format(err, err_len, "star catalogue: %u stars claimed in %zu bytes", (unsigned)count, size);
+        sky_format(err, err_len, "star catalogue: %u stars claimed in %lu bytes", (unsigned)count,
+                   (unsigned long)size); /* (%zu: not in every C runtime, MinGW's msvcrt) */
         return -1;
     }
     sky_star *stars = malloc(sizeof *stars * count);

@@ -48,12 +48,29 @@ void sky_j2000_to_horizon_mat4(const sky_astro *a, int inverse, float out[16])
         for (int j = 0; j < 3; j++) out[inverse ? i * 4 + j : j * 4 + i] = (float)m[i * 3 + j];
 }
 
+#if defined(_WIN32)
+/* kernel32's counter, declared here rather than through windows.h, whose
+ * macros (near, far, min, max) would reach the code after it in one
+ * translation unit (make amalgamation); MinGW's msvcrt has no
+ * timespec_get */
+__declspec(dllimport) int __stdcall QueryPerformanceCounter(long long *count);
+__declspec(dllimport) int __stdcall QueryPerformanceFrequency(long long *frequency);
+
+double sky_now_ms(void)
+{
+    long long count = 0, frequency = 0;
+    QueryPerformanceCounter(&count);
+    QueryPerformanceFrequency(&frequency);
+    return frequency > 0 ? (double)count * 1e3 / (double)frequency : 0.0;
+}
+#else
 double sky_now_ms(void)
 {
     struct timespec ts;
     timespec_get(&ts, TIME_UTC);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
+#endif
 
 void sky_format(char *buf, size_t len, const char *fmt, ...)
 {

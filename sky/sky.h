@@ -136,9 +136,14 @@ extern "C" {
 #define SKY_VERSION_MINOR 5
 #define SKY_VERSION_PATCH 0
 
-/* Symbols the shared library exports; everything else stays hidden. */
+/* Symbols the shared library exports; everything else stays hidden. On
+ * Windows a program that links sky.dll (through its import library)
+ * defines SKY_DLL before including this header; one that links the static
+ * libsky.a, or builds the sources, does not. */
 #if defined(_WIN32) && defined(SKY_SHARED_BUILD)
 #define SKY_API __declspec(dllexport)
+#elif defined(_WIN32) && defined(SKY_DLL)
+#define SKY_API __declspec(dllimport)
 #elif defined(__GNUC__)
 #define SKY_API __attribute__((visibility("default")))
 #else

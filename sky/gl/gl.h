@@ -84,6 +84,9 @@ int sky_snippet_bind(sky_core *s, const sky_snippet *snippet, const void *state)
 /* The common prologue's uniforms (exposure, camera, sun): every program. */
 extern const sky_snippet sky_common_snippet;
 
+/* gl/win32.c: on Windows, name's entry point in opengl32.dll (NULL when
+ * it has none); elsewhere NULL. */
+sky_gl_proc sky_gl_system_proc(const char *name);
 /* Loads the function table and picks the profile. Returns 0 or writes err. */
 int sky_gl_init(sky_core *s, char *err, size_t err_len);
 /* Compiles and links a program from the common prologue, the given snippets

@@ -9,6 +9,20 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* An entry point from the host's loader; on Windows, what it answers NULL
+ * for (or 1, 2, 3, -1: wglGetProcAddress's failures, as for every OpenGL
+ * 1.1 function) from opengl32.dll, the system's own GL library, as GLFW's
+ * and SDL's loaders do (gl/win32.c). */
+static sky_gl_proc gl_proc(const sky_core *s, const char *name)
+{
+    sky_gl_proc p = s->cfg.get_proc_address(name);
+#if defined(_WIN32)
+    intptr_t v = (intptr_t)p;
+    if (v == 0 || v == 1 || v == 2 || v == 3 || v == -1) p = sky_gl_system_proc(name);
+#endif
+    return p;
+}
+
 /* Parses "M.m..." after any leading non-digits ("OpenGL ES 3.0", "4.5 (Core
  * Profile) Mesa"). Returns major*10+minor, or 0 when the string is unusable. */
 static int parse_version(const char *v)
@@ -91,10 +105,9 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
         /* (a loader may hand out a stub for any name, so the version or
          * the extension says whether the entry points work) */
         if (gl_ver < 30 && has_extension(gl, "GL_OES_vertex_array_object")) {
-            sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
-            gl->glGenVertexArrays = (void(SKY_APIENTRY *)(GLsizei, GLuint *))gpa("glGenVertexArraysOES");
-            gl->glDeleteVertexArrays = (void(SKY_APIENTRY *)(GLsizei, const GLuint *))gpa("glDeleteVertexArraysOES");
-            gl->glBindVertexArray = (void(SKY_APIENTRY *)(GLuint))gpa("glBindVertexArrayOES");
+            gl->glGenVertexArrays = (void(SKY_APIENTRY *)(GLsizei, GLuint *))gl_proc(s, "glGenVertexArraysOES");
+            gl->glDeleteVertexArrays = (void(SKY_APIENTRY *)(GLsizei, const GLuint *))gl_proc(s, "glDeleteVertexArraysOES");
+            gl->glBindVertexArray = (void(SKY_APIENTRY *)(GLuint))gl_proc(s, "glBindVertexArrayOES");
             caps->vertex_arrays = 1;
         }
         if (gl_ver >= 30) caps->vertex_arrays = 1;
@@ -110,14 +123,13 @@ static GLenum detect_caps(sky_core *s, int gl_ver)
     int arb_fbo = gl_ver >= 30 || has_extension(gl, "GL_ARB_framebuffer_object");
     int ext_fbo = has_extension(gl, "GL_EXT_framebuffer_object");
     if (!arb_fbo && ext_fbo && !gl->glGenFramebuffers) {
-        sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
-#define SKY_GL_LOAD_EXT(name, params) gl->name = (void(SKY_APIENTRY *) params)gpa(#name "EXT");
+#define SKY_GL_LOAD_EXT(name, params) gl->name = (void(SKY_APIENTRY *) params)gl_proc(s, #name "EXT");
         SKY_GL_LOAD_EXT(glGenFramebuffers, (GLsizei n, GLuint *f))
         SKY_GL_LOAD_EXT(glDeleteFramebuffers, (GLsizei n, const GLuint *f))
         SKY_GL_LOAD_EXT(glBindFramebuffer, (GLenum target, GLuint f))
         SKY_GL_LOAD_EXT(glFramebufferTexture2D, (GLenum target, GLenum att, GLenum textarget, GLuint t, GLint level))
 #undef SKY_GL_LOAD_EXT
-        gl->glCheckFramebufferStatus = (GLenum(SKY_APIENTRY *)(GLenum))gpa("glCheckFramebufferStatusEXT");
+        gl->glCheckFramebufferStatus = (GLenum(SKY_APIENTRY *)(GLenum))gl_proc(s, "glCheckFramebufferStatusEXT");
     }
     caps->render_to_rgba8 = (arb_fbo || ext_fbo) && gl->glGenFramebuffers && gl->glDeleteFramebuffers &&
                             gl->glBindFramebuffer && gl->glFramebufferTexture2D && gl->glCheckFramebufferStatus;
@@ -144,17 +156,16 @@ static int choose_profile(sky_core *s, sky_gl_profile profile, int gl_ver, char 
 
 int sky_gl_init(sky_core *s, char *err, size_t err_len)
 {
-    sky_get_proc_address_fn gpa = s->cfg.get_proc_address;
     /* Every pointer is stored through its own member type; a missing entry
      * point is reported by name. */
 #define SKY_GL_LOAD(ret, name, params)                                                   \
-    s->gl.name = (ret(SKY_APIENTRY *) params)gpa(#name);                                 \
+    s->gl.name = (ret(SKY_APIENTRY *) params)gl_proc(s, #name);                                 \
     if (!s->gl.name) {                                                                   \
         sky_format(err, err_len, "the GL context lacks %s (OpenGL 2.0 is the minimum)", #name); \
         return -1;                                                                       \
     }
     SKY_GL_FUNCS_20(SKY_GL_LOAD)
-#define SKY_GL_LOAD_OPT(ret, name, params) s->gl.name = (ret(SKY_APIENTRY *) params)gpa(#name);
+#define SKY_GL_LOAD_OPT(ret, name, params) s->gl.name = (ret(SKY_APIENTRY *) params)gl_proc(s, #name);
     SKY_GL_FUNCS_30(SKY_GL_LOAD_OPT)
 #undef SKY_GL_LOAD_OPT
 
