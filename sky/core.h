@@ -103,9 +103,10 @@ typedef struct sky_texture {
  * (clouds.glsl's u_sunset_gradient has as many). */
 #define SKY_SUNSET_SAMPLES 33
 
-/* ---- the frame: everything the shaders read ------------------------------
+/* ---- the frame: what more than one room reads -----------------------------
  * One writer per field: the room named in its group. The uniform tables
- * (each room's sky_uniform_desc rows) point into it by offset. */
+ * (each room's sky_uniform_desc rows) point into it by offset; a layer's
+ * own uniforms live in its state instead (SKY_US rows, gl/gl.h). */
 /* What stars.vert draws a set of points with (the catalogue stars, the
  * planets), as its uniforms have it. */
 typedef struct sky_point_frame {

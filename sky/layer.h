@@ -3,9 +3,10 @@
  * GLFW's platform table or osghimmel's geodes. Each layer file exports one
  * sky_layer_class and owns its state (a struct private to the file, which
  * sky.c allocates with state_size bytes and hands back on every call), its
- * programs, buffers, uniforms, draw and byte accounting. sky.c walks a
- * back-to-front table of them; adding a layer is its own file and one row
- * there (docs/ARCHITECTURE.md, "Adding a layer").
+ * programs, buffers, uniforms (its rows read its own state), draw and
+ * byte accounting. sky.c walks the back-to-front table of them in
+ * layers.c; adding a layer is its own file and one row there
+ * (docs/ARCHITECTURE.md, "Adding a layer").
  */
 #ifndef SKY_LAYER_H
 #define SKY_LAYER_H
