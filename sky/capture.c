@@ -108,11 +108,11 @@ sky_result sky_capture_environment(sky *s, unsigned cube_texture, int face_size,
     sky_gl_state_save(c, &host);
     GLuint tex = 0;
     rc = capture_texture(s, cube_texture, face_size, &tex);
-    sky_gl_state_restore(c, &host);
-    if (rc != SKY_OK) return rc;
-    if (!backbuffer && !s->capture_fbo) {
-        s->capture_fbo = sky_gl_framebuffer_create(c);
-        if (!s->capture_fbo) return sky_fail(s, SKY_ERR_GL, "sky_capture_environment: no framebuffer object");
+    if (rc == SKY_OK && !backbuffer && !s->capture_fbo && !(s->capture_fbo = sky_gl_framebuffer_create(c)))
+        rc = sky_fail(s, SKY_ERR_GL, "sky_capture_environment: no framebuffer object");
+    if (rc != SKY_OK) {
+        sky_gl_state_restore(c, &host);
+        return rc;
     }
     GLint draw_fbo = 0, read_fbo = 0;
     if (!backbuffer) sky_gl_framebuffers_get(c, &draw_fbo, &read_fbo);

@@ -17,23 +17,13 @@ static const char *host_glsl(const char *name)
     return b ? (const char *)b->data : "";
 }
 
-/* The sky's context is current (as sky_draw checks it, without
- * glGetError): SKY_OK, or SKY_ERR_GL with the message. */
-static sky_result own_context_check(sky *s, const char *what)
-{
-    if (!sky_gl_context_current(&s->core)) return sky_fail(s, SKY_ERR_GL, "%s: no GL context is current", what);
-    if (!sky_gl_is_program(&s->core, s->core.identity_program))
-        return sky_fail(s, SKY_ERR_GL, "%s: the current GL context is not the one the sky was created in", what);
-    return SKY_OK;
-}
-
 /* What both binders of the host's snippets check first (s not NULL): the
  * sky's context, and a name the context knows as a program (glIsProgram:
  * whether it linked is the host's to know). */
 static sky_result host_program_check(sky *s, unsigned program, const char *what)
 {
     if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "%s: program 0", what);
-    sky_result rc = own_context_check(s, what);
+    sky_result rc = sky_own_context_check(s, what);
     if (rc != SKY_OK) return rc;
     if (!sky_gl_is_program(&s->core, program))
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "%s: %u is not a program of the current context", what, program);
@@ -172,7 +162,7 @@ sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16]
         (c->atmosphere != SKY_ATMOSPHERE_HILLAIRE && c->atmosphere != SKY_ATMOSPHERE_BLEND))
         return sky_fail(s, SKY_ERR_UNSUPPORTED, "sky_aerial_froxels: the froxel volume is Hillaire's, in CORE33 (the "
                         "hillaire and blend paths); sky_aerial_bind serves every path and profile");
-    sky_result own = own_context_check(s, "sky_aerial_froxels");
+    sky_result own = sky_own_context_check(s, "sky_aerial_froxels");
     if (own != SKY_OK) return own;
     /* the build binds its program, tables and framebuffer; the volume is
      * made on unit 0's 3D target the first time: the host's come back */

@@ -363,17 +363,24 @@ static sky_result draw_frame(sky *s)
     return SKY_OK;
 }
 
+sky_result sky_own_context_check(sky *s, const char *what)
+{
+    /* a context, and the sky's: found without glGetError */
+    if (!sky_gl_context_current(&s->core)) return sky_fail(s, SKY_ERR_GL, "%s: no GL context is current", what);
+    if (!sky_gl_is_program(&s->core, s->core.identity_program))
+        return sky_fail(s, SKY_ERR_GL,
+                        "%s: the current GL context is not the one the sky was created in (a sky draws "
+                        "only in its own context, or one sharing its objects)",
+                        what);
+    return SKY_OK;
+}
+
 sky_result sky_draw_view(sky *s, const float *view, const float *proj)
 {
     double t0 = sky_now_ms();
     sky_core *c = &s->core;
-    /* a context to draw in, and the sky's: found without glGetError */
-    if (!sky_gl_context_current(c))
-        return sky_fail(s, SKY_ERR_GL, "sky_draw: no GL context is current");
-    if (!sky_gl_is_program(c, c->identity_program))
-        return sky_fail(s, SKY_ERR_GL,
-                        "sky_draw: the current GL context is not the one the sky was created in (a sky draws "
-                        "only in its own context, or one sharing its objects)");
+    sky_result own = sky_own_context_check(s, "sky_draw");
+    if (own != SKY_OK) return own;
     if (c->cfg.check_gl_errors) {
         GLenum pending = sky_gl_error(c);
         if (pending != GL_NO_ERROR)

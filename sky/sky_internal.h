@@ -59,6 +59,10 @@ sky_result sky_fail(sky *s, sky_result code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+/* sky.c: SKY_OK when a GL context is current and it is the sky's (or
+ * shares its objects), found without glGetError; else SKY_ERR_GL with a
+ * message that starts with what. */
+sky_result sky_own_context_check(sky *s, const char *what);
 /* sky.c: draws through the view and projection (NULL: the all-sky
  * fisheye) with the host's state saved and restored around it. */
 sky_result sky_draw_view(sky *s, const float *view, const float *proj);

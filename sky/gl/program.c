@@ -202,14 +202,15 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define)
             used += (size_t)snprintf(defines + used, defines_size - used, "#define %s 1\n", snippets[i]->define);
-    if (night_glows(snippets, snippet_count, NULL, 0))
+    size_t glows_len = night_glows(snippets, snippet_count, NULL, 0);
+    if (glows_len)
         used += (size_t)snprintf(defines + used, defines_size - used, "#define SKY_HAS_NIGHT_GLOWS 1\n");
-    glows = malloc(night_glows(snippets, snippet_count, NULL, 0) + 1);
+    glows = malloc(glows_len + 1);
     if (!glows) {
         sky_format(err, err_len, "out of memory for a program's sources");
         goto fail;
     }
-    night_glows(snippets, snippet_count, glows, night_glows(snippets, snippet_count, NULL, 0) + 1);
+    night_glows(snippets, snippet_count, glows, glows_len + 1);
     for (int stage = 0; stage < 2; stage++) {
         int n = 0;
         parts[n++] = prologue(s, stage);

@@ -35,9 +35,7 @@ void sky_gl_target_destroy(sky_core *s, GLuint fbo)
 void sky_gl_target_begin(sky_core *s, GLuint fbo, sky_texture_id target, int w, int h, sky_gl_target *t)
 {
     const sky_gl *gl = &s->gl;
-    gl->glGetIntegerv(GL_FRAMEBUFFER_BINDING, &t->draw);
-    t->read = t->draw;
-    if (s->caps.separate_framebuffers) gl->glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &t->read);
+    sky_gl_framebuffers_get(s, &t->draw, &t->read);
     gl->glGetIntegerv(GL_VIEWPORT, t->viewport);
     t->scissor = gl->glIsEnabled(GL_SCISSOR_TEST);
     t->depth_test = gl->glIsEnabled(GL_DEPTH_TEST);
@@ -85,12 +83,7 @@ void sky_gl_target_end_slices(sky_core *s, int n, const sky_gl_target *t)
 void sky_gl_target_end(sky_core *s, const sky_gl_target *t)
 {
     const sky_gl *gl = &s->gl;
-    if (s->caps.separate_framebuffers) {
-        gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)t->draw);
-        gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)t->read);
-    } else {
-        gl->glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)t->draw);
-    }
+    sky_gl_framebuffers_set(s, t->draw, t->read);
     gl->glViewport(t->viewport[0], t->viewport[1], t->viewport[2], t->viewport[3]);
     if (t->scissor) gl->glEnable(GL_SCISSOR_TEST);
     if (t->depth_test) gl->glEnable(GL_DEPTH_TEST); /* the sky drawn after the scene */
