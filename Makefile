@@ -32,7 +32,7 @@ BIN := $(BUILD)/bin
 LIB := $(BUILD)/lib
 TOOL_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE
 
-.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples windows \
+.PHONY: all deps run check test install textures planet-tables screenshots bench fuzz clean examples test-examples windows test-windows \
 	web test-web bench-web amalgamation
 all: $(LIB)/libsky.a $(LIB)/libsky.so $(BUILD)/include/sky.h $(BIN)/sky-render $(BIN)/sky-demo $(BIN)/sky-bench $(BIN)/sky-game
 
@@ -91,7 +91,7 @@ $(AMALG)/sky.c $(AMALG)/sky.h &: tools/amalgamate.sh $(SKY_SRC) $(SKY_HDR) $(BUI
 
 # ---- programs -------------------------------------------------------------
 DEMO_CFLAGS := -std=c11 $(WARN) $(CFLAGS) -D_DEFAULT_SOURCE -Isky -Idemo
-CLI_SRC := demo/cli.c demo/osmesa_ctx.c
+CLI_SRC := demo/cli.c demo/osmesa_ctx.c demo/image_out.c
 CLI_HDR := demo/cli.h demo/osmesa_ctx.h sky/sky.h
 # the stability suite and the atmosphere's error against the reference:
 # test and benchmark infrastructure (sky-bench prints them, the tests
@@ -374,6 +374,45 @@ $(WIN)/sky.dll: $(WIN_DLL_OBJ)
 	$(WIN_CC) -shared -static-libgcc -o $@ $^ -Wl,--out-implib,$(WIN)/libsky.dll.a
 
 -include $(WIN_STATIC_OBJ:.o=.d) $(WIN_DLL_OBJ:.o=.d)
+
+# make test-windows: under Wine and Xvfb, the Windows build of the tests that need neither
+# OSMesa nor ERFA (the API, validation, stability and the planets against committed tables),
+# with tests/windows/'s own: every preset's frame from sky-render.exe (a hidden WGL window)
+# against Linux's, the opengl32.dll fallback behind a bare wglGetProcAddress, the DLL.
+# tests/windows/run.sh renders the Linux frames and runs the runner; it ends "N passed, N failed".
+WIN_BIN := $(WIN)/bin
+WIN_TEST_SRC := tests/test_main.c tests/test_api.c tests/test_validation.c tests/test_stability.c \
+	tests/test_planets.c tests/windows/test_windows.c
+WIN_FRONT_SRC := demo/cli.c demo/wgl_ctx.c demo/image_out.c
+WIN_PROG_CFLAGS := -std=c11 $(WARN) -O2 -Isky -Idemo -isystem $(WIN)/include
+WIN_GL_LIBS := -lopengl32 -lgdi32
+WIN_PACKAGES := mingw-w64 wine wine64 xvfb xauth
+
+$(WIN)/gen/test_list.h: tests/list.sh $(WIN_TEST_SRC)
+	@mkdir -p $(@D)
+	sh tests/list.sh $@ $(WIN_TEST_SRC)
+
+$(WIN_BIN)/sky-tests.exe: $(WIN_TEST_SRC) tests/windows/gl_entry.c tests/test.h $(WIN_FRONT_SRC) $(CLI_HDR) $(STAB_SRC) $(REF_SRC) $(WIN)/gen/test_list.h $(WIN)/libsky.a
+	@mkdir -p $(@D)
+	$(WIN_CC) $(WIN_PROG_CFLAGS) -Itests -Itools -I$(WIN)/gen -o $@ $(WIN_TEST_SRC) tests/windows/gl_entry.c \
+		$(WIN_FRONT_SRC) tools/stability.c $(REF_SRC) $(WIN)/libsky.a $(WIN_GL_LIBS)
+
+$(WIN_BIN)/sky-render.exe: demo/render.c $(WIN_FRONT_SRC) $(CLI_HDR) $(WIN)/libsky.a
+	@mkdir -p $(@D)
+	$(WIN_CC) $(WIN_PROG_CFLAGS) -o $@ demo/render.c $(WIN_FRONT_SRC) $(WIN)/libsky.a $(WIN_GL_LIBS)
+
+# the same front end linked against the DLL (SKY_DLL: sky.h's functions are dllimport), the
+# DLL beside it
+$(WIN_BIN)/sky-render-dll.exe: demo/render.c $(WIN_FRONT_SRC) $(CLI_HDR) $(WIN)/sky.dll
+	@mkdir -p $(@D)
+	cp $(WIN)/sky.dll $(WIN_BIN)/sky.dll
+	$(WIN_CC) $(WIN_PROG_CFLAGS) -DSKY_DLL -o $@ demo/render.c $(WIN_FRONT_SRC) $(WIN)/libsky.dll.a $(WIN_GL_LIBS)
+
+test-windows: all $(BUILD)/gen/sky_blobs.c
+	@sh tools/deps.sh $(WIN_PACKAGES)
+	@$(MAKE) --no-print-directory $(WIN)/libsky.a $(WIN)/sky.dll $(WIN)/include/sky.h $(WIN_BIN)/sky-tests.exe \
+		$(WIN_BIN)/sky-render.exe $(WIN_BIN)/sky-render-dll.exe
+	@sh tests/windows/run.sh $(BIN) $(WIN_BIN) $(WIN)
 
 # ---- install ----------------------------------------------------------------------
 install: all

@@ -12,6 +12,11 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#ifdef _WIN32
+#define WIN32_LEAN_AND_MEAN
+#define NOMINMAX
+#include <windows.h>
+#endif
 
 #define PI 3.14159265358979323846
 
@@ -62,6 +67,28 @@ static int parse_date(const char *s, double *jd)
     return 1;
 }
 
+#ifdef _WIN32
+/* A file's identity on Windows, whose stat gives every file the inode 0:
+ * its volume and its index on the volume. */
+static int file_identity(const char *path, BY_HANDLE_FILE_INFORMATION *id)
+{
+    HANDLE h = CreateFileA(path, 0, FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, NULL, OPEN_EXISTING,
+                           FILE_FLAG_BACKUP_SEMANTICS, NULL);
+    if (h == INVALID_HANDLE_VALUE) return 0;
+    int ok = GetFileInformationByHandle(h, id) != 0;
+    CloseHandle(h);
+    return ok;
+}
+
+/* Identical names, or two names of one existing file. */
+static int same_file(const char *a, const char *b)
+{
+    if (!strcmp(a, b)) return 1;
+    BY_HANDLE_FILE_INFORMATION ia, ib;
+    return file_identity(a, &ia) && file_identity(b, &ib) && ia.dwVolumeSerialNumber == ib.dwVolumeSerialNumber &&
+           ia.nFileIndexHigh == ib.nFileIndexHigh && ia.nFileIndexLow == ib.nFileIndexLow;
+}
+#else
 /* Identical names, or two names of one existing file. */
 static int same_file(const char *a, const char *b)
 {
@@ -69,6 +96,7 @@ static int same_file(const char *a, const char *b)
     struct stat sa, sb;
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
+#endif
 
 /* Whether name ends in ext (".png"), in any case. The writers take the
  * format from the option, not the name, so a name promising another format
@@ -575,9 +603,17 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
 
 double sky_cli_now_ms(void)
 {
+#ifdef _WIN32
+    /* MinGW's C runtime has no timespec_get */
+    LARGE_INTEGER count, frequency;
+    QueryPerformanceCounter(&count);
+    QueryPerformanceFrequency(&frequency);
+    return (double)count.QuadPart * 1e3 / (double)frequency.QuadPart;
+#else
     struct timespec ts;
     timespec_get(&ts, TIME_UTC);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+#endif
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -613,14 +649,14 @@ void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int heig
         view[c * 4 + 2] = (float)-f[c];
     }
     view[15] = 1.0f;
-    double aspect = (double)width / height, n = 0.1, far = 1000.0;
+    double aspect = (double)width / height, z_near = 0.1, z_far = 1000.0;
     double t = 1.0 / tan(fov * PI / 360.0);
     memset(proj, 0, 16 * sizeof(float));
     proj[0] = (float)(t / aspect);
     proj[5] = (float)t;
-    proj[10] = (float)((far + n) / (n - far));
+    proj[10] = (float)((z_far + z_near) / (z_near - z_far));
     proj[11] = -1.0f;
-    proj[14] = (float)(2.0 * far * n / (n - far));
+    proj[14] = (float)(2.0 * z_far * z_near / (z_near - z_far));
 }
 
 static void print_place(FILE *out, const char *name, const sky_body_place *b)

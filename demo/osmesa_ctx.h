@@ -1,5 +1,7 @@
 /*
- * A headless GL context through OSMesa (Mesa's llvmpipe, or softpipe with
+ * A headless GL context (on Windows, demo/wgl_ctx.c: a hidden window's
+ * WGL context drawing into a framebuffer object; the rest of this
+ * comment is Linux's), through OSMesa (Mesa's llvmpipe, or softpipe with
  * GALLIUM_DRIVER=softpipe): what sky-render, the tests and a display-less
  * sky-demo draw into. For the ES20 profile, an OpenGL ES 2.0 context
  * through EGL instead (Mesa's surfaceless platform, a pbuffer): set
@@ -23,6 +25,7 @@ typedef struct sky_osmesa {
     int is_core;     /* the context is a 3.3 core profile */
     int is_es;       /* an OpenGL ES context through EGL */
     void *egl_display, *egl_surface;
+    void *window, *device; /* Windows: the hidden HWND and its HDC */
 } sky_osmesa;
 
 /* want: SKY_GL_CORE33 asks for a 3.3 core context, SKY_GL_COMPAT20 for a
@@ -37,6 +40,8 @@ void sky_osmesa_destroy(sky_osmesa *o);
 sky_get_proc_address_fn sky_osmesa_loader(void);
 /* Makes o's context current again (after another one was). */
 void sky_osmesa_make_current(const sky_osmesa *o);
+/* Leaves the thread with no current context. */
+void sky_osmesa_release_current(void);
 /* The loader for o's kind of context (OSMesa's, or EGL's). */
 sky_get_proc_address_fn sky_headless_loader(const sky_osmesa *o);
 /* Waits for rendering to finish (and with EGL reads the pixels back). */

@@ -8,6 +8,9 @@
 #include "osmesa_ctx.h"
 
 #include <GL/gl.h>
+#ifdef _WIN32
+#include <GL/glext.h> /* Windows' gl.h stops at OpenGL 1.1 */
+#endif
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -147,5 +147,7 @@ const char *tmp_path(const char *name, char *buf, size_t len);
 int run_command(const char *cmd, char *buf, size_t len);
 /* Reads a PNG/PFM written by sky-render. */
 int image_load_png(const char *path, image *out);
+/* PSNR in dB of two images of the same size (values 0..1; 99 when equal). */
+double image_psnr(const image *a, const image *b);
 
 #endif

@@ -10,7 +10,6 @@
 #include <stb/stb_image.h>
 #include <unistd.h>
 
-double image_psnr(const image *a, const image *b);
 
 /* Mesa pretending to be a 2004-class GPU (docs/guide.md, "Old GPUs"). */
 #define OLD_GPU                                                                                  \

@@ -17,7 +17,6 @@
 #include <string.h>
 #include <unistd.h>
 
-double image_psnr(const image *a, const image *b);
 
 /* A native ES 2.0 context, and one without any of the extensions the
  * profile can use (Mesa cannot withhold OES_vertex_array_object, which the

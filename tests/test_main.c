@@ -10,9 +10,14 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <time.h>
+#ifdef _WIN32
+#include <process.h>
+#include <windows.h>
+#else
+#include <sys/wait.h>
 #include <unistd.h>
+#endif
 
 /* The test program's own PNG reader (the library keeps its copy private). */
 #define STB_IMAGE_IMPLEMENTATION
@@ -232,6 +237,16 @@ int image_load_png(const char *path, image *out)
     return 0;
 }
 
+/* PSNR in dB of two images of one size, on values 0..1 (99 when equal). */
+double image_psnr(const image *a, const image *b)
+{
+    double se = 0.0;
+    size_t n = 3u * (size_t)a->w * (size_t)a->h;
+    for (size_t i = 0; i < n; i++) se += ((double)a->px[i] - b->px[i]) * ((double)a->px[i] - b->px[i]);
+    double mse = se / (double)n;
+    return mse > 0.0 ? 10.0 * log10(1.0 / mse) : 99.0;
+}
+
 char *read_text_file(const char *path, size_t *len)
 {
     FILE *f = fopen(path, "rb");
@@ -277,7 +292,26 @@ int run_command(const char *cmd, char *buf, size_t len)
             buf[used] = '\0';
         }
     int status = pclose(p);
+#ifdef _WIN32
+    return status; /* the command's exit code */
+#else
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+#endif
+}
+
+/* Seconds on a monotonic clock, for the log's durations. */
+static double now_seconds(void)
+{
+#ifdef _WIN32
+    LARGE_INTEGER count, frequency;
+    QueryPerformanceCounter(&count);
+    QueryPerformanceFrequency(&frequency);
+    return (double)count.QuadPart / (double)frequency.QuadPart;
+#else
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+#endif
 }
 
 /* ---- runner ----------------------------------------------------------------- */
@@ -302,11 +336,9 @@ int main(int argc, char **argv)
         test_failures = 0;
         test_skipped = 0;
         printf("  %s\n", tests[i].name);
-        struct timespec t0, t1;
-        clock_gettime(CLOCK_MONOTONIC, &t0);
+        double t0 = now_seconds();
         tests[i].fn();
-        clock_gettime(CLOCK_MONOTONIC, &t1);
-        double took = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+        double took = now_seconds() - t0;
         if (test_failures) {
             printf("FAIL %s (%.2f s)\n", tests[i].name, took);
             failed++;

@@ -24,16 +24,6 @@ static double max_rel_diff(const image *a, const image *b)
     return worst;
 }
 
-double image_psnr(const image *a, const image *b);
-double image_psnr(const image *a, const image *b)
-{
-    double se = 0.0;
-    size_t n = 3u * (size_t)a->w * (size_t)a->h;
-    for (size_t i = 0; i < n; i++) se += ((double)a->px[i] - b->px[i]) * ((double)a->px[i] - b->px[i]);
-    double mse = se / (double)n;
-    return mse > 0.0 ? 10.0 * log10(1.0 / mse) : 99.0;
-}
-
 /* Pixels brighter than every 8-neighbour by at least `contrast`: stars.
  * Only inside the fisheye circle (radius 0.95), away from its black rim. */
 static int count_point_sources(const image *im, float contrast)

@@ -36,6 +36,10 @@ SLOW_TEST(stability_suite)
  * 3 context's float target: an 8-bit ES 2.0 one cannot show a NaN). */
 SLOW_TEST(stability_suite_es20)
 {
+#ifdef _WIN32
+    SKIP("OpenGL ES contexts come from EGL, on Linux (the Windows runner draws through WGL)");
+    return;
+#endif
     sky_stability_row rows[SKY_STABILITY_MAX_ROWS];
     char err[512];
     int n = sky_stability_run_render(SKY_GL_ES20, rows, err, sizeof err);

@@ -19,7 +19,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#ifndef _WIN32
 #include <unistd.h>
+#endif
 
 typedef struct suite {
     sky_stability_row *rows;
@@ -756,10 +758,14 @@ int sky_stability_run(int gpu, sky_stability_row rows[SKY_STABILITY_MAX_ROWS], c
 
 long sky_rss_kib(void)
 {
+#ifdef _WIN32
+    return -1; /* (Linux's /proc only) */
+#else
     long pages = -1, resident = -1;
     FILE *f = fopen("/proc/self/statm", "r");
     if (!f) return -1;
     if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = -1;
     fclose(f);
     return resident < 0 ? -1 : resident * (sysconf(_SC_PAGESIZE) / 1024);
+#endif
 }
