@@ -337,7 +337,8 @@ test-web: web $(WEB)/web-tests
 
 # ---- Windows: make windows ---------------------------------------------------------
 # The library cross-built with MinGW-w64 (x86_64) into build/windows/: libsky.a (static,
-# no SKY_DLL), sky.dll with its import library libsky.dll.a (hosts define SKY_DLL), sky.h.
+# no SKY_DLL), sky.dll with its import library libsky.dll.a (hosts define SKY_DLL), sky.h,
+# and bin/sky-render.exe (sky-render's command line; a hidden window's WGL context).
 # The embedder runs natively (build/gen/sky_blobs.c is the one every build embeds); stb
 # comes from libstb-dev through a directory of its own, as in the browser build.
 WIN := $(BUILD)/windows
@@ -349,7 +350,7 @@ WIN_DLL_OBJ := $(SKY_SRC:%.c=$(WIN)/obj/dll/%.o) $(WIN)/obj/dll/gen/sky_blobs.o
 
 windows: $(BUILD)/gen/sky_blobs.c
 	@sh tools/deps.sh mingw-w64
-	@$(MAKE) --no-print-directory $(WIN)/libsky.a $(WIN)/sky.dll $(WIN)/include/sky.h
+	@$(MAKE) --no-print-directory $(WIN)/libsky.a $(WIN)/sky.dll $(WIN)/include/sky.h $(WIN)/bin/sky-render.exe
 
 $(WIN)/include/sky.h: sky/sky.h
 	@mkdir -p $(@D) && ln -sfn /usr/include/stb $(@D)/stb
@@ -378,7 +379,8 @@ $(WIN)/sky.dll: $(WIN_DLL_OBJ)
 # make test-windows: under Wine and Xvfb, the Windows build of the tests that need neither
 # OSMesa nor ERFA (the API, validation, stability and the planets against committed tables),
 # with tests/windows/'s own: every preset's frame from sky-render.exe (a hidden WGL window)
-# against Linux's, the opengl32.dll fallback behind a bare wglGetProcAddress, the DLL.
+# against Linux's, the opengl32.dll fallback behind a bare wglGetProcAddress, the DLL and the
+# amalgamation.
 # tests/windows/run.sh renders the Linux frames and runs the runner; it ends "N passed, N failed".
 WIN_BIN := $(WIN)/bin
 WIN_TEST_SRC := tests/test_main.c tests/test_api.c tests/test_validation.c tests/test_stability.c \
@@ -408,10 +410,16 @@ $(WIN_BIN)/sky-render-dll.exe: demo/render.c $(WIN_FRONT_SRC) $(CLI_HDR) $(WIN)/
 	cp $(WIN)/sky.dll $(WIN_BIN)/sky.dll
 	$(WIN_CC) $(WIN_PROG_CFLAGS) -DSKY_DLL -o $@ demo/render.c $(WIN_FRONT_SRC) $(WIN)/libsky.dll.a $(WIN_GL_LIBS)
 
+# and linked against the amalgamation alone, compiled by MinGW-w64 at the flags it promises
+$(WIN_BIN)/sky-render-amalgamation.exe: demo/render.c $(WIN_FRONT_SRC) $(CLI_HDR) $(AMALG)/sky.c $(AMALG)/sky.h
+	@mkdir -p $(WIN)/obj/amalgamation
+	$(WIN_CC) -std=c11 -Wall -Wextra -Wshadow -pedantic -Wvla -Werror -O2 -c -o $(WIN)/obj/amalgamation/sky.o $(AMALG)/sky.c
+	$(WIN_CC) $(WIN_PROG_CFLAGS) -o $@ demo/render.c $(WIN_FRONT_SRC) $(WIN)/obj/amalgamation/sky.o $(WIN_GL_LIBS)
+
 test-windows: all $(BUILD)/gen/sky_blobs.c
 	@sh tools/deps.sh $(WIN_PACKAGES)
 	@$(MAKE) --no-print-directory $(WIN)/libsky.a $(WIN)/sky.dll $(WIN)/include/sky.h $(WIN_BIN)/sky-tests.exe \
-		$(WIN_BIN)/sky-render.exe $(WIN_BIN)/sky-render-dll.exe
+		$(WIN_BIN)/sky-render.exe $(WIN_BIN)/sky-render-dll.exe $(WIN_BIN)/sky-render-amalgamation.exe
 	@sh tests/windows/run.sh $(BIN) $(WIN_BIN) $(WIN)
 
 # ---- install ----------------------------------------------------------------------

@@ -20,7 +20,8 @@ for p in $presets; do
         "$bin/sky-render" --preset "$p" --gl "$gl" --out "$ref/$p-$gl.png"
     done
 done
-export WINEDEBUG=-all WINEPREFIX="$PWD/$win/wineprefix"
+# (no Mono or Gecko: a fresh prefix would otherwise offer to download them)
+export WINEDEBUG=-all WINEPREFIX="$PWD/$win/wineprefix" WINEDLLOVERRIDES="mscoree,mshtml="
 export SKY_WINDOWS_REFERENCE="$ref" SKY_BIN="$(printf '%s' "$win_bin" | tr / '\\')"
 export SKY_WINDOWS_PRESETS="$presets"
 # (wineserver -w: every Wine process gone before the X server is, so none

@@ -4,8 +4,9 @@
  * Mesa's llvmpipe). Beside them the runner holds the portable tests of
  * test_api.c, test_validation.c, test_stability.c and test_planets.c.
  *
- * SKY_BIN names build/windows/bin (sky-render.exe, and sky-render-dll.exe
- * linked against sky.dll); SKY_WINDOWS_REFERENCE the Linux frames of the
+ * SKY_BIN names build/windows/bin (sky-render.exe, sky-render-dll.exe
+ * linked against sky.dll, sky-render-amalgamation.exe built on the
+ * amalgamation); SKY_WINDOWS_REFERENCE the Linux frames of the
  * same command lines, rendered by Linux's sky-render through OSMesa, and
  * SKY_WINDOWS_PRESETS their presets, as sky-render --help lists them
  * (tests/windows/run.sh).
@@ -190,24 +191,30 @@ TEST(windows_dll_exports_only_the_api)
     FreeLibrary(dll);
 }
 
-/* sky-render linked against sky.dll writes the static build's bytes. */
-TEST(windows_dll_frame_matches_static)
+/* sky-render linked against sky.dll, and against the amalgamation compiled
+ * by MinGW-w64, writes the static library's bytes. */
+TEST(windows_dll_and_amalgamation_frames_match_static)
 {
+    static const char *const builds[2] = {"sky-render-dll.exe", "sky-render-amalgamation.exe"};
     char a[512], b[512], log[2048];
     tmp_path("static.png", a, sizeof a);
-    tmp_path("dll.png", b, sizeof b);
     int rc = render_preset("sky-render.exe", "sunset", "core", a, log, sizeof log);
     CHECK(rc == 0, "sky-render.exe exited %d: %s", rc, log);
-    rc = render_preset("sky-render-dll.exe", "sunset", "core", b, log, sizeof log);
-    CHECK(rc == 0, "sky-render-dll.exe exited %d: %s", rc, log);
-    size_t na = 0, nb = 0;
-    char *da = read_text_file(a, &na), *db = read_text_file(b, &nb);
-    CHECK(da && db && na > 1000 && na == nb && memcmp(da, db, na) == 0,
-          "the DLL's frame (%zu bytes) differs from the static library's (%zu bytes)", nb, na);
-    free(da);
-    free(db);
+    size_t na = 0;
+    char *want = read_text_file(a, &na);
+    for (int k = 0; k < 2; k++) {
+        tmp_path("other.png", b, sizeof b);
+        rc = render_preset(builds[k], "sunset", "core", b, log, sizeof log);
+        CHECK(rc == 0, "%s exited %d: %s", builds[k], rc, log);
+        size_t nb = 0;
+        char *got = read_text_file(b, &nb);
+        CHECK(want && got && na > 1000 && na == nb && memcmp(want, got, na) == 0,
+              "%s's frame (%zu bytes) differs from the static library's (%zu bytes)", builds[k], nb, na);
+        free(got);
+        remove(b);
+    }
+    free(want);
     remove(a);
-    remove(b);
 }
 
 /* ---- the front end's files on Windows ---------------------------------------- */
