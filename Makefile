@@ -14,12 +14,15 @@ LDLIBS_M := -lm
 HEADLESS_LIBS := -lOSMesa -lEGL
 
 # The library's sources and the assets it embeds are found, not listed: a
-# new layer's .c, shader and texture join the build by being there. (The
-# double-precision reference, sky/atmosphere/reference.c, is not part of
-# the library: see REF_SRC.)
-SKY_SRC := $(filter-out sky/atmosphere/reference.c,$(sort $(wildcard sky/*.c sky/atmosphere/*.c sky/gl/*.c)))
-SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
-TEXTURES := $(sort $(wildcard textures/*.png textures/*.dat))
+# new layer's .c, shader and texture join the build by being there. The
+# patterns are sky/sources.txt's, which CMakeLists.txt reads too, so the two
+# builds cannot drift apart. (The double-precision reference,
+# sky/atmosphere/reference.c, is excluded there: see REF_SRC.)
+SKY_LIST := sky/sources.txt
+sky_list = $(shell sed -n 's/^$(1)[[:space:]][[:space:]]*//p' $(SKY_LIST))
+SKY_SRC := $(filter-out $(call sky_list,exclude),$(sort $(wildcard $(call sky_list,source))))
+SHADERS := $(wildcard $(call sky_list,shader))
+TEXTURES := $(sort $(wildcard $(call sky_list,texture)))
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
 # The double-precision spectral reference is a yardstick, not part of the
 # library: only the programs that measure against it (sky-bench, the test
