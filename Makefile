@@ -386,7 +386,20 @@ install: all
 	install -m 755 $(LIB)/libsky.so $(DESTDIR)$(PREFIX)/lib/$(SKY_SONAME)
 	ln -sf $(SKY_SONAME) $(DESTDIR)$(PREFIX)/lib/libsky.so
 	install -m 755 $(BIN)/sky-render $(BIN)/sky-demo $(DESTDIR)$(PREFIX)/bin/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(SKY_VERSION)|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$${prefix}/lib|' -e 's|@INCLUDEDIR@|$${prefix}/include|' \
+		-e 's|@VERSION@|$(SKY_VERSION)|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
+
+# ---- CMake: make cmake ----------------------------------------------------------
+# The library through CMakeLists.txt (for projects that consume it natively)
+# into build/cmake, warnings as errors, static unless CMAKE_ARGS says
+# otherwise (make cmake CMAKE_ARGS=-DBUILD_SHARED_LIBS=ON). Both builds take
+# their sources from sky/sources.txt.
+.PHONY: cmake
+CMAKE_ARGS ?=
+cmake:
+	@sh tools/deps.sh cmake
+	cmake -S . -B $(BUILD)/cmake -DSKY_WERROR=ON $(CMAKE_ARGS)
+	cmake --build $(BUILD)/cmake
 
 # ---- assets ---------------------------------------------------------------------------
 # Rebuilds textures/ from their origins (see textures/README.md). Needs
