@@ -86,7 +86,8 @@ static void soname_of(char *buf, size_t len)
  * tests/cmake/find_package finds it (asking for sky.h's MAJOR.MINOR),
  * builds and runs, as does the consumer compiled against the installed
  * sky.pc (pkg-config --static for the static prefix, which holds libsky.a
- * alone); and before 1.0 the package refuses an older minor version. */
+ * alone), and cmake --install --prefix writes a sky.pc naming its prefix;
+ * and before 1.0 the package refuses an older minor version. */
 SLOW_TEST(build_cmake_find_package)
 {
     if (!have("cmake") || !have("pkg-config")) {
@@ -174,6 +175,21 @@ SLOW_TEST(build_cmake_find_package)
         rc = run_command(cmd, out, sizeof out);
         CHECK(rc == 0, "%s: the consumer builds and runs through the installed sky.pc (exit %d): %s", kind, rc, out);
         if (rc == 0) check_consumer_output(shared ? "sky.pc" : "sky.pc --static", out);
+
+        /* sky.pc names the prefix given at install time, not only the
+         * configured one */
+        if (!shared) {
+            char moved[700];
+            snprintf(moved, sizeof moved, "%s/prefix-moved", dir);
+            snprintf(cmd, sizeof cmd,
+                     "cmake --install '%s/libsky-static' --prefix '%s' >/dev/null 2>&1 && "
+                     "grep '^prefix=' '%s/lib/pkgconfig/sky.pc'",
+                     dir, moved, moved);
+            rc = run_command(cmd, out, sizeof out);
+            CHECK(rc == 0 && !strncmp(out, "prefix=", 7) && !strncmp(out + 7, moved, strlen(moved)) &&
+                      out[7 + strlen(moved)] == '\n',
+                  "cmake --install --prefix %s writes a sky.pc naming it: %s", moved, out);
+        }
 
         /* Before 1.0 a minor version may break the ABI: the package
          * refuses a request for an older one (a lenient version file would
