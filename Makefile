@@ -14,12 +14,15 @@ LDLIBS_M := -lm
 HEADLESS_LIBS := -lOSMesa -lEGL
 
 # The library's sources and the assets it embeds are found, not listed: a
-# new layer's .c, shader and texture join the build by being there. (The
-# double-precision reference, sky/atmosphere/reference.c, is not part of
-# the library: see REF_SRC.)
-SKY_SRC := $(filter-out sky/atmosphere/reference.c,$(sort $(wildcard sky/*.c sky/atmosphere/*.c sky/gl/*.c)))
-SHADERS := $(wildcard sky/shaders/*.glsl sky/shaders/*.vert sky/shaders/*.frag)
-TEXTURES := $(sort $(wildcard textures/*.png textures/*.dat))
+# new layer's .c, shader and texture join the build by being there. The
+# patterns are sky/sources.txt's, which CMakeLists.txt reads too, so the two
+# builds cannot drift apart. (The double-precision reference,
+# sky/atmosphere/reference.c, is excluded there: see REF_SRC.)
+SKY_LIST := sky/sources.txt
+sky_list = $(shell sed -n 's/^$(1)[[:space:]][[:space:]]*//p' $(SKY_LIST))
+SKY_SRC := $(filter-out $(call sky_list,exclude),$(sort $(wildcard $(call sky_list,source))))
+SHADERS := $(wildcard $(call sky_list,shader))
+TEXTURES := $(sort $(wildcard $(call sky_list,texture)))
 SKY_OBJ := $(SKY_SRC:%.c=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/sky_blobs.o
 # The double-precision spectral reference is a yardstick, not part of the
 # library: only the programs that measure against it (sky-bench, the test
@@ -430,7 +433,20 @@ install: all
 	install -m 755 $(LIB)/libsky.so $(DESTDIR)$(PREFIX)/lib/$(SKY_SONAME)
 	ln -sf $(SKY_SONAME) $(DESTDIR)$(PREFIX)/lib/libsky.so
 	install -m 755 $(BIN)/sky-render $(BIN)/sky-demo $(DESTDIR)$(PREFIX)/bin/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(SKY_VERSION)|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$${prefix}/lib|' -e 's|@INCLUDEDIR@|$${prefix}/include|' \
+		-e 's|@VERSION@|$(SKY_VERSION)|' sky/sky.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sky.pc
+
+# ---- CMake: make cmake ----------------------------------------------------------
+# The library through CMakeLists.txt (for projects that consume it natively)
+# into build/cmake, warnings as errors, static unless CMAKE_ARGS says
+# otherwise (make cmake CMAKE_ARGS=-DBUILD_SHARED_LIBS=ON). Both builds take
+# their sources from sky/sources.txt.
+.PHONY: cmake
+CMAKE_ARGS ?=
+cmake:
+	@sh tools/deps.sh cmake
+	cmake -S . -B $(BUILD)/cmake -DSKY_WERROR=ON $(CMAKE_ARGS)
+	cmake --build $(BUILD)/cmake
 
 # ---- assets ---------------------------------------------------------------------------
 # Rebuilds textures/ from their origins (see textures/README.md). Needs

@@ -4,7 +4,7 @@
 # neither is possible. Packages given as arguments are wanted too (make
 # examples passes the engines').
 set -e
-PACKAGES="gcc make libc6-dev libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 libglfw3-dev libstb-dev liberfa-dev xvfb xauth pkgconf $*"
+PACKAGES="gcc make libc6-dev libgl-dev libosmesa6-dev libegl-dev libegl-mesa0 libglfw3-dev libstb-dev liberfa-dev xvfb xauth pkgconf cmake $*"
 missing=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
