@@ -306,23 +306,13 @@ typedef enum sky_atmosphere_preset {
     SKY_ATMOSPHERE_PRESET_VERY_CLEAN, /* mountains, open ocean: AOD 0.04 (1.4)   */
     SKY_ATMOSPHERE_PRESET_POLLUTED,  /* summer smog: AOD 0.6 of absorbing
                                         particles (turbidity 7.2)               */
-    SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, /* Hillaire 2020's published constants
+    SKY_ATMOSPHERE_PRESET_HILLAIRE_2020  /* Hillaire 2020's published constants
                                         (AOD 0.0053, turbidity 1.05): for comparison
                                         with other implementations of his paper */
-    /* Deprecated since 0.5, removed in 0.6: the names before the PRESET_
-     * ones (SKY_ATMOSPHERE_HILLAIRE_2020 read like the path
-     * SKY_ATMOSPHERE_HILLAIRE). */
-    SKY_ATMOSPHERE_EARTH = SKY_ATMOSPHERE_PRESET_EARTH,
-    SKY_ATMOSPHERE_HAZY = SKY_ATMOSPHERE_PRESET_HAZY,
-    SKY_ATMOSPHERE_MARS = SKY_ATMOSPHERE_PRESET_MARS,
-    SKY_ATMOSPHERE_VERY_CLEAN = SKY_ATMOSPHERE_PRESET_VERY_CLEAN,
-    SKY_ATMOSPHERE_POLLUTED = SKY_ATMOSPHERE_PRESET_POLLUTED,
-    SKY_ATMOSPHERE_HILLAIRE_2020 = SKY_ATMOSPHERE_PRESET_HILLAIRE_2020
 } sky_atmosphere_preset;
 
 /* sky_atmosphere_get_preset: fills *out with a preset's description, to
  * pass as sky_config.atmosphere_params as it is or with a field changed.
- * The deprecated names give the same descriptions as the PRESET_ ones.
  * Errors: SKY_ERR_INVALID_ARGUMENT for out NULL or a value that names no
  * preset.
  * Thread safety: any thread (pure).
