@@ -871,16 +871,12 @@ typedef struct sky_stats {
     size_t gpu_bytes;         /* all textures and buffers                     */
     int textures, programs, buffers;
     int draws_per_frame;
-    /* Deprecated since 0.5, removed in 0.6: its size follows the layer
-     * count, so a new layer changed this struct. Use sky_layer_count and
-     * sky_get_layer_stats. */
-    sky_layer_stats layers[SKY_LAYER_COUNT];
 } sky_stats;
 
 /* sky_get_stats: what the sky holds now (profile, features, textures,
  * programs, buffers and their bytes) and what its last draw did (the last
  * sky_draw or sky_draw_fisheye, or the last face sky_capture_environment
- * drew: draws, times, which layers showed).
+ * drew: draws, times); each layer's, sky_get_layer_stats.
  * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
  * Thread safety: the sky's thread.
  * GL: none (gl_version was read by sky_create).
@@ -890,7 +886,7 @@ SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
  * adding one changes no public struct: how many this build has
  * (SKY_LAYER_COUNT or more: a layer added after 0.5 has an index but no
  * sky_layer constant; sky_layer_name names each), and one's statistics
- * for the last frame (for the layers of 0.5, sky_get_stats's row).
+ * for the last frame (the draw sky_get_stats describes).
  * Errors: sky_layer_count none; sky_get_layer_stats
  * SKY_ERR_INVALID_ARGUMENT (no message) for a NULL sky or output or an
  * index outside 0 .. sky_layer_count() - 1.
