@@ -76,11 +76,11 @@
  *                   changes and puts back;
  *   Since:          the version that first had it.
  *
- * Since, the rule: sky.h's SKY_VERSION_* has been set five times, 0.1.0
- * by the first commit and then 0.2.0 .. 0.5.0, each number taking in all
+ * Since, the rule: sky.h's SKY_VERSION_* has been set six times, 0.1.0
+ * by the first commit and then 0.2.0 .. 0.6.0, each number taking in all
  * that had landed since the one before. A function's version is the first
- * number set at or after the commit that added it; one added after 0.5.0
- * was set is 0.5.0's, the version on main. CHANGELOG.md's entries agree
+ * number set at or after the commit that added it; one added after 0.6.0
+ * was set is 0.6.0's, the version on main. CHANGELOG.md's entries agree
  * from 0.3.0 on (before it, the git history), and "Since: 0.1.0" marks
  * what the first commit already had. A later change to a function's
  * signature is named beside its version.
@@ -133,7 +133,7 @@ extern "C" {
 #endif
 
 #define SKY_VERSION_MAJOR 0
-#define SKY_VERSION_MINOR 5
+#define SKY_VERSION_MINOR 6
 #define SKY_VERSION_PATCH 0
 
 /* Symbols the shared library exports; everything else stays hidden. On
