@@ -79,8 +79,6 @@ sky_result sky_get_stats(const sky *s, sky_stats *out)
             out->textures++;
             out->gpu_bytes += c->textures[i].bytes;
         }
-    /* the deprecated fixed rows: the layers of 0.5, by their sky_layer */
-    for (int l = 0; l < SKY_LAYER_COUNT; l++) sky_get_layer_stats(s, l, &out->layers[l]);
     out->programs = c->program_count;
     out->buffers = c->buffer_count;
     return SKY_OK;

@@ -76,11 +76,11 @@
  *                   changes and puts back;
  *   Since:          the version that first had it.
  *
- * Since, the rule: sky.h's SKY_VERSION_* has been set five times, 0.1.0
- * by the first commit and then 0.2.0 .. 0.5.0, each number taking in all
+ * Since, the rule: sky.h's SKY_VERSION_* has been set six times, 0.1.0
+ * by the first commit and then 0.2.0 .. 0.6.0, each number taking in all
  * that had landed since the one before. A function's version is the first
- * number set at or after the commit that added it; one added after 0.5.0
- * was set is 0.5.0's, the version on main. CHANGELOG.md's entries agree
+ * number set at or after the commit that added it; one added after 0.6.0
+ * was set is 0.6.0's, the version on main. CHANGELOG.md's entries agree
  * from 0.3.0 on (before it, the git history), and "Since: 0.1.0" marks
  * what the first commit already had. A later change to a function's
  * signature is named beside its version.
@@ -133,7 +133,7 @@ extern "C" {
 #endif
 
 #define SKY_VERSION_MAJOR 0
-#define SKY_VERSION_MINOR 5
+#define SKY_VERSION_MINOR 6
 #define SKY_VERSION_PATCH 0
 
 /* Symbols the shared library exports; everything else stays hidden. On
@@ -306,23 +306,13 @@ typedef enum sky_atmosphere_preset {
     SKY_ATMOSPHERE_PRESET_VERY_CLEAN, /* mountains, open ocean: AOD 0.04 (1.4)   */
     SKY_ATMOSPHERE_PRESET_POLLUTED,  /* summer smog: AOD 0.6 of absorbing
                                         particles (turbidity 7.2)               */
-    SKY_ATMOSPHERE_PRESET_HILLAIRE_2020, /* Hillaire 2020's published constants
+    SKY_ATMOSPHERE_PRESET_HILLAIRE_2020  /* Hillaire 2020's published constants
                                         (AOD 0.0053, turbidity 1.05): for comparison
                                         with other implementations of his paper */
-    /* Deprecated since 0.5, removed in 0.6: the names before the PRESET_
-     * ones (SKY_ATMOSPHERE_HILLAIRE_2020 read like the path
-     * SKY_ATMOSPHERE_HILLAIRE). */
-    SKY_ATMOSPHERE_EARTH = SKY_ATMOSPHERE_PRESET_EARTH,
-    SKY_ATMOSPHERE_HAZY = SKY_ATMOSPHERE_PRESET_HAZY,
-    SKY_ATMOSPHERE_MARS = SKY_ATMOSPHERE_PRESET_MARS,
-    SKY_ATMOSPHERE_VERY_CLEAN = SKY_ATMOSPHERE_PRESET_VERY_CLEAN,
-    SKY_ATMOSPHERE_POLLUTED = SKY_ATMOSPHERE_PRESET_POLLUTED,
-    SKY_ATMOSPHERE_HILLAIRE_2020 = SKY_ATMOSPHERE_PRESET_HILLAIRE_2020
 } sky_atmosphere_preset;
 
 /* sky_atmosphere_get_preset: fills *out with a preset's description, to
  * pass as sky_config.atmosphere_params as it is or with a field changed.
- * The deprecated names give the same descriptions as the PRESET_ ones.
  * Errors: SKY_ERR_INVALID_ARGUMENT for out NULL or a value that names no
  * preset.
  * Thread safety: any thread (pure).
@@ -881,16 +871,12 @@ typedef struct sky_stats {
     size_t gpu_bytes;         /* all textures and buffers                     */
     int textures, programs, buffers;
     int draws_per_frame;
-    /* Deprecated since 0.5, removed in 0.6: its size follows the layer
-     * count, so a new layer changed this struct. Use sky_layer_count and
-     * sky_get_layer_stats. */
-    sky_layer_stats layers[SKY_LAYER_COUNT];
 } sky_stats;
 
 /* sky_get_stats: what the sky holds now (profile, features, textures,
  * programs, buffers and their bytes) and what its last draw did (the last
  * sky_draw or sky_draw_fisheye, or the last face sky_capture_environment
- * drew: draws, times, which layers showed).
+ * drew: draws, times); each layer's, sky_get_layer_stats.
  * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
  * Thread safety: the sky's thread.
  * GL: none (gl_version was read by sky_create).
@@ -900,7 +886,7 @@ SKY_API sky_result sky_get_stats(const sky *s, sky_stats *out);
  * adding one changes no public struct: how many this build has
  * (SKY_LAYER_COUNT or more: a layer added after 0.5 has an index but no
  * sky_layer constant; sky_layer_name names each), and one's statistics
- * for the last frame (for the layers of 0.5, sky_get_stats's row).
+ * for the last frame (the draw sky_get_stats describes).
  * Errors: sky_layer_count none; sky_get_layer_stats
  * SKY_ERR_INVALID_ARGUMENT (no message) for a NULL sky or output or an
  * index outside 0 .. sky_layer_count() - 1.

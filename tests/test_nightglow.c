@@ -202,18 +202,20 @@ TEST(nightglow_layer_costs)
         CHECK(0, "fixture");
         return;
     }
-    sky_stats st;
-    sky_get_stats(f.s, &st);
-    CHECK(st.layers[SKY_LAYER_ZODIACAL].enabled && st.layers[SKY_LAYER_ZODIACAL].bytes == 64 * 32 * 4,
-          "the zodiacal table is 8192 bytes (%zu)", st.layers[SKY_LAYER_ZODIACAL].bytes);
-    CHECK(st.layers[SKY_LAYER_AIRGLOW].enabled && st.layers[SKY_LAYER_AIRGLOW].bytes == 0, "the airglow has no GPU memory");
+    sky_layer_stats airglow, zodiacal;
+    CHECK(sky_get_layer_stats(f.s, SKY_LAYER_AIRGLOW, &airglow) == SKY_OK &&
+              sky_get_layer_stats(f.s, SKY_LAYER_ZODIACAL, &zodiacal) == SKY_OK,
+          "the airglow's and the zodiacal light's rows");
+    CHECK(zodiacal.enabled && zodiacal.bytes == 64 * 32 * 4, "the zodiacal table is 8192 bytes (%zu)", zodiacal.bytes);
+    CHECK(airglow.enabled && airglow.bytes == 0, "the airglow has no GPU memory");
     sky_params p = sky_default_params();
     for (int k = 0; k < 2; k++) {
         p.time = k ? 0.5f : 0.0f;
         sky_set_params(f.s, &p);
         sky_draw_fisheye(f.s);
-        sky_get_stats(f.s, &st);
-        int a = st.layers[SKY_LAYER_AIRGLOW].drawn, z = st.layers[SKY_LAYER_ZODIACAL].drawn;
+        sky_get_layer_stats(f.s, SKY_LAYER_AIRGLOW, &airglow);
+        sky_get_layer_stats(f.s, SKY_LAYER_ZODIACAL, &zodiacal);
+        int a = airglow.drawn, z = zodiacal.drawn;
         CHECK(k ? (!a && !z) : (a && z), "%s: airglow %d, zodiacal light %d in the dome", k ? "noon" : "midnight", a, z);
     }
     fixture_close(&f);

@@ -346,7 +346,9 @@ TEST(planets_layer_costs)
         return;
     }
     sky_stats without, with;
+    sky_layer_stats planets_without, planets;
     sky_get_stats(f.s, &without);
+    CHECK(sky_get_layer_stats(f.s, SKY_LAYER_PLANETS, &planets_without) == SKY_OK, "the planets' row");
     fixture_close(&f);
     cfg.features = SKY_STARS | SKY_PLANETS;
     if (fixture_open(&f, SKY_GL_AUTO, &cfg)) {
@@ -354,10 +356,9 @@ TEST(planets_layer_costs)
         return;
     }
     sky_get_stats(f.s, &with);
-    CHECK(!without.layers[SKY_LAYER_PLANETS].enabled && without.layers[SKY_LAYER_PLANETS].bytes == 0,
-          "no planets layer without the feature");
-    CHECK(with.layers[SKY_LAYER_PLANETS].enabled && with.layers[SKY_LAYER_PLANETS].bytes == 180,
-          "five points of nine floats (%zu bytes)", with.layers[SKY_LAYER_PLANETS].bytes);
+    CHECK(sky_get_layer_stats(f.s, SKY_LAYER_PLANETS, &planets) == SKY_OK, "the planets' row");
+    CHECK(!planets_without.enabled && planets_without.bytes == 0, "no planets layer without the feature");
+    CHECK(planets.enabled && planets.bytes == 180, "five points of nine floats (%zu bytes)", planets.bytes);
     CHECK(with.programs == without.programs + 1 && with.buffers == without.buffers + 1,
           "one program and one buffer more (%d/%d programs, %d/%d buffers)", with.programs, without.programs,
           with.buffers, without.buffers);
@@ -381,9 +382,8 @@ TEST(planets_layer_costs)
         sky_observer o = observer_at(2023, 6, 4, k ? venus_hour : down_hour, 0);
         sky_set_observer(f.s, &o);
         sky_draw(f.s, view, proj);
-        sky_get_stats(f.s, &with);
-        CHECK(with.layers[SKY_LAYER_PLANETS].drawn == k, "%s: planets drawn %d", k ? "Venus up" : "every planet down",
-              with.layers[SKY_LAYER_PLANETS].drawn);
+        CHECK(sky_get_layer_stats(f.s, SKY_LAYER_PLANETS, &planets) == SKY_OK && planets.drawn == k,
+              "%s: planets drawn %d", k ? "Venus up" : "every planet down", planets.drawn);
     }
     fixture_close(&f);
 }

@@ -283,24 +283,21 @@ TEST(stars_skipped_at_noon)
         return;
     }
     sky_params p = sky_default_params();
-    sky_stats st;
+    sky_layer_stats stars;
     float view[16], proj[16];
     scene sc = scene_default();
     scene_camera(&sc, view, proj);
     p.time = 0.5f;
     sky_set_params(f.s, &p);
     sky_draw(f.s, view, proj);
-    sky_get_stats(f.s, &st);
-    CHECK(st.layers[SKY_LAYER_STARS].enabled && !st.layers[SKY_LAYER_STARS].drawn &&
-              st.layers[SKY_LAYER_STARS].draws == 0,
+    CHECK(sky_get_layer_stats(f.s, SKY_LAYER_STARS, &stars) == SKY_OK && stars.enabled && !stars.drawn &&
+              stars.draws == 0,
           "no star draw at noon");
     p.time = 0.0f;
     sky_set_params(f.s, &p);
     sky_draw(f.s, view, proj);
-    sky_get_stats(f.s, &st);
-    CHECK(st.layers[SKY_LAYER_STARS].draws == 1, "one star draw at midnight");
-    CHECK(st.layers[SKY_LAYER_STARS].bytes > 8000 * 9 * sizeof(float), "the star buffer is counted (%zu bytes)",
-          st.layers[SKY_LAYER_STARS].bytes);
+    CHECK(sky_get_layer_stats(f.s, SKY_LAYER_STARS, &stars) == SKY_OK && stars.draws == 1, "one star draw at midnight");
+    CHECK(stars.bytes > 8000 * 9 * sizeof(float), "the star buffer is counted (%zu bytes)", stars.bytes);
     fixture_close(&f);
     /* and no star pixel at noon: the image equals one without stars */
     scene with = star_scene(), without = scene_default();
@@ -382,21 +379,19 @@ TEST(starmap_shows_the_milky_way)
     fixture f;
     if (fixture_open(&f, SKY_GL_AUTO, &cfg) == 0) {
         sky_params p = sky_default_params();
-        sky_stats st;
+        sky_layer_stats map;
         p.time = 0.5f;
         sky_set_params(f.s, &p);
         sky_draw_fisheye(f.s);
-        sky_get_stats(f.s, &st);
-        CHECK(st.layers[SKY_LAYER_STARMAP].enabled && !st.layers[SKY_LAYER_STARMAP].drawn, "no star map at noon");
+        CHECK(sky_get_layer_stats(f.s, SKY_LAYER_STARMAP, &map) == SKY_OK && map.enabled && !map.drawn,
+              "no star map at noon");
         /* the 512x256 image, resampled into a cube map of the same
          * resolution at the faces' centres (starmap.c) */
-        CHECK(st.layers[SKY_LAYER_STARMAP].bytes == 6 * 128 * 128 * 4, "the map is six 128x128 RGBA8 faces (%zu bytes)",
-              st.layers[SKY_LAYER_STARMAP].bytes);
+        CHECK(map.bytes == 6 * 128 * 128 * 4, "the map is six 128x128 RGBA8 faces (%zu bytes)", map.bytes);
         p.time = 0.0f;
         sky_set_params(f.s, &p);
         sky_draw_fisheye(f.s);
-        sky_get_stats(f.s, &st);
-        CHECK(st.layers[SKY_LAYER_STARMAP].drawn, "the star map at midnight");
+        CHECK(sky_get_layer_stats(f.s, SKY_LAYER_STARMAP, &map) == SKY_OK && map.drawn, "the star map at midnight");
         fixture_close(&f);
     }
 }
