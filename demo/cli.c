@@ -176,6 +176,10 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --cover F --height F --density F --sunset F --speed F --time F\n"
             "                           the six sliders, each 0..1\n"
             "  --seconds S              elapsed animation time, S >= 0\n"
+            "  --weather NAME           the weather from time 0: clear, fair, cirrus, cloudy, overcast,\n"
+            "                           rain, showers, storm, fog, snow (it owns cover and density)\n"
+            "  --weather-to NAME        a change of weather that starts at time 0 ...\n"
+            "  --weather-seconds S      ... and lasts S seconds (default 10); --seconds picks the frame\n"
             "  --yaw DEG --pitch DEG --fov DEG | --fisheye\n"
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
@@ -305,6 +309,8 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
     cli->pitch = 20.0;
     cli->fov = 60.0;
     cli->frames = 1;
+    cli->weather = cli->weather_to = -1;
+    cli->weather_seconds = 10.0;
     memset(&cli->observer, 0, sizeof cli->observer);
     int have_date = 0;
     double date_jd = 0.0;
@@ -356,6 +362,19 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                 return fail(err, len, "--size: expected WxH with 1..16384 each, got '%s'", val ? val : "(nothing)");
             cli->width = w;
             cli->height = h;
+        } else if (!strcmp(opt, "--weather") || !strcmp(opt, "--weather-to")) {
+            int state = sky_weather_from_name(val);
+            if (state < 0)
+                return fail(err, len,
+                            "%s: expected clear, fair, cirrus, cloudy, overcast, rain, showers, storm, fog or snow, "
+                            "got '%s'",
+                            opt, val ? val : "(nothing)");
+            *(!strcmp(opt, "--weather") ? &cli->weather : &cli->weather_to) = state;
+        } else if (!strcmp(opt, "--weather-seconds")) {
+            if (!parse_number(val, 0.0, 1e9, &v))
+                return fail(err, len, "--weather-seconds: expected seconds in 0..1e9, got '%s'",
+                            val ? val : "(nothing)");
+            cli->weather_seconds = v;
         } else if (!strcmp(opt, "--seconds")) {
             if (!parse_number(val, 0.0, 1e12, &v))
                 return fail(err, len, "--seconds: expected a number in 0..1e12, got '%s'", val ? val : "(nothing)");
@@ -710,6 +729,11 @@ static const char *profile_name(sky_gl_profile p)
     return p == SKY_GL_CORE33 ? "core" : p == SKY_GL_ES20 ? "es20" : "compat";
 }
 
+static void print_vec3(FILE *out, const char *name, const float v[3], int comma)
+{
+    fprintf(out, "%s\"%s\":[%.6g, %.6g, %.6g]", comma ? ", " : "", name, v[0], v[1], v[2]);
+}
+
 void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
 {
     sky_stats stats;
@@ -745,7 +769,47 @@ void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
                 ls->bytes);
         first = 0;
     }
-    fprintf(out, "}}\n");
+    fprintf(out, "}");
+    /* the light the host's scene gets, by sky.h's names */
+    sky_lighting l;
+    sky_get_lighting(s, &l);
+    fprintf(out, ", \"lighting\":{");
+    print_vec3(out, "sun_direction", l.sun_direction, 0);
+    print_vec3(out, "sun_color", l.sun_color, 1);
+    fprintf(out, ", \"sun_altitude_deg\":%.4f", l.sun_altitude_deg);
+    print_vec3(out, "moon_direction", l.moon_direction, 1);
+    print_vec3(out, "moon_color", l.moon_color, 1);
+    print_vec3(out, "ambient_color", l.ambient_color, 1);
+    print_vec3(out, "fog_color", l.fog_color, 1);
+    fprintf(out, ", \"daylight\":%.6g, \"exposure\":%.6g}", l.daylight, l.exposure);
+    sky_weather w;
+    int moving = 0;
+    sky_get_weather(s, &w, &moving);
+    static const char *const kinds[3] = {"none", "rain", "snow"};
+    fprintf(out,
+            ", \"weather\":{\"cover\":%.4f, \"density\":%.4f, \"upper\":%.4f, \"visibility_km\":%.4g, "
+            "\"precipitation\":%.4f, \"precipitation_kind\":\"%s\", \"drop_size_mm\":%.3g, "
+            "\"lightning_per_minute\":%.3g, \"wind_from_deg\":%.2f, \"wind_speed_ms\":%.3f, "
+            "\"light_through\":%.4f, \"moving\":%s}",
+            w.cover, w.density, w.upper, w.visibility_km, w.precipitation, kinds[w.precipitation_kind], w.drop_size_mm,
+            w.lightning_per_minute, w.wind_from_deg, w.wind_speed_ms, w.light_through, moving ? "true" : "false");
+    fprintf(out, "}\n");
+}
+
+sky_result sky_cli_apply(sky *s, const sky_cli *cli)
+{
+    sky_result rc;
+    if ((rc = sky_set_params(s, &cli->params)) < 0 || (rc = sky_set_observer(s, &cli->observer)) < 0) return rc;
+    /* a new sky's running clock is at 0: the weather's changes start there */
+    sky_weather w;
+    if (cli->weather >= 0 && (sky_weather_preset((sky_weather_state)cli->weather, &w) < 0 ||
+                              (rc = sky_set_weather(s, &w, 0.0)) < 0))
+        return rc < 0 ? rc : SKY_ERR_INVALID_ARGUMENT;
+    if (cli->weather_to >= 0 && (sky_weather_preset((sky_weather_state)cli->weather_to, &w) < 0 ||
+                                 (rc = sky_set_weather(s, &w, cli->weather_seconds)) < 0))
+        return rc < 0 ? rc : SKY_ERR_INVALID_ARGUMENT;
+    if ((rc = sky_set_elapsed(s, cli->seconds)) < 0 || (rc = sky_set_exposure_bias(s, cli->exposure)) < 0) return rc;
+    return SKY_OK;
 }
 
 int sky_cli_take_out(int *i, int argc, char **argv, const char *prog, const char **out)

@@ -37,6 +37,9 @@ typedef struct sky_cli {
     float blend_weight;
     sky_atmosphere_path blend_partner; /* --blend-partner rayleigh|preetham  */
     const char *preset;
+    int weather, weather_to;  /* --weather, --weather-to: a sky_weather_state,
+                                 or -1 for none                             */
+    double weather_seconds;   /* --weather-seconds: the transition's length */
     const char *out_png, *out_pfm;
     int frames;
     int stats;
@@ -54,6 +57,12 @@ typedef struct sky_cli {
  * out), or SKY_CLI_USAGE with a message naming the argument in err. */
 int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, size_t err_len);
 void sky_cli_usage(FILE *out, const char *prog, int is_demo);
+
+/* Sets what the options say on a new sky: the sliders, the observer, the
+ * weather (--weather from time 0, --weather-to over --weather-seconds from
+ * time 0), the running time (--seconds) and the exposure bias. Returns the
+ * first failure (sky_last_error says why) or SKY_OK. */
+sky_result sky_cli_apply(sky *s, const sky_cli *cli);
 
 /* The sky_config the options describe, for the given GL loader. */
 sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader);

@@ -46,10 +46,7 @@ static int headless(const sky_cli *cli, const char *out)
     }
     float view[16], proj[16];
     sky_cli_camera(cli, view, proj);
-    sky_set_params(s, &cli->params);
-    sky_set_observer(s, &cli->observer);
-    sky_set_elapsed(s, cli->seconds);
-    sky_set_exposure_bias(s, cli->exposure);
+    sky_cli_apply(s, cli);
     int rc = 0;
     for (int f = 0; f < cli->frames && !rc; f++) {
         if (f) sky_update(s, 1.0 / 30.0);

@@ -376,10 +376,7 @@ static sky *make_sky(const sky_cli *cli, sky_get_proc_address_fn loader)
         fprintf(stderr, "sky-game: %s\n", err);
         return NULL;
     }
-    sky_set_params(s, &cli->params);
-    sky_set_observer(s, &cli->observer);
-    sky_set_elapsed(s, cli->seconds);
-    sky_set_exposure_bias(s, cli->exposure);
+    sky_cli_apply(s, cli);
     return s;
 }
 

@@ -48,8 +48,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         return 1;
     }
     int rc = 0;
-    if (sky_set_params(s, &cli->params) < 0 || sky_set_observer(s, &cli->observer) < 0 ||
-        sky_set_elapsed(s, cli->seconds) < 0 || sky_set_exposure_bias(s, cli->exposure) < 0) {
+    if (sky_cli_apply(s, cli) < 0) {
         fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
         rc = 1;
     }
@@ -150,8 +149,7 @@ static int render_capture(const sky_cli *cli)
         fprintf(stderr, "sky-render: %s\n", s ? "out of memory" : err);
         rc = 1;
     }
-    if (!rc && (sky_set_params(s, &cli->params) < 0 || sky_set_observer(s, &cli->observer) < 0 ||
-                sky_set_elapsed(s, cli->seconds) < 0 || sky_set_exposure_bias(s, cli->exposure) < 0 ||
+    if (!rc && (sky_cli_apply(s, cli) < 0 ||
                 sky_capture_environment(s, 0, n, SKY_CAPTURE_ALL_FACES, SKY_CAPTURE_SUN_DISC) < 0)) {
         fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
         rc = 1;

@@ -29,6 +29,8 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UT("u_clouds_tex", SKY_TEX_CLOUDS),
     SKY_UF("u_cover", SKY_U_F1, cover),
     SKY_UF("u_density", SKY_U_F1, density),
+    SKY_UF("u_upper_cover", SKY_U_F1, upper_cover),
+    SKY_UF("u_deck", SKY_U_F1, deck),
     SKY_UF("u_sunset", SKY_U_F1, sunset),
     SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
     SKY_UF("u_cloud_texels_per_step", SKY_U_F1, cloud_texels_per_step),
@@ -62,7 +64,8 @@ enum { CLOUD_SAMPLES = SKY_CLOUD_TEXTURE_SIZE / SKY_CLOUD_SAMPLE_STRIDE };
 typedef struct clouds_state {
     double offsets[SKY_CLOUD_LAYERS][2]; /* wrapped into [0,1) */
     unsigned char sample[CLOUD_SAMPLES * CLOUD_SAMPLES][3];
-    float mean_for[2];                   /* cover and density of cloud_mean */
+    float mean_for[4];                   /* cover, density, upper_cover and
+                                            deck of cloud_mean              */
     int mean_valid;
 } clouds_state;
 
@@ -140,16 +143,37 @@ static void clouds_advance(sky_core *s, void *state, double dt)
     /* The texture repeats with period 1, so wrapping each offset into [0, 1)
      * changes nothing on screen while keeping float uniforms exact after
      * any amount of running time. */
-    for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
-        for (int i = 0; i < 2; i++)
-            st->offsets[l][i] = sky_phase_advance(st->offsets[l][i], s->params.speed * sky_cloud_velocity[l][i], dt);
+    if (!s->weather.set) {
+        for (int l = 0; l < SKY_CLOUD_LAYERS; l++)
+            for (int i = 0; i < 2; i++)
+                st->offsets[l][i] =
+                    sky_phase_advance(st->offsets[l][i], s->params.speed * sky_cloud_velocity[l][i], dt);
+        return;
+    }
+    /* Under a weather, the wind's integral over the step (exact however
+     * the clock is stepped). A wind of 5 m/s along the first layer's own
+     * direction drifts every layer as the sliders do; another turns them
+     * together (the second and upper layers keep their angles and speeds
+     * to the first) and scales them by its speed. */
+    double k[2];
+    sky_weather_wind_integral(&s->weather, s->running_before, s->running, k);
+    const double *v0 = sky_cloud_velocity[0];
+    double n0 = sqrt(v0[0] * v0[0] + v0[1] * v0[1]);
+    for (int l = 0; l < SKY_CLOUD_LAYERS; l++) {
+        const double *v = sky_cloud_velocity[l];
+        /* the rotation and scale taking the first layer's direction to
+         * this layer's velocity, per 5 m/s */
+        double cs = (v[0] * v0[0] + v[1] * v0[1]) / (5.0 * n0), sn = (v0[0] * v[1] - v0[1] * v[0]) / (5.0 * n0);
+        double d[2] = {cs * k[0] - sn * k[1], sn * k[0] + cs * k[1]};
+        for (int i = 0; i < 2; i++) st->offsets[l][i] = sky_phase_advance(st->offsets[l][i], s->params.speed, d[i]);
+    }
 }
 
 /* clouds.glsl's sky_cloud_grey, R-P lines 14-25 and the upper layer:
  * (grey, alpha) from the first layer's photo and detail, the second
  * layer's noise and the upper layer's noise, all 0..1. */
 static void cloud_grey(double photo, double detail, double noise, double upper, double cover, double density,
-                       double *grey, double *alpha)
+                       double upper_cover, double deck, double *grey, double *alpha)
 {
     double g = photo + noise * (1.0 - photo);
     double a = (g - (1.0 - cover)) / sky_clampd(cover, 0.05, 1.0);
@@ -160,7 +184,11 @@ static void cloud_grey(double photo, double detail, double noise, double upper, 
     a += k;
     g = sky_clampd(g, 0.0, 1.0);
     a = sky_clampd(a, 0.0, 1.0);
-    double thin = sky_clampd((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * cover * (1.0 - a);
+    if (deck > 0.0) {
+        g += (0.55 + 0.45 * g - g) * deck;
+        a += (1.0 - a) * deck;
+    }
+    double thin = sky_clampd((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * upper_cover * (1.0 - a);
     *grey = g + thin * (1.0 - g);
     *alpha = a + thin;
 }
@@ -169,7 +197,8 @@ static void cloud_grey(double photo, double detail, double noise, double upper, 
  * layers drift apart, so over time every texel of one meets every texel
  * of the others; each sample of the first layer is paired with a
  * scrambled sample of the noise and of the upper layer. */
-static void cloud_means(const clouds_state *st, double cover, double density, float out[2])
+static void cloud_means(const clouds_state *st, double cover, double density, double upper_cover, double deck,
+                        float out[2])
 {
     enum { N = CLOUD_SAMPLES * CLOUD_SAMPLES };
     double sa = 0.0, sga = 0.0;
@@ -177,7 +206,8 @@ static void cloud_means(const clouds_state *st, double cover, double density, fl
         const unsigned char *first = st->sample[i], *second = st->sample[(i * 1031 + 17) % N],
                             *upper = st->sample[(i * 2053 + 911) % N];
         double g, a;
-        cloud_grey(first[0] / 255.0, first[2] / 255.0, second[1] / 255.0, upper[1] / 255.0, cover, density, &g, &a);
+        cloud_grey(first[0] / 255.0, first[2] / 255.0, second[1] / 255.0, upper[1] / 255.0, cover, density,
+                   upper_cover, deck, &g, &a);
         sa += a;
         sga += g * a;
     }
@@ -218,18 +248,29 @@ static void clouds_frame(sky_core *s, void *state)
     for (int i = 0; i < 3; i++)
         f->cloud_light[i] = (float)(f->sky_luminance * (0.45f + 1.1f * f->daylight * f->sun_transmittance[i]) +
                                     0.6 * night_rest + moon_scale * (0.45 + 1.1 * beam[i]));
+    /* a weather's deck (light_through below 1): where it covers the sky
+     * its base shows the light that passes, diffused and so greyer */
+    if (f->light_through < 1.0f) {
+        double lt = f->light_through;
+        double grey = 0.2126 * f->cloud_light[0] + 0.7152 * f->cloud_light[1] + 0.0722 * f->cloud_light[2];
+        for (int i = 0; i < 3; i++) f->cloud_light[i] = (float)(lt * (grey + (f->cloud_light[i] - grey) * lt));
+    }
     f->sunset_color[0] = 1.0f;
     f->sunset_color[1] = 0.42f;
     f->sunset_color[2] = 0.18f;
-    if (!st->mean_valid || st->mean_for[0] != p->cover || st->mean_for[1] != p->density) {
+    if (!st->mean_valid || st->mean_for[0] != p->cover || st->mean_for[1] != p->density ||
+        st->mean_for[2] != f->upper_cover || st->mean_for[3] != f->deck) {
         if (p->cover > 0.0f)
-            cloud_means(st, p->cover, p->density, f->cloud_mean);
+            cloud_means(st, p->cover, p->density, f->upper_cover, f->deck, f->cloud_mean);
         else
             f->cloud_mean[0] = f->cloud_mean[1] = 0.0f;
         st->mean_for[0] = p->cover;
         st->mean_for[1] = p->density;
+        st->mean_for[2] = f->upper_cover;
+        st->mean_for[3] = f->deck;
         st->mean_valid = 1;
     }
+    f->deck_opacity = f->cloud_mean[0];
 }
 
 /* The fade of detail a pixel cannot hold is judged in the viewport's
@@ -248,7 +289,8 @@ void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, dou
     if (!(f->cloud_mean[0] > 0.0f) || d[1] <= 0.0) return;
     /* sky_clouds_vertex: the fade into the horizon, the sunset amount by
      * the angle from the sun; sky_cloud_colour */
-    *alpha = f->cloud_mean[0] * sky_smoothstep(0.0, 0.06, d[1]);
+    double fade = sky_smoothstep(0.0, 0.06, d[1]);
+    *alpha = f->cloud_mean[0] * (fade + (sky_smoothstep(0.0, 0.008, d[1]) - fade) * f->deck);
     double from_sun = sky_clampd(0.5 - 0.5 * (d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2]),
                                  0.01, 0.99) * (SKY_SUNSET_SAMPLES - 1);
     int i = (int)fmin(floor(from_sun), SKY_SUNSET_SAMPLES - 2);

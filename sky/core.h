@@ -248,6 +248,15 @@ typedef struct sky_frame {
     float dome_step_pixels;  /* the viewport pixels a step in the dome's image spans */
     float cloud_offset0[2], cloud_offset1[2], cloud_offset_upper[2];
     float cloud_light[3];    /* cloud colour multiplier: sunlight + ambient      */
+    float upper_cover;       /* the cover the thin upper layer's amount, 0.35 x
+                                cover, reads: the cover itself, or with a
+                                weather its upper / 0.35 (weather.c)         */
+    float light_through;     /* the weather's deck: the share of the light above
+                                it that passes where it covers (weather.c)   */
+    float deck;              /* 0..1: a weather's uniform deck under the layers
+                                (weather.c): no gaps, less contrast          */
+    float deck_opacity;      /* the clouds' mean opacity, what lighting.c dims
+                                the beam by (clouds.c; the cover without them) */
     /* the aerial-perspective froxels (hillaire.c, sky_aerial_froxels) */
     float froxel_clip_to_dir[16]; /* clip to a horizon-frame point on the view ray */
     float froxel[4];         /* the pass's first slice, km per slice, steps per slice */
@@ -261,6 +270,26 @@ typedef struct sky_frame {
 _Static_assert(sizeof(((sky_point_frame *)0)->size) == 4 * sizeof(float), "a point's size is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->hl_misc) == 4 * sizeof(float), "hl_misc is a vec4");
 _Static_assert(sizeof(((sky_frame *)0)->eclipse_sun) == 4 * sizeof(float), "eclipse_sun is a vec4");
+
+/* ---- the weather (weather.c) -----------------------------------------------
+ * sky_set_weather's transition, on the sky's running clock (sky_core's
+ * running): from, to, when it starts and how long it takes. */
+typedef struct sky_weather_clock {
+    int set; /* sky_set_weather was called: the weather owns cover and density */
+    sky_weather from, to;
+    double start, seconds;
+} sky_weather_clock;
+/* The target as the sky keeps it: NaN and unknown kinds refused, the rest
+ * clamped (the first clamp named in err), the wind's direction wrapped
+ * into 0..360. Returns SKY_OK, SKY_CLAMPED or SKY_ERR_INVALID_ARGUMENT. */
+sky_result sky_weather_checked(const sky_weather *in, sky_weather *out, char *err, size_t err_len);
+/* The transition's progress at t: 0 before it starts, 1 after it ends. */
+double sky_weather_progress(const sky_weather_clock *c, double t);
+/* The weather at running time t. */
+void sky_weather_at(const sky_weather_clock *c, double t, sky_weather *out);
+/* The wind (as the clouds' texture offsets move: x east, y south, m/s)
+ * integrated from running time t0 to t1, exact for any step. */
+void sky_weather_wind_integral(const sky_weather_clock *c, double t0, double t1, double out[2]);
 
 /* ---- the shared context ---------------------------------------------------
  * What every room may read: the configuration, the GL functions and
@@ -293,7 +322,10 @@ typedef struct sky_core {
     char gl_version[128];         /* copy of GL_VERSION                        */
     sky_gl_caps caps;             /* what beyond GL 2.0 it may use (gl/load.c)     */
 
-    sky_params params;
+    sky_params params;            /* cover and density: the weather's once set   */
+    sky_weather_clock weather;    /* sky_set_weather's transition (weather.c)   */
+    double running, running_before; /* the running clock, seconds, after and
+                                     before the last sky_update (sky.c)      */
     sky_observer observer;
     sky_astro astro;              /* for observer + time slider; see observer.c */
     sky_astro_cache astro_cache;  /* the series' nodes last used (astro.h)      */
@@ -339,5 +371,13 @@ typedef struct sky_core {
 
     sky_frame frame;
 } sky_core;
+
+/* weather.c: the frame's part, before the layers': the weather's cover
+ * and density into the sliders, its thin layer and deck light into the
+ * frame. */
+void sky_weather_frame(sky_core *c);
+/* after the layers': a weather's deck greys and dims the ambient, the
+ * horizon and the ground by its light_through where it covers the sky. */
+void sky_weather_light(sky_core *c);
 
 #endif /* SKY_CORE_H */

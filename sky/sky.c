@@ -65,6 +65,7 @@ static void compute_frame(sky *s)
 {
     sky_core *c = &s->core;
     sky_frame *f = &c->frame;
+    sky_weather_frame(c);
     astronomy_stage(c);
     f->output_hdr = c->cfg.output == SKY_OUTPUT_HDR ? 1.0f : 0.0f;
     sky_atmosphere_frame(c);
@@ -79,6 +80,7 @@ static void compute_frame(sky *s)
     FOR_EACH_LAYER(s, L, index, state) {
         if (L->frame) L->frame(c, state);
     }
+    sky_weather_light(c);
     /* the naked eye's limit against the finished sky (the layers' glows
      * in it), once a frame for every set of points and the star map */
     f->naked_eye_limit = (float)sky_point_limit(c);
@@ -283,6 +285,10 @@ sky_result sky_update(sky *s, double dt)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!isfinite(dt) || dt < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_update: dt = %g must be finite and >= 0", dt);
+    /* the running clock is not wrapped: the weather's transitions are
+     * placed on it (a double keeps a millisecond for a hundred thousand years) */
+    s->core.running_before = s->core.running;
+    s->core.running += dt;
     FOR_EACH_LAYER(s, L, index, state) {
         if (L->advance) L->advance(&s->core, state, dt);
     }
@@ -298,6 +304,7 @@ sky_result sky_set_elapsed(sky *s, double seconds)
     FOR_EACH_LAYER(s, L, index, state) {
         if (L->reset_clock) L->reset_clock(state);
     }
+    s->core.running = 0.0;
     return sky_update(s, seconds);
 }
 

@@ -941,6 +941,102 @@ typedef struct sky_lighting {
  * Since: 0.1.0 */
 SKY_API sky_result sky_get_lighting(const sky *s, sky_lighting *out);
 
+/* ---- Weather ------------------------------------------------------------------------
+ * The state of the whole sky, which the sky moves toward smoothly on its
+ * own clock (the running time sky_update accumulates and sky_set_elapsed
+ * sets: a frame at time T is the same however the sky was stepped to T).
+ * Once sky_set_weather has been called the weather owns the clouds' cover
+ * and density (a host that wants its own cover sets it in the weather it
+ * passes); sky_set_params keeps the time, height, sunset and speed
+ * sliders. Before the first call the sky has no weather: the sliders
+ * alone, as in 0.5. docs/guide.md, "Weather", gives each state's numbers. */
+typedef enum sky_weather_state {
+    SKY_WEATHER_CLEAR = 0,
+    SKY_WEATHER_FAIR,     /* fair-weather cumulus, the sun out             */
+    SKY_WEATHER_CIRRUS,   /* thin high ice cloud, little else              */
+    SKY_WEATHER_CLOUDY,
+    SKY_WEATHER_OVERCAST, /* a deck without gaps                           */
+    SKY_WEATHER_RAIN,
+    SKY_WEATHER_SHOWERS,  /* rain with the sun out between the clouds     */
+    SKY_WEATHER_STORM,
+    SKY_WEATHER_FOG,
+    SKY_WEATHER_SNOW,
+    SKY_WEATHER_COUNT
+} sky_weather_state;
+
+typedef enum sky_precipitation {
+    SKY_PRECIPITATION_NONE = 0,
+    SKY_PRECIPITATION_RAIN,
+    SKY_PRECIPITATION_SNOW
+} sky_precipitation;
+
+/* One weather: every number a state is made of, each with its range
+ * (sky_set_weather clamps what lies outside and refuses NaN). */
+typedef struct sky_weather {
+    float cover;                /* 0..1: the cloud layers' cover (the slider's
+                                   meaning)                                   */
+    float density;              /* 0..1: their density (the slider's meaning) */
+    float upper;                /* 0..1: the thin high ice layer; 0.35 x cover
+                                   is what the sliders alone draw            */
+    float visibility_km;        /* 0.05..300: the meteorological range        */
+    float precipitation;        /* 0..1: none .. the heaviest                 */
+    sky_precipitation precipitation_kind;
+    float drop_size_mm;         /* 0..10: rain's drops, snow's flakes         */
+    float lightning_per_minute; /* 0..60                                      */
+    float wind_from_deg;        /* where the wind comes from, clockwise from
+                                   north (any value; reported in 0..360)      */
+    float wind_speed_ms;        /* 0..60 m/s at the clouds' height: the drift
+                                   (at 5 m/s the sliders' own drift; the speed
+                                   slider scales it as before)               */
+    float light_through;        /* 0..1: the fraction of the light above it
+                                   that the cloud deck lets through where it
+                                   covers the sky (1: the sliders' clouds)    */
+} sky_weather;
+
+/* sky_weather_preset: a named state's numbers into out, the wind from the
+ * west (270 degrees), for a host to pass as they are or change.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for out NULL or state out of range.
+ * Thread safety: any thread (pure).
+ * GL: none.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_weather_preset(sky_weather_state state, sky_weather *out);
+/* sky_weather_name: "clear", "fair", "cirrus", "cloudy", "overcast", "rain",
+ * "showers", "storm", "fog", "snow"; NULL out of range.
+ * Since: 0.6.0 */
+SKY_API const char *sky_weather_name(sky_weather_state state);
+/* sky_weather_from_name: the state of a name above, or -1.
+ * Since: 0.6.0 */
+SKY_API int sky_weather_from_name(const char *name);
+
+/* sky_set_weather: moves the sky from its present weather (the sliders'
+ * clouds the first time) to target over seconds of its running clock,
+ * starting now; every number eases in and out (a smoothstep), the wind
+ * turning through the shorter way. 0 seconds: at once. A call during a
+ * transition starts the next from where it stands. Then recomputes the
+ * frame as sky_set_params does. What the sky does with it: cover and
+ * density as the sliders' (the layers thicken), the drift along the wind,
+ * the thin upper layer, and where the deck covers the sky the clouds' light
+ * and sky_get_lighting's beam fall with light_through while its ambient and
+ * fog colours grey. The exposure stays the clear sky's, so a storm shows
+ * darker than the day around it.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), target NULL, a
+ * field NaN, precipitation_kind unknown, or seconds NaN, infinite or
+ * negative: nothing changes. SKY_CLAMPED: a field outside its range (the
+ * message names it) was set to the nearest end.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_set_weather(sky *s, const sky_weather *target, double seconds);
+/* sky_get_weather: the weather at the sky's running time (a transition's
+ * numbers part way); before any sky_set_weather, the sliders' cover and
+ * density in the clear state. *moving (may be NULL): 1 during a
+ * transition.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s or out NULL (no message).
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_get_weather(const sky *s, sky_weather *out, int *moving);
+
 /* sky_capture_environment: the sky as sky_draw draws it (every layer,
  * clouds included), seen from the observer in the six directions of a
  * cube map in the world frame (horizon_to_world applied; GL's face order

@@ -8,6 +8,9 @@
  * and stars evaluate them per pixel from the direction (sky_clouds). */
 uniform sampler2D u_clouds_tex;
 uniform SKY_UP float u_cover, u_density, u_sunset;
+uniform SKY_UP float u_deck;                /* a weather's deck: 0 none .. 1 no gaps */
+uniform SKY_UP float u_upper_cover;         /* the cover the thin layer reads: the
+                                        cover, or a weather's upper / 0.35   */
 uniform SKY_UP float u_cloud_uv_scale;      /* from the height slider               */
 uniform SKY_UP float u_cloud_texels_per_step; /* 512 over the viewport pixels a
                                         fragment step spans (clouds.c)      */
@@ -48,6 +51,10 @@ vec2 sky_cloud_upper(vec2 p, float w) { return vec2(p.x * 0.35, p.y * 2.5) + u_c
 /* The sunset gradient runs away from the sun (R-P's tc2). */
 float sky_cloud_from_sun(vec3 d) { return clamp(0.5 - 0.5 * dot(d, u_sun_dir), 0.01, 0.99); }
 
+/* The clouds' fade into the horizon (haze hides them there); a weather's
+ * deck reaches down to it. */
+float sky_cloud_horizon_fade(float y) { return mix(smoothstep(0.0, 0.06, y), smoothstep(0.0, 0.008, y), u_deck); }
+
 /* Lines 26-28: the sunset tint and the light, kcd/m^2. */
 vec3 sky_cloud_colour(float grey, float sunset_amount)
 {
@@ -67,7 +74,7 @@ void sky_clouds_vertex(vec3 d, out vec4 layers, out vec3 upper, out vec2 shade)
     float x = sky_cloud_from_sun(d) * 32.0;
     int i = int(min(floor(x), 31.0));
     shade.x = mix(u_sunset_gradient[i], u_sunset_gradient[i + 1], x - float(i)) * u_sunset;
-    shade.y = smoothstep(0.0, 0.06, d.y);
+    shade.y = sky_cloud_horizon_fade(d.y);
 }
 #else
 /* R-P lines 14-25 and sec. 3.2's upper layer, from the texels: the first
@@ -88,8 +95,12 @@ vec2 sky_cloud_grey(vec4 first, float noise, float upper)
     a += k;
     g = clamp(g, 0.0, 1.0);                                    /* 25 */
     a = clamp(a, 0.0, 1.0);
+    /* beyond the paper: a weather's deck closes the gaps and flattens the
+     * base's contrast (0 leaves R-P's clouds exactly) */
+    g = mix(g, 0.55 + 0.45 * g, u_deck);
+    a = mix(a, 1.0, u_deck);
     /* sec. 3.2: a thin, streaky upper layer added on top */
-    float thin = clamp((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * u_cover * (1.0 - a);
+    float thin = clamp((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * u_upper_cover * (1.0 - a);
     return vec2(g + thin * (1.0 - g), a + thin);
 }
 
@@ -100,7 +111,8 @@ vec2 sky_cloud_grey(vec4 first, float noise, float upper)
 float sky_cloud_footprint_fade(vec2 fw)
 {
     float footprint = max(fw.x, fw.y) * u_cloud_texels_per_step;
-    return 1.0 - 0.8 * smoothstep(2.0, 10.0, footprint);
+    /* (a weather's deck, its contrast flattened, stays whole: no gaps) */
+    return mix(1.0 - 0.8 * smoothstep(2.0, 10.0, footprint), 1.0, u_deck);
 }
 
 #ifdef SKY_NO_DERIVATIVES
@@ -167,7 +179,7 @@ vec4 sky_clouds(vec3 d)
         sunset_amount = SKY_TEX2D(u_clouds_tex, vec2(0.5, sky_cloud_from_sun(d))).a * u_sunset;
     vec2 ga = sky_cloud_grey(SKY_TEX2D(u_clouds_tex, tc.xy), SKY_TEX2D(u_clouds_tex, tc.zw).g,
                              SKY_TEX2D(u_clouds_tex, sky_cloud_upper(p, 1.0)).g);
-    return vec4(sky_cloud_colour(ga.x, sunset_amount), ga.y * sky_cloud_footprint_fade(fw) * smoothstep(0.0, 0.06, d.y));
+    return vec4(sky_cloud_colour(ga.x, sunset_amount), ga.y * sky_cloud_footprint_fade(fw) * sky_cloud_horizon_fade(d.y));
 }
 
 /* What hides a fragment of the quads over the dome (dome_cover.glsl's,

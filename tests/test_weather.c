@@ -1,0 +1,416 @@
+/*
+ * The weather (sky.h, "Weather"; docs/guide.md, "Weather"): the named
+ * states, the checks of sky_set_weather, the transitions on the sky's own
+ * clock, the wind's drift, and what a state does to the picture and to
+ * the host's light at noon (the sun at 50 degrees: the default date and
+ * place, the equinox at 40 N, time 0.5).
+ */
+#include "test.h"
+#include "cli.h"
+#include "sky_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static sky_weather preset(sky_weather_state state)
+{
+    sky_weather w;
+    memset(&w, 0, sizeof w);
+    sky_weather_preset(state, &w);
+    return w;
+}
+
+static double luma(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+TEST(weather_states_named_and_in_range)
+{
+    for (int i = 0; i < SKY_WEATHER_COUNT; i++) {
+        const char *name = sky_weather_name((sky_weather_state)i);
+        CHECK(name && sky_weather_from_name(name) == i, "state %d's name '%s' round-trips", i, name ? name : "");
+        sky_weather w;
+        CHECK(sky_weather_preset((sky_weather_state)i, &w) == SKY_OK, "state %d has numbers", i);
+        CHECK(w.cover >= 0 && w.cover <= 1 && w.density >= 0 && w.density <= 1 && w.upper >= 0 && w.upper <= 1 &&
+                  w.visibility_km >= 0.05f && w.visibility_km <= 300 && w.light_through > 0 && w.light_through <= 1 &&
+                  w.precipitation >= 0 && w.precipitation <= 1,
+              "%s's numbers lie in their ranges", name);
+        CHECK((w.precipitation > 0) == (w.precipitation_kind != SKY_PRECIPITATION_NONE),
+              "%s: a kind exactly when something falls", name);
+    }
+    sky_weather w;
+    CHECK(sky_weather_preset(SKY_WEATHER_COUNT, &w) == SKY_ERR_INVALID_ARGUMENT, "out of range refused");
+    CHECK(sky_weather_preset((sky_weather_state)-1, &w) == SKY_ERR_INVALID_ARGUMENT, "negative refused");
+    CHECK(sky_weather_preset(SKY_WEATHER_FOG, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL refused");
+    CHECK(sky_weather_name(SKY_WEATHER_COUNT) == NULL && sky_weather_from_name("drizzle") == -1 &&
+              sky_weather_from_name(NULL) == -1,
+          "unknown names and states");
+    /* the orderings: fog closes the range, a storm has lightning */
+    CHECK(preset(SKY_WEATHER_FOG).visibility_km <= 1.0f, "fog: visibility <= 1 km");
+    CHECK(preset(SKY_WEATHER_STORM).lightning_per_minute > 0 && preset(SKY_WEATHER_RAIN).lightning_per_minute == 0,
+          "only the storm has lightning");
+    CHECK(preset(SKY_WEATHER_SNOW).precipitation_kind == SKY_PRECIPITATION_SNOW, "snow falls as snow");
+    CHECK(preset(SKY_WEATHER_CIRRUS).upper > 0.5f && preset(SKY_WEATHER_CIRRUS).cover < 0.2f,
+          "cirrus: the thin high layer, little else");
+}
+
+TEST(weather_set_rejects_and_clamps)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_weather storm = preset(SKY_WEATHER_STORM), before, after, bad;
+    CHECK(sky_set_weather(NULL, &storm, 0) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    sky_get_weather(f.s, &before, NULL);
+    CHECK(sky_set_weather(f.s, NULL, 0) == SKY_ERR_INVALID_ARGUMENT, "NULL target");
+    bad = storm;
+    bad.density = NAN;
+    CHECK(sky_set_weather(f.s, &bad, 0) == SKY_ERR_INVALID_ARGUMENT && strstr(sky_last_error(f.s), "density"),
+          "NaN density refused, named: %s", sky_last_error(f.s));
+    bad = storm;
+    bad.precipitation_kind = (sky_precipitation)7;
+    CHECK(sky_set_weather(f.s, &bad, 0) == SKY_ERR_INVALID_ARGUMENT, "an unknown kind refused");
+    static const double seconds[3] = {-1.0, NAN, INFINITY};
+    for (int i = 0; i < 3; i++)
+        CHECK(sky_set_weather(f.s, &storm, seconds[i]) == SKY_ERR_INVALID_ARGUMENT, "seconds %g refused", seconds[i]);
+    sky_get_weather(f.s, &after, NULL);
+    CHECK(!memcmp(&before, &after, sizeof before), "a refused call changes nothing");
+    bad = storm;
+    bad.cover = 2.0f;
+    bad.wind_from_deg = 450.0f;
+    bad.wind_speed_ms = INFINITY;
+    CHECK(sky_set_weather(f.s, &bad, 0) == SKY_CLAMPED && strstr(sky_last_error(f.s), "cover"),
+          "cover 2 clamped, named: %s", sky_last_error(f.s));
+    int moving = -1;
+    sky_get_weather(f.s, &after, &moving);
+    CHECK(after.cover == 1.0f && fabsf(after.wind_from_deg - 90.0f) < 1e-3f && after.wind_speed_ms == 60.0f &&
+              moving == 0,
+          "clamped to 1, the wind from 90 at 60 m/s, not moving (%g, %g, %g, %d)", after.cover, after.wind_from_deg,
+          after.wind_speed_ms, moving);
+    CHECK(sky_get_weather(f.s, NULL, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL out");
+    fixture_close(&f);
+}
+
+/* Once set, the weather owns cover and density; sky_set_params keeps the
+ * rest. Before, sky_get_weather reports the sliders' clouds. */
+TEST(weather_owns_cover_and_density)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.cover = 0.3f;
+    p.density = 0.6f;
+    sky_set_params(f.s, &p);
+    sky_weather w;
+    sky_get_weather(f.s, &w, NULL);
+    CHECK(w.cover == 0.3f && w.density == 0.6f && w.light_through == 1.0f, "without a weather: the sliders' clouds");
+    sky_weather overcast = preset(SKY_WEATHER_OVERCAST);
+    CHECK(sky_set_weather(f.s, &overcast, 0.0) == SKY_OK, "set: %s", sky_last_error(f.s));
+    p.cover = 0.1f;
+    p.density = 0.1f;
+    p.time = 0.3f;
+    sky_set_params(f.s, &p);
+    sky_params now;
+    sky_get_params(f.s, &now);
+    CHECK(now.cover == overcast.cover && now.density == overcast.density && now.time == 0.3f,
+          "the weather's cover and density (%g, %g), the host's time (%g)", now.cover, now.density, now.time);
+    fixture_close(&f);
+}
+
+/* A transition is a function of the running clock: every number eases
+ * monotonically from the one state to the other, and a sky stepped there
+ * in many small steps stands where one set to that time stands. */
+TEST(weather_transition_follows_the_clock)
+{
+    fixture a, b;
+    if (fixture_open(&a, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    if (fixture_open(&b, SKY_GL_AUTO, NULL)) {
+        fixture_close(&a);
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_weather fair = preset(SKY_WEATHER_FAIR), storm = preset(SKY_WEATHER_STORM);
+    fair.wind_from_deg = 350.0f;
+    storm.wind_from_deg = 20.0f; /* the shorter way round is through north */
+    sky *skies[2] = {a.s, b.s};
+    for (int k = 0; k < 2; k++) {
+        sky_set_weather(skies[k], &fair, 0.0);
+        sky_set_weather(skies[k], &storm, 20.0);
+    }
+    sky_weather prev = fair, w;
+    int monotone = 1, wind_short = 1;
+    for (int i = 0; i <= 100; i++) {
+        sky_set_elapsed(a.s, 0.25 * i);
+        sky_get_weather(a.s, &w, NULL);
+        monotone &= w.cover >= prev.cover && w.density >= prev.density && w.light_through <= prev.light_through &&
+                    w.visibility_km <= prev.visibility_km && w.lightning_per_minute >= prev.lightning_per_minute;
+        wind_short &= w.wind_from_deg >= 349.9f || w.wind_from_deg <= 20.1f;
+        prev = w;
+    }
+    CHECK(monotone, "every number moves one way from fair to storm");
+    CHECK(wind_short, "the wind turns from 350 to 20 through north");
+    CHECK(prev.cover == storm.cover && prev.light_through == storm.light_through, "it arrives exactly (t 25 s: %a %a against %a %a)",
+          prev.cover, prev.light_through, storm.cover, storm.light_through);
+    sky_set_elapsed(a.s, 0.1);
+    sky_get_weather(a.s, &w, NULL);
+    CHECK(w.density - fair.density < 0.01f * (storm.density - fair.density), "it eases out of the start");
+    /* many small steps against one jump to the same time */
+    sky_set_elapsed(a.s, 11.0);
+    sky_set_elapsed(b.s, 0.0);
+    for (int i = 0; i < 330; i++) sky_update(b.s, 1.0 / 30.0);
+    sky_weather wa, wb;
+    sky_get_weather(a.s, &wa, NULL);
+    sky_get_weather(b.s, &wb, NULL);
+    CHECK(fabsf(wa.cover - wb.cover) < 1e-5f && fabsf(wa.wind_from_deg - wb.wind_from_deg) < 1e-3f,
+          "stepped or set: the same weather (%g / %g)", wa.cover, wb.cover);
+    const double *oa = sky_clouds_offsets(a.s->layer_state[SKY_LAYER_CLOUDS]),
+                 *ob = sky_clouds_offsets(b.s->layer_state[SKY_LAYER_CLOUDS]);
+    double worst = 0.0;
+    for (int i = 0; i < 2 * SKY_CLOUD_LAYERS; i++) {
+        double d = fabs(oa[i] - ob[i]);
+        worst = fmax(worst, fmin(d, 1.0 - d)); /* offsets wrap at 1 */
+    }
+    NOTE("cloud offsets, stepped against set: %.2g texture periods apart", worst);
+    CHECK(worst < 1e-9, "the drift is the wind's integral, however stepped (%g)", worst);
+    fixture_close(&a);
+    fixture_close(&b);
+}
+
+/* The wind carries the clouds: a weather whose wind is the sliders' own
+ * (5 m/s along the first layer's direction) drifts them as the sliders
+ * do; from the west they move east. */
+TEST(weather_wind_drives_the_drift)
+{
+    fixture a, b;
+    if (fixture_open(&a, SKY_GL_AUTO, NULL) || fixture_open(&b, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_weather own;
+    sky_get_weather(a.s, &own, NULL); /* the sliders' weather */
+    sky_set_weather(b.s, &own, 0.0);
+    sky_set_elapsed(a.s, 37.0);
+    sky_set_elapsed(b.s, 37.0);
+    const double *oa = sky_clouds_offsets(a.s->layer_state[SKY_LAYER_CLOUDS]),
+                 *ob = sky_clouds_offsets(b.s->layer_state[SKY_LAYER_CLOUDS]);
+    double worst = 0.0;
+    for (int i = 0; i < 2 * SKY_CLOUD_LAYERS; i++) worst = fmax(worst, fabs(oa[i] - ob[i]));
+    CHECK(worst < 1e-6, "the sliders' wind drifts as the sliders do (%g apart)", worst);
+    sky_weather west = own;
+    west.wind_from_deg = 270.0f;
+    west.wind_speed_ms = 10.0f;
+    sky_set_weather(b.s, &west, 0.0); /* at once, from the running time 37 */
+    sky_set_elapsed(b.s, 40.0);
+    double x0 = ob[0], y0 = ob[1];
+    sky_set_elapsed(b.s, 41.0);
+    double dx = ob[0] - x0, dy = ob[1] - y0;
+    /* the texture's offset moves against the clouds: the clouds go east
+     * (+x in the dome's plane) when the first layer's offset goes -x */
+    CHECK(dx < 0.0 && fabs(dy) < 0.05 * fabs(dx), "a west wind moves the first layer east (offset %g, %g)", dx, dy);
+    double speed = hypot(sky_cloud_velocity[0][0], sky_cloud_velocity[0][1]) * 0.2 /* speed slider */ * 10.0 / 5.0;
+    CHECK(fabs(hypot(dx, dy) - speed) < 1e-6, "at twice the sliders' rate for 10 m/s (%g, want %g)", hypot(dx, dy),
+          speed);
+    fixture_close(&a);
+    fixture_close(&b);
+}
+
+/* ---- the picture and the light at noon -------------------------------------------- */
+
+enum { W = 192, H = 108 };
+
+typedef struct shot {
+    double mean_display; /* 8-bit: Rec. 709 luminance of the sRGB values / 255 */
+    double hdr_sky;      /* HDR: the mean luminance above the horizon, kcd/m^2 */
+    double hdr_max, hdr_median;
+    int blue;            /* pixels above the horizon bluer than grey       */
+    sky_lighting light;
+} shot;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The weather at noon, seen as sky-render's camera sees it (south, 20
+ * degrees up, or the given pitch), in 8 bits and in HDR. */
+static int noon_shot(const sky_weather *w, double pitch, shot *out)
+{
+    memset(out, 0, sizeof *out);
+    for (int hdr = 0; hdr < 2; hdr++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.features = SKY_CLOUDS | SKY_SUN;
+        cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
+        fixture f;
+        if (fixture_open_sized(&f, W, H, hdr, SKY_GL_AUTO, &cfg)) return -1;
+        sky_params p = sky_default_params();
+        p.time = 0.5f;
+        sky_set_params(f.s, &p);
+        if (w) sky_set_weather(f.s, w, 0.0);
+        sky_set_elapsed(f.s, 3.0);
+        float view[16], proj[16];
+        sky_cli_camera_at(180.0, pitch, 60.0, W, H, view, proj);
+        sky_draw(f.s, view, proj);
+        sky_osmesa_finish(&f.ctx);
+        scene sc = scene_default();
+        sc.w = W, sc.h = H, sc.pitch = pitch;
+        double hx, hy;
+        int horizon = scene_project(&sc, 0.0, 180.0, &hx, &hy) == 0 ? (int)hy - 2 : H; /* rows above it */
+        if (horizon > H) horizon = H;
+        if (!hdr) {
+            const unsigned char *px = f.ctx.pixels;
+            double sum = 0.0;
+            for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+            out->mean_display = sum / (255.0 * W * H);
+            for (int y = 0; y < horizon; y++) /* rows bottom first: image row H-1-y */
+                for (int x = 0; x < W; x++) {
+                    const unsigned char *q = px + 4 * ((H - 1 - y) * W + x);
+                    out->blue += q[2] > q[0] + 24;
+                }
+            sky_get_lighting(f.s, &out->light);
+        } else {
+            const float *px = f.ctx.pixels;
+            double *lum = malloc(sizeof(double) * W * H), sum = 0.0;
+            int n = 0;
+            for (int y = 0; y < horizon && lum; y++)
+                for (int x = 0; x < W; x++) {
+                    double l = luma(px + 4 * ((H - 1 - y) * W + x));
+                    lum[n++] = l;
+                    sum += l;
+                }
+            if (lum && n) {
+                qsort(lum, (size_t)n, sizeof *lum, cmp_double);
+                out->hdr_sky = sum / n;
+                out->hdr_max = lum[n - 1];
+                out->hdr_median = lum[n / 2];
+            }
+            free(lum);
+        }
+        fixture_close(&f);
+    }
+    return 0;
+}
+
+TEST(weather_overcast_and_storm_at_noon)
+{
+    sky_weather clear = preset(SKY_WEATHER_CLEAR), overcast = preset(SKY_WEATHER_OVERCAST),
+                storm = preset(SKY_WEATHER_STORM);
+    shot c, o, s, sun;
+    if (noon_shot(&clear, 20.0, &c) || noon_shot(&overcast, 20.0, &o) || noon_shot(&storm, 20.0, &s) ||
+        noon_shot(&overcast, 50.0, &sun)) {
+        CHECK(0, "the shots rendered");
+        return;
+    }
+    double direct_c = luma(c.light.sun_color), direct_o = luma(o.light.sun_color);
+    NOTE("direct sun: overcast %.3f of clear's, storm %.3f", direct_o / direct_c, luma(s.light.sun_color) / direct_c);
+    CHECK(direct_o <= 0.2 * direct_c, "overcast: the direct sun <= 0.2 of clear's (%.3f)", direct_o / direct_c);
+    NOTE("overcast: %d bluish pixels above the horizon (clear: %d)", o.blue, c.blue);
+    CHECK(o.blue == 0 && c.blue > W * H / 4, "overcast: a deck without blue gaps (%d bluish pixels)", o.blue);
+    NOTE("overcast facing the sun: brightest %.3g, median %.3g kcd/m^2 (ratio %.2f)", sun.hdr_max, sun.hdr_median,
+         sun.hdr_max / sun.hdr_median);
+    CHECK(sun.hdr_max <= 1.5 * sun.hdr_median, "overcast facing the sun: brightest <= 1.5 x median (%.2f)",
+          sun.hdr_max / sun.hdr_median);
+    NOTE("storm: HDR sky %.3f of clear's light; 8-bit mean %.3f against clear's %.3f (%.2f)", s.hdr_sky / c.hdr_sky,
+         s.mean_display, c.mean_display, s.mean_display / c.mean_display);
+    CHECK(s.hdr_sky <= 0.2 * c.hdr_sky, "storm: its HDR sky <= 0.2 of clear's (%.3f)", s.hdr_sky / c.hdr_sky);
+    CHECK(s.mean_display <= 0.75 * c.mean_display, "storm: its 8-bit frame <= 0.75 of clear's mean (%.2f)",
+          s.mean_display / c.mean_display);
+    /* the ambient greys under a deck: its channels closer together */
+    double spread_c = (c.light.ambient_color[2] - c.light.ambient_color[0]) / luma(c.light.ambient_color),
+           spread_o = (o.light.ambient_color[2] - o.light.ambient_color[0]) / luma(o.light.ambient_color);
+    CHECK(spread_o < 0.5 * spread_c, "overcast's ambient greyer than clear's (blue-red %.3f against %.3f)", spread_o,
+          spread_c);
+}
+
+/* Rain dimmer and greyer than overcast, snow a flat bright grey: brighter
+ * than rain, its beam weak beside its ambient (soft shadows). */
+TEST(weather_rain_and_snow_light)
+{
+    shot o, r, sn;
+    sky_weather overcast = preset(SKY_WEATHER_OVERCAST), rain = preset(SKY_WEATHER_RAIN),
+                snow = preset(SKY_WEATHER_SNOW);
+    if (noon_shot(&overcast, 20.0, &o) || noon_shot(&rain, 20.0, &r) || noon_shot(&snow, 20.0, &sn)) {
+        CHECK(0, "the shots rendered");
+        return;
+    }
+    CHECK(r.mean_display < o.mean_display && luma(r.light.ambient_color) < luma(o.light.ambient_color),
+          "rain dimmer than overcast (%.3f < %.3f)", r.mean_display, o.mean_display);
+    CHECK(sn.mean_display > r.mean_display, "snow's light brighter than rain's (%.3f > %.3f)", sn.mean_display,
+          r.mean_display);
+    double beam = luma(sn.light.sun_color) * sin(50.0 * 3.14159265358979 / 180.0), ambient = luma(sn.light.ambient_color);
+    NOTE("snow: beam on the level %.2f klx, ambient %.2f klx", beam, ambient);
+    CHECK(beam < ambient, "snow: the shadows soft (beam %.2f < ambient %.2f klx)", beam, ambient);
+}
+
+/* A 10-second change of weather seen at 30 frames a second: no frame
+ * moves the 8-bit frame's mean by more than 0.5/255, and the frames darken
+ * from fair to overcast overall. */
+SLOW_TEST(weather_transition_free_of_jumps)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_CLOUDS | SKY_SUN;
+    fixture f;
+    if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.time = 0.5f;
+    sky_set_params(f.s, &p);
+    sky_weather fair = preset(SKY_WEATHER_FAIR), overcast = preset(SKY_WEATHER_OVERCAST);
+    sky_set_weather(f.s, &fair, 0.0);
+    sky_set_weather(f.s, &overcast, 10.0);
+    float view[16], proj[16];
+    sky_cli_camera_at(180.0, 20.0, 60.0, W, H, view, proj);
+    double prev = -1.0, worst = 0.0, first = 0.0, last = 0.0;
+    int worst_at = 0;
+    for (int k = 0; k <= 300; k++) {
+        sky_set_elapsed(f.s, k / 30.0);
+        sky_draw(f.s, view, proj);
+        sky_osmesa_finish(&f.ctx);
+        const unsigned char *px = f.ctx.pixels;
+        double sum = 0.0;
+        for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+        double mean = sum / (W * H);
+        if (prev >= 0.0 && fabs(mean - prev) > worst) worst = fabs(mean - prev), worst_at = k;
+        if (!k) first = mean;
+        last = mean;
+        prev = mean;
+    }
+    NOTE("fair to overcast in 10 s at 30 fps: the largest step of the mean %.3f/255 (frame %d); %.1f -> %.1f", worst,
+         worst_at, first, last);
+    CHECK(worst <= 0.5, "no frame jumps (%.3f/255 at frame %d)", worst, worst_at);
+    CHECK(last < first, "overcast darker than fair (%.1f -> %.1f)", first, last);
+    fixture_close(&f);
+}
+
+/* sky-render's options: --weather, --weather-to, --weather-seconds, and
+ * --stats' "weather" and "lighting". */
+TEST(weather_command_line)
+{
+    char render[512], cmd[1024], out[16384];
+    bin_path("sky-render", render, sizeof render);
+    snprintf(cmd, sizeof cmd, "%s --weather fair --weather-to storm --weather-seconds 20 --seconds 10 --size 64x36 --stats 2>&1",
+             render);
+    int rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 0, "sky-render with a weather ran (exit %d): %.300s", rc, out);
+    const char *weather = strstr(out, "\"weather\":{"), *lighting = strstr(out, "\"lighting\":{");
+    CHECK(weather && lighting && strstr(lighting, "\"sun_color\":[") && strstr(lighting, "\"ambient_color\":["),
+          "--stats has \"weather\" and \"lighting\": %.300s", out);
+    double cover = weather ? strtod(strstr(weather, "\"cover\":") + 8, NULL) : -1.0;
+    CHECK(cover > 0.5 && cover < 1.0 && strstr(weather, "\"moving\":true"),
+          "half way from fair (0.35) to storm (1): cover %g, moving", cover);
+    snprintf(cmd, sizeof cmd, "%s --weather drizzle --size 8x8 2>&1", render);
+    rc = run_command(cmd, out, sizeof out);
+    CHECK(rc == 2 && strstr(out, "--weather") && strstr(out, "drizzle"), "an unknown weather refused (exit %d): %s", rc,
+          out);
+}
