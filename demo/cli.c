@@ -781,17 +781,28 @@ void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
     print_vec3(out, "moon_color", l.moon_color, 1);
     print_vec3(out, "ambient_color", l.ambient_color, 1);
     print_vec3(out, "fog_color", l.fog_color, 1);
-    fprintf(out, ", \"daylight\":%.6g, \"exposure\":%.6g}", l.daylight, l.exposure);
+    fprintf(out, ", \"daylight\":%.6g, \"exposure\":%.6g, \"fog_density\":%.6g}", l.daylight, l.exposure,
+            l.fog_density);
     sky_weather w;
     int moving = 0;
     sky_get_weather(s, &w, &moving);
     static const char *const kinds[3] = {"none", "rain", "snow"};
+    /* its name: a named state's when the numbers are one's, "changing"
+     * during a change, "custom" otherwise */
+    const char *name = moving ? "changing" : "custom";
+    for (int i = 0; i < SKY_WEATHER_COUNT && !moving; i++) {
+        sky_weather p;
+        sky_weather_preset((sky_weather_state)i, &p);
+        if (p.cover == w.cover && p.density == w.density && p.visibility_km == w.visibility_km &&
+            p.light_through == w.light_through && p.precipitation == w.precipitation)
+            name = sky_weather_name((sky_weather_state)i);
+    }
     fprintf(out,
-            ", \"weather\":{\"cover\":%.4f, \"density\":%.4f, \"upper\":%.4f, \"visibility_km\":%.4g, "
+            ", \"weather\":{\"name\":\"%s\", \"cover\":%.4f, \"density\":%.4f, \"upper\":%.4f, \"visibility_km\":%.4g, "
             "\"precipitation\":%.4f, \"precipitation_kind\":\"%s\", \"drop_size_mm\":%.3g, "
             "\"lightning_per_minute\":%.3g, \"wind_from_deg\":%.2f, \"wind_speed_ms\":%.3f, "
             "\"light_through\":%.4f, \"moving\":%s}",
-            w.cover, w.density, w.upper, w.visibility_km, w.precipitation, kinds[w.precipitation_kind], w.drop_size_mm,
+            name, w.cover, w.density, w.upper, w.visibility_km, w.precipitation, kinds[w.precipitation_kind], w.drop_size_mm,
             w.lightning_per_minute, w.wind_from_deg, w.wind_speed_ms, w.light_through, moving ? "true" : "false");
     fprintf(out, "}\n");
 }

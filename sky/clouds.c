@@ -31,6 +31,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UF("u_density", SKY_U_F1, density),
     SKY_UF("u_upper_cover", SKY_U_F1, upper_cover),
     SKY_UF("u_deck", SKY_U_F1, deck),
+    SKY_UF("u_haze", SKY_U_F2, haze),
     SKY_UF("u_sunset", SKY_U_F1, sunset),
     SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
     SKY_UF("u_cloud_texels_per_step", SKY_U_F1, cloud_texels_per_step),
@@ -301,11 +302,12 @@ void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, dou
 }
 
 /* At cover 0 Roden-Parberry's line 15 makes every cloud texel vanish: the
- * dome then takes its variant without cloud code. */
+ * dome then takes its variant without cloud code, unless a weather's haze
+ * (drawn with the clouds) needs it. */
 static int clouds_visible(const sky_core *s, const void *state)
 {
     (void)state;
-    return s->params.cover > 0.0f;
+    return s->params.cover > 0.0f || s->frame.haze[0] > 0.0f;
 }
 
 static void clouds_reset(void *state)

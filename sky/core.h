@@ -255,6 +255,10 @@ typedef struct sky_frame {
                                 it that passes where it covers (weather.c)   */
     float deck;              /* 0..1: a weather's uniform deck under the layers
                                 (weather.c): no gaps, less contrast          */
+    float haze[2];           /* a weather's haze beyond the clear sky's: its
+                                optical depth straight up, and its layer's
+                                height over the path to the horizon (weather.c) */
+    float visibility_km;     /* the weather's (60 without one; weather.c)         */
     float deck_opacity;      /* the clouds' mean opacity, what lighting.c dims
                                 the beam by (clouds.c; the cover without them) */
     /* the aerial-perspective froxels (hillaire.c, sky_aerial_froxels) */

@@ -459,9 +459,10 @@ static int dome_draw(sky_core *s, void *state)
     draw_hemisphere(s, st, 1);
     int draws = 1;
     /* the lower hemisphere: its own cheap program when the upper one
-     * carries more than the atmosphere; none in the all-sky image */
+     * carries more than the atmosphere, unless a weather's haze (in the
+     * clouds' code) lies over the ground too; none in the all-sky image */
     if (f->fisheye < 0.5f) {
-        if (ground->id) {
+        if (ground->id && !(f->haze[0] > 0.0f)) {
             sky_program_apply(s, ground);
             draws++;
         }

@@ -42,6 +42,7 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     }
     out->daylight = f->daylight;
     out->exposure = f->exposure;
+    out->fog_density = 3.912f / (1000.0f * f->visibility_km); /* Koschmieder */
     if (c->features & SKY_MOON) {
         sky_camera_to_world(c, f->moon_dir, out->moon_direction);
         sky_moon_lighting(c, out->moon_color);

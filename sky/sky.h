@@ -928,6 +928,10 @@ typedef struct sky_lighting {
                                   that lights its scene with the values above
                                   (luminance = albedo * illuminance / pi) and
                                   multiplies by this lands in the sky's range */
+    float fog_density;         /* per metre, for the host's own fog toward
+                                  fog_color: Koschmieder's 3.912 / the
+                                  weather's visibility (the clear state's
+                                  60 km without a weather). Since 0.6.0      */
 } sky_lighting;
 
 /* sky_get_lighting: what a game needs to light its scene (sky_lighting,

@@ -180,6 +180,25 @@ void sky_weather_wind_integral(const sky_weather_clock *c, double t0, double t1,
     for (int i = 0; i < 2; i++) out[i] = va[i] * (t1 - t0) + (vb[i] - va[i]) * ramp;
 }
 
+/* The haze a weather adds to the clear sky's (whose range the atmosphere
+ * already draws: the clear state's 60 km): Koschmieder's extinction
+ * 3.912 / V (a black object's contrast falls to 2 % at the range V), less
+ * the clear sky's, in a layer of height H above the ground (a fifth of the
+ * range, 30 m for the thickest fog .. 400 m: a radiation fog's depth, rain's
+ * below the cloud base). Seen at elevation
+ * e the path through it is H / sin e, up to the flat layer's horizon path
+ * sqrt(2 R H) on a sphere of radius R. Out: the optical depth straight up
+ * and H over that horizon path (clouds.glsl's sky_weather_haze). */
+static void weather_haze(const sky_weather *w, float out[2])
+{
+    const double clear_km = states[SKY_WEATHER_CLEAR].w.visibility_km, earth_m = 6.371e6;
+    double v = fmax(w->visibility_km, 0.05);
+    double beta = fmax(3.912 / (v * 1000.0) - 3.912 / (clear_km * 1000.0), 0.0); /* per metre */
+    double height = sky_clampd(0.2 * v * 1000.0, 30.0, 400.0);
+    out[0] = (float)(beta * height);
+    out[1] = (float)sqrt(height / (2.0 * earth_m));
+}
+
 /* (sky.c's compute_frame, before the layers) */
 void sky_weather_frame(sky_core *c)
 {
@@ -195,10 +214,15 @@ void sky_weather_frame(sky_core *c)
          * the photo's dark texels clear): a weather's cover closes them
          * into a deck from 0.75 up */
         f->deck = (float)sky_smoothstep(0.75, 1.0, w.cover);
+        weather_haze(&w, f->haze);
+        f->visibility_km = w.visibility_km;
     } else {
         f->upper_cover = c->params.cover;
         f->light_through = 1.0f;
         f->deck = 0.0f;
+        f->haze[0] = 0.0f;
+        f->haze[1] = 1.0f;
+        f->visibility_km = states[SKY_WEATHER_CLEAR].w.visibility_km;
     }
     /* without the clouds layer, whose texture's mean replaces it */
     f->deck_opacity = c->params.cover * (0.5f + 0.5f * c->params.density);

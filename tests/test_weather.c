@@ -230,6 +230,8 @@ typedef struct shot {
     double hdr_sky;      /* HDR: the mean luminance above the horizon, kcd/m^2 */
     double hdr_max, hdr_median;
     int blue;            /* pixels above the horizon bluer than grey       */
+    double above[3], below[3]; /* 8-bit: mean colour (0..255) of the rows
+                                  2-8 above and below the horizon's     */
     sky_lighting light;
 } shot;
 
@@ -276,6 +278,19 @@ static int noon_shot(const sky_weather *w, double pitch, shot *out)
                     out->blue += q[2] > q[0] + 24;
                 }
             sky_get_lighting(f.s, &out->light);
+            double band[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+            int rows[2] = {0, 0};
+            for (int k = 0; k < 2; k++)
+                for (int y = (int)hy + (k ? 2 : -8); y < (int)hy + (k ? 8 : -2); y++) {
+                    if (y < 0 || y >= H) continue;
+                    for (int x = 0; x < W; x++)
+                        for (int i = 0; i < 3; i++) band[k][i] += px[4 * ((H - 1 - y) * W + x) + i];
+                    rows[k]++;
+                }
+            for (int i = 0; i < 3; i++) {
+                out->above[i] = rows[0] ? band[0][i] / (rows[0] * W) : 0.0;
+                out->below[i] = rows[1] ? band[1][i] / (rows[1] * W) : 0.0;
+            }
         } else {
             const float *px = f.ctx.pixels;
             double *lum = malloc(sizeof(double) * W * H), sum = 0.0;
@@ -348,6 +363,30 @@ TEST(weather_rain_and_snow_light)
     double beam = luma(sn.light.sun_color) * sin(50.0 * 3.14159265358979 / 180.0), ambient = luma(sn.light.ambient_color);
     NOTE("snow: beam on the level %.2f klx, ambient %.2f klx", beam, ambient);
     CHECK(beam < ambient, "snow: the shadows soft (beam %.2f < ambient %.2f klx)", beam, ambient);
+}
+
+/* Fog closes the range below a kilometre and swallows the horizon: the
+ * rows just above it and just below it alike, where a clear day's sky and
+ * ground differ; the host's fog density is Koschmieder's for the range. */
+TEST(weather_fog_swallows_the_horizon)
+{
+    sky_weather clear = preset(SKY_WEATHER_CLEAR), fog = preset(SKY_WEATHER_FOG);
+    shot c, f;
+    if (noon_shot(&clear, 0.0, &c) || noon_shot(&fog, 0.0, &f)) {
+        CHECK(0, "the shots rendered");
+        return;
+    }
+    double step_c = 0.0, step_f = 0.0; /* the largest channel's difference, 8-bit */
+    for (int i = 0; i < 3; i++) {
+        step_c = fmax(step_c, fabs(c.above[i] - c.below[i]));
+        step_f = fmax(step_f, fabs(f.above[i] - f.below[i]));
+    }
+    NOTE("across the horizon, the colour's largest step: clear %.1f/255, fog %.1f/255", step_c, step_f);
+    CHECK(fog.visibility_km <= 1.0f, "fog's range under a kilometre (%g km)", fog.visibility_km);
+    CHECK(step_f < 2.0 && step_c > 20.0, "fog swallows the horizon (%.1f/255; clear %.1f/255)", step_f, step_c);
+    CHECK(fabs(f.light.fog_density - 3.912 / (1000.0 * fog.visibility_km)) < 1e-6 &&
+              fabs(c.light.fog_density - 3.912 / (1000.0 * clear.visibility_km)) < 1e-8,
+          "fog_density = 3.912 / V (%g, %g per metre)", f.light.fog_density, c.light.fog_density);
 }
 
 /* A 10-second change of weather seen at 30 frames a second: no frame

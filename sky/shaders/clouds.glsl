@@ -9,6 +9,8 @@
 uniform sampler2D u_clouds_tex;
 uniform SKY_UP float u_cover, u_density, u_sunset;
 uniform SKY_UP float u_deck;                /* a weather's deck: 0 none .. 1 no gaps */
+uniform SKY_UP vec2 u_haze;                /* a weather's haze: optical depth up,
+                                        its layer's height / horizon path */
 uniform SKY_UP float u_upper_cover;         /* the cover the thin layer reads: the
                                         cover, or a weather's upper / 0.35   */
 uniform SKY_UP float u_cloud_uv_scale;      /* from the height slider               */
@@ -54,6 +56,12 @@ float sky_cloud_from_sun(vec3 d) { return clamp(0.5 - 0.5 * dot(d, u_sun_dir), 0
 /* The clouds' fade into the horizon (haze hides them there); a weather's
  * deck reaches down to it. */
 float sky_cloud_horizon_fade(float y) { return mix(smoothstep(0.0, 0.06, y), smoothstep(0.0, 0.008, y), u_deck); }
+
+/* A weather's haze (weather.c): the share of what lies beyond it that the
+ * haze in front replaces, 1 - exp(-tau), tau its optical depth along d
+ * through a flat layer (below the horizon, toward the ground). 0 without
+ * a weather. */
+float sky_weather_haze(vec3 d) { return 1.0 - exp(-u_haze.x / max(abs(d.y), u_haze.y)); }
 
 /* Lines 26-28: the sunset tint and the light, kcd/m^2. */
 vec3 sky_cloud_colour(float grey, float sunset_amount)
@@ -173,13 +181,16 @@ vec4 sky_clouds(vec3 d)
     vec2 p = h.xy / h.z;
     vec4 tc = sky_cloud_layers(p, 1.0);
     vec2 fw = SKY_CLOUD_STEP(tc.xy, d);
-    if (d.y <= 0.0 || u_cover <= 0.0) return vec4(0.0);
+    float haze = sky_weather_haze(d);
+    if (d.y <= 0.0 || u_cover <= 0.0) return vec4(0.0, 0.0, 0.0, haze);
     float sunset_amount = 0.0;
     if (u_sunset > 0.0) /* uniform: no fetch when the slider is at 0 */
         sunset_amount = SKY_TEX2D(u_clouds_tex, vec2(0.5, sky_cloud_from_sun(d))).a * u_sunset;
     vec2 ga = sky_cloud_grey(SKY_TEX2D(u_clouds_tex, tc.xy), SKY_TEX2D(u_clouds_tex, tc.zw).g,
                              SKY_TEX2D(u_clouds_tex, sky_cloud_upper(p, 1.0)).g);
-    return vec4(sky_cloud_colour(ga.x, sunset_amount), ga.y * sky_cloud_footprint_fade(fw) * sky_cloud_horizon_fade(d.y));
+    float a = ga.y * sky_cloud_footprint_fade(fw) * sky_cloud_horizon_fade(d.y);
+    /* what is beyond the clouds and the haze: the haze hides too */
+    return vec4(sky_cloud_colour(ga.x, sunset_amount), a + (1.0 - a) * haze);
 }
 
 /* What hides a fragment of the quads over the dome (dome_cover.glsl's,

@@ -66,6 +66,11 @@ void main()
     vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade, d);
     L = mix(L, c.rgb, c.a);
     cover = c.a;
+    /* a weather's haze in front of sky, clouds and ground alike, its light
+     * the horizon's (clouds.glsl; 0 without a weather) */
+    float haze = sky_weather_haze(d);
+    L = mix(L, u_horizon, haze);
+    cover += (1.0 - cover) * haze;
 #endif
 #ifdef SKY_DOME_INTO_IMAGE
     /* the image keeps the clouds' alpha for what is drawn over it */
