@@ -180,6 +180,7 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           rain, showers, storm, fog, snow (it owns cover and density)\n"
             "  --weather-to NAME        a change of weather that starts at time 0 ...\n"
             "  --weather-seconds S      ... and lasts S seconds (default 10); --seconds picks the frame\n"
+            "  --seed N                 the seed of the random events (lightning), 0..4294967295\n"
             "  --yaw DEG --pitch DEG --fov DEG | --fisheye\n"
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
@@ -370,6 +371,11 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
                             "got '%s'",
                             opt, val ? val : "(nothing)");
             *(!strcmp(opt, "--weather") ? &cli->weather : &cli->weather_to) = state;
+        } else if (!strcmp(opt, "--seed")) {
+            if (!parse_number(val, 0.0, 4294967295.0, &v) || v != floor(v))
+                return fail(err, len, "--seed: expected a whole number in 0..4294967295, got '%s'",
+                            val ? val : "(nothing)");
+            cli->seed = (unsigned)v;
         } else if (!strcmp(opt, "--weather-seconds")) {
             if (!parse_number(val, 0.0, 1e9, &v))
                 return fail(err, len, "--weather-seconds: expected seconds in 0..1e9, got '%s'",
@@ -606,6 +612,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.moon_scale = cli->moon_scale;
     cfg.bortle = cli->bortle;
     cfg.exposure_range = cli->exposure_range;
+    cfg.seed = cli->seed;
     cfg.solar_activity_manual = cli->solar_activity_manual;
     cfg.solar_activity = cli->solar_activity;
     cfg.turbidity = cli->turbidity;
@@ -734,7 +741,7 @@ static void print_vec3(FILE *out, const char *name, const float v[3], int comma)
     fprintf(out, "%s\"%s\":[%.6g, %.6g, %.6g]", comma ? ", " : "", name, v[0], v[1], v[2]);
 }
 
-void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
+void sky_cli_print_stats(FILE *out, sky *s, double frame_ms, double seconds)
 {
     sky_stats stats;
     sky_get_stats(s, &stats);
@@ -781,6 +788,8 @@ void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
     print_vec3(out, "moon_color", l.moon_color, 1);
     print_vec3(out, "ambient_color", l.ambient_color, 1);
     print_vec3(out, "fog_color", l.fog_color, 1);
+    print_vec3(out, "flash_color", l.flash_color, 1);
+    print_vec3(out, "flash_direction", l.flash_direction, 1);
     fprintf(out, ", \"daylight\":%.6g, \"exposure\":%.6g, \"fog_density\":%.6g}", l.daylight, l.exposure,
             l.fog_density);
     sky_weather w;
@@ -804,7 +813,18 @@ void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms)
             "\"light_through\":%.4f, \"moving\":%s}",
             name, w.cover, w.density, w.upper, w.visibility_km, w.precipitation, kinds[w.precipitation_kind], w.drop_size_mm,
             w.lightning_per_minute, w.wind_from_deg, w.wind_speed_ms, w.light_through, moving ? "true" : "false");
-    fprintf(out, "}\n");
+    /* the strikes from time 0 (or a day before) to the frame's */
+    enum { LISTED = 64 };
+    sky_lightning_strike strikes[LISTED];
+    int count = 0;
+    double from = seconds > 86400.0 ? seconds - 86400.0 : 0.0;
+    sky_get_lightning(s, from, seconds, strikes, LISTED, &count);
+    fprintf(out, ", \"lightning_count\":%d, \"lightning\":[", count);
+    for (int i = 0; i < count && i < LISTED; i++)
+        fprintf(out, "%s{\"t\":%.4f, \"az\":%.2f, \"alt\":%.2f, \"distance_m\":%.0f, \"strokes\":%d}", i ? ", " : "",
+                strikes[i].time, strikes[i].azimuth_deg, strikes[i].altitude_deg, strikes[i].distance_m,
+                strikes[i].strokes);
+    fprintf(out, "]}\n");
 }
 
 sky_result sky_cli_apply(sky *s, const sky_cli *cli)

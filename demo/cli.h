@@ -40,6 +40,7 @@ typedef struct sky_cli {
     int weather, weather_to;  /* --weather, --weather-to: a sky_weather_state,
                                  or -1 for none                             */
     double weather_seconds;   /* --weather-seconds: the transition's length */
+    unsigned seed;            /* --seed: sky_config.seed                  */
     const char *out_png, *out_pfm;
     int frames;
     int stats;
@@ -86,8 +87,10 @@ void sky_cli_camera_at(double yaw, double pitch, double fov, int width, int heig
 void sky_cli_print_query(FILE *out, const sky_astronomy *a, const sky_star_place *stars, int count);
 
 /* Prints sky_get_stats as a JSON object (sky_stats in sky.h), with every
- * layer of this build by name (sky_layer_count, sky_get_layer_stats).
+ * layer of this build by name (sky_layer_count, sky_get_layer_stats),
+ * sky_get_lighting's fields, the weather and the lightning strikes from
+ * time 0 (or a day before) to seconds, the frame's running time.
  * frame_ms overrides the sky's own figure (sky-render passes a median). */
-void sky_cli_print_stats(FILE *out, const sky *s, double frame_ms);
+void sky_cli_print_stats(FILE *out, sky *s, double frame_ms, double seconds);
 
 #endif

@@ -91,7 +91,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
     }
     if (cli->frames > 1) fprintf(stderr, "\n");
     if (!rc && print_stats) {
-        sky_cli_print_stats(stdout, s, sky_cli_median(times, cli->frames));
+        sky_cli_print_stats(stdout, s, sky_cli_median(times, cli->frames), cli->seconds);
     }
     free(times);
     sky_destroy(s);

@@ -32,6 +32,8 @@ static const sky_uniform_desc cloud_uniforms[] = {
     SKY_UF("u_upper_cover", SKY_U_F1, upper_cover),
     SKY_UF("u_deck", SKY_U_F1, deck),
     SKY_UF("u_haze", SKY_U_F2, haze),
+    SKY_UF("u_flash_dir", SKY_U_F4, flash_dir),
+    SKY_UL("u_flash_light", SKY_U_F3, flash_light, SKY_RGB),
     SKY_UF("u_sunset", SKY_U_F1, sunset),
     SKY_UF("u_cloud_uv_scale", SKY_U_F1, cloud_uv_scale),
     SKY_UF("u_cloud_texels_per_step", SKY_U_F1, cloud_texels_per_step),

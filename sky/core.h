@@ -259,6 +259,11 @@ typedef struct sky_frame {
                                 optical depth straight up, and its layer's
                                 height over the path to the horizon (weather.c) */
     float visibility_km;     /* the weather's (60 without one; weather.c)         */
+    float flash_klx;         /* lightning now: illuminance facing it (weather.c) */
+    float flash_dir[4];      /* toward the brightest flash, horizon frame; w the
+                                sharpness of the patch it lights              */
+    float flash_deck_kcd;    /* the deck's luminance where the flash lights it  */
+    float flash_light[3];    /* that, held for a night-adapted eye and tinted    */
     float deck_opacity;      /* the clouds' mean opacity, what lighting.c dims
                                 the beam by (clouds.c; the cover without them) */
     /* the aerial-perspective froxels (hillaire.c, sky_aerial_froxels) */
@@ -294,6 +299,20 @@ void sky_weather_at(const sky_weather_clock *c, double t, sky_weather *out);
 /* The wind (as the clouds' texture offsets move: x east, y south, m/s)
  * integrated from running time t0 to t1, exact for any step. */
 void sky_weather_wind_integral(const sky_weather_clock *c, double t0, double t1, double out[2]);
+
+/* lightning.c: the strikes from t0 to t1 at the clock's weather, drawn
+ * from seed (the first max into out; returns how many there are), and
+ * the flashes' light at t (klx on a surface facing the brightest; its
+ * direction, horizon frame). */
+int sky_lightning_strikes(const sky_weather_clock *clock, unsigned seed, double t0, double t1,
+                          sky_lightning_strike *out, int max);
+typedef struct sky_flash {
+    float klx;       /* illuminance on a surface facing the brightest        */
+    float dir[3];    /* toward it, horizon frame                            */
+    float deck_kcd;  /* the deck's luminance where it lights it             */
+    float sharpness; /* of its patch: exp(sharpness (cos angle - 1))        */
+} sky_flash;
+void sky_lightning_flash(const sky_weather_clock *clock, unsigned seed, double t, sky_flash *out);
 
 /* ---- the shared context ---------------------------------------------------
  * What every room may read: the configuration, the GL functions and

@@ -43,6 +43,11 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     out->daylight = f->daylight;
     out->exposure = f->exposure;
     out->fog_density = 3.912f / (1000.0f * f->visibility_km); /* Koschmieder */
+    /* lightning: the flash's light (weather.c), blue-white, of luminance
+     * (Rec. 709) one */
+    static const float flash_tint[3] = {0.85f / 0.9108f, 0.92f / 0.9108f, 1.0f / 0.9108f};
+    sky_camera_to_world(c, f->flash_dir, out->flash_direction);
+    for (int i = 0; i < 3; i++) out->flash_color[i] = f->flash_klx * flash_tint[i];
     if (c->features & SKY_MOON) {
         sky_camera_to_world(c, f->moon_dir, out->moon_direction);
         sky_moon_lighting(c, out->moon_color);

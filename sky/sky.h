@@ -482,6 +482,9 @@ typedef struct sky_config {
      * the old full adaptation, where dusk shows nearly as bright as noon.
      * sky_set_exposure_bias adds on top. */
     float exposure_range;
+    /* The seed of every random event (lightning): the same seed, inputs
+     * and running time give the same strikes. Any value. Since 0.6.0 */
+    unsigned seed;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,
@@ -928,6 +931,10 @@ typedef struct sky_lighting {
                                   that lights its scene with the values above
                                   (luminance = albedo * illuminance / pi) and
                                   multiplies by this lands in the sky's range */
+    float flash_color[3];      /* lightning's light on a surface facing the
+                                  brightest flash now, klx (0 between flashes;
+                                  sky_get_lightning lists the strikes)        */
+    float flash_direction[3];  /* toward it, unit (world frame)               */
     float fog_density;         /* per metre, for the host's own fog toward
                                   fog_color: Koschmieder's 3.912 / the
                                   weather's visibility (the clear state's
@@ -1040,6 +1047,32 @@ SKY_API sky_result sky_set_weather(sky *s, const sky_weather *target, double sec
  * GL: none.
  * Since: 0.6.0 */
 SKY_API sky_result sky_get_weather(const sky *s, sky_weather *out, int *moving);
+
+/* One lightning strike (sky_get_lightning). The thunder reaches the
+ * observer distance_m / 343 seconds after time. */
+typedef struct sky_lightning_strike {
+    double time;        /* on the running clock, seconds                      */
+    float azimuth_deg;  /* from north through east, the horizon frame          */
+    float altitude_deg; /* of the flash's centre in the cloud                  */
+    float distance_m;   /* 500 .. 15 000                                       */
+    int strokes;        /* return strokes: the flash flickers that many times  */
+} sky_lightning_strike;
+
+/* sky_get_lightning: the strikes from running time t0 (inclusive) to t1
+ * (exclusive), in time order, at the weather's lightning_per_minute (a
+ * Poisson process drawn from cfg.seed and the clock alone: the same for
+ * one seed however the sky was stepped, different for another). The first
+ * max go into out (out may be NULL when max is 0); *count (may be NULL)
+ * gets them all. A game schedules its thunder from them, ahead if it asks
+ * for a window in the future: the strikes follow the weather as it stands,
+ * transitions included. None before any sky_set_weather.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), t0 or t1 not
+ * finite, t0 negative, t1 < t0, a window over a day (86 400 s), max
+ * negative or out NULL with max above 0.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_get_lightning(sky *s, double t0, double t1, sky_lightning_strike *out, int max, int *count);
 
 /* sky_capture_environment: the sky as sky_draw draws it (every layer,
  * clouds included), seen from the observer in the six directions of a

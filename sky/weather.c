@@ -203,6 +203,7 @@ static void weather_haze(const sky_weather *w, float out[2])
 void sky_weather_frame(sky_core *c)
 {
     sky_frame *f = &c->frame;
+    float deck_kcd = 0.0f;
     if (c->weather.set) {
         sky_weather w;
         sky_weather_at(&c->weather, c->running, &w);
@@ -216,6 +217,12 @@ void sky_weather_frame(sky_core *c)
         f->deck = (float)sky_smoothstep(0.75, 1.0, w.cover);
         weather_haze(&w, f->haze);
         f->visibility_km = w.visibility_km;
+        sky_flash flash;
+        sky_lightning_flash(&c->weather, c->cfg.seed, c->running, &flash);
+        f->flash_klx = flash.klx;
+        for (int i = 0; i < 3; i++) f->flash_dir[i] = flash.dir[i];
+        f->flash_dir[3] = flash.sharpness;
+        deck_kcd = flash.deck_kcd;
     } else {
         f->upper_cover = c->params.cover;
         f->light_through = 1.0f;
@@ -223,7 +230,9 @@ void sky_weather_frame(sky_core *c)
         f->haze[0] = 0.0f;
         f->haze[1] = 1.0f;
         f->visibility_km = states[SKY_WEATHER_CLEAR].w.visibility_km;
+        f->flash_klx = 0.0f;
     }
+    f->flash_deck_kcd = deck_kcd; /* (lit in sky_weather_light, once the exposure is known) */
     /* without the clouds layer, whose texture's mean replaces it */
     f->deck_opacity = c->params.cover * (0.5f + 0.5f * c->params.density);
 }
@@ -236,6 +245,14 @@ void sky_weather_frame(sky_core *c)
 void sky_weather_light(sky_core *c)
 {
     sky_frame *f = &c->frame;
+    /* The deck lit from inside by lightning, in the flash's blue-white. An
+     * eye adapted to the night sees a flash as a brilliant sky, not a white
+     * page: its luminance is held to two display whites (exposure 1 is one),
+     * where the cloud's own grey still shows. */
+    static const float flash_tint[3] = {0.85f, 0.92f, 1.0f};
+    float deck_kcd = f->flash_deck_kcd;
+    if (f->exposure > 0.0f && deck_kcd > 2.0f / f->exposure) deck_kcd = 2.0f / f->exposure;
+    for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * flash_tint[i];
     double lt = f->light_through, deck = f->deck_opacity * (1.0 - lt);
     if (!(deck > 0.0)) return;
     /* the light that reaches the deck: the sky's and the sun's beam on the

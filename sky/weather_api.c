@@ -62,3 +62,20 @@ sky_result sky_get_weather(const sky *s, sky_weather *out, int *moving)
     return SKY_OK;
 }
 
+
+sky_result sky_get_lightning(sky *s, double t0, double t1, sky_lightning_strike *out, int max, int *count)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (count) *count = 0;
+    if (!isfinite(t0) || !isfinite(t1) || t0 < 0.0 || t1 < t0)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_lightning: the window %g .. %g must be finite, from 0 up",
+                        t0, t1);
+    if (t1 - t0 > 86400.0)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_lightning: a window of %g s is over a day", t1 - t0);
+    if (max < 0 || (max > 0 && !out))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_lightning: max %d with out %s", max,
+                        out ? "given" : "NULL");
+    int n = sky_lightning_strikes(&s->core.weather, s->core.cfg.seed, t0, t1, out, max);
+    if (count) *count = n;
+    return SKY_OK;
+}

@@ -453,3 +453,143 @@ TEST(weather_command_line)
     CHECK(rc == 2 && strstr(out, "--weather") && strstr(out, "drizzle"), "an unknown weather refused (exit %d): %s", rc,
           out);
 }
+
+/* ---- lightning ------------------------------------------------------------------------ */
+
+static int strikes_of(unsigned seed, const sky_weather *w, double t0, double t1, sky_lightning_strike *out, int max)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.seed = seed;
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, &cfg)) return -1;
+    int count = -1;
+    if (w) sky_set_weather(f.s, w, 0.0);
+    if (sky_get_lightning(f.s, t0, t1, out, max, &count) != SKY_OK) count = -1;
+    fixture_close(&f);
+    return count;
+}
+
+/* Strikes at the storm's rate, the same for one seed and different for
+ * another, none where nothing is stormy. */
+TEST(weather_lightning_follows_the_seed)
+{
+    enum { MAX = 200 };
+    static sky_lightning_strike a[MAX], b[MAX], c[MAX];
+    sky_weather storm = preset(SKY_WEATHER_STORM), rain = preset(SKY_WEATHER_RAIN);
+    int na = strikes_of(7, &storm, 0.0, 600.0, a, MAX), nb = strikes_of(7, &storm, 0.0, 600.0, b, MAX),
+        nc = strikes_of(8, &storm, 0.0, 600.0, c, MAX);
+    double expected = storm.lightning_per_minute * 10.0;
+    NOTE("seed 7: %d strikes in 10 minutes, seed 8: %d (expected %.0f)", na, nc, expected);
+    CHECK(na == nb && na > 0 && !memcmp(a, b, sizeof a[0] * (size_t)(na < MAX ? na : MAX)),
+          "one seed, the same strikes (%d, %d)", na, nb);
+    CHECK(nc > 0 && (nc != na || memcmp(a, c, sizeof a[0] * (size_t)(na < MAX ? na : MAX))),
+          "another seed, other strikes");
+    /* a Poisson count: within four standard deviations */
+    CHECK(fabs(na - expected) < 4.0 * sqrt(expected) && fabs(nc - expected) < 4.0 * sqrt(expected),
+          "the storm's rate (%d and %d against %.0f)", na, nc, expected);
+    int ordered = 1, sane = 1;
+    for (int i = 0; i < na && i < MAX; i++) {
+        ordered &= !i || a[i].time >= a[i - 1].time;
+        sane &= a[i].time >= 0.0 && a[i].time < 600.0 && a[i].azimuth_deg >= 0.0f && a[i].azimuth_deg < 360.0f &&
+                a[i].altitude_deg > 0.0f && a[i].altitude_deg < 90.0f && a[i].distance_m >= 500.0f &&
+                a[i].distance_m <= 15000.0f && a[i].strokes >= 3 && a[i].strokes <= 4;
+    }
+    CHECK(ordered && sane, "in time order, every number in its range");
+    /* a window inside the span lists the same strikes */
+    sky_lightning_strike part[MAX];
+    int np = strikes_of(7, &storm, 100.0, 200.0, part, MAX), inside = 0;
+    for (int i = 0; i < na && i < MAX; i++) inside += a[i].time >= 100.0 && a[i].time < 200.0;
+    CHECK(np == inside, "a window holds the span's strikes in it (%d, %d)", np, inside);
+    for (int i = 0, j = 0; i < na && i < MAX && j < np; i++)
+        if (a[i].time >= 100.0 && a[i].time < 200.0) CHECK(a[i].time == part[j++].time, "the same strike %d", j);
+    CHECK(strikes_of(7, &rain, 0.0, 600.0, NULL, 0) == 0, "rain has no lightning");
+    CHECK(strikes_of(7, NULL, 0.0, 600.0, NULL, 0) == 0, "no weather, no lightning");
+}
+
+TEST(weather_lightning_rejects_bad_windows)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_lightning_strike s[4];
+    int n = 5;
+    CHECK(sky_get_lightning(NULL, 0, 1, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
+    CHECK(sky_get_lightning(f.s, NAN, 1, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT && n == 0, "NaN start");
+    CHECK(sky_get_lightning(f.s, 0, INFINITY, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT, "infinite end");
+    CHECK(sky_get_lightning(f.s, -1, 1, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT, "negative start");
+    CHECK(sky_get_lightning(f.s, 5, 1, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT, "end before start");
+    CHECK(sky_get_lightning(f.s, 0, 86401, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT &&
+              strstr(sky_last_error(f.s), "day"),
+          "over a day: %s", sky_last_error(f.s));
+    CHECK(sky_get_lightning(f.s, 0, 1, NULL, 4, &n) == SKY_ERR_INVALID_ARGUMENT, "out NULL with max 4");
+    CHECK(sky_get_lightning(f.s, 0, 1, s, -1, &n) == SKY_ERR_INVALID_ARGUMENT, "negative max");
+    CHECK(sky_get_lightning(f.s, 0, 1, NULL, 0, NULL) == SKY_OK, "counting nothing is fine");
+    fixture_close(&f);
+}
+
+/* A flash lights the deck and the host's scene for a fraction of a second,
+ * from the strike's direction, flickering with its strokes. */
+TEST(weather_lightning_flashes)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_CLOUDS | SKY_SUN;
+    cfg.seed = 7;
+    fixture f;
+    if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.time = 0.5f;
+    sky_set_params(f.s, &p);
+    sky_weather storm = preset(SKY_WEATHER_STORM);
+    sky_set_weather(f.s, &storm, 0.0);
+    sky_lightning_strike s[64];
+    int n = 0;
+    sky_get_lightning(f.s, 0.0, 600.0, s, 64, &n);
+    /* a strike with a second clear before it and after it */
+    int k = -1;
+    for (int i = 0; i < n && i < 64 && k < 0; i++)
+        if ((i == 0 || s[i].time - s[i - 1].time > 1.0) && (i + 1 >= n || s[i + 1].time - s[i].time > 1.0)) k = i;
+    CHECK(k >= 0, "an isolated strike among %d", n);
+    if (k < 0) {
+        fixture_close(&f);
+        return;
+    }
+    float view[16], proj[16];
+    sky_cli_camera_at(s[k].azimuth_deg, 15.0, 60.0, W, H, view, proj);
+    static const double after[4] = {-0.5, 0.005, 0.04, 0.8};
+    double mean[4], klx[4];
+    sky_lighting l[4];
+    for (int j = 0; j < 4; j++) {
+        sky_set_elapsed(f.s, s[k].time + after[j]);
+        sky_draw(f.s, view, proj);
+        sky_osmesa_finish(&f.ctx);
+        const unsigned char *px = f.ctx.pixels;
+        double sum = 0.0;
+        for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+        mean[j] = sum / (W * H);
+        sky_get_lighting(f.s, &l[j]);
+        klx[j] = luma(l[j].flash_color);
+    }
+    NOTE("strike at %.3f s, %.0f m: frame mean %.1f before, %.1f at the first stroke, %.1f 40 ms on, %.1f after; "
+         "flash %.3g klx",
+         s[k].time, s[k].distance_m, mean[0], mean[1], mean[2], mean[3], klx[1]);
+    CHECK(klx[0] == 0.0 && klx[3] == 0.0 && fabs(mean[3] - mean[0]) < 1.0,
+          "no flash before and 0.8 s after (%g, %g klx; mean %.1f, %.1f)", klx[0], klx[3], mean[0], mean[3]);
+    CHECK(klx[1] > 0.0 && mean[1] > mean[0] + 1.0, "the first stroke lights the deck and the scene (%.1f > %.1f)",
+          mean[1], mean[0]);
+    CHECK(klx[2] < klx[1], "and fades between strokes (%.3g < %.3g klx)", klx[2], klx[1]);
+    double km = s[k].distance_m / 1000.0;
+    CHECK(fabs(klx[1] / (2.0 / (km * km)) - 1.0) < 0.2,
+          "its illuminance about 2 klx at a kilometre, by the square of the distance (%.3g at %.1f km)", klx[1], km);
+    double az = s[k].azimuth_deg * 3.14159265358979 / 180.0, alt = s[k].altitude_deg * 3.14159265358979 / 180.0;
+    double want[3] = {cos(alt) * sin(az), sin(alt), -cos(alt) * cos(az)}, dot = 0.0;
+    for (int i = 0; i < 3; i++) dot += want[i] * l[1].flash_direction[i];
+    CHECK(dot > 0.9999, "flash_direction points at the strike (cos %.5f)", dot);
+    fixture_close(&f);
+}

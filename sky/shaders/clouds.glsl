@@ -11,6 +11,9 @@ uniform SKY_UP float u_cover, u_density, u_sunset;
 uniform SKY_UP float u_deck;                /* a weather's deck: 0 none .. 1 no gaps */
 uniform SKY_UP vec2 u_haze;                /* a weather's haze: optical depth up,
                                         its layer's height / horizon path */
+uniform SKY_UP vec4 u_flash_dir;           /* lightning: toward the brightest flash;
+                                        w the sharpness of the patch it lights */
+uniform SKY_UP vec3 u_flash_light;         /* the deck lit by it, kcd/m^2 (0 between) */
 uniform SKY_UP float u_upper_cover;         /* the cover the thin layer reads: the
                                         cover, or a weather's upper / 0.35   */
 uniform SKY_UP float u_cloud_uv_scale;      /* from the height slider               */
@@ -62,6 +65,14 @@ float sky_cloud_horizon_fade(float y) { return mix(smoothstep(0.0, 0.06, y), smo
  * through a flat layer (below the horizon, toward the ground). 0 without
  * a weather. */
 float sky_weather_haze(vec3 d) { return 1.0 - exp(-u_haze.x / max(abs(d.y), u_haze.y)); }
+
+/* Lightning lights the deck from inside: a patch around the flash, a tenth
+ * of it everywhere (the light spreads through the cloud). 0 between
+ * flashes and without a weather. */
+vec3 sky_cloud_flash(vec3 d, float grey)
+{
+    return u_flash_light * (grey * (0.1 + 0.9 * exp(u_flash_dir.w * (dot(d, u_flash_dir.xyz) - 1.0))));
+}
 
 /* Lines 26-28: the sunset tint and the light, kcd/m^2. */
 vec3 sky_cloud_colour(float grey, float sunset_amount)
@@ -169,7 +180,8 @@ vec4 sky_clouds_at(vec4 layers, vec3 upper, vec2 shade, vec3 d)
     vec2 tc0 = layers.xy * iw;
     vec2 ga = sky_cloud_grey(SKY_TEX2D(u_clouds_tex, tc0), SKY_TEX2D(u_clouds_tex, layers.zw * iw).g,
                              SKY_TEX2D(u_clouds_tex, upper.xy * iw).g);
-    return vec4(sky_cloud_colour(ga.x, shade.x), ga.y * sky_cloud_footprint_fade(SKY_CLOUD_STEP(tc0, d)) * shade.y);
+    return vec4(sky_cloud_colour(ga.x, shade.x) + sky_cloud_flash(d, ga.x),
+                ga.y * sky_cloud_footprint_fade(SKY_CLOUD_STEP(tc0, d)) * shade.y);
 }
 
 /* The clouds in front of direction d, all per pixel (the sun's, moon's and
