@@ -268,6 +268,7 @@ typedef struct demo {
     const char *keys;  /* --keys: pressed after the first frame */
     int frame, status;
     double last;       /* the clock at the last frame */
+    int weather;       /* the state W picked last (sky_weather_state), -1 none */
 } demo;
 
 static void values_from_params(float v[6], const sky_params *p)
@@ -321,6 +322,12 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
             if ((d->features & SKY_LUNAR_ECLIPSE) && !(d->features & SKY_MOON)) d->features |= SKY_MOON;
             d->recreate = 1;
         }
+    if (key == GLFW_KEY_W) { /* the next weather, a 10-second change */
+        d->weather = d->weather + 1 >= SKY_WEATHER_COUNT ? 0 : d->weather + 1;
+        sky_weather target;
+        sky_weather_preset((sky_weather_state)d->weather, &target);
+        if (d->s) sky_set_weather(d->s, &target, 10.0);
+    }
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, 1);
 }
 
@@ -429,10 +436,15 @@ static sky *make_sky(demo *d, char *err, size_t len)
     cfg.profile_layers = d->profiling;
     sky *s = sky_create(&cfg, err, len);
     if (s) {
-        sky_set_params(s, &d->cli.params);
-        sky_set_observer(s, &d->cli.observer);
-        sky_set_exposure_bias(s, d->cli.exposure);
+        /* the options' sliders, observer and weather (--weather ...), then
+         * the running clock the last sky had reached; a rebuilt sky takes
+         * the last one's weather as it stood (a change in progress ends) */
+        sky_cli_apply(s, &d->cli);
         sky_set_elapsed(s, d->elapsed);
+        sky_weather now;
+        int moving = 0;
+        if (d->s && sky_get_weather(d->s, &now, &moving) == SKY_OK && (d->weather >= 0 || d->cli.weather >= 0))
+            sky_set_weather(s, &now, 0.0);
         d->atmosphere = cfg.atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg.atmosphere;
     }
     return s;
@@ -491,6 +503,11 @@ static void readout(demo *d, char *lines, size_t len)
                      atmosphere_name(d->atmosphere), tone_maps[d->cli.tone_map], 0);
     used += snprintf(lines + used, len - (size_t)used, "fov %.0f  time %s x%.0f%c", d->cli.fov,
                      d->running ? "running" : "paused", d->time_rate * 86400.0, 0);
+    int state = d->weather >= 0 ? d->weather : d->cli.weather_to >= 0 ? d->cli.weather_to : d->cli.weather, moving = 0;
+    sky_weather w;
+    if (state >= 0 && sky_get_weather(d->s, &w, &moving) == SKY_OK)
+        used += snprintf(lines + used, len - (size_t)used, "weather %s%s  cover %.2f  visibility %.1f km%c",
+                         moving ? "-> " : "", sky_weather_name((sky_weather_state)state), w.cover, w.visibility_km, 0);
     /* the cost: the sky's GPU frame time as sky-bench measures it, and
      * the frame rate of the window */
     double gpu_ms = timer_ms(&d->timer), fps = timer_fps(&d->timer);
@@ -572,6 +589,13 @@ static int demo_frame(demo *d)
     d->cli.params = params_from_values(d->values);
     sky_set_params(d->s, &d->cli.params);
     sky_update(d->s, dt);
+    if (d->weather >= 0 || d->cli.weather >= 0 || d->cli.weather_to >= 0) {
+        /* a weather owns cover and density: the sliders show its */
+        sky_params driven;
+        sky_get_params(d->s, &driven);
+        d->values[0] = driven.cover;
+        d->values[2] = driven.density;
+    }
     d->elapsed += dt;
     int fw, fh;
     glfwGetFramebufferSize(d->win, &fw, &fh);
@@ -657,7 +681,7 @@ static int demo_start(demo *d, int argc, char **argv)
                "                           after the first frame (tests)\n"
                "keys: 1-6 pick a slider, Up/Down move it, Space runs time, +/- its speed, F fisheye,\n"
                "      C U M K T P E toggle clouds sun moon flicker stars starmap eclipse, A atmosphere\n"
-               "      path, G GL profile,\n"
+               "      path, G GL profile, W the next weather (a 10-second change),\n"
                "      L per-layer timing, S screenshot, Esc quit; mouse: drag sliders, right-drag to look,\n"
                "      wheel to zoom\n");
         return 0;
@@ -698,6 +722,7 @@ static int demo_start(demo *d, int argc, char **argv)
     d->overlay = ui_create(d->kind);
     timer_init(&d->timer, d->win);
     d->elapsed = d->cli.seconds;
+    d->weather = -1;
     d->s = make_sky(d, err, sizeof err);
     if (!d->s) {
         fprintf(stderr, "sky-demo: %s\n", err);

@@ -636,8 +636,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
     pcfg.profile_layers = 1;
     sky *ps = lt ? sky_create(&pcfg, err, sizeof err) : NULL;
     if (ps) {
-        sky_set_params(ps, &cli->params);
-        sky_set_observer(ps, &cli->observer);
+        sky_cli_apply(ps, cli);
         sky_draw(ps, sub->view, sub->proj);
         int n[BENCH_LAYERS] = {0};
         for (int i = 0; i < frames; i++) {
@@ -672,8 +671,7 @@ static int subject_sky(subject *sub, int argc, char **argv, const char *name, sk
         fprintf(stderr, "sky-bench: %s: %s\n", name, err);
         return -1;
     }
-    sky_set_params(sub->s, &cli->params);
-    sky_set_observer(sub->s, &cli->observer);
+    sky_cli_apply(sub->s, cli); /* sliders, observer, weather, running time */
     if (covered) cover_left_half(kind_of(gl));
     sky_draw(sub->s, sub->view, sub->proj); /* shader JIT */
     glFinish();
@@ -2268,7 +2266,14 @@ int main(int argc, char **argv)
                                                 "noon --dome-divisor 1", "noon --dome-divisor 2",
                                                 "noon + scene over half, sky first", "noon + scene over half, sky after",
                                                 "noon --dome-divisor 1 + scene over half, sky first",
-                                                "noon --dome-divisor 1 + scene over half, sky after"};
+                                                "noon --dome-divisor 1 + scene over half, sky after",
+                                                /* the weather's states at noon, and the storm at a
+                                                 * flash (seed 0's first strike, 11.20 s) */
+                                                "noon --weather clear", "noon --weather fair", "noon --weather cirrus",
+                                                "noon --weather cloudy", "noon --weather overcast",
+                                                "noon --weather rain", "noon --weather showers",
+                                                "noon --weather storm", "noon --weather fog", "noon --weather snow",
+                                                "noon --weather storm --seconds 11.21"};
     enum { TABLE_PRESETS = sizeof table_presets / sizeof table_presets[0], MAX_PRESETS = 32 };
     const char *presets[MAX_PRESETS];
     char list_copy[1024];
