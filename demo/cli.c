@@ -181,6 +181,8 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "  --weather-to NAME        a change of weather that starts at time 0 ...\n"
             "  --weather-seconds S      ... and lasts S seconds (default 10); --seconds picks the frame\n"
             "  --seed N                 the seed of the random events (lightning), 0..4294967295\n"
+            "  --out-shadow FILE.png    (sky-render) the clouds' shadow on the ground, white = full sun,\n"
+            "                           north up, --size pixels over --shadow-extent KM (default 10)\n"
             "  --yaw DEG --pitch DEG --fov DEG | --fisheye\n"
             "                           view azimuth (from north through east), altitude\n"
             "                           (-90..90), vertical field of view (1..179)\n"
@@ -311,6 +313,7 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
     cli->fov = 60.0;
     cli->frames = 1;
     cli->weather = cli->weather_to = -1;
+    cli->shadow_extent_km = 10.0;
     cli->weather_seconds = 10.0;
     memset(&cli->observer, 0, sizeof cli->observer);
     int have_date = 0;
@@ -555,6 +558,16 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!has_extension(val, ".pfm"))
                 return fail(err, len, "--out-pfm: expected a file name ending in .pfm (linear float RGB), got '%s'", val);
             cli->out_pfm = val;
+        } else if (!is_demo && !strcmp(opt, "--out-shadow")) {
+            if (!val || !*val || !has_extension(val, ".png"))
+                return fail(err, len, "--out-shadow: expected a file name ending in .png, got '%s'",
+                            val ? val : "(nothing)");
+            cli->out_shadow = val;
+        } else if (!is_demo && !strcmp(opt, "--shadow-extent")) {
+            if (!parse_number(val, 0.01, 1000.0, &v))
+                return fail(err, len, "--shadow-extent: expected kilometres in 0.01..1000, got '%s'",
+                            val ? val : "(nothing)");
+            cli->shadow_extent_km = v;
         } else if (is_demo && !strcmp(opt, "--screenshot")) {
             if (!val || !*val) return fail(err, len, "--screenshot: expected a file name");
             if (!has_extension(val, ".png"))

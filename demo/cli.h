@@ -42,6 +42,8 @@ typedef struct sky_cli {
     double weather_seconds;   /* --weather-seconds: the transition's length */
     unsigned seed;            /* --seed: sky_config.seed                  */
     const char *out_png, *out_pfm;
+    const char *out_shadow;   /* --out-shadow: the cloud shadow map's PNG   */
+    double shadow_extent_km;  /* --shadow-extent: its side (default 10)    */
     int frames;
     int stats;
     /* where and when */

@@ -115,7 +115,7 @@ static const char *const vs =
  * tone map), so a wall and the sky behind it are judged on one scale. */
 static const char *const fs =
     "VARY vec3 n;\nVARY vec3 world;\n"
-    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col;\nuniform vec3 sky_sh[9];\n"
+    "uniform vec3 eye, sun_dir, sun_col, moon_dir, moon_col, flash_dir, flash_col;\nuniform vec3 sky_sh[9];\n"
     "uniform samplerCube sky_env;\nuniform vec3 ball;\n"
     "const vec3 grass = vec3(0.20, 0.30, 0.12), stone = vec3(0.45, 0.40, 0.35);\n"
     "void main() {\n"
@@ -131,7 +131,13 @@ static const char *const fs =
     "      + 2.0944 * 0.488603 * (sky_sh[1] * nn.y + sky_sh[2] * nn.z + sky_sh[3] * nn.x)\n"
     "      + 0.785398 * (1.092548 * (sky_sh[4] * nn.x * nn.y + sky_sh[5] * nn.y * nn.z + sky_sh[7] * nn.x * nn.z)\n"
     "                    + 0.315392 * sky_sh[6] * (3.0 * nn.z * nn.z - 1.0) + 0.546274 * sky_sh[8] * (nn.x * nn.x - nn.y * nn.y));\n"
-    "  vec3 E = sun_col * max(dot(nn, sun_dir), 0.0) + moon_col * max(dot(nn, moon_dir), 0.0) + max(sky, vec3(0.0));\n"
+    /* the sun's beam where the clouds let it through (sky_cloud_shadow,
+     * from sky_cloud_shadow_glsl: the drawn clouds' shadows, drifting with
+     * them; the observer stands at the world's origin, a unit a metre),
+     * and lightning's flash while one lights the scene */
+    "  vec3 E = sun_col * sky_cloud_shadow(world) * max(dot(nn, sun_dir), 0.0)\n"
+    "      + moon_col * max(dot(nn, moon_dir), 0.0) + flash_col * max(dot(nn, flash_dir), 0.0)\n"
+    "      + max(sky, vec3(0.0));\n"
     "  vec3 L = sky_aerial_apply(albedo / 3.14159 * E, world - eye, length(world - eye));\n"
     "  vec3 c = sky_display(L);\n"
     /* the glossy ball: the captured sky (sky_capture_environment, 8-bit
@@ -219,11 +225,11 @@ typedef struct world {
 
 /* prologue, then the library's snippets (or NULL), then body */
 static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, const char *snippet,
-                      const char *snippet2, const char *body)
+                      const char *snippet2, const char *snippet3, const char *body)
 {
-    const char *src[4] = {prologue, snippet ? snippet : "", snippet2 ? snippet2 : "", body};
+    const char *src[5] = {prologue, snippet ? snippet : "", snippet2 ? snippet2 : "", snippet3 ? snippet3 : "", body};
     GLuint s = gl->CreateShader(type);
-    gl->ShaderSource(s, 4, src, NULL);
+    gl->ShaderSource(s, 5, src, NULL);
     gl->CompileShader(s);
     GLint ok = 0;
     gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
@@ -243,8 +249,9 @@ static int world_create(world *w, sky_get_proc_address_fn loader, int core)
     if (load_gl(gl, loader, core)) return -1;
     static float verts[(6 + BOXES * 6 * 5 + 16 * 32 * 6) * 6];
     w->count = build_world(verts);
-    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, NULL, NULL, vs);
-    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, sky_display_glsl(), sky_aerial_glsl(), fs);
+    GLuint v = compile(gl, GL_VERTEX_SHADER, core ? vs_core : vs_compat, NULL, NULL, NULL, vs);
+    GLuint f = compile(gl, GL_FRAGMENT_SHADER, core ? fs_core : fs_compat, sky_display_glsl(), sky_aerial_glsl(),
+                       sky_cloud_shadow_glsl(), fs);
     w->prog = gl->CreateProgram();
     gl->AttachShader(w->prog, v);
     gl->AttachShader(w->prog, f);
@@ -317,6 +324,8 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_col"), 1, l.sun_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_col"), 1, l.moon_color);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "flash_dir"), 1, l.flash_direction);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "flash_col"), 1, l.flash_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sky_sh"), 9, &sh.radiance[0][0]);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "ball"), 1, ball);
     gl->Uniform1i(gl->GetUniformLocation(w->prog, "sky_env"), 0);
@@ -325,6 +334,12 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
         fprintf(stderr, "sky-game: no display stages: %s\n", sky_last_error(s));
     if (sky_aerial_bind(s, w->prog, 1) != SKY_OK && w->frames == 1)
         fprintf(stderr, "sky-game: no aerial perspective: %s\n", sky_last_error(s));
+    /* the clouds' shadows on unit 2: this frame's map over 8 km around the
+     * observer, a game unit a metre */
+    sky_cloud_shadow shadow;
+    if ((sky_get_cloud_shadow(s, 1.0f, 8000.0f, &shadow) != SKY_OK || sky_cloud_shadow_bind(s, w->prog, 2) != SKY_OK) &&
+        w->frames == 1)
+        fprintf(stderr, "sky-game: no cloud shadows: %s\n", sky_last_error(s));
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(s));
     if (w->vao) gl->BindVertexArray(w->vao);
@@ -337,6 +352,8 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     /* left as found, so the next frame's sky_draw meets no stray arrays */
     gl->BindTexture(GL_TEXTURE_CUBE_MAP, 0);
     gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, 0);
+    gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, 0);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->DisableVertexAttribArray(0);
@@ -442,6 +459,8 @@ static void usage(FILE *f)
             "  --date YYYY-MM-DDTHH:MM:SSZ --lat DEG --lon DEG --alt M   where and when\n"
             "  --yaw DEG --pitch DEG --fov DEG   the eye's view (1.7 m above the ground)\n"
             "  --features LIST --atmosphere PATH --exposure STOPS --seconds S   the sky, as in sky-render\n"
+            "  --weather NAME [--weather-to NAME --weather-seconds S] --seed N   the weather, as in\n"
+            "                           sky-render (without them, the weather changes every minute)\n"
             "                           (also --turbidity --planet --luts --blend --moon-scale --dome-divisor)\n"
             "  --gl auto|core|compat    OpenGL 3.3 core, or 2.0 in a compatibility context\n"
             "  --frames N --screenshot FILE.png   draw N frames 1/30 s apart, save the last, quit\n"
@@ -512,7 +531,8 @@ int main(int argc, char **argv)
      * their pictures do not depend on the machine's speed */
     int automated = cli.screenshot != NULL;
     int status = 0;
-    double last = glfwGetTime();
+    double last = glfwGetTime(), weather_since = last - 50.0; /* the first change after ten seconds */
+    int weather_step = 0;
     for (int frame = 0; !glfwWindowShouldClose(win); frame++) {
         int width, height;
         glfwGetFramebufferSize(win, &width, &height);
@@ -527,6 +547,18 @@ int main(int argc, char **argv)
         double now = glfwGetTime(), dt = now - last;
         last = now;
         if (frame) sky_update(s, automated ? 1.0 / 30.0 : dt < 0.0 ? 0.0 : dt > 0.25 ? 0.25 : dt);
+        /* the game's day changes its weather: every minute the next state
+         * (fair, cloudy, showers, storm, rain, overcast, clear, ...) over
+         * twenty seconds, unless the command line set one */
+        if (!automated && cli.weather < 0 && cli.weather_to < 0 && now - weather_since > 60.0) {
+            static const sky_weather_state cycle[] = {SKY_WEATHER_FAIR,  SKY_WEATHER_CLOUDY,   SKY_WEATHER_SHOWERS,
+                                                      SKY_WEATHER_STORM, SKY_WEATHER_RAIN,     SKY_WEATHER_OVERCAST,
+                                                      SKY_WEATHER_FOG,   SKY_WEATHER_CIRRUS,   SKY_WEATHER_CLEAR};
+            sky_weather next;
+            sky_weather_preset(cycle[weather_step++ % (int)(sizeof cycle / sizeof cycle[0])], &next);
+            sky_set_weather(s, &next, 20.0);
+            weather_since = now;
+        }
         draw_frame(&w, s, &cli, width, height);
         if (automated && frame + 1 >= cli.frames) {
             status = save_frame(&w, width, height, cli.screenshot);

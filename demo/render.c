@@ -16,6 +16,29 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* --out-shadow: the clouds' shadow map of the last frame, --size pixels
+ * over --shadow-extent, grey (white = full sun). */
+static int write_shadow(sky *s, const sky_cli *cli)
+{
+    size_t n = (size_t)cli->width * (size_t)cli->height;
+    unsigned char *grey = malloc(n), *rgb = malloc(3 * n);
+    int rc = 1;
+    if (!grey || !rgb)
+        fprintf(stderr, "sky-render: out of memory for the shadow map\n");
+    else if (sky_cloud_shadow_image(s, (float)(cli->shadow_extent_km * 1000.0), cli->width, cli->height, grey) < 0)
+        fprintf(stderr, "sky-render: %s\n", sky_last_error(s));
+    else {
+        for (size_t i = 0; i < n; i++) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = grey[i];
+        if (sky_write_png_rgb(cli->out_shadow, cli->width, cli->height, rgb))
+            fprintf(stderr, "sky-render: cannot write %s: %s\n", cli->out_shadow, strerror(errno));
+        else
+            rc = 0;
+    }
+    free(grey);
+    free(rgb);
+    return rc;
+}
+
 /* FILE.png -> FILE_0007.png for frame 7 of several. */
 static void frame_path(char *dst, size_t len, const char *path, int frame, int frames)
 {
@@ -90,6 +113,7 @@ static int render_pass(const sky_cli *cli, int hdr, const char *out, int print_s
         if (cli->frames > 1) fprintf(stderr, "\rsky-render: frame %d/%d", f + 1, cli->frames);
     }
     if (cli->frames > 1) fprintf(stderr, "\n");
+    if (!rc && !hdr && cli->out_shadow) rc = write_shadow(s, cli);
     if (!rc && print_stats) {
         sky_cli_print_stats(stdout, s, sky_cli_median(times, cli->frames), cli->seconds);
     }
@@ -243,7 +267,7 @@ static int run(int argc, char **argv)
      * one pass each. Statistics come from the PNG pass when there is one.
      * With neither output, render anyway (a check that GL works, exit 0),
      * but say so first: a forgotten --out otherwise looked like success. */
-    if (!cli.out_png && !cli.out_pfm && !cli.stats)
+    if (!cli.out_png && !cli.out_pfm && !cli.stats && !cli.out_shadow)
         fprintf(stderr, "sky-render: nothing will be written (no --out, --out-pfm or --stats): rendering once as a "
                         "check of GL; add --out FILE.png or --out-pfm FILE.pfm to keep the image\n");
     int png_pass = cli.out_png || !cli.out_pfm;

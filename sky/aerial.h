@@ -29,6 +29,7 @@ typedef struct sky_aerial_state {
     int own_ready;
     int table_valid;
     double key[SKY_ATMOSPHERE_KEY];
+    float weather[3];       /* the weather the table was made under (aerial.c) */
     unsigned char *texels;  /* SKY_AP_TABLE_W x SKY_AP_TABLE_H RGBA8           */
     float *values;          /* the table before its encoding: per elevation,
                                azimuth and slice the light and transmittance */

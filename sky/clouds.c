@@ -276,6 +276,57 @@ static void clouds_frame(sky_core *s, void *state)
     f->deck_opacity = f->cloud_mean[0];
 }
 
+/* The samples at (u, v) in texture periods, bilinear and wrapped, as the
+ * GPU filters the texture (at the samples' coarser step): channel c. */
+static double sample_at(const clouds_state *st, double u, double v, int c)
+{
+    double x = (u - floor(u)) * CLOUD_SAMPLES - 0.5, y = (v - floor(v)) * CLOUD_SAMPLES - 0.5;
+    int x0 = (int)floor(x), y0 = (int)floor(y);
+    double fx = x - x0, fy = y - y0;
+    int xa = (x0 + CLOUD_SAMPLES) % CLOUD_SAMPLES, xb = (x0 + 1 + CLOUD_SAMPLES) % CLOUD_SAMPLES;
+    int ya = (y0 + CLOUD_SAMPLES) % CLOUD_SAMPLES, yb = (y0 + 1 + CLOUD_SAMPLES) % CLOUD_SAMPLES;
+    double a = st->sample[ya * CLOUD_SAMPLES + xa][c], b = st->sample[ya * CLOUD_SAMPLES + xb][c];
+    double cc = st->sample[yb * CLOUD_SAMPLES + xa][c], d = st->sample[yb * CLOUD_SAMPLES + xb][c];
+    return ((a + (b - a) * fx) * (1.0 - fy) + (cc + (d - cc) * fx) * fy) / 255.0;
+}
+
+void sky_clouds_shadow(const sky_core *s, const void *state, double extent_m, int w, int h, double height_m,
+                       unsigned char *out)
+{
+    const clouds_state *st = state;
+    const sky_frame *f = &s->frame;
+    double sy = f->sun_dir[1];
+    /* no sun, or one too low to throw the layer's shadow near: its beam
+     * (sun_color) is nothing or nearly; the map stays lit */
+    if (sy < sin(2.0 * SKY_PI / 180.0) || !(f->cover > 0.0f)) {
+        memset(out, 255, (size_t)w * (size_t)h);
+        return;
+    }
+    /* a ground point's cloud: up the sun's ray to the layer's height */
+    double ox = f->sun_dir[0] / sy * height_m, oz = f->sun_dir[2] / sy * height_m;
+    /* clouds.glsl's plane point of a flat layer: its horizontal position
+     * over its height, times the height slider's scale */
+    double per_m = f->cloud_uv_scale / height_m, side = extent_m / (w > h ? w : h);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double px = ((i + 0.5 - 0.5 * w) * side + ox) * per_m, py = ((j + 0.5 - 0.5 * h) * side + oz) * per_m;
+            /* clouds.glsl's sky_cloud_layers and sky_cloud_upper */
+            double u0 = px + st->offsets[0][0], v0 = py + st->offsets[0][1];
+            double u1 = (px * 0.96 - py * 0.28) * 1.15 + st->offsets[1][0],
+                   v1 = (px * 0.28 + py * 0.96) * 1.15 + st->offsets[1][1];
+            double u2 = px * 0.35 + st->offsets[2][0], v2 = py * 2.5 + st->offsets[2][1];
+            double grey, alpha;
+            /* the layers without a weather's deck: the deck is in sun_color */
+            cloud_grey(sample_at(st, u0, v0, 0), sample_at(st, u0, v0, 2), sample_at(st, u1, v1, 1),
+                       sample_at(st, u2, v2, 1), f->cover, f->density, f->upper_cover, 0.0, &grey, &alpha);
+            /* a cloud passes a fifth of the beam (its thin edges, its
+             * forward scattering); under a deck the map evens out */
+            double sun = 1.0 - 0.8 * alpha;
+            sun += (1.0 - sun) * f->deck;
+            out[(size_t)j * (size_t)w + (size_t)i] = (unsigned char)(255.0 * sky_clampd(sun, 0.0, 1.0) + 0.5);
+        }
+}
+
 /* The fade of detail a pixel cannot hold is judged in the viewport's
  * pixels: a step in the dome's image spans its divisor of them. */
 void sky_clouds_image_step(sky_core *s, int step_pixels)

@@ -55,6 +55,7 @@ static const config_rule rules[] = {
     FLOAT(turbidity, 1.0, 64.0, 1, "0 = default, or 1..64"),
     FLOAT(moon_scale, 0.5, 50.0, 1, "0 = default, or 0.5..50"),
     FLOAT(exposure_range, 0.01, 16.0, 1, "0 = default, or 0.01..16 stops"),
+    FLOAT(cloud_height_m, 100.0, 20000.0, 1, "0 = 1500, or 100..20000 m"),
     FLOAT(star_control_magnitude, 1.0, 10.0, 1, "0 = default, or 1..10"),
     INT(solar_activity_manual, 0, 1, 0, "0 = from the date, or 1"),
     FLOAT_WHEN(solar_activity, 0.0, 1.0, solar_activity_manual, "0 = minimum .. 1 = maximum"),

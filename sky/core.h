@@ -85,6 +85,7 @@ typedef enum sky_texture_id {
     SKY_TEX_MS_ORDER_PREV, /* the one before, which it scatters (7 layers each) */
     SKY_TEX_ENVIRONMENT,   /* sky_capture_environment's own cube map             */
     SKY_TEX_AERIAL,        /* sky_aerial_bind's table (aerial.c), RGBA8          */
+    SKY_TEX_CLOUD_SHADOW,  /* sky_get_cloud_shadow's map (cloud_shadow.c), RGBA8 */
     SKY_TEX_FROXELS,       /* sky_aerial_froxels' volume (CORE33, Hillaire)      */
     SKY_TEX_DOME,       /* the LDR dome at reduced size: tone-mapped sky and clouds,
                            the clouds' alpha in A (dome.c)                      */
@@ -259,6 +260,7 @@ typedef struct sky_frame {
                                 optical depth straight up, and its layer's
                                 height over the path to the horizon (weather.c) */
     float visibility_km;     /* the weather's (60 without one; weather.c)         */
+    float haze_beta;         /* its haze's extinction beyond the clear sky's, /m */
     float flash_klx;         /* lightning now: illuminance facing it (weather.c) */
     float flash_dir[4];      /* toward the brightest flash, horizon frame; w the
                                 sharpness of the patch it lights              */

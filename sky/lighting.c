@@ -30,14 +30,15 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
         out->ambient_color[i] = f->ambient_rgb[i];
         out->fog_color[i] = f->fog_rgb[i];
     }
-    /* a weather's deck (weather.c): where it covers the sky (its mean
-     * opacity) it lets light_through of the light above pass, diffused;
-     * the beam keeps the square of that share (what passes unscattered is
-     * far less than what passes at all). The ambient and fog colours are
-     * the frame's, which sky_weather_light greyed. Without a weather
-     * light_through is 1 and nothing changes. */
-    if (f->light_through < 1.0f) {
-        float direct = 1.0f - f->deck_opacity * (1.0f - f->light_through * f->light_through);
+    /* a weather's deck (weather.c), which covers the sky alike, lets
+     * light_through of the light above pass, diffused: the beam keeps the
+     * square of that share (what passes unscattered is far less than what
+     * passes at all). The broken layers' shadows are the cloud shadow
+     * map's (sky_get_cloud_shadow), not this. The ambient and fog colours
+     * are the frame's, which sky_weather_light greyed. Without a weather
+     * nothing changes. */
+    if (f->deck > 0.0f) {
+        float direct = 1.0f - f->deck * (1.0f - f->light_through * f->light_through);
         for (int i = 0; i < 3; i++) out->sun_color[i] *= direct;
     }
     out->daylight = f->daylight;

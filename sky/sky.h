@@ -485,6 +485,12 @@ typedef struct sky_config {
     /* The seed of every random event (lightning): the same seed, inputs
      * and running time give the same strikes. Any value. Since 0.6.0 */
     unsigned seed;
+    /* The clouds' base height in metres at the height slider's middle
+     * (0.5): the slider scales it by 4^(height - 0.5), so 0..1 spans a
+     * quarter to twice it, as it scales the drawn clouds' size. Where the
+     * cloud shadows fall (sky_get_cloud_shadow). 0 = 1500; else 100..20000.
+     * Since 0.6.0 */
+    float cloud_height_m;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,
@@ -1073,6 +1079,74 @@ typedef struct sky_lightning_strike {
  * GL: none.
  * Since: 0.6.0 */
 SKY_API sky_result sky_get_lightning(sky *s, double t0, double t1, sky_lightning_strike *out, int max, int *count);
+
+/* ---- Cloud shadows for the host's ground ---------------------------------------------
+ * Where the drawn clouds (the first layer, the second's noise, the thin
+ * upper layer, as the dome draws them, as a flat layer at the clouds'
+ * height) stand between the sun and a point on the ground, that point gets
+ * less of the sun's beam: the map gives the fraction of sky_lighting's
+ * sun_color that reaches it, 1 in full sun. sun_color is the beam where
+ * no cloud of the layers stands in its way (a weather's deck, which covers
+ * everything alike, is in sun_color itself); the map follows the layers'
+ * cover (nothing shadowed at cover 0) and drifts with the drawn clouds.
+ * The sky is at infinity: the camera's own movement does not move the
+ * drawn clouds, and the map is centred on the observer's place. */
+typedef struct sky_cloud_shadow {
+    unsigned texture;     /* GL_TEXTURE_2D, size x size RGBA8, the fraction
+                             in every channel (255 = full sun), linear,
+                             clamped at its edges; the sky's: valid until
+                             the next call that recomputes the frame    */
+    int size;             /* its side in texels                            */
+    float height_m;       /* the clouds' base height (cfg.cloud_height_m and
+                             the height slider)                          */
+    float extent_m;       /* the square's side, metres, centred on the
+                             observer                                    */
+    float matrix[16];     /* column-major: a position relative to the
+                             observer in the host's units and world frame
+                             (horizon_to_world) -> (s, t, 0, 1) on the map */
+} sky_cloud_shadow;
+
+/* sky_cloud_shadow_image: the map as 8-bit pixels on the CPU, without
+ * GL: w x h bytes, rows from north to south, columns from west to east,
+ * over extent_m along the longer side, centred on the observer; 255 = full
+ * sun. For a host that lights its ground on the CPU, or a picture
+ * (sky-render --out-shadow).
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), out NULL, w or
+ * h outside 1..4096, extent_m not in 10..1e6.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_cloud_shadow_image(sky *s, float extent_m, int w, int h, unsigned char *out);
+/* sky_get_cloud_shadow: the map as a texture of the sky's (64 x 64) over
+ * extent_m around the observer, made or updated now, and the matrix from
+ * the host's positions, given metres_per_unit (the host's unit in
+ * metres). The texture's contents are this frame's: call it again after
+ * sky_update.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), out NULL,
+ * metres_per_unit not in 1e-6..1e6, extent_m not in 10..1e6. SKY_ERR_GL
+ * for a context that is not the sky's, or a texture that cannot be made.
+ * Thread safety: the sky's thread.
+ * GL: the sky's context current. The active texture unit, the unit's 2D
+ * texture and the unpack state are the host's again afterwards.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, sky_cloud_shadow *out);
+/* sky_cloud_shadow_glsl: the host's GLSL for the map (GLSL 1.10 .. 3.30,
+ * ES 1.00), after the #version line:
+ *   float sun = sky_cloud_shadow(position_relative_to_observer);
+ * sky_cloud_shadow_bind sets what it reads. "" if this build lacks it.
+ * Since: 0.6.0 */
+SKY_API const char *sky_cloud_shadow_glsl(void);
+/* sky_cloud_shadow_bind: binds the map of the last sky_get_cloud_shadow
+ * (made now with 1 metre per unit over 10 km if there was none) on
+ * texture_unit and sets the snippet's uniforms in program (not made
+ * current: the host's program comes back).
+ * Errors: as sky_aerial_bind's: SKY_ERR_INVALID_ARGUMENT for s NULL (no
+ * message), program 0 or not a program, a texture unit out of range;
+ * SKY_ERR_GL for a context that is not the sky's.
+ * Thread safety: the sky's thread.
+ * GL: the sky's context current; the map stays bound on texture_unit.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_cloud_shadow_bind(sky *s, unsigned program, int texture_unit);
 
 /* sky_capture_environment: the sky as sky_draw draws it (every layer,
  * clouds included), seen from the observer in the six directions of a

@@ -34,6 +34,8 @@ struct sky {
                                              (no FBO), else zero              */
     sky_aerial_state aerial;              /* sky_get_aerial_perspective's and
                                              sky_aerial_bind's                */
+    float shadow_metres_per_unit,         /* the last sky_get_cloud_shadow's  */
+        shadow_extent_m;                  /* (cloud_shadow.c)                 */
 };
 
 /* layers.c: the layer table, back to front, and a row's stats index (its

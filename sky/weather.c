@@ -189,12 +189,13 @@ void sky_weather_wind_integral(const sky_weather_clock *c, double t0, double t1,
  * e the path through it is H / sin e, up to the flat layer's horizon path
  * sqrt(2 R H) on a sphere of radius R. Out: the optical depth straight up
  * and H over that horizon path (clouds.glsl's sky_weather_haze). */
-static void weather_haze(const sky_weather *w, float out[2])
+static void weather_haze(const sky_weather *w, float out[2], float *beta_per_m)
 {
     const double clear_km = states[SKY_WEATHER_CLEAR].w.visibility_km, earth_m = 6.371e6;
     double v = fmax(w->visibility_km, 0.05);
     double beta = fmax(3.912 / (v * 1000.0) - 3.912 / (clear_km * 1000.0), 0.0); /* per metre */
     double height = sky_clampd(0.2 * v * 1000.0, 30.0, 400.0);
+    *beta_per_m = (float)beta;
     out[0] = (float)(beta * height);
     out[1] = (float)sqrt(height / (2.0 * earth_m));
 }
@@ -215,7 +216,7 @@ void sky_weather_frame(sky_core *c)
          * the photo's dark texels clear): a weather's cover closes them
          * into a deck from 0.75 up */
         f->deck = (float)sky_smoothstep(0.75, 1.0, w.cover);
-        weather_haze(&w, f->haze);
+        weather_haze(&w, f->haze, &f->haze_beta);
         f->visibility_km = w.visibility_km;
         sky_flash flash;
         sky_lightning_flash(&c->weather, c->cfg.seed, c->running, &flash);
@@ -229,6 +230,7 @@ void sky_weather_frame(sky_core *c)
         f->deck = 0.0f;
         f->haze[0] = 0.0f;
         f->haze[1] = 1.0f;
+        f->haze_beta = 0.0f;
         f->visibility_km = states[SKY_WEATHER_CLEAR].w.visibility_km;
         f->flash_klx = 0.0f;
     }

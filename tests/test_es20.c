@@ -644,3 +644,24 @@ SLOW_TEST(es20_mediump_fragment_stage)
         }
     sky_osmesa_destroy(&ctx);
 }
+
+/* The cloud shadow snippet compiles as GLSL ES 1.00 (the desktop dialects
+ * are test_weather.c's, where it also reads the map). */
+TEST(es20_cloud_shadow_snippet)
+{
+    sky_osmesa ctx;
+    es_api gl;
+    if (es2_open(&ctx, 4, 4, &gl)) return;
+    const char *fs[3] = {"#version 100\nprecision mediump float;\n", sky_cloud_shadow_glsl(),
+                         "uniform vec3 where;\nvoid main() { gl_FragColor = vec4(sky_cloud_shadow(where)); }\n"};
+    GLuint f = gl.CreateShader(GL_FRAGMENT_SHADER);
+    gl.ShaderSource(f, 3, fs, NULL);
+    gl.CompileShader(f);
+    GLint ok = 0;
+    gl.GetShaderiv(f, GL_COMPILE_STATUS, &ok);
+    char log[2048] = "";
+    if (!ok) gl.GetShaderInfoLog(f, sizeof log, NULL, log);
+    CHECK(ok, "the cloud shadow snippet does not compile as GLSL ES 1.00: %s", log);
+    CHECK(strstr(fs[1], "sky_cloud_shadow("), "the build has the snippet");
+    sky_osmesa_destroy(&ctx);
+}

@@ -5,10 +5,13 @@
  * the host's light at noon (the sun at 50 degrees: the default date and
  * place, the equinox at 40 N, time 0.5).
  */
+#define GL_GLEXT_PROTOTYPES 1
 #include "test.h"
 #include "cli.h"
 #include "sky_internal.h"
 
+#include <GL/gl.h>
+#include <GL/glext.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -593,3 +596,180 @@ TEST(weather_lightning_flashes)
     CHECK(dot > 0.9999, "flash_direction points at the strike (cos %.5f)", dot);
     fixture_close(&f);
 }
+
+/* ---- cloud shadows ------------------------------------------------------------------- */
+
+static double shadowed(const unsigned char *px, int n)
+{
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) sum += 1.0 - px[i] / 255.0;
+    return sum / n;
+}
+
+/* The shadowed share of the ground follows the cover: none at cover 0,
+ * more with more cloud, about what the clouds' mean opacity keeps from
+ * the beam (a cloud passes a fifth of it). */
+TEST(weather_cloud_shadows_follow_cover)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    enum { N = 128 };
+    static unsigned char px[N * N];
+    static const float covers[4] = {0.0f, 0.25f, 0.5f, 0.75f};
+    double prev = -1.0;
+    for (int k = 0; k < 4; k++) {
+        sky_params p = sky_default_params();
+        p.time = 0.5f;
+        p.cover = covers[k];
+        sky_set_params(f.s, &p);
+        CHECK(sky_cloud_shadow_image(f.s, 20000.0f, N, N, px) == SKY_OK, "the map: %s", sky_last_error(f.s));
+        double share = shadowed(px, N * N), opacity = f.s->core.frame.cloud_mean[0];
+        NOTE("cover %.2f: %.3f of the beam shadowed; the clouds' mean opacity %.3f", covers[k], share, opacity);
+        if (k == 0) CHECK(share == 0.0, "nothing shadowed at cover 0 (%.4f)", share);
+        CHECK(share > prev, "more shadow with more cover (%.3f after %.3f)", share, prev);
+        CHECK(fabs(share - 0.8 * opacity) < 0.06, "about 0.8 of the mean opacity (%.3f against %.3f)", share,
+              0.8 * opacity);
+        prev = share;
+    }
+    /* at night, or with the sun too low, the map stays lit */
+    sky_params night = sky_default_params();
+    night.time = 0.0f;
+    night.cover = 0.7f;
+    sky_set_params(f.s, &night);
+    sky_cloud_shadow_image(f.s, 20000.0f, N, N, px);
+    CHECK(shadowed(px, N * N) == 0.0, "no shadows at midnight");
+    CHECK(sky_cloud_shadow_image(NULL, 1e4f, N, N, px) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_cloud_shadow_image(f.s, 1e4f, N, N, NULL) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_cloud_shadow_image(f.s, 1e4f, 0, N, px) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_cloud_shadow_image(f.s, NAN, N, N, px) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_cloud_shadow_image(f.s, 5.0f, N, N, px) == SKY_ERR_INVALID_ARGUMENT,
+          "NULL, an empty image, a NaN or tiny extent refused");
+    fixture_close(&f);
+}
+
+/* The shadows drift with the drawn clouds: the map a minute later is the
+ * map moved by the first layer's drift over that minute (in metres: its
+ * offset's change over the texture's period on the ground, height over
+ * the height slider's scale), downwind. */
+TEST(weather_cloud_shadows_drift_with_the_clouds)
+{
+    fixture f;
+    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    enum { N = 160 };
+    const float extent = 16000.0f; /* 100 m a pixel */
+    static unsigned char a[N * N], b[N * N];
+    sky_params p = sky_default_params();
+    p.time = 0.5f;
+    p.cover = 0.5f;
+    sky_set_params(f.s, &p);
+    sky_weather west;
+    sky_get_weather(f.s, &west, NULL);
+    west.wind_from_deg = 270.0f;
+    west.wind_speed_ms = 5.0f;
+    sky_set_weather(f.s, &west, 0.0);
+    const double *off = sky_clouds_offsets(f.s->layer_state[SKY_LAYER_CLOUDS]);
+    sky_set_elapsed(f.s, 10.0);
+    double u0 = off[0];
+    sky_cloud_shadow_image(f.s, extent, N, N, a);
+    sky_set_elapsed(f.s, 40.0);
+    double du = off[0] - u0;
+    sky_cloud_shadow_image(f.s, extent, N, N, b);
+    /* the texture moves -du periods across the plane: clouds go east */
+    const sky_frame *fr = &f.s->core.frame;
+    double period_m = 1500.0 / fr->cloud_uv_scale; /* height (slider 0.5) over the plane's scale */
+    double want_px = -du * period_m / (extent / N);
+    /* the shift of b against a with the best match, over +-12 px */
+    int best_x = 0, best_y = 0;
+    double best = 1e30;
+    for (int dy = -12; dy <= 12; dy++)
+        for (int dx = -12; dx <= 12; dx++) {
+            double sum = 0.0;
+            for (int y = 20; y < N - 20; y++)
+                for (int x = 20; x < N - 20; x++) {
+                    double d = (double)b[(y + dy) * N + x + dx] - a[y * N + x];
+                    sum += d * d;
+                }
+            if (sum < best) best = sum, best_x = dx, best_y = dy;
+        }
+    NOTE("in 30 s: the map moved %d px east, %d px south; the clouds' drift %.1f px east", best_x, best_y, want_px);
+    CHECK(want_px > 2.0 && abs(best_x - (int)lround(want_px)) <= 1 && abs(best_y) <= 1,
+          "the shadows move with the clouds, east in a west wind (%d, %d px against %.1f)", best_x, best_y, want_px);
+    fixture_close(&f);
+}
+
+/* The texture, its matrix and the host's GLSL: a host program that calls
+ * sky_cloud_shadow at the observer and 3 km east reads the map's texels
+ * there, in both desktop profiles. */
+static void cloud_shadow_host(sky_gl_profile profile)
+{
+    fixture f;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_CLOUDS | SKY_SUN;
+    if (fixture_open_sized(&f, 16, 16, 1, profile, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    int core = profile == SKY_GL_CORE33;
+    sky_params p = sky_default_params();
+    p.time = 0.5f;
+    p.cover = 0.6f;
+    sky_set_params(f.s, &p);
+    sky_cloud_shadow map;
+    CHECK(sky_get_cloud_shadow(f.s, 2.0f, 10000.0f, &map) == SKY_OK, "the map: %s", sky_last_error(f.s));
+    CHECK(map.texture != 0 && map.size == 64 && fabsf(map.height_m - 1500.0f) < 0.01f && map.extent_m == 10000.0f,
+          "texture %u, %d texels, %.0f m up", map.texture, map.size, map.height_m);
+    /* the matrix: the observer at the centre; 1500 units (3 km) east at
+     * 0.5 + 0.3 on s */
+    float e = map.matrix[0] * 1500.0f + map.matrix[12], t = map.matrix[1] * 1500.0f + map.matrix[13];
+    CHECK(map.matrix[12] == 0.5f && map.matrix[13] == 0.5f && fabsf(e - 0.8f) < 1e-5f && fabsf(t - 0.5f) < 1e-5f,
+          "the matrix maps the observer to the centre and 3 km east to s 0.8 (%g, %g)", e, t);
+    const char *body = "uniform vec3 where;\nvoid main() { FRAG = vec4(sky_cloud_shadow(where), 0.0, 0.0, 1.0); }\n";
+    unsigned prog = test_snippet_program(core, sky_cloud_shadow_glsl(), body), vao = 0, buf = 0;
+    CHECK(prog != 0, "the host's program with the snippet links");
+    if (!prog) {
+        fixture_close(&f);
+        return;
+    }
+    test_fullscreen_triangle(core, &vao, &buf);
+    CHECK(sky_cloud_shadow_bind(f.s, prog, 1) == SKY_OK, "bind: %s", sky_last_error(f.s));
+    static unsigned char grey[64 * 64];
+    sky_cloud_shadow_image(f.s, 10000.0f, 64, 64, grey);
+    glUseProgram(prog);
+    GLint at = glGetUniformLocation(prog, "where");
+    static const float where[2][3] = {{0.0f, 0.0f, 0.0f}, {1500.0f, 0.0f, 0.0f}};
+    static const int texel[2][2] = {{32, 32}, {51, 32}}; /* s 0.5 and 0.8 (51.2) */
+    for (int k = 0; k < 2; k++) {
+        glUniform3fv(at, 1, where[k]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        float px[4];
+        glReadPixels(8, 8, 1, 1, GL_RGBA, GL_FLOAT, px);
+        /* between the four texels around the point (linear filtering) */
+        double lo = 1.0, hi = 0.0;
+        for (int dy = -1; dy <= 0; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                double v = grey[(texel[k][1] + dy) * 64 + texel[k][0] + dx] / 255.0;
+                lo = fmin(lo, v), hi = fmax(hi, v);
+            }
+        CHECK(px[0] >= lo - 0.01 && px[0] <= hi + 0.01, "%s: the GLSL reads the map at point %d: %.3f in %.3f..%.3f",
+              core ? "core" : "compat", k, px[0], lo, hi);
+    }
+    glUseProgram(0);
+    test_fullscreen_free(vao, buf);
+    glDeleteProgram(prog);
+    CHECK(sky_cloud_shadow_bind(f.s, 0, 1) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_cloud_shadow_bind(f.s, 123456, 1) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_get_cloud_shadow(f.s, 0.0f, 1e4f, &map) == SKY_ERR_INVALID_ARGUMENT &&
+              sky_get_cloud_shadow(f.s, 1.0f, 1e4f, NULL) == SKY_ERR_INVALID_ARGUMENT,
+          "no program, not a program, no scale, no out refused");
+    fixture_close(&f);
+}
+
+TEST(weather_cloud_shadow_for_the_host_core) { cloud_shadow_host(SKY_GL_CORE33); }
+TEST(weather_cloud_shadow_for_the_host_compat) { cloud_shadow_host(SKY_GL_COMPAT20); }

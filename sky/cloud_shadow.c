@@ -1,0 +1,137 @@
+/*
+ * The clouds' shadows for the host's ground (sky.h, "Cloud shadows"): the
+ * map on the CPU (clouds.c computes it from the layers as drawn), as a
+ * texture of the sky's with the matrix from the host's positions, and the
+ * host's GLSL and its binder.
+ */
+#include "sky_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+enum { SHADOW_TEXTURE_SIZE = 64 };
+
+/* The clouds' base height: cfg.cloud_height_m at the height slider's
+ * middle, scaled as the slider scales the drawn clouds (clouds.c:
+ * 0.15 x 4^height texture periods per unit of the plane). */
+static double cloud_height(const sky_core *c)
+{
+    double base = c->cfg.cloud_height_m > 0.0f ? c->cfg.cloud_height_m : 1500.0;
+    return base * pow(4.0, c->params.height - 0.5);
+}
+
+static void shadow_pixels(sky *s, double extent_m, int w, int h, unsigned char *out)
+{
+    const void *clouds = s->layer_state[SKY_LAYER_CLOUDS];
+    if (clouds)
+        sky_clouds_shadow(&s->core, clouds, extent_m, w, h, cloud_height(&s->core), out);
+    else
+        memset(out, 255, (size_t)w * (size_t)h); /* no clouds drawn, none to cast */
+}
+
+sky_result sky_cloud_shadow_image(sky *s, float extent_m, int w, int h, unsigned char *out)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!out) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_image: out is NULL");
+    if (w < 1 || h < 1 || w > 4096 || h > 4096)
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_image: %d x %d is not 1..4096 on each side", w,
+                        h);
+    if (!(extent_m >= 10.0f && extent_m <= 1e6f))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_image: extent %g m is not 10..1e6",
+                        (double)extent_m);
+    shadow_pixels(s, extent_m, w, h, out);
+    return SKY_OK;
+}
+
+/* The matrix from a host position (relative to the observer, host units,
+ * world frame) to the map: the east and south components in metres over
+ * the extent, centred. Column-major. */
+static void shadow_matrix(const sky_core *c, double metres_per_unit, double extent_m, float m[16])
+{
+    static const float east_h[3] = {1.0f, 0.0f, 0.0f}, south_h[3] = {0.0f, 0.0f, 1.0f};
+    float east[3], south[3];
+    sky_camera_to_world(c, east_h, east);
+    sky_camera_to_world(c, south_h, south);
+    memset(m, 0, 16 * sizeof *m);
+    double k = metres_per_unit / extent_m;
+    for (int i = 0; i < 3; i++) {
+        m[4 * i + 0] = (float)(k * east[i]);  /* s: west to east  */
+        m[4 * i + 1] = (float)(k * south[i]); /* t: north to south, the map's rows */
+    }
+    m[12] = m[13] = 0.5f;
+    m[15] = 1.0f;
+}
+
+sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, sky_cloud_shadow *out)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!out) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_cloud_shadow: out is NULL");
+    if (!(metres_per_unit >= 1e-6f && metres_per_unit <= 1e6f))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_cloud_shadow: metres_per_unit %g is not 1e-6..1e6",
+                        (double)metres_per_unit);
+    if (!(extent_m >= 10.0f && extent_m <= 1e6f))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_get_cloud_shadow: extent %g m is not 10..1e6",
+                        (double)extent_m);
+    sky_result rc = sky_own_context_check(s, "sky_get_cloud_shadow");
+    if (rc != SKY_OK) return rc;
+    sky_core *c = &s->core;
+    enum { N = SHADOW_TEXTURE_SIZE };
+    unsigned char grey[N * N], rgba[N * N * 4];
+    shadow_pixels(s, extent_m, N, N, grey);
+    for (int i = 0; i < N * N; i++) rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = rgba[4 * i + 3] = grey[i];
+    /* the texture: made once, then updated; the host's unit and binding
+     * and unpack state come back */
+    sky_gl_state host;
+    sky_gl_state_save(c, &host);
+    char why[160];
+    int failed = 0;
+    if (!c->textures[SKY_TEX_CLOUD_SHADOW].id)
+        failed = sky_texture_create(c, SKY_TEX_CLOUD_SHADOW, SKY_LAYER_CLOUDS, rgba, 4, N, N, 0, why, sizeof why);
+    else
+        sky_texture_update_lut(c, SKY_TEX_CLOUD_SHADOW, N, N, rgba, NULL);
+    sky_gl_state_restore(c, &host);
+    if (failed) return sky_fail(s, SKY_ERR_GL, "sky_get_cloud_shadow: %s", why);
+    memset(out, 0, sizeof *out);
+    out->texture = c->textures[SKY_TEX_CLOUD_SHADOW].id;
+    out->size = N;
+    out->height_m = (float)cloud_height(c);
+    out->extent_m = extent_m;
+    shadow_matrix(c, metres_per_unit, extent_m, out->matrix);
+    s->shadow_metres_per_unit = metres_per_unit;
+    s->shadow_extent_m = extent_m;
+    return SKY_OK;
+}
+
+const char *sky_cloud_shadow_glsl(void)
+{
+    const sky_blob *b = sky_find_blob("cloud_shadow.glsl");
+    return b ? (const char *)b->data : "";
+}
+
+sky_result sky_cloud_shadow_bind(sky *s, unsigned program, int texture_unit)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_bind: program 0");
+    sky_result rc = sky_own_context_check(s, "sky_cloud_shadow_bind");
+    if (rc != SKY_OK) return rc;
+    sky_core *c = &s->core;
+    if (!sky_gl_is_program(c, program))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_bind: %u is not a program of the current context",
+                        program);
+    int units = sky_gl_texture_units(c);
+    if (texture_unit < 0 || (units > 0 && texture_unit >= units))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_bind: texture unit %d is not 0..%d",
+                        texture_unit, units - 1);
+    sky_cloud_shadow map;
+    float mpu = s->shadow_metres_per_unit > 0.0f ? s->shadow_metres_per_unit : 1.0f;
+    float extent = s->shadow_extent_m > 0.0f ? s->shadow_extent_m : 10000.0f;
+    if ((rc = sky_get_cloud_shadow(s, mpu, extent, &map)) != SKY_OK) return rc;
+    const float *m = map.matrix;
+    const sky_gl_host_uniform u[] = {
+        {"sky_cloud_shadow_map", 0, {0}, texture_unit},
+        {"sky_cloud_shadow_s", 4, {m[0], m[4], m[8], m[12]}, 0},
+        {"sky_cloud_shadow_t", 4, {m[1], m[5], m[9], m[13]}, 0},
+    };
+    sky_gl_host_uniforms(c, program, u, (int)(sizeof u / sizeof u[0]), texture_unit, map.texture);
+    return SKY_OK;
+}
