@@ -1762,6 +1762,7 @@ static int lighting_rows(lighting_row out[PHOT_PATHS])
  * finished; medians of n. */
 typedef struct capture_cost {
     double frame_ms, all_ms, one_ms;
+    double shadow_ms; /* sky_get_cloud_shadow (64 x 64, made and uploaded) under fair weather */
 } capture_cost;
 
 static int capture_costs(int w, int h, int n, capture_cost *out)
@@ -1817,6 +1818,21 @@ static int capture_costs(int w, int h, int n, capture_cost *out)
         out->frame_ms = sky_cli_median(t[0], n);
         out->all_ms = sky_cli_median(t[1], n);
         out->one_ms = sky_cli_median(t[2], n);
+        /* the cloud shadow map a host asks for each frame: fair weather's
+         * broken clouds, the clock moving between calls */
+        sky_weather fair;
+        sky_weather_preset(SKY_WEATHER_FAIR, &fair);
+        sky_set_weather(s, &fair, 0.0);
+        sky_cloud_shadow map;
+        for (int i = 0; i < n && !rc; i++) {
+            sky_update(s, 1.0 / 60.0);
+            double t0 = sky_cli_now_ms();
+            rc |= sky_get_cloud_shadow(s, 1.0f, 10000.0f, &map) < 0;
+            sky_osmesa_finish(&ctx);
+            t[0][i] = sky_cli_now_ms() - t0;
+        }
+        if (rc) fprintf(stderr, "sky-bench: cloud shadow: %s\n", sky_last_error(s));
+        out->shadow_ms = sky_cli_median(t[0], n);
     }
     for (int k = 0; k < 3; k++) free(t[k]);
     sky_destroy(s);
@@ -1846,15 +1862,17 @@ static void print_capture(const capture_cost *c, int w, int h)
 {
     printf("\nsky_capture_environment, the noon preset, 128 x 128 faces, against a %dx%d frame (core, GPU time\n"
            "with glFinish, medians):\n\n| what | ms | x a frame |\n|---|---|---|\n| a frame | %.2f | 1.00 |\n"
-           "| six faces | %.2f | %.2f |\n| one face | %.2f | %.2f |\n",
-           w, h, c->frame_ms, c->all_ms, c->all_ms / c->frame_ms, c->one_ms, c->one_ms / c->frame_ms);
+           "| six faces | %.2f | %.2f |\n| one face | %.2f | %.2f |\n"
+           "| sky_get_cloud_shadow, 64 x 64 (fair weather) | %.3f | %.3f |\n",
+           w, h, c->frame_ms, c->all_ms, c->all_ms / c->frame_ms, c->one_ms, c->one_ms / c->frame_ms, c->shadow_ms,
+           c->shadow_ms / c->frame_ms);
 }
 
 static void print_lighting_json(const lighting_row r[PHOT_PATHS], const capture_cost *c, int w, int h)
 {
     printf(" \"capture\": {\"frame_size\":\"%dx%d\", \"frame_ms\":%.3f, \"six_faces_128_ms\":%.3f, "
-           "\"one_face_128_ms\":%.3f},\n",
-           w, h, c->frame_ms, c->all_ms, c->one_ms);
+           "\"one_face_128_ms\":%.3f, \"cloud_shadow_ms\":%.4f},\n",
+           w, h, c->frame_ms, c->all_ms, c->one_ms, c->shadow_ms);
     printf(" \"lighting\": [\n");
     for (int p = 0; p < PHOT_PATHS; p++)
         printf("  {\"path\":\"%s\", \"sh_project_us\":%.2f, \"sh_cached_us\":%.3f, \"sh_worst_error\":%.4f, "
@@ -1889,7 +1907,7 @@ static void bench_usage(FILE *out)
     fprintf(out,
             "usage: sky-bench [--json | --markdown] [--size WxH] [--frames N>=3] [--rounds 1..%d] [--reference FILE] "
             "[--only-atmosphere | --only-presets | --only-colour | --only-photometry | --only-lighting\n"
-            "       | --only-night] [--gl LIST of core,compat,es20 (default core,compat; es20 with --only-presets\n"
+            "       | --only-night | --only-weather] [--gl LIST of core,compat,es20 (default core,compat; es20 with --only-presets\n"
             "       or --only-night or --only-sharpness)] [--only-sharpness] [--presets 'ROW;ROW...' (with --only-presets: these rows, each a preset and\n"
             "       sky-render's options, in place of the table's)]\n"
             "       [--tone-map hue|filmic|neutral] [--plot FILE.png] [--plot-photometry FILE.png]\n"
@@ -2070,7 +2088,8 @@ static void md_begin(int timed)
 int main(int argc, char **argv)
 {
     int json = 0, w = 1280, h = 720, frames = 20, rounds = 5, stability = 0, paths = 1024, only_atmosphere = 0,
-        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, only_night = 0, soak = 0,
+        only_presets = 0, only_colour = 0, only_photometry = 0, only_lighting = 0, only_night = 0, only_weather = 0,
+        soak = 0,
         only_sharpness = 0;
     sky_tone_map tone_map = SKY_TONE_MAP_HUE;
     const char *make_reference = NULL, *reference = "tests/data/atmosphere_reference.txt", *plot = NULL,
@@ -2101,6 +2120,8 @@ int main(int argc, char **argv)
             only_sharpness = 1;
         else if (!strcmp(argv[i], "--only-night"))
             only_night = 1;
+        else if (!strcmp(argv[i], "--only-weather"))
+            only_weather = 1;
         else if (!strcmp(argv[i], "--soak") && i + 1 < argc && (soak = atoi(argv[i + 1])) >= 1000 && soak <= 50000)
             i++;
         else if (!strcmp(argv[i], "--tone-map") && i + 1 < argc &&
@@ -2202,7 +2223,7 @@ int main(int argc, char **argv)
         return 0;
     }
     lighting_row lighting[PHOT_PATHS];
-    capture_cost capture = {0, 0, 0};
+    capture_cost capture = {0, 0, 0, 0};
     if (only_lighting) {
         if (lighting_rows(lighting) || capture_costs(w, h, frames, &capture)) return 1;
         if (json) {
@@ -2248,7 +2269,7 @@ int main(int argc, char **argv)
         return 0;
     }
     static sky_atmo_reference ref;
-    if (!only_presets && !only_night) {
+    if (!only_presets && !only_night && !only_weather) {
         char ref_err[512];
         if (sky_atmo_reference_load(reference, &ref, ref_err, sizeof ref_err)) {
             fprintf(stderr, "sky-bench: %s\n", ref_err);
@@ -2266,14 +2287,20 @@ int main(int argc, char **argv)
                                                 "noon --dome-divisor 1", "noon --dome-divisor 2",
                                                 "noon + scene over half, sky first", "noon + scene over half, sky after",
                                                 "noon --dome-divisor 1 + scene over half, sky first",
-                                                "noon --dome-divisor 1 + scene over half, sky after",
-                                                /* the weather's states at noon, and the storm at a
-                                                 * flash (seed 0's first strike, 11.20 s) */
-                                                "noon --weather clear", "noon --weather fair", "noon --weather cirrus",
-                                                "noon --weather cloudy", "noon --weather overcast",
-                                                "noon --weather rain", "noon --weather showers",
-                                                "noon --weather storm", "noon --weather fog", "noon --weather snow",
-                                                "noon --weather storm --seconds 11.21"};
+                                                "noon --dome-divisor 1 + scene over half, sky after"};
+    /* the weather's states at noon, and the storm at a flash (seed 0's
+     * first strike, 11.20 s): a table of their own (a round holds at most
+     * MAX_SUBJECTS rows) */
+    static const char *const weather_rows[] = {"noon --weather clear", "noon --weather fair", "noon --weather cirrus",
+                                               "noon --weather cloudy", "noon --weather overcast",
+                                               "noon --weather rain", "noon --weather showers",
+                                               "noon --weather storm", "noon --weather fog", "noon --weather snow",
+                                               "noon --weather storm --seconds 11.21"};
+    enum { WEATHER_ROWS = sizeof weather_rows / sizeof weather_rows[0] };
+    static row wrows[MAX_PROFS * (WEATHER_ROWS + QUAD_KINDS - 1)];
+    double base_w[MAX_PROFS] = {0};
+    static rounds_info winfo[MAX_PROFS];
+    int nw = 0;
     enum { TABLE_PRESETS = sizeof table_presets / sizeof table_presets[0], MAX_PRESETS = 32 };
     const char *presets[MAX_PRESETS];
     char list_copy[1024];
@@ -2298,12 +2325,18 @@ int main(int argc, char **argv)
     int nrows = 0;
     for (int prof = 0; prof < pr.n; prof++) {
         sky_gl_profile gl = pr.gl[prof];
-        if (!only_atmosphere) {
+        if (!only_atmosphere && !only_weather) {
             if (bench_presets(presets, np, gl, w, h, frames, rounds, &rows[nrows], &base[prof], &pinfo[prof]))
                 return 1;
             nrows += np + QUAD_KINDS - 1;
         }
-        if (only_presets) continue;
+        if (only_weather || (!only_atmosphere && !only_presets && !only_night)) {
+            if (bench_presets(weather_rows, WEATHER_ROWS, gl, w, h, frames, rounds, &wrows[nw], &base_w[prof],
+                              &winfo[prof]))
+                return 1;
+            nw += WEATHER_ROWS + QUAD_KINDS - 1;
+        }
+        if (only_presets || only_weather) continue;
         if (!only_atmosphere && bench_night(gl, w, h, frames, night[prof])) return 1;
         if (only_night) continue;
         if (bench_atmosphere(gl, w, h, frames, rounds, &atmo[natmo], &base_atmo[prof], &ainfo[prof])) return 1;
@@ -2314,7 +2347,16 @@ int main(int argc, char **argv)
     }
     /* the sharpness section beside the preset table (not beside a list
      * of one's own) */
-    if (!only_atmosphere && !only_night && !preset_list && (nsharp = sharpness_rows(&pr, sharp)) < 0) return 1;
+    if (!only_atmosphere && !only_night && !only_weather && !preset_list && (nsharp = sharpness_rows(&pr, sharp)) < 0)
+        return 1;
+    if (only_weather) {
+        md_begin(2);
+        heading("Weather");
+        print_baseline("", w, h, frames, &pr, base_w, winfo);
+        printf("\n");
+        print_preset_table(wrows, nw);
+        return 0;
+    }
     if (only_presets && json) {
         printf("{\"size\":\"%dx%d\", \"frames\":%d, \"rounds\":%d,\n", w, h, frames, rounds);
         print_baseline_json("baseline", &pr, base, pinfo);
@@ -2416,6 +2458,10 @@ int main(int argc, char **argv)
     print_preset_table(rows, nrows);
     heading("Sharpness");
     print_sharpness_table(sharp, nsharp);
+    heading("Weather");
+    print_baseline(" in the weather's rounds", w, h, frames, &pr, base_w, winfo);
+    printf("\n");
+    print_preset_table(wrows, nw);
     heading("Night layers");
     print_night_table(&pr, night, base);
     if (md.on) { /* a section of its own, which docs/validation.md cites */
