@@ -269,6 +269,7 @@ typedef struct demo {
     int frame, status;
     double last;       /* the clock at the last frame */
     int weather;       /* the state W picked last (sky_weather_state), -1 none */
+    int weather_pending; /* W pressed: set it on the sky (once it has SKY_WEATHER) */
 } demo;
 
 static void values_from_params(float v[6], const sky_params *p)
@@ -322,11 +323,11 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
             if ((d->features & SKY_LUNAR_ECLIPSE) && !(d->features & SKY_MOON)) d->features |= SKY_MOON;
             d->recreate = 1;
         }
-    if (key == GLFW_KEY_W) { /* the next weather, a 10-second change */
+    if (key == GLFW_KEY_W) { /* the next weather, a 10-second change (a sky without the
+                                weather's shading is rebuilt with it first) */
         d->weather = d->weather + 1 >= SKY_WEATHER_COUNT ? 0 : d->weather + 1;
-        sky_weather target;
-        sky_weather_preset((sky_weather_state)d->weather, &target);
-        if (d->s) sky_set_weather(d->s, &target, 10.0);
+        d->weather_pending = 1;
+        if (!(d->features & SKY_WEATHER)) d->features |= SKY_WEATHER, d->recreate = 1;
     }
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, 1);
 }
@@ -589,6 +590,13 @@ static int demo_frame(demo *d)
     d->cli.params = params_from_values(d->values);
     sky_set_params(d->s, &d->cli.params);
     sky_update(d->s, dt);
+    if (d->weather_pending && d->weather >= 0) {
+        sky_weather target;
+        sky_weather_preset((sky_weather_state)d->weather, &target);
+        if (sky_set_weather(d->s, &target, 10.0) != SKY_OK)
+            snprintf(d->message, sizeof d->message, "%.180s", sky_last_error(d->s));
+        d->weather_pending = 0;
+    }
     if (d->weather >= 0 || d->cli.weather >= 0 || d->cli.weather_to >= 0) {
         /* a weather owns cover and density: the sliders show its */
         sky_params driven;
@@ -707,6 +715,7 @@ static int demo_start(demo *d, int argc, char **argv)
     }
     d->features = d->cli.features ? d->cli.features : (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP);
     if (d->features & SKY_FEATURES_NONE) d->features = SKY_FEATURES_NONE;
+    else if (d->cli.weather >= 0 || d->cli.weather_to >= 0) d->features |= SKY_WEATHER; /* its shading */
     d->kind = d->cli.gl == SKY_GL_ES20 ? UI_ES20 : d->cli.gl == SKY_GL_COMPAT20 ? UI_GL20 : UI_CORE33;
     d->win = open_window(d, d->kind);
     if (!d->win && d->kind != UI_GL20) {

@@ -387,7 +387,7 @@ static sky *make_sky(const sky_cli *cli, sky_get_proc_address_fn loader)
 {
     char err[512];
     sky_config cfg = sky_cli_config(cli, loader);
-    if (!cfg.features) cfg.features = SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP;
+    if (!cfg.features) cfg.features = SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_STARS | SKY_STARMAP | SKY_WEATHER;
     sky *s = sky_create(&cfg, err, sizeof err);
     if (!s) {
         fprintf(stderr, "sky-game: %s\n", err);

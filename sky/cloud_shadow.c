@@ -20,11 +20,11 @@ static double cloud_height(const sky_core *c)
     return base * pow(4.0, c->params.height - 0.5);
 }
 
-static void shadow_pixels(sky *s, double extent_m, int w, int h, unsigned char *out)
+static void shadow_pixels(sky *s, double extent_m, int w, int h, int first_row, int row_step, unsigned char *out)
 {
     const void *clouds = s->layer_state[SKY_LAYER_CLOUDS];
     if (clouds)
-        sky_clouds_shadow(&s->core, clouds, extent_m, w, h, cloud_height(&s->core), out);
+        sky_clouds_shadow(&s->core, clouds, extent_m, w, h, cloud_height(&s->core), first_row, row_step, out);
     else
         memset(out, 255, (size_t)w * (size_t)h); /* no clouds drawn, none to cast */
 }
@@ -39,7 +39,7 @@ sky_result sky_cloud_shadow_image(sky *s, float extent_m, int w, int h, unsigned
     if (!(extent_m >= 10.0f && extent_m <= 1e6f))
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_image: extent %g m is not 10..1e6",
                         (double)extent_m);
-    shadow_pixels(s, extent_m, w, h, out);
+    shadow_pixels(s, extent_m, w, h, 0, 1, out);
     return SKY_OK;
 }
 
@@ -75,10 +75,28 @@ sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, s
     sky_result rc = sky_own_context_check(s, "sky_get_cloud_shadow");
     if (rc != SKY_OK) return rc;
     sky_core *c = &s->core;
-    enum { N = SHADOW_TEXTURE_SIZE };
-    unsigned char grey[N * N], rgba[N * N * 4];
-    shadow_pixels(s, extent_m, N, N, grey);
-    for (int i = 0; i < N * N; i++) rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = rgba[4 * i + 3] = grey[i];
+    enum { N = SHADOW_TEXTURE_SIZE, QUARTERS = 4 };
+    _Static_assert(sizeof s->shadow_map == N * N, "the cached map is the texture's size");
+    /* Spread over frames: each call refreshes a quarter of the rows (the
+     * clouds drift some metres a frame, a texel is 150 m), all of them
+     * when what the map depends on beyond the drift changed: the sun, the
+     * sliders, the deck, the extent, or a clock set elsewhere. */
+    const sky_frame *f = &c->frame;
+    const float key[8] = {f->sun_dir[0], f->sun_dir[1], f->sun_dir[2], f->cover, f->density + 2.0f * f->deck,
+                          f->upper_cover, extent_m, (float)cloud_height(c)};
+    /* (the sun by a tenth of a degree or more: its slow motion under a
+     * running time slider moves a shadow a few metres a frame) */
+    int full = !c->textures[SKY_TEX_CLOUD_SHADOW].id || memcmp(key + 3, s->shadow_key + 3, 5 * sizeof *key) != 0;
+    for (int i = 0; i < 3 && !full; i++) full = fabsf(key[i] - s->shadow_key[i]) > 0.0017f;
+    if (full)
+        shadow_pixels(s, extent_m, N, N, 0, 1, s->shadow_map);
+    else
+        shadow_pixels(s, extent_m, N, N, s->shadow_phase, QUARTERS, s->shadow_map);
+    s->shadow_phase = (s->shadow_phase + 1) % QUARTERS;
+    if (full) memcpy(s->shadow_key, key, sizeof key);
+    unsigned char rgba[N * N * 4];
+    for (int i = 0; i < N * N; i++)
+        rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = rgba[4 * i + 3] = s->shadow_map[i];
     /* the texture: made once, then updated; the host's unit and binding
      * and unpack state come back */
     sky_gl_state host;

@@ -291,7 +291,7 @@ static double sample_at(const clouds_state *st, double u, double v, int c)
 }
 
 void sky_clouds_shadow(const sky_core *s, const void *state, double extent_m, int w, int h, double height_m,
-                       unsigned char *out)
+                       int first_row, int row_step, unsigned char *out)
 {
     const clouds_state *st = state;
     const sky_frame *f = &s->frame;
@@ -299,7 +299,7 @@ void sky_clouds_shadow(const sky_core *s, const void *state, double extent_m, in
     /* no sun, or one too low to throw the layer's shadow near: its beam
      * (sun_color) is nothing or nearly; the map stays lit */
     if (sy < sin(2.0 * SKY_PI / 180.0) || !(f->cover > 0.0f)) {
-        memset(out, 255, (size_t)w * (size_t)h);
+        for (int j = first_row; j < h; j += row_step) memset(out + (size_t)j * (size_t)w, 255, (size_t)w);
         return;
     }
     /* a ground point's cloud: up the sun's ray to the layer's height */
@@ -307,7 +307,7 @@ void sky_clouds_shadow(const sky_core *s, const void *state, double extent_m, in
     /* clouds.glsl's plane point of a flat layer: its horizontal position
      * over its height, times the height slider's scale */
     double per_m = f->cloud_uv_scale / height_m, side = extent_m / (w > h ? w : h);
-    for (int j = 0; j < h; j++)
+    for (int j = first_row; j < h; j += row_step)
         for (int i = 0; i < w; i++) {
             double px = ((i + 0.5 - 0.5 * w) * side + ox) * per_m, py = ((j + 0.5 - 0.5 * h) * side + oz) * per_m;
             /* clouds.glsl's sky_cloud_layers and sky_cloud_upper */

@@ -106,9 +106,10 @@ extern const double sky_cloud_velocity[SKY_CLOUD_LAYERS][2];
 const double *sky_clouds_offsets(const void *clouds_state);
 /* The clouds' shadow on the ground (sky.h, "Cloud shadows"): w x h bytes,
  * rows north to south, over extent_m along the longer side around the
- * observer, the layer at height_m; 255 = full sun. */
+ * observer, the layer at height_m; 255 = full sun. Only the rows
+ * first_row, first_row + row_step, ... are written (1 and 0: all). */
 void sky_clouds_shadow(const sky_core *s, const void *clouds_state, double extent_m, int w, int h, double height_m,
-                       unsigned char *out);
+                       int first_row, int row_step, unsigned char *out);
 /* clouds.c: the clouds as the host's ambient sees them in direction d
  * (horizon frame, unit): their mean opacity over the drifting texture
  * (frame.cloud_mean, faded into the horizon as the dome fades them) and

@@ -190,20 +190,25 @@ typedef enum sky_feature {
                                     points like the catalogue stars        */
     SKY_AIRGLOW       = 1u << 9, /* the upper atmosphere's own faint light:
                                     most of a moonless night's sky       */
-    SKY_ZODIACAL      = 1u << 10 /* sunlight scattered by interplanetary
+    SKY_ZODIACAL      = 1u << 10, /* sunlight scattered by interplanetary
                                     dust (Leinert et al. 1998): the false
                                     dawn, the gegenschein                */
+    SKY_WEATHER       = 1u << 11 /* the weather's shading in the clouds'
+                                    shaders: the deck, the haze, lightning's
+                                    flash (sky_set_weather needs it; it
+                                    draws through SKY_CLOUDS). Since 0.6.0 */
 } sky_feature;
 /* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
  * to fit an int. */
 #define SKY_FEATURES_NONE 0x80000000u
 
-#define SKY_FEATURES_DEFAULT (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE | SKY_AIRGLOW)
+#define SKY_FEATURES_DEFAULT \
+    (SKY_CLOUDS | SKY_SUN | SKY_FLICKER_STARS | SKY_SOLAR_ECLIPSE | SKY_AIRGLOW | SKY_WEATHER)
 /* The features this build can render; asking for others is
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
-     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL)
+     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
@@ -1038,8 +1043,10 @@ SKY_API int sky_weather_from_name(const char *name);
  * darker than the day around it.
  * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), target NULL, a
  * field NaN, precipitation_kind unknown, or seconds NaN, infinite or
- * negative: nothing changes. SKY_CLAMPED: a field outside its range (the
- * message names it) was set to the nearest end.
+ * negative: nothing changes. SKY_ERR_UNSUPPORTED for a sky created
+ * without SKY_WEATHER (its shaders lack the weather's shading): nothing
+ * changes. SKY_CLAMPED: a field outside its range (the message names it)
+ * was set to the nearest end.
  * Thread safety: the sky's thread.
  * GL: none.
  * Since: 0.6.0 */
@@ -1120,8 +1127,10 @@ SKY_API sky_result sky_cloud_shadow_image(sky *s, float extent_m, int w, int h, 
 /* sky_get_cloud_shadow: the map as a texture of the sky's (64 x 64) over
  * extent_m around the observer, made or updated now, and the matrix from
  * the host's positions, given metres_per_unit (the host's unit in
- * metres). The texture's contents are this frame's: call it again after
- * sky_update.
+ * metres). Call it once a frame, after sky_update: the cost is spread, a
+ * quarter of the rows refreshed each call (the clouds drift a few metres a
+ * frame against a texel's 150 m at the default extent), all of them when
+ * the sun, the sliders, the weather's deck or the extent changed.
  * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message), out NULL,
  * metres_per_unit not in 1e-6..1e6, extent_m not in 10..1e6. SKY_ERR_GL
  * for a context that is not the sky's, or a texture that cannot be made.

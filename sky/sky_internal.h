@@ -36,6 +36,10 @@ struct sky {
                                              sky_aerial_bind's                */
     float shadow_metres_per_unit,         /* the last sky_get_cloud_shadow's  */
         shadow_extent_m;                  /* (cloud_shadow.c)                 */
+    unsigned char shadow_map[64 * 64];    /* its texture's texels, rows refreshed
+                                             a quarter at a time             */
+    float shadow_key[8];                  /* what a full refresh follows      */
+    int shadow_phase;                     /* the quarter refreshed next       */
 };
 
 /* layers.c: the layer table, back to front, and a row's stats index (its

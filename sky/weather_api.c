@@ -26,6 +26,10 @@ sky_result sky_set_weather(sky *s, const sky_weather *target, double seconds)
 {
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     if (!target) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_weather: target is NULL");
+    if (!(s->core.features & SKY_WEATHER))
+        return sky_fail(s, SKY_ERR_UNSUPPORTED,
+                        "sky_set_weather: the sky was created without SKY_WEATHER (its shaders lack the weather's "
+                        "deck, haze and flash)");
     if (!isfinite(seconds) || seconds < 0.0)
         return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_weather: seconds = %g must be finite and >= 0", seconds);
     sky_weather to;

@@ -93,6 +93,15 @@ TEST(weather_set_rejects_and_clamps)
           after.wind_speed_ms, moving);
     CHECK(sky_get_weather(f.s, NULL, NULL) == SKY_ERR_INVALID_ARGUMENT, "NULL out");
     fixture_close(&f);
+    /* a sky made without the weather's shading says so */
+    sky_config plain;
+    memset(&plain, 0, sizeof plain);
+    plain.features = SKY_CLOUDS | SKY_SUN;
+    if (fixture_open(&f, SKY_GL_AUTO, &plain) == 0) {
+        CHECK(sky_set_weather(f.s, &storm, 0.0) == SKY_ERR_UNSUPPORTED && strstr(sky_last_error(f.s), "SKY_WEATHER"),
+              "without SKY_WEATHER: %s", sky_last_error(f.s));
+        fixture_close(&f);
+    }
 }
 
 /* Once set, the weather owns cover and density; sky_set_params keeps the
@@ -252,7 +261,7 @@ static int noon_shot(const sky_weather *w, double pitch, shot *out)
     for (int hdr = 0; hdr < 2; hdr++) {
         sky_config cfg;
         memset(&cfg, 0, sizeof cfg);
-        cfg.features = SKY_CLOUDS | SKY_SUN;
+        cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
         cfg.output = hdr ? SKY_OUTPUT_HDR : SKY_OUTPUT_LDR;
         fixture f;
         if (fixture_open_sized(&f, W, H, hdr, SKY_GL_AUTO, &cfg)) return -1;
@@ -399,7 +408,7 @@ SLOW_TEST(weather_transition_free_of_jumps)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_CLOUDS | SKY_SUN;
+    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
     fixture f;
     if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
         CHECK(0, "no sky");
@@ -539,7 +548,7 @@ TEST(weather_lightning_flashes)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_CLOUDS | SKY_SUN;
+    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
     cfg.seed = 7;
     fixture f;
     if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
@@ -711,7 +720,7 @@ static void cloud_shadow_host(sky_gl_profile profile)
     fixture f;
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_CLOUDS | SKY_SUN;
+    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
     if (fixture_open_sized(&f, 16, 16, 1, profile, &cfg)) {
         CHECK(0, "no sky");
         return;

@@ -127,6 +127,31 @@ night="--size 320x180 --cover 0 --features clouds,sun,flicker,solar-eclipse,airg
 $r $night --date 2024-01-26T00:00:00Z --lat 45 --lon 0 --yaw 0 --out "$frames/fullmoon.png"
 $r $night --date 2024-01-11T22:00:00Z --lat 45 --lon 10 --yaw 180 --out "$frames/moonless.png"
 $crop 0,0,320,180 1 $out/dusk/nights.png "$frames/fullmoon.png" "$frames/moonless.png"
+# the weather (issue: Weather): each state at noon looking south, 160x90;
+# a change from fair to storm over 20 s, every 4 s; a night storm before
+# and during a flash (seed 0's first strike, at 11.20 s); the cloud
+# shadows on 10 km of ground at cover 0.3, 0.5 and 0.7 (north up)
+mkdir -p $out/weather
+wx="--size 320x180 --time 0.5 --pitch 15"
+strip=""
+for w in clear fair cirrus cloudy overcast; do $r $wx --weather $w --out "$frames/wx-$w.png"; strip="$strip $frames/wx-$w.png"; done
+$crop 0,0,320,180 1 $out/weather/states-1.png $strip
+strip=""
+for w in rain showers storm fog snow; do $r $wx --weather $w --out "$frames/wx-$w.png"; strip="$strip $frames/wx-$w.png"; done
+$crop 0,0,320,180 1 $out/weather/states-2.png $strip
+strip=""
+for t in 0 4 8 12 16 20; do
+    $r --size 240x135 --time 0.5 --pitch 15 --weather fair --weather-to storm --weather-seconds 20 --seconds $t --out "$frames/change-$t.png"
+    strip="$strip $frames/change-$t.png"
+done
+$crop 0,0,240,135 1 $out/weather/change.png $strip
+for t in 11.0 11.21; do
+    $r --size 320x180 --weather storm --time 0.95 --yaw 133 --pitch 10 --seconds $t --out "$frames/flash-$t.png"
+done
+$crop 0,0,320,180 1 $out/weather/flash.png "$frames/flash-11.0.png" "$frames/flash-11.21.png"
+for c in 0.3 0.5 0.7; do $r --size 180x180 --time 0.5 --cover $c --out-shadow "$frames/shadow-$c.png"; done
+$crop 0,0,180,180 1 $out/weather/shadows.png "$frames/shadow-0.3.png" "$frames/shadow-0.5.png" "$frames/shadow-0.7.png"
+$r --size 640x360 --time 0.5 --pitch 15 --weather showers --out $out/weather.png
 rm -r "$frames"
 x=""
 [ -n "${DISPLAY:-}" ] || x="xvfb-run -a -s '-screen 0 1280x720x24'"
@@ -136,6 +161,7 @@ eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-noon
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-dusk.png --time 0.74 --sunset 0.8 >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night.png --preset moonlit >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night-moonless.png --preset starry >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 1 --screenshot $out/game-storm.png --time 0.5 --weather storm >/dev/null
 # the engine examples (make examples builds them): 7:12 in the morning,
 # looking south
 if [ -x build/examples/sky-sdl2 ] && [ -x build/examples/sky-osg ] && [ -x build/examples/sky-irrlicht ]; then

@@ -188,7 +188,7 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     const char **parts = malloc(sizeof *parts * (size_t)(6 + snippet_count));
     /* the tone map (display.glsl), then the snippets' defines */
     static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
-    size_t defines_size = 96;
+    size_t defines_size = 128;
     char *glows = NULL; /* sky_night_glows, if any snippet is a glow */
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define) defines_size += strlen(snippets[i]->define) + 16;
@@ -199,6 +199,8 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
         goto fail;
     }
     size_t used = (size_t)snprintf(defines, defines_size, "%s", tone_maps[s->cfg.tone_map]);
+    /* the weather's shading, only in a sky that asked for it (its cost) */
+    if (s->features & SKY_WEATHER) used += (size_t)snprintf(defines + used, defines_size - used, "#define SKY_HAS_WEATHER 1\n");
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define)
             used += (size_t)snprintf(defines + used, defines_size - used, "#define %s 1\n", snippets[i]->define);

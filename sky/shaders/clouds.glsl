@@ -58,20 +58,38 @@ float sky_cloud_from_sun(vec3 d) { return clamp(0.5 - 0.5 * dot(d, u_sun_dir), 0
 
 /* The clouds' fade into the horizon (haze hides them there); a weather's
  * deck reaches down to it. */
-float sky_cloud_horizon_fade(float y) { return mix(smoothstep(0.0, 0.06, y), smoothstep(0.0, 0.008, y), u_deck); }
+float sky_cloud_horizon_fade(float y)
+{
+    float fade = smoothstep(0.0, 0.06, y);
+#ifdef SKY_HAS_WEATHER
+    fade = mix(fade, smoothstep(0.0, 0.008, y), u_deck);
+#endif
+    return fade;
+}
 
 /* A weather's haze (weather.c): the share of what lies beyond it that the
  * haze in front replaces, 1 - exp(-tau), tau its optical depth along d
  * through a flat layer (below the horizon, toward the ground). 0 without
  * a weather. */
-float sky_weather_haze(vec3 d) { return 1.0 - exp(-u_haze.x / max(abs(d.y), u_haze.y)); }
+float sky_weather_haze(vec3 d)
+{
+#ifdef SKY_HAS_WEATHER
+    return 1.0 - exp(-u_haze.x / max(abs(d.y), u_haze.y));
+#else
+    return 0.0;
+#endif
+}
 
 /* Lightning lights the deck from inside: a patch around the flash, a tenth
  * of it everywhere (the light spreads through the cloud). 0 between
  * flashes and without a weather. */
 vec3 sky_cloud_flash(vec3 d, float grey)
 {
+#ifdef SKY_HAS_WEATHER
     return u_flash_light * (grey * (0.1 + 0.9 * exp(u_flash_dir.w * (dot(d, u_flash_dir.xyz) - 1.0))));
+#else
+    return vec3(0.0);
+#endif
 }
 
 /* Lines 26-28: the sunset tint and the light, kcd/m^2. */
@@ -116,8 +134,10 @@ vec2 sky_cloud_grey(vec4 first, float noise, float upper)
     a = clamp(a, 0.0, 1.0);
     /* beyond the paper: a weather's deck closes the gaps and flattens the
      * base's contrast (0 leaves R-P's clouds exactly) */
+#ifdef SKY_HAS_WEATHER /* (the weather's code only in a sky with SKY_WEATHER: its cost) */
     g = mix(g, 0.55 + 0.45 * g, u_deck);
     a = mix(a, 1.0, u_deck);
+#endif
     /* sec. 3.2: a thin, streaky upper layer added on top */
     float thin = clamp((upper - 0.55) * 2.5, 0.0, 1.0) * 0.35 * u_upper_cover * (1.0 - a);
     return vec2(g + thin * (1.0 - g), a + thin);
@@ -130,8 +150,12 @@ vec2 sky_cloud_grey(vec4 first, float noise, float upper)
 float sky_cloud_footprint_fade(vec2 fw)
 {
     float footprint = max(fw.x, fw.y) * u_cloud_texels_per_step;
+    float fade = 1.0 - 0.8 * smoothstep(2.0, 10.0, footprint);
+#ifdef SKY_HAS_WEATHER
     /* (a weather's deck, its contrast flattened, stays whole: no gaps) */
-    return mix(1.0 - 0.8 * smoothstep(2.0, 10.0, footprint), 1.0, u_deck);
+    fade = mix(fade, 1.0, u_deck);
+#endif
+    return fade;
 }
 
 #ifdef SKY_NO_DERIVATIVES

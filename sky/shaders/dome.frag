@@ -68,9 +68,11 @@ void main()
     cover = c.a;
     /* a weather's haze in front of sky, clouds and ground alike, its light
      * the horizon's (clouds.glsl; 0 without a weather) */
+#ifdef SKY_HAS_WEATHER
     float haze = sky_weather_haze(d);
     L = mix(L, u_horizon, haze);
     cover += (1.0 - cover) * haze;
+#endif
 #endif
 #ifdef SKY_DOME_INTO_IMAGE
     /* the image keeps the clouds' alpha for what is drawn over it */
