@@ -340,18 +340,29 @@ void sky_clouds_mean_at(const sky_core *s, const double d[3], double *alpha, dou
     const sky_frame *f = &s->frame;
     *alpha = 0.0;
     rgb[0] = rgb[1] = rgb[2] = 0.0;
-    if (!(f->cloud_mean[0] > 0.0f) || d[1] <= 0.0) return;
-    /* sky_clouds_vertex: the fade into the horizon, the sunset amount by
-     * the angle from the sun; sky_cloud_colour */
-    double fade = sky_smoothstep(0.0, 0.06, d[1]);
-    *alpha = f->cloud_mean[0] * (fade + (sky_smoothstep(0.0, 0.008, d[1]) - fade) * f->deck);
-    double from_sun = sky_clampd(0.5 - 0.5 * (d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2]),
-                                 0.01, 0.99) * (SKY_SUNSET_SAMPLES - 1);
-    int i = (int)fmin(floor(from_sun), SKY_SUNSET_SAMPLES - 2);
-    double sunset = (f->sunset_gradient[i] + (f->sunset_gradient[i + 1] - f->sunset_gradient[i]) * (from_sun - i)) *
-                    f->sunset;
-    double grey = f->cloud_mean[1] / f->cloud_mean[0];
-    for (int c = 0; c < 3; c++) rgb[c] = (grey * (1.0 - sunset) + f->sunset_color[c] * sunset) * f->cloud_light[c];
+    if (d[1] <= 0.0) return;
+    if (f->cloud_mean[0] > 0.0f) {
+        /* sky_clouds_vertex: the fade into the horizon, the sunset amount
+         * by the angle from the sun; sky_cloud_colour */
+        double fade = sky_smoothstep(0.0, 0.06, d[1]);
+        *alpha = f->cloud_mean[0] * (fade + (sky_smoothstep(0.0, 0.008, d[1]) - fade) * f->deck);
+        double from_sun =
+            sky_clampd(0.5 - 0.5 * (d[0] * f->sun_dir[0] + d[1] * f->sun_dir[1] + d[2] * f->sun_dir[2]), 0.01, 0.99) *
+            (SKY_SUNSET_SAMPLES - 1);
+        int i = (int)fmin(floor(from_sun), SKY_SUNSET_SAMPLES - 2);
+        double sunset =
+            (f->sunset_gradient[i] + (f->sunset_gradient[i + 1] - f->sunset_gradient[i]) * (from_sun - i)) * f->sunset;
+        double grey = f->cloud_mean[1] / f->cloud_mean[0];
+        for (int c = 0; c < 3; c++) rgb[c] = (grey * (1.0 - sunset) + f->sunset_color[c] * sunset) * f->cloud_light[c];
+    }
+    /* a weather's haze in front (clouds.glsl's sky_weather_haze, in the
+     * horizon's light): folded into one colour and cover, so that mixing
+     * the sky with them gives the sky, the clouds, then the haze */
+    if (f->haze[0] > 0.0f) {
+        double h = 1.0 - exp(-f->haze[0] / fmax(d[1], f->haze[1])), a = *alpha, cover = a + (1.0 - a) * h;
+        for (int c = 0; c < 3; c++) rgb[c] = cover > 0.0 ? (rgb[c] * a * (1.0 - h) + f->fog_rgb[c] * h) / cover : 0.0;
+        *alpha = cover;
+    }
 }
 
 /* At cover 0 Roden-Parberry's line 15 makes every cloud texel vanish: the

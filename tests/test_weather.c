@@ -237,11 +237,21 @@ TEST(weather_wind_drives_the_drift)
 
 enum { W = 192, H = 108 };
 
+/* The mean display luminance of a W x H RGBA8 frame (Rec. 709 weights on
+ * the 8-bit values), 0..255. */
+static double frame_mean(const unsigned char *px)
+{
+    double sum = 0.0;
+    for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+    return sum / (W * H);
+}
+
 typedef struct shot {
     double mean_display; /* 8-bit: Rec. 709 luminance of the sRGB values / 255 */
     double hdr_sky;      /* HDR: the mean luminance above the horizon, kcd/m^2 */
     double hdr_max, hdr_median;
     int blue;            /* pixels above the horizon bluer than grey       */
+    double saturation;   /* 8-bit: mean (max - min) / max above the horizon */
     double above[3], below[3]; /* 8-bit: mean colour (0..255) of the rows
                                   2-8 above and below the horizon's     */
     sky_lighting light;
@@ -253,9 +263,9 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The weather at noon, seen as sky-render's camera sees it (south, 20
- * degrees up, or the given pitch), in 8 bits and in HDR. */
-static int noon_shot(const sky_weather *w, double pitch, shot *out)
+/* The weather at time of day `time` (the time slider), seen from yaw and
+ * pitch, in 8 bits and in HDR. */
+static int shot_at(const sky_weather *w, float time, double yaw, double pitch, shot *out)
 {
     memset(out, 0, sizeof *out);
     for (int hdr = 0; hdr < 2; hdr++) {
@@ -266,29 +276,33 @@ static int noon_shot(const sky_weather *w, double pitch, shot *out)
         fixture f;
         if (fixture_open_sized(&f, W, H, hdr, SKY_GL_AUTO, &cfg)) return -1;
         sky_params p = sky_default_params();
-        p.time = 0.5f;
+        p.time = time;
         sky_set_params(f.s, &p);
         if (w) sky_set_weather(f.s, w, 0.0);
         sky_set_elapsed(f.s, 3.0);
         float view[16], proj[16];
-        sky_cli_camera_at(180.0, pitch, 60.0, W, H, view, proj);
+        sky_cli_camera_at(yaw, pitch, 60.0, W, H, view, proj);
         sky_draw(f.s, view, proj);
         sky_osmesa_finish(&f.ctx);
         scene sc = scene_default();
-        sc.w = W, sc.h = H, sc.pitch = pitch;
+        sc.w = W, sc.h = H, sc.pitch = pitch, sc.yaw = yaw;
         double hx, hy;
-        int horizon = scene_project(&sc, 0.0, 180.0, &hx, &hy) == 0 ? (int)hy - 2 : H; /* rows above it */
+        int horizon = scene_project(&sc, 0.0, yaw, &hx, &hy) == 0 ? (int)hy - 2 : H; /* rows above it */
         if (horizon > H) horizon = H;
         if (!hdr) {
             const unsigned char *px = f.ctx.pixels;
-            double sum = 0.0;
-            for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
-            out->mean_display = sum / (255.0 * W * H);
+            out->mean_display = frame_mean(px) / 255.0;
+            int n = 0;
             for (int y = 0; y < horizon; y++) /* rows bottom first: image row H-1-y */
                 for (int x = 0; x < W; x++) {
                     const unsigned char *q = px + 4 * ((H - 1 - y) * W + x);
                     out->blue += q[2] > q[0] + 24;
+                    int hi = q[0] > q[1] ? (q[0] > q[2] ? q[0] : q[2]) : (q[1] > q[2] ? q[1] : q[2]);
+                    int lo = q[0] < q[1] ? (q[0] < q[2] ? q[0] : q[2]) : (q[1] < q[2] ? q[1] : q[2]);
+                    out->saturation += hi ? (double)(hi - lo) / hi : 0.0;
+                    n++;
                 }
+            if (n) out->saturation /= n;
             sky_get_lighting(f.s, &out->light);
             double band[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
             int rows[2] = {0, 0};
@@ -325,6 +339,10 @@ static int noon_shot(const sky_weather *w, double pitch, shot *out)
     }
     return 0;
 }
+
+/* At noon (the sun at 50 degrees on the default date and place), looking
+ * south as sky-render's camera does. */
+static int noon_shot(const sky_weather *w, double pitch, shot *out) { return shot_at(w, 0.5f, 180.0, pitch, out); }
 
 TEST(weather_overcast_and_storm_at_noon)
 {
@@ -372,9 +390,29 @@ TEST(weather_rain_and_snow_light)
           "rain dimmer than overcast (%.3f < %.3f)", r.mean_display, o.mean_display);
     CHECK(sn.mean_display > r.mean_display, "snow's light brighter than rain's (%.3f > %.3f)", sn.mean_display,
           r.mean_display);
+    /* greyer: the sky's colour nearer grey under rain than under overcast */
+    NOTE("saturation above the horizon: overcast %.3f, rain %.3f", o.saturation, r.saturation);
+    CHECK(r.saturation < o.saturation, "rain greyer than overcast (%.3f < %.3f)", r.saturation, o.saturation);
     double beam = luma(sn.light.sun_color) * sin(50.0 * 3.14159265358979 / 180.0), ambient = luma(sn.light.ambient_color);
     NOTE("snow: beam on the level %.2f klx, ambient %.2f klx", beam, ambient);
     CHECK(beam < ambient, "snow: the shadows soft (beam %.2f < ambient %.2f klx)", beam, ambient);
+}
+
+/* The weather's light goes through the day's end's exposure as the clear
+ * sky's does: a storm at dusk (the sun 4 degrees up, looking at it) shows
+ * darker than the clear dusk, never re-brightened. */
+TEST(weather_storm_at_dusk_stays_dark)
+{
+    sky_weather clear = preset(SKY_WEATHER_CLEAR), storm = preset(SKY_WEATHER_STORM);
+    shot c, s;
+    if (shot_at(&clear, 0.73631f, 267.0, 10.0, &c) || shot_at(&storm, 0.73631f, 267.0, 10.0, &s)) {
+        CHECK(0, "the shots rendered");
+        return;
+    }
+    NOTE("dusk: storm's 8-bit mean %.3f against clear's %.3f; HDR sky %.3f of clear's", s.mean_display,
+         c.mean_display, s.hdr_sky / c.hdr_sky);
+    CHECK(s.mean_display <= 0.75 * c.mean_display && s.hdr_sky <= 0.2 * c.hdr_sky,
+          "a storm at dusk darker than the clear dusk (%.3f against %.3f)", s.mean_display, c.mean_display);
 }
 
 /* Fog closes the range below a kilometre and swallows the horizon: the
@@ -428,10 +466,7 @@ SLOW_TEST(weather_transition_free_of_jumps)
         sky_set_elapsed(f.s, k / 30.0);
         sky_draw(f.s, view, proj);
         sky_osmesa_finish(&f.ctx);
-        const unsigned char *px = f.ctx.pixels;
-        double sum = 0.0;
-        for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
-        double mean = sum / (W * H);
+        double mean = frame_mean(f.ctx.pixels);
         if (prev >= 0.0 && fabs(mean - prev) > worst) worst = fabs(mean - prev), worst_at = k;
         if (!k) first = mean;
         last = mean;
@@ -581,10 +616,7 @@ TEST(weather_lightning_flashes)
         sky_set_elapsed(f.s, s[k].time + after[j]);
         sky_draw(f.s, view, proj);
         sky_osmesa_finish(&f.ctx);
-        const unsigned char *px = f.ctx.pixels;
-        double sum = 0.0;
-        for (int i = 0; i < W * H; i++) sum += 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
-        mean[j] = sum / (W * H);
+        mean[j] = frame_mean(f.ctx.pixels);
         sky_get_lighting(f.s, &l[j]);
         klx[j] = luma(l[j].flash_color);
     }
@@ -782,3 +814,75 @@ static void cloud_shadow_host(sky_gl_profile profile)
 
 TEST(weather_cloud_shadow_for_the_host_core) { cloud_shadow_host(SKY_GL_CORE33); }
 TEST(weather_cloud_shadow_for_the_host_compat) { cloud_shadow_host(SKY_GL_COMPAT20); }
+
+/* sky_get_cloud_shadow spreads its work: after the clouds drift, each call
+ * refreshes a quarter of the texture's rows, and four calls leave it as
+ * sky_cloud_shadow_image computes it whole. */
+TEST(weather_cloud_shadow_texture_catches_up)
+{
+    fixture f;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
+    if (fixture_open_sized(&f, 16, 16, 0, SKY_GL_COMPAT20, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.time = 0.5f;
+    p.cover = 0.6f;
+    p.speed = 1.0f;
+    sky_set_params(f.s, &p);
+    sky_cloud_shadow map;
+    sky_get_cloud_shadow(f.s, 1.0f, 8000.0f, &map);
+    sky_update(f.s, 20.0); /* the clouds a few texels on */
+    static unsigned char want[64 * 64], got[64 * 64 * 4];
+    sky_cloud_shadow_image(f.s, 8000.0f, 64, 64, want);
+    int differ[4];
+    for (int call = 0; call < 4; call++) {
+        sky_get_cloud_shadow(f.s, 1.0f, 8000.0f, &map);
+        glBindTexture(GL_TEXTURE_2D, map.texture);
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, got);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        differ[call] = 0;
+        for (int i = 0; i < 64 * 64; i++) differ[call] += got[4 * i] != want[i];
+    }
+    NOTE("texels still stale after 1..4 calls: %d %d %d %d", differ[0], differ[1], differ[2], differ[3]);
+    CHECK(differ[0] > 0 && differ[1] < differ[0] && differ[2] < differ[1] && differ[3] == 0,
+          "a quarter of the rows a call, all after four (%d %d %d %d)", differ[0], differ[1], differ[2], differ[3]);
+    fixture_close(&f);
+}
+
+/* The host's ambient light from the sky (sky_get_irradiance_sh) sees the
+ * weather's deck and haze: under fog its colour is the fog's grey, where
+ * the clear sky's is blue. */
+TEST(weather_in_the_irradiance)
+{
+    double ratio[2], fog_ratio = 0.0;
+    static const sky_weather_state states[2] = {SKY_WEATHER_CLEAR, SKY_WEATHER_FOG};
+    for (int k = 0; k < 2; k++) {
+        fixture f;
+        if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
+            CHECK(0, "no sky");
+            return;
+        }
+        sky_params p = sky_default_params();
+        p.time = 0.5f;
+        sky_set_params(f.s, &p);
+        sky_weather w = preset(states[k]);
+        sky_set_weather(f.s, &w, 0.0);
+        sky_irradiance_sh sh;
+        float up[3] = {0.0f, 1.0f, 0.0f}, e[3];
+        sky_get_irradiance_sh(f.s, &sh);
+        sky_irradiance_sh_eval(&sh, up, e);
+        ratio[k] = e[2] / e[0];
+        sky_lighting l;
+        sky_get_lighting(f.s, &l);
+        if (k) fog_ratio = l.fog_color[2] / l.fog_color[0];
+        fixture_close(&f);
+    }
+    NOTE("the sky's irradiance from above, blue over red: clear %.3f, fog %.3f (the fog's colour %.3f)", ratio[0],
+         ratio[1], fog_ratio);
+    CHECK(ratio[0] > 1.3 && fabs(ratio[1] / fog_ratio - 1.0) < 0.1,
+          "clear's irradiance blue, fog's the fog's grey (%.3f, %.3f against %.3f)", ratio[0], ratio[1], fog_ratio);
+}
