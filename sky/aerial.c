@@ -82,25 +82,32 @@ static void scale_from(const sky_core *s, const double drawn[3], const double ma
  * ray's end into the frame's units: the drawn sky's scale, the rest along
  * the optical depth. */
 static void finish(const sky_core *s, const double scale[3], const double rest[3], const double marched[3],
-                   const double tr[3], const double end_tr[3], double km, double inscatter[3], double transmittance[3])
+                   const double tr[3], const double end_tr[3], double inscatter[3], double transmittance[3])
 {
     for (int c = 0; c < 3; c++) {
         double share = end_tr[c] < 1.0 ? sky_clampd((1.0 - tr[c]) / (1.0 - end_tr[c]), 0.0, 1.0) : 0.0;
         inscatter[c] = scale[c] * marched[c] * s->sun_irradiance_klx[c] + rest[c] * share;
         transmittance[c] = sky_clampd(tr[c], 0.0, 1.0);
     }
-    /* a weather (weather.c): under its deck the air's light dims as the
-     * sky's does, and its haze (Koschmieder's extinction beyond the clear
-     * sky's) hides what lies beyond in the horizon's light; nothing
-     * changes without one */
-    const sky_frame *f = &s->frame;
-    double dim = 1.0 - f->deck_opacity * (1.0 - f->light_through), haze = exp(-f->haze_beta * km * 1000.0);
-    if (dim < 1.0 || haze < 1.0)
-        for (int c = 0; c < 3; c++) {
-            inscatter[c] = inscatter[c] * dim * haze + f->fog_rgb[c] * (1.0 - haze);
-            transmittance[c] *= haze;
-        }
 }
+
+/* A weather over the air's own light (weather.c), as aerial.glsl applies
+ * it after the table (so that a change of weather remakes no table): under
+ * its deck the air's light dims as the sky's does, and its haze
+ * (Koschmieder's extinction beyond the clear sky's) hides what lies beyond
+ * in the horizon's light. Nothing changes without one. */
+void sky_aerial_weather(const sky_core *s, double km, double inscatter[3], double transmittance[3])
+{
+    const sky_frame *f = &s->frame;
+    double dim = sky_aerial_deck_dim(s), haze = exp(-f->haze_beta * km * 1000.0);
+    if (dim >= 1.0 && haze >= 1.0) return;
+    for (int c = 0; c < 3; c++) {
+        inscatter[c] = inscatter[c] * dim * haze + f->fog_rgb[c] * (1.0 - haze);
+        transmittance[c] *= haze;
+    }
+}
+
+double sky_aerial_deck_dim(const sky_core *s) { return 1.0 - s->frame.deck_opacity * (1.0 - s->frame.light_through); }
 
 /* A view below the horizon taken as level at its azimuth (straight
  * down: the sun's). */
@@ -131,7 +138,8 @@ int sky_aerial_eval(const sky_core *s, sky_aerial_state *a, const double d[3], d
     sky_hillaire_segment(t, alt, v, sun, HUGE_VAL, end, end_tr);
     sky_atmosphere_radiance(s, v, drawn);
     scale_from(s, drawn, end, scale, rest);
-    finish(s, scale, rest, marched, tr, end_tr, isfinite(km) ? km : 1e4, inscatter, transmittance);
+    finish(s, scale, rest, marched, tr, end_tr, inscatter, transmittance);
+    sky_aerial_weather(s, isfinite(km) ? km : 1e4, inscatter, transmittance);
     return 0;
 }
 
@@ -187,11 +195,7 @@ int sky_aerial_table(const sky_core *s, sky_aerial_state *a)
 {
     double key[SKY_ATMOSPHERE_KEY];
     sky_atmosphere_key(s, key);
-    /* (and the weather's part of finish) */
-    const float weather[3] = {s->frame.deck_opacity * (1.0f - s->frame.light_through), s->frame.haze_beta,
-                              s->frame.fog_rgb[1]};
-    if (a->table_valid && memcmp(key, a->key, sizeof key) == 0 && memcmp(weather, a->weather, sizeof weather) == 0)
-        return 0;
+    if (a->table_valid && memcmp(key, a->key, sizeof key) == 0) return 0;
     const sky_hillaire_tables *t = tables_for(s, a);
     if (!t) return -1;
     enum { AZ = SKY_AP_AZIMUTHS, EL = SKY_AP_ELEVATIONS, SL = SKY_AP_SLICES, W = SKY_AP_TABLE_W };
@@ -219,7 +223,7 @@ int sky_aerial_table(const sky_core *s, sky_aerial_state *a)
                 float *v = a->values + (((size_t)j * AZ + i) * SL + k) * 6;
                 profile_at(a->profile, n, slice_km(k), light, tr);
                 double in[3], out_tr[3];
-                finish(s, scale, rest, light, tr, end->transmittance, slice_km(k), in, out_tr);
+                finish(s, scale, rest, light, tr, end->transmittance, in, out_tr);
                 for (int c = 0; c < 3; c++) {
                     v[c] = (float)in[c];
                     v[3 + c] = (float)out_tr[c];
@@ -245,7 +249,6 @@ int sky_aerial_table(const sky_core *s, sky_aerial_state *a)
                 light[3] = tr[3] = 255;
             }
     memcpy(a->key, key, sizeof key);
-    memcpy(a->weather, weather, sizeof weather);
     a->table_valid = 1;
     a->uploaded = 0;
     return 1;

@@ -29,7 +29,6 @@ typedef struct sky_aerial_state {
     int own_ready;
     int table_valid;
     double key[SKY_ATMOSPHERE_KEY];
-    float weather[3];       /* the weather the table was made under (aerial.c) */
     unsigned char *texels;  /* SKY_AP_TABLE_W x SKY_AP_TABLE_H RGBA8           */
     float *values;          /* the table before its encoding: per elevation,
                                azimuth and slice the light and transmittance */
@@ -52,5 +51,10 @@ void sky_aerial_shell(const sky_core *s, sky_aerial_state *a, double *observer_r
 /* The shader's table for the frame, remade when what it depends on
  * changed (sky_atmosphere_key): 1 remade, 0 current, -1 out of memory. */
 int sky_aerial_table(const sky_core *s, sky_aerial_state *a);
+
+/* The weather over the air's light and transmittance at km (the CPU's
+ * share of aerial.glsl's; aerial.c), and the deck's dimming alone. */
+void sky_aerial_weather(const sky_core *s, double km, double inscatter[3], double transmittance[3]);
+double sky_aerial_deck_dim(const sky_core *s);
 
 #endif /* SKY_AERIAL_H */

@@ -101,6 +101,10 @@ sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit)
         {"sky_aerial_sun", 3, {sun[0], sun[1], sun[2]}, 0},
         {"sky_aerial_params", 4,
          {(float)s->aerial.scale, (float)SKY_AP_TABLE_M, (float)(r0 * 1000.0), (float)(rt * 1000.0)}, 0},
+        /* a weather's deck and haze, over the table (which a change of
+         * weather does not remake) */
+        {"sky_aerial_weather", 2, {(float)sky_aerial_deck_dim(c), c->frame.haze_beta}, 0},
+        {"sky_aerial_haze", 3, {c->frame.fog_rgb[0], c->frame.fog_rgb[1], c->frame.fog_rgb[2]}, 0},
     };
     sky_gl_host_uniforms(c, program, u, (int)(sizeof u / sizeof u[0]), texture_unit, c->textures[SKY_TEX_AERIAL].id);
     return SKY_OK;

@@ -232,10 +232,12 @@ TEST(aerial_checks_its_input)
  * 0.02 in transmittance and 6 % (or 1 % of the brightest) in light.
  * sky_aerial_bind leaves the host's program and active unit as found. */
 enum { GLSL_DIRS = 12, GLSL_DISTS = 7 };
-static void glsl_matches(sky_gl_profile profile)
+static void glsl_matches(sky_gl_profile profile, sky_weather_state weather)
 {
     int core = profile == SKY_GL_CORE33;
-    const char *name = core ? "CORE33" : "COMPAT20";
+    char name[64];
+    snprintf(name, sizeof name, "%s%s%s", core ? "CORE33" : "COMPAT20", weather ? ", " : "",
+             weather ? sky_weather_name(weather) : "");
     static const float zup[9] = {1, 0, 0, 0, 0, 1, 0, -1, 0};
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
@@ -249,6 +251,11 @@ static void glsl_matches(sky_gl_profile profile)
     sky_params p = sky_default_params();
     p.time = 0.3f; /* a morning sun, some 20 degrees up */
     sky_set_params(f.s, &p);
+    if (weather) { /* its deck and haze over the table, in the shader and on the CPU alike */
+        sky_weather w;
+        sky_weather_preset(weather, &w);
+        CHECK(sky_set_weather(f.s, &w, 0.0) == SKY_OK, "%s: %s", name, sky_last_error(f.s));
+    }
     sky_update(f.s, 0.0);
     const char *body = "uniform vec3 dir;\nuniform float dist;\nvoid main() {\n"
                        "  vec3 t, l;\n  sky_aerial(dir, dist, t, l);\n"
@@ -321,8 +328,9 @@ static void glsl_matches(sky_gl_profile profile)
 
 TEST(aerial_glsl_matches_cpu)
 {
-    glsl_matches(SKY_GL_CORE33);
-    glsl_matches(SKY_GL_COMPAT20);
+    glsl_matches(SKY_GL_CORE33, SKY_WEATHER_CLEAR);
+    glsl_matches(SKY_GL_COMPAT20, SKY_WEATHER_CLEAR);
+    glsl_matches(SKY_GL_CORE33, SKY_WEATHER_RAIN);
 }
 
 /* Issue target: Hillaire's froxel volume (CORE33): each froxel is the air

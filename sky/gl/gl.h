@@ -99,7 +99,7 @@ void sky_program_destroy(sky_core *s, sky_program *p);
 void sky_program_apply(sky_core *s, const sky_program *p);
 
 /* A value for a uniform of the host's own program, set by name: n floats
- * (1, 3 or 4), or with n 0 the sampler's texture unit in unit. */
+ * (1 to 4), or with n 0 the sampler's texture unit in unit. */
 typedef struct sky_gl_host_uniform {
     const char *name;
     int n;

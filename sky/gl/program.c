@@ -346,6 +346,7 @@ void sky_gl_host_uniforms(sky_core *s, GLuint program, const sky_gl_host_uniform
         switch (u[i].n) {
         case 0: gl->glUniform1i(at, u[i].unit); break;
         case 1: gl->glUniform1f(at, v[0]); break;
+        case 2: gl->glUniform2f(at, v[0], v[1]); break;
         case 3: gl->glUniform3f(at, v[0], v[1], v[2]); break;
         default: gl->glUniform4f(at, v[0], v[1], v[2], v[3]); break;
         }

@@ -30,6 +30,11 @@ uniform vec4 sky_aerial_params; /* x: kcd/m^2 of the light's 1, y: the slices'
                                    distance scale D (m), z: the observer's
                                    radius, w: the atmosphere's top (m)        */
 
+uniform vec2 sky_aerial_weather; /* a weather's: x the deck's dimming of the
+                                   air's light (1: none), y its haze's
+                                   extinction beyond the clear sky's, 1/m  */
+uniform vec3 sky_aerial_haze;    /* the haze's light (the horizon's), kcd/m^2 */
+
 /* a 0..1 coordinate to texel centres: i / (n - 1) at texel i */
 float sky_aerial_texel(float x, float n) { return (0.5 + clamp(x, 0.0, 1.0) * (n - 1.0)) / n; }
 
@@ -81,6 +86,11 @@ void sky_aerial(vec3 direction, float distance_m, out vec3 transmittance, out ve
     /* the transmittance falls exponentially between slices (an 8-bit 0
      * is taken as half a step) */
     transmittance = exp(mix(log(max(t0, vec3(0.5 / 255.0))), log(max(t1, vec3(0.5 / 255.0))), f));
+    /* a weather over it (nothing without one): the deck dims the air's
+     * light, the haze hides what lies beyond in the horizon's light */
+    float haze = exp(-sky_aerial_weather.y * dm);
+    inscatter = inscatter * (sky_aerial_weather.x * haze) + sky_aerial_haze * (1.0 - haze);
+    transmittance *= haze;
 }
 
 vec3 sky_aerial_apply(vec3 radiance, vec3 direction, float distance_m)
