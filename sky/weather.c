@@ -19,9 +19,9 @@
  * cover is the sliders' own); visibility the meteorological range (WMO's
  * classes: fog under 1 km, mist 1-5, haze 2-5, clear air 20 and more);
  * light_through the share of the light above a deck that reaches below it
- * (an overcast stratus passes about a third, a cumulonimbus a few per cent:
- * Kasten & Czeplak 1980's cloud-cover fits give 0.25-0.35 for 8 oktas of
- * low cloud; a storm's base is darker still). */
+ * (Kasten & Czeplak 1980 fit the global light under N oktas as
+ * 1 - 0.75 (N / 8)^3.4 of the clear sky's: a quarter under a full cover;
+ * rain's and a storm's thicker decks pass less). */
 static const struct {
     const char *name;
     sky_weather w;
