@@ -78,6 +78,20 @@ SLOW_TEST(es20_presets_match_compat20)
     }
 }
 
+/* The weather's shading (deck, haze, the flash) under GLSL ES 1.00, with
+ * and without the extensions: a storm at a flash and fog against COMPAT20. */
+SLOW_TEST(es20_weather_matches_compat20)
+{
+    static const char *const weathers[] = {"--time 0.5 --weather fog", "--time 0.95 --weather storm --seconds 11.21",
+                                           "--time 0.5 --weather showers"};
+    for (size_t k = 0; k < sizeof weathers / sizeof weathers[0]; k++)
+        for (int bare = 0; bare < 2; bare++) {
+            double psnr = es_against_compat(bare ? ES2_BARE : ES2, weathers[k], bare ? "no extensions" : "every one");
+            NOTE("%s%s: ES20 vs COMPAT20 PSNR %.1f dB", weathers[k], bare ? " (bare)" : "", psnr);
+            CHECK(psnr >= 40.0, "%s: ES20 must match COMPAT20 within PSNR 40 dB (%.1f)", weathers[k], psnr);
+        }
+}
+
 /* Without OES_standard_derivatives the clouds' footprint fade and the
  * sun's edge use an estimate from the pixel's angle; without
  * OES_texture_npot the dome's image is a power of two. */
