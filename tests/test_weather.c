@@ -26,6 +26,15 @@ static sky_weather preset(sky_weather_state state)
 
 static double luma(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
+/* A sky of the default features (the weather's included) in a small
+ * context; -1 after a failed CHECK. */
+static int open_sky(fixture *f)
+{
+    if (fixture_open(f, SKY_GL_AUTO, NULL) == 0) return 0;
+    CHECK(0, "no sky");
+    return -1;
+}
+
 TEST(weather_states_named_and_in_range)
 {
     for (int i = 0; i < SKY_WEATHER_COUNT; i++) {
@@ -59,10 +68,7 @@ TEST(weather_states_named_and_in_range)
 TEST(weather_set_rejects_and_clamps)
 {
     fixture f;
-    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
-        return;
-    }
+    if (open_sky(&f)) return;
     sky_weather storm = preset(SKY_WEATHER_STORM), before, after, bad;
     CHECK(sky_set_weather(NULL, &storm, 0) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
     sky_get_weather(f.s, &before, NULL);
@@ -109,10 +115,7 @@ TEST(weather_set_rejects_and_clamps)
 TEST(weather_owns_cover_and_density)
 {
     fixture f;
-    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
-        return;
-    }
+    if (open_sky(&f)) return;
     sky_params p = sky_default_params();
     p.cover = 0.3f;
     p.density = 0.6f;
@@ -139,13 +142,9 @@ TEST(weather_owns_cover_and_density)
 TEST(weather_transition_follows_the_clock)
 {
     fixture a, b;
-    if (fixture_open(&a, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
-        return;
-    }
-    if (fixture_open(&b, SKY_GL_AUTO, NULL)) {
+    if (open_sky(&a)) return;
+    if (open_sky(&b)) {
         fixture_close(&a);
-        CHECK(0, "no sky");
         return;
     }
     sky_weather fair = preset(SKY_WEATHER_FAIR), storm = preset(SKY_WEATHER_STORM);
@@ -201,8 +200,9 @@ TEST(weather_transition_follows_the_clock)
 TEST(weather_wind_drives_the_drift)
 {
     fixture a, b;
-    if (fixture_open(&a, SKY_GL_AUTO, NULL) || fixture_open(&b, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
+    if (open_sky(&a)) return;
+    if (open_sky(&b)) {
+        fixture_close(&a);
         return;
     }
     sky_weather own;
@@ -557,10 +557,7 @@ TEST(weather_lightning_follows_the_seed)
 TEST(weather_lightning_rejects_bad_windows)
 {
     fixture f;
-    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
-        return;
-    }
+    if (open_sky(&f)) return;
     sky_lightning_strike s[4];
     int n = 5;
     CHECK(sky_get_lightning(NULL, 0, 1, s, 4, &n) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
@@ -653,10 +650,7 @@ static double shadowed(const unsigned char *px, int n)
 TEST(weather_cloud_shadows_follow_cover)
 {
     fixture f;
-    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
-        return;
-    }
+    if (open_sky(&f)) return;
     enum { N = 128 };
     static unsigned char px[N * N];
     static const float covers[4] = {0.0f, 0.25f, 0.5f, 0.75f};
@@ -698,10 +692,7 @@ TEST(weather_cloud_shadows_follow_cover)
 TEST(weather_cloud_shadows_drift_with_the_clouds)
 {
     fixture f;
-    if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
-        CHECK(0, "no sky");
-        return;
-    }
+    if (open_sky(&f)) return;
     enum { N = 160 };
     const float extent = 16000.0f; /* 100 m a pixel */
     static unsigned char a[N * N], b[N * N];
@@ -862,10 +853,7 @@ TEST(weather_in_the_irradiance)
     static const sky_weather_state states[2] = {SKY_WEATHER_CLEAR, SKY_WEATHER_FOG};
     for (int k = 0; k < 2; k++) {
         fixture f;
-        if (fixture_open(&f, SKY_GL_AUTO, NULL)) {
-            CHECK(0, "no sky");
-            return;
-        }
+        if (open_sky(&f)) return;
         sky_params p = sky_default_params();
         p.time = 0.5f;
         sky_set_params(f.s, &p);
