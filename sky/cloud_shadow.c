@@ -1,8 +1,8 @@
 /*
  * The clouds' shadows for the host's ground (sky.h, "Cloud shadows"): the
  * map on the CPU (clouds.c computes it from the layers as drawn), as a
- * texture of the sky's with the matrix from the host's positions, and the
- * host's GLSL and its binder.
+ * texture of the sky's with the matrix from the host's positions (its
+ * GLSL and binder are host_bind.c's, beside the host's other snippets).
  */
 #include "sky_internal.h"
 
@@ -117,39 +117,5 @@ sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, s
     shadow_matrix(c, metres_per_unit, extent_m, out->matrix);
     s->shadow_metres_per_unit = metres_per_unit;
     s->shadow_extent_m = extent_m;
-    return SKY_OK;
-}
-
-const char *sky_cloud_shadow_glsl(void)
-{
-    const sky_blob *b = sky_find_blob("cloud_shadow.glsl");
-    return b ? (const char *)b->data : "";
-}
-
-sky_result sky_cloud_shadow_bind(sky *s, unsigned program, int texture_unit)
-{
-    if (!s) return SKY_ERR_INVALID_ARGUMENT;
-    if (!program) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_bind: program 0");
-    sky_result rc = sky_own_context_check(s, "sky_cloud_shadow_bind");
-    if (rc != SKY_OK) return rc;
-    sky_core *c = &s->core;
-    if (!sky_gl_is_program(c, program))
-        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_bind: %u is not a program of the current context",
-                        program);
-    int units = sky_gl_texture_units(c);
-    if (texture_unit < 0 || (units > 0 && texture_unit >= units))
-        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_cloud_shadow_bind: texture unit %d is not 0..%d",
-                        texture_unit, units - 1);
-    sky_cloud_shadow map;
-    float mpu = s->shadow_metres_per_unit > 0.0f ? s->shadow_metres_per_unit : 1.0f;
-    float extent = s->shadow_extent_m > 0.0f ? s->shadow_extent_m : 10000.0f;
-    if ((rc = sky_get_cloud_shadow(s, mpu, extent, &map)) != SKY_OK) return rc;
-    const float *m = map.matrix;
-    const sky_gl_host_uniform u[] = {
-        {"sky_cloud_shadow_map", 0, {0}, texture_unit},
-        {"sky_cloud_shadow_s", 4, {m[0], m[4], m[8], m[12]}, 0},
-        {"sky_cloud_shadow_t", 4, {m[1], m[5], m[9], m[13]}, 0},
-    };
-    sky_gl_host_uniforms(c, program, u, (int)(sizeof u / sizeof u[0]), texture_unit, map.texture);
     return SKY_OK;
 }

@@ -30,6 +30,16 @@ static sky_result host_program_check(sky *s, unsigned program, const char *what)
     return SKY_OK;
 }
 
+/* A texture unit the program's stages may use. */
+static sky_result host_unit_check(sky *s, int texture_unit, const char *what)
+{
+    int units = sky_gl_texture_units(&s->core);
+    if (texture_unit < 0 || (units > 0 && texture_unit >= units))
+        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "%s: texture unit %d is not 0..%d", what, texture_unit,
+                        units - 1);
+    return SKY_OK;
+}
+
 const char *sky_display_glsl(void) { return host_glsl("display.glsl"); }
 
 sky_result sky_display_bind(sky *s, unsigned program)
@@ -76,10 +86,7 @@ sky_result sky_aerial_bind(sky *s, unsigned program, int texture_unit)
     sky_result rc = host_program_check(s, program, "sky_aerial_bind");
     if (rc != SKY_OK) return rc;
     sky_core *c = &s->core;
-    int units = sky_gl_texture_units(c);
-    if (texture_unit < 0 || (units > 0 && texture_unit >= units))
-        return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_aerial_bind: texture unit %d is not 0..%d", texture_unit,
-                        units - 1);
+    if ((rc = host_unit_check(s, texture_unit, "sky_aerial_bind")) != SKY_OK) return rc;
     if (sky_aerial_table(c, &s->aerial) < 0)
         return sky_fail(s, SKY_ERR_OUT_OF_MEMORY, "sky_aerial_bind: out of memory for the table");
     if ((rc = aerial_upload(s)) != SKY_OK) return rc;
@@ -180,5 +187,28 @@ sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16]
     sky_gl_state_restore(c, &host);
     if (rc) return sky_fail(s, SKY_ERR_GL, "sky_aerial_froxels: %s", why);
     *texture = c->textures[SKY_TEX_FROXELS].id;
+    return SKY_OK;
+}
+
+/* ---- the cloud shadows' snippet (the map: cloud_shadow.c) ---------------------- */
+
+const char *sky_cloud_shadow_glsl(void) { return host_glsl("cloud_shadow.glsl"); }
+
+sky_result sky_cloud_shadow_bind(sky *s, unsigned program, int texture_unit)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    sky_result rc = host_program_check(s, program, "sky_cloud_shadow_bind");
+    if (rc != SKY_OK || (rc = host_unit_check(s, texture_unit, "sky_cloud_shadow_bind")) != SKY_OK) return rc;
+    sky_cloud_shadow map;
+    float mpu = s->shadow_metres_per_unit > 0.0f ? s->shadow_metres_per_unit : 1.0f;
+    float extent = s->shadow_extent_m > 0.0f ? s->shadow_extent_m : 10000.0f;
+    if ((rc = sky_get_cloud_shadow(s, mpu, extent, &map)) != SKY_OK) return rc;
+    const float *m = map.matrix;
+    const sky_gl_host_uniform u[] = {
+        {"sky_cloud_shadow_map", 0, {0}, texture_unit},
+        {"sky_cloud_shadow_s", 4, {m[0], m[4], m[8], m[12]}, 0},
+        {"sky_cloud_shadow_t", 4, {m[1], m[5], m[9], m[13]}, 0},
+    };
+    sky_gl_host_uniforms(&s->core, program, u, (int)(sizeof u / sizeof u[0]), texture_unit, map.texture);
     return SKY_OK;
 }
