@@ -301,6 +301,12 @@ void sky_weather_at(const sky_weather_clock *c, double t, sky_weather *out);
 /* The wind (as the clouds' texture offsets move: x east, y south, m/s)
  * integrated from running time t0 to t1, exact for any step. */
 void sky_weather_wind_integral(const sky_weather_clock *c, double t0, double t1, double out[2]);
+/* Where a wind comes from, degrees clockwise from north, whose texture
+ * offsets move along (vx, vy) (the inverse of the direction above). */
+float sky_weather_wind_from(double vx, double vy);
+/* Lightning's blue-white (weather.c): the deck's tint; the host's flash
+ * light is it scaled to a luminance of one (lighting.c). */
+extern const float sky_flash_tint[3];
 
 /* lightning.c: the strikes from t0 to t1 at the clock's weather, drawn
  * from seed (the first max into out; returns how many there are), and

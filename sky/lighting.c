@@ -44,11 +44,12 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     out->daylight = f->daylight;
     out->exposure = f->exposure;
     out->fog_density = 3.912f / (1000.0f * f->visibility_km); /* Koschmieder */
-    /* lightning: the flash's light (weather.c), blue-white, of luminance
-     * (Rec. 709) one */
-    static const float flash_tint[3] = {0.85f / 0.9108f, 0.92f / 0.9108f, 1.0f / 0.9108f};
+    /* lightning: the flash's light (weather.c), in its tint scaled to a
+     * luminance (Rec. 709) of one */
+    const float *tint = sky_flash_tint;
+    float tint_luma = 0.2126f * tint[0] + 0.7152f * tint[1] + 0.0722f * tint[2];
     sky_camera_to_world(c, f->flash_dir, out->flash_direction);
-    for (int i = 0; i < 3; i++) out->flash_color[i] = f->flash_klx * flash_tint[i];
+    for (int i = 0; i < 3; i++) out->flash_color[i] = f->flash_klx * tint[i] / tint_luma;
     if (c->features & SKY_MOON) {
         sky_camera_to_world(c, f->moon_dir, out->moon_direction);
         sky_moon_lighting(c, out->moon_color);

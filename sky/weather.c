@@ -125,6 +125,15 @@ static void wind_vector(const sky_weather *w, double v[2])
 }
 
 /* (core.h) */
+const float sky_flash_tint[3] = {0.85f, 0.92f, 1.0f};
+
+/* (core.h) */
+float sky_weather_wind_from(double vx, double vy)
+{
+    return (float)fmod(atan2(vx, -vy) * 180.0 / SKY_PI + 360.0, 360.0);
+}
+
+/* (core.h) */
 double sky_weather_progress(const sky_weather_clock *c, double t)
 {
     if (!(c->seconds > 0.0)) return t >= c->start ? 1.0 : 0.0;
@@ -157,7 +166,7 @@ void sky_weather_at(const sky_weather_clock *c, double t, sky_weather *out)
     double vx = va[0] + (vb[0] - va[0]) * e, vy = va[1] + (vb[1] - va[1]) * e;
     double speed = sqrt(vx * vx + vy * vy);
     out->wind_speed_ms = (float)speed;
-    if (speed > 1e-6) out->wind_from_deg = (float)fmod(atan2(vx, -vy) * 180.0 / SKY_PI + 360.0, 360.0);
+    if (speed > 1e-6) out->wind_from_deg = sky_weather_wind_from(vx, vy);
     /* the kind is the one that falls: the target's once it does */
     out->precipitation_kind = c->to.precipitation > 0.0f && (e >= 0.5 || c->from.precipitation <= 0.0f)
                                   ? c->to.precipitation_kind
@@ -251,10 +260,9 @@ void sky_weather_light(sky_core *c)
      * eye adapted to the night sees a flash as a brilliant sky, not a white
      * page: its luminance is held to two display whites (exposure 1 is one),
      * where the cloud's own grey still shows. */
-    static const float flash_tint[3] = {0.85f, 0.92f, 1.0f};
     float deck_kcd = f->flash_deck_kcd;
     if (f->exposure > 0.0f && deck_kcd > 2.0f / f->exposure) deck_kcd = 2.0f / f->exposure;
-    for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * flash_tint[i];
+    for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * sky_flash_tint[i];
     double lt = f->light_through, deck = f->deck_opacity * (1.0 - lt);
     if (!(deck > 0.0)) return;
     /* the light that reaches the deck: the sky's and the sun's beam on the

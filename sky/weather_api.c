@@ -17,9 +17,8 @@ static void sliders_weather(const sky_core *c, sky_weather *w)
     w->density = c->params.density;
     w->upper = 0.35f * c->params.cover;
     w->wind_speed_ms = 5.0f;
-    /* the first layer's velocity as a wind (wind_vector's inverse) */
-    double vx = sky_cloud_velocity[0][0], vy = sky_cloud_velocity[0][1];
-    w->wind_from_deg = (float)fmod(atan2(vx, -vy) * 180.0 / SKY_PI + 360.0, 360.0);
+    /* the first layer's velocity as a wind */
+    w->wind_from_deg = sky_weather_wind_from(sky_cloud_velocity[0][0], sky_cloud_velocity[0][1]);
 }
 
 sky_result sky_set_weather(sky *s, const sky_weather *target, double seconds)
