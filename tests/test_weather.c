@@ -27,11 +27,18 @@ static sky_weather preset(sky_weather_state state)
 static double luma(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 /* A sky of the default features (the weather's included) in a small
- * context; -1 after a failed CHECK. */
+ * context; -1 after a failed CHECK. open_two_skies: two, or none. */
 static int open_sky(fixture *f)
 {
     if (fixture_open(f, SKY_GL_AUTO, NULL) == 0) return 0;
     CHECK(0, "no sky");
+    return -1;
+}
+static int open_two_skies(fixture *a, fixture *b)
+{
+    if (open_sky(a)) return -1;
+    if (open_sky(b) == 0) return 0;
+    fixture_close(a);
     return -1;
 }
 
@@ -142,11 +149,7 @@ TEST(weather_owns_cover_and_density)
 TEST(weather_transition_follows_the_clock)
 {
     fixture a, b;
-    if (open_sky(&a)) return;
-    if (open_sky(&b)) {
-        fixture_close(&a);
-        return;
-    }
+    if (open_two_skies(&a, &b)) return;
     sky_weather fair = preset(SKY_WEATHER_FAIR), storm = preset(SKY_WEATHER_STORM);
     fair.wind_from_deg = 350.0f;
     storm.wind_from_deg = 20.0f; /* the shorter way round is through north */
@@ -200,11 +203,7 @@ TEST(weather_transition_follows_the_clock)
 TEST(weather_wind_drives_the_drift)
 {
     fixture a, b;
-    if (open_sky(&a)) return;
-    if (open_sky(&b)) {
-        fixture_close(&a);
-        return;
-    }
+    if (open_two_skies(&a, &b)) return;
     sky_weather own;
     sky_get_weather(a.s, &own, NULL); /* the sliders' weather */
     sky_set_weather(b.s, &own, 0.0);
