@@ -271,6 +271,7 @@ typedef struct sky_frame {
     /* the aerial-perspective froxels (hillaire.c, sky_aerial_froxels) */
     float froxel_clip_to_dir[16]; /* clip to a horizon-frame point on the view ray */
     float froxel[4];         /* the pass's first slice, km per slice, steps per slice */
+    float froxel_weather[2]; /* a weather's: the deck's dimming of the air's light, the haze's 1/m */
     float cloud_mean[2];     /* the clouds' opacity and grey times opacity,
                                 averaged over the texture (the host's ambient)  */
     float sunset_color[3];

@@ -181,6 +181,9 @@ sky_result sky_aerial_froxels(sky *s, const float view[16], const float proj[16]
     sky_gl_state_save(c, &host);
     GLuint host_volume = sky_gl_volume_binding(c);
     if (s->vao) sky_gl_vertex_array_bind(c, s->vao); /* a core context draws nothing without one */
+    /* a weather's deck and haze over the march, as sky_aerial_bind's */
+    c->frame.froxel_weather[0] = (float)sky_aerial_deck_dim(c);
+    c->frame.froxel_weather[1] = c->frame.haze_beta;
     char why[200];
     int rc = sky_atmosphere_froxels(c, clip_to_dir, why, sizeof why);
     sky_gl_volume_bind(c, host_volume);

@@ -1426,8 +1426,8 @@ SKY_API sky_result sky_display_bind(sky *s, unsigned program);
  * sky_destroy): x and y across the viewport, slice k the air between the
  * observer and (k + 1) km along the view (32 km in all): RGB the
  * in-scattered light (kcd/m^2), A the mean transmittance of the three
- * channels. The physical march alone: no path's drawn-sky scale, night
- * floor or eclipse. sky_aerial_glsl's sky_aerial_froxel_apply(volume,
+ * channels. The physical march alone (no path's drawn-sky scale, night
+ * floor or eclipse) under a weather's deck and haze, as sky_aerial's. sky_aerial_glsl's sky_aerial_froxel_apply(volume,
  * radiance, screen_uv, distance_m) reads it (the first km from the
  * identity, beyond 32 km the last slice). Rebuild it when the camera turns
  * or the sun moves; sky-bench gives its cost.

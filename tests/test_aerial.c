@@ -336,7 +336,7 @@ TEST(aerial_glsl_matches_cpu)
 /* Issue target: Hillaire's froxel volume (CORE33): each froxel is the air
  * between the observer and (k + 1) km along its column's view, the CPU
  * function's within 5 % in light (or 1 % of the volume's brightest) and
- * 0.01 in mean transmittance, by day and at sunset; the host's state
+ * 0.01 in mean transmittance, by day, at sunset and in the rain; the host's state
  * back; refused off the Hillaire paths and in COMPAT20. */
 TEST(aerial_froxels_match_cpu)
 {
@@ -352,12 +352,18 @@ TEST(aerial_froxels_match_cpu)
     float view[16], proj[16];
     sky_cli_camera_at(120.0, 6.0, 60.0, 320, 180, view, proj);
     static float volume[N * N * N * 4];
-    static const float times[2] = {0.3f, 0.245f};
+    /* by day, at sunset, and by day in the rain (its deck and haze) */
+    static const float times[3] = {0.3f, 0.245f, 0.3f};
     double worst_l = 0.0, worst_t = 0.0;
-    for (int q = 0; q < 2; q++) {
+    for (int q = 0; q < 3; q++) {
         sky_params p = sky_default_params();
         p.time = times[q];
         sky_set_params(f.s, &p);
+        if (q == 2) {
+            sky_weather rain;
+            CHECK(sky_weather_preset(SKY_WEATHER_RAIN, &rain) == SKY_OK && sky_set_weather(f.s, &rain, 0.0) == SKY_OK,
+                  "rain: %s", sky_last_error(f.s));
+        }
         sky_update(f.s, 0.0);
         GLuint host_prog = test_host_program(1), tex = 0;
         glUseProgram(host_prog);

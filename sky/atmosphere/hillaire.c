@@ -134,6 +134,8 @@ static const sky_uniform_desc froxel_uniforms[] = {
     SKY_UF("u_froxel_clip_to_dir", SKY_U_M4, froxel_clip_to_dir),
     SKY_UF("u_froxel", SKY_U_F4, froxel),
     SKY_UF("u_froxel_sun_irradiance", SKY_U_F3, sun_irradiance),
+    SKY_UF("u_froxel_weather", SKY_U_F2, froxel_weather),
+    SKY_UF("u_froxel_haze", SKY_U_F3, fog_rgb),
 };
 static const sky_snippet froxel_snippet = {NULL, NULL, froxel_uniforms, SKY_UNIFORM_COUNT(froxel_uniforms), NULL, NULL};
 

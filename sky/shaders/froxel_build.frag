@@ -9,6 +9,9 @@ SKY_IN vec2 v_unit;
 uniform SKY_UP mat4 u_froxel_clip_to_dir;     /* clip to the horizon frame (a point on the view ray) */
 uniform SKY_UP vec4 u_froxel;                 /* first slice of the pass, km per slice, steps per slice */
 uniform SKY_UP vec3 u_froxel_sun_irradiance;  /* klx above the atmosphere, per channel */
+uniform SKY_UP vec2 u_froxel_weather;         /* a weather's: x the deck's dimming of the air's light
+                                                 (1: none), y its haze's extinction, 1/m (aerial.glsl) */
+uniform SKY_UP vec3 u_froxel_haze;            /* the haze's light (the horizon's), kcd/m^2 */
 layout(location = 1) out vec4 sky_froxel_1;
 layout(location = 2) out vec4 sky_froxel_2;
 layout(location = 3) out vec4 sky_froxel_3;
@@ -53,7 +56,14 @@ void main()
             ra = rb;
             da = db;
         }
-        if (kf >= first) out_slices[k - int(first)] = vec4(L * u_froxel_sun_irradiance, dot(transmittance, vec3(1.0 / 3.0)));
+        if (kf >= first) {
+            /* a weather over the march, as aerial.glsl's sky_aerial: the
+             * deck dims the air's light, the haze hides what lies beyond
+             * the slice's far end in the horizon's light */
+            float haze = exp(-u_froxel_weather.y * (kf + 1.0) * slice_km * 1000.0);
+            vec3 light = L * u_froxel_sun_irradiance * (u_froxel_weather.x * haze) + u_froxel_haze * (1.0 - haze);
+            out_slices[k - int(first)] = vec4(light, dot(transmittance, vec3(1.0 / 3.0)) * haze);
+        }
     }
     SKY_FRAG_COLOR = out_slices[0];
     sky_froxel_1 = out_slices[1];
