@@ -843,12 +843,14 @@ TEST(weather_cloud_shadow_texture_catches_up)
     fixture_close(&f);
 }
 
-/* The host's ambient light from the sky (sky_get_irradiance_sh) sees the
- * weather's deck and haze: under fog its colour is the fog's grey, where
- * the clear sky's is blue. */
-TEST(weather_in_the_irradiance)
+/* The host's ambient light from the sky (sky_get_irradiance_sh) and its
+ * environment cube map (sky_capture_environment) see the weather's deck
+ * and haze: under fog their colour is the fog's grey, where the clear
+ * sky's is blue. */
+TEST(weather_in_the_irradiance_and_capture)
 {
-    double ratio[2], fog_ratio = 0.0;
+    enum { CAP = 16 };
+    double ratio[2], capture_ratio[2] = {0.0, 0.0}, fog_ratio = 0.0;
     static const sky_weather_state states[2] = {SKY_WEATHER_CLEAR, SKY_WEATHER_FOG};
     for (int k = 0; k < 2; k++) {
         fixture f;
@@ -866,10 +868,23 @@ TEST(weather_in_the_irradiance)
         sky_lighting l;
         sky_get_lighting(f.s, &l);
         if (k) fog_ratio = l.fog_color[2] / l.fog_color[0];
+        /* the cube map's face above (+Y: GL's third), blue over red */
+        static unsigned char face[CAP * CAP * 4];
+        CHECK(sky_capture_environment(f.s, 0, CAP, 2, 0) == SKY_OK, "capture: %s", sky_last_error(f.s));
+        glBindTexture(GL_TEXTURE_CUBE_MAP, sky_environment_texture(f.s));
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glGetTexImage(GL_TEXTURE_CUBE_MAP_POSITIVE_Y, 0, GL_RGBA, GL_UNSIGNED_BYTE, face);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+        double sum[3] = {0.0, 0.0, 0.0};
+        for (int i = 0; i < CAP * CAP; i++)
+            for (int c = 0; c < 3; c++) sum[c] += face[4 * i + c];
+        if (sum[0] > 0.0) capture_ratio[k] = sum[2] / sum[0];
         fixture_close(&f);
     }
-    NOTE("the sky's irradiance from above, blue over red: clear %.3f, fog %.3f (the fog's colour %.3f)", ratio[0],
-         ratio[1], fog_ratio);
+    NOTE("the sky's irradiance from above, blue over red: clear %.3f, fog %.3f (the fog's colour %.3f); the capture's "
+         "face above: clear %.3f, fog %.3f", ratio[0], ratio[1], fog_ratio, capture_ratio[0], capture_ratio[1]);
     CHECK(ratio[0] > 1.3 && fabs(ratio[1] / fog_ratio - 1.0) < 0.1,
           "clear's irradiance blue, fog's the fog's grey (%.3f, %.3f against %.3f)", ratio[0], ratio[1], fog_ratio);
+    CHECK(capture_ratio[0] > 1.3 && capture_ratio[1] > 0.9 && capture_ratio[1] < 1.1,
+          "the capture's sky above: clear's blue, fog's grey (%.3f, %.3f)", capture_ratio[0], capture_ratio[1]);
 }
