@@ -270,6 +270,8 @@ typedef struct demo {
     double last;       /* the clock at the last frame */
     int weather;       /* the state W picked last (sky_weather_state), -1 none */
     int weather_pending; /* W pressed: set it on the sky (once it has SKY_WEATHER) */
+    sky_weather weather_from; /* where W's change started, and when on the */
+    double weather_since;     /* sky's running clock: a rebuilt sky replays it */
 } demo;
 
 static void values_from_params(float v[6], const sky_params *p)
@@ -437,15 +439,19 @@ static sky *make_sky(demo *d, char *err, size_t len)
     cfg.profile_layers = d->profiling;
     sky *s = sky_create(&cfg, err, len);
     if (s) {
-        /* the options' sliders, observer and weather (--weather ...), then
-         * the running clock the last sky had reached; a rebuilt sky takes
-         * the last one's weather as it stood (a change in progress ends) */
+        /* the options' sliders, observer and weather (--weather ...: on the
+         * running clock from 0), then the running clock the last sky had
+         * reached. W's change is replayed where it started, so a rebuilt
+         * sky draws the frame the last one would have, mid-change too. */
         sky_cli_apply(s, &d->cli);
+        sky_weather target;
+        if (d->s && d->weather >= 0 && !d->weather_pending &&
+            sky_weather_preset((sky_weather_state)d->weather, &target) == SKY_OK) {
+            sky_set_elapsed(s, d->weather_since);
+            sky_set_weather(s, &d->weather_from, 0.0);
+            sky_set_weather(s, &target, 10.0);
+        }
         sky_set_elapsed(s, d->elapsed);
-        sky_weather now;
-        int moving = 0;
-        if (d->s && sky_get_weather(d->s, &now, &moving) == SKY_OK && (d->weather >= 0 || d->cli.weather >= 0))
-            sky_set_weather(s, &now, 0.0);
         d->atmosphere = cfg.atmosphere == SKY_ATMOSPHERE_DEFAULT ? SKY_ATMOSPHERE_GRADIENT : cfg.atmosphere;
     }
     return s;
@@ -593,6 +599,8 @@ static int demo_frame(demo *d)
     if (d->weather_pending && d->weather >= 0) {
         sky_weather target;
         sky_weather_preset((sky_weather_state)d->weather, &target);
+        sky_get_weather(d->s, &d->weather_from, NULL);
+        d->weather_since = d->elapsed + dt; /* the clock sky_update has just reached */
         if (sky_set_weather(d->s, &target, 10.0) != SKY_OK)
             snprintf(d->message, sizeof d->message, "%.180s", sky_last_error(d->s));
         d->weather_pending = 0;
