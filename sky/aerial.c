@@ -107,7 +107,7 @@ void sky_aerial_weather(const sky_core *s, double km, double inscatter[3], doubl
     }
 }
 
-double sky_aerial_deck_dim(const sky_core *s) { return 1.0 - s->frame.deck_opacity * (1.0 - s->frame.light_through); }
+double sky_aerial_deck_dim(const sky_core *s) { return 1.0 - sky_weather_deck_share(&s->frame); }
 
 /* A view below the horizon taken as level at its azimuth (straight
  * down: the sun's). */

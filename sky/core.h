@@ -411,5 +411,9 @@ void sky_weather_frame(sky_core *c);
 /* after the layers': a weather's deck greys and dims the ambient, the
  * horizon and the ground by its light_through where it covers the sky. */
 void sky_weather_light(sky_core *c);
+/* the share of the light that a weather's deck takes away where it
+ * covers the sky: its opacity times what it does not let through (0
+ * without one) */
+double sky_weather_deck_share(const sky_frame *f);
 
 #endif /* SKY_CORE_H */

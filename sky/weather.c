@@ -248,6 +248,8 @@ void sky_weather_frame(sky_core *c)
     f->deck_opacity = c->params.cover * (0.5f + 0.5f * c->params.density);
 }
 
+double sky_weather_deck_share(const sky_frame *f) { return f->deck_opacity * (1.0 - f->light_through); }
+
 /* (sky.c's compute_frame, after the layers: the deck's opacity is the
  * clouds layer's) Where a weather's deck covers the sky it passes
  * light_through of the light above, diffused: the sky's light on the
@@ -263,7 +265,7 @@ void sky_weather_light(sky_core *c)
     float deck_kcd = f->flash_deck_kcd;
     if (f->exposure > 0.0f && deck_kcd > 2.0f / f->exposure) deck_kcd = 2.0f / f->exposure;
     for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * sky_flash_tint[i];
-    double lt = f->light_through, deck = f->deck_opacity * (1.0 - lt);
+    double lt = f->light_through, deck = sky_weather_deck_share(f);
     if (!(deck > 0.0)) return;
     /* the light that reaches the deck: the sky's and the sun's beam on the
      * level, which the deck spreads over the sky below it */
