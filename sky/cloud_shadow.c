@@ -109,13 +109,16 @@ sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, s
         sky_texture_update_lut(c, SKY_TEX_CLOUD_SHADOW, N, N, rgba, NULL);
     sky_gl_state_restore(c, &host);
     if (failed) return sky_fail(s, SKY_ERR_GL, "sky_get_cloud_shadow: %s", why);
-    memset(out, 0, sizeof *out);
-    out->texture = c->textures[SKY_TEX_CLOUD_SHADOW].id;
-    out->size = N;
-    out->height_m = (float)cloud_height(c);
-    out->extent_m = extent_m;
-    shadow_matrix(c, metres_per_unit, extent_m, out->matrix);
-    s->shadow_metres_per_unit = metres_per_unit;
-    s->shadow_extent_m = extent_m;
+    sky_cloud_shadow *last = &s->shadow_last;
+    memset(last, 0, sizeof *last);
+    last->texture = c->textures[SKY_TEX_CLOUD_SHADOW].id;
+    last->size = N;
+    last->height_m = (float)cloud_height(c);
+    last->extent_m = extent_m;
+    shadow_matrix(c, metres_per_unit, extent_m, last->matrix);
+    unsigned sum = 0;
+    for (int i = 0; i < N * N; i++) sum += s->shadow_map[i];
+    last->mean = (float)sum / (255.0f * N * N);
+    *out = *last;
     return SKY_OK;
 }

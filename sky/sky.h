@@ -1111,6 +1111,11 @@ typedef struct sky_cloud_shadow {
     float matrix[16];     /* column-major: a position relative to the
                              observer in the host's units and world frame
                              (horizon_to_world) -> (s, t, 0, 1) on the map */
+    float mean;           /* the map's mean fraction: what the shadows
+                             average to far away, where sky_cloud_shadow_glsl
+                             fades to it (the last sixth of the way to the
+                             map's edge, and beyond) rather than stretch the
+                             edge's texels to the horizon              */
 } sky_cloud_shadow;
 
 /* sky_cloud_shadow_image: the map as 8-bit pixels on the CPU, without
@@ -1143,10 +1148,12 @@ SKY_API sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float ext
  * ES 1.00), after the #version line:
  *   float sun = sky_cloud_shadow(position_relative_to_observer);
  * sky_cloud_shadow_bind sets what it reads. "" if this build lacks it.
+ * Near the map's edge and beyond it, the map's mean.
  * Since: 0.6.0 */
 SKY_API const char *sky_cloud_shadow_glsl(void);
 /* sky_cloud_shadow_bind: binds the map of the last sky_get_cloud_shadow
- * (made now with 1 metre per unit over 10 km if there was none) on
+ * (made now with 1 metre per unit over 10 km if there was none; it
+ * refreshes nothing, so call sky_get_cloud_shadow each frame) on
  * texture_unit and sets the snippet's uniforms in program (not made
  * current: the host's program comes back).
  * Errors: as sky_aerial_bind's: SKY_ERR_INVALID_ARGUMENT for s NULL (no

@@ -34,8 +34,8 @@ struct sky {
                                              (no FBO), else zero              */
     sky_aerial_state aerial;              /* sky_get_aerial_perspective's and
                                              sky_aerial_bind's                */
-    float shadow_metres_per_unit,         /* the last sky_get_cloud_shadow's  */
-        shadow_extent_m;                  /* (cloud_shadow.c)                 */
+    sky_cloud_shadow shadow_last;         /* the last sky_get_cloud_shadow's
+                                             (cloud_shadow.c); texture 0: none */
     unsigned char shadow_map[64 * 64];    /* its texture's texels, rows refreshed
                                              a quarter at a time             */
     float shadow_key[8];                  /* what a full refresh follows      */

@@ -736,7 +736,8 @@ TEST(weather_cloud_shadows_drift_with_the_clouds)
 
 /* The texture, its matrix and the host's GLSL: a host program that calls
  * sky_cloud_shadow at the observer and 3 km east reads the map's texels
- * there, in both desktop profiles. */
+ * there, and the map's mean at its edge and beyond, in both desktop
+ * profiles. */
 static void cloud_shadow_host(sky_gl_profile profile)
 {
     fixture f;
@@ -776,6 +777,10 @@ static void cloud_shadow_host(sky_gl_profile profile)
     GLint at = glGetUniformLocation(prog, "where");
     static const float where[2][3] = {{0.0f, 0.0f, 0.0f}, {1500.0f, 0.0f, 0.0f}};
     static const int texel[2][2] = {{32, 32}, {51, 32}}; /* s 0.5 and 0.8 (51.2) */
+    unsigned sum = 0;
+    for (int i = 0; i < 64 * 64; i++) sum += grey[i];
+    CHECK(fabs(map.mean - sum / (255.0 * 64 * 64)) < 1e-4, "the map's mean %.4f, its texels' %.4f", map.mean,
+          sum / (255.0 * 64 * 64));
     for (int k = 0; k < 2; k++) {
         glUniform3fv(at, 1, where[k]);
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -790,6 +795,17 @@ static void cloud_shadow_host(sky_gl_profile profile)
             }
         CHECK(px[0] >= lo - 0.01 && px[0] <= hi + 0.01, "%s: the GLSL reads the map at point %d: %.3f in %.3f..%.3f",
               core ? "core" : "compat", k, px[0], lo, hi);
+    }
+    /* beyond the map (the edge's texels would streak to the horizon) and
+     * at its edge, the map's mean */
+    static const float beyond[2][3] = {{0.0f, 0.0f, 40000.0f}, {2500.0f, 0.0f, 0.0f}};
+    for (int k = 0; k < 2; k++) {
+        glUniform3fv(at, 1, beyond[k]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        float px[4];
+        glReadPixels(8, 8, 1, 1, GL_RGBA, GL_FLOAT, px);
+        CHECK(fabsf(px[0] - map.mean) < 0.01f, "%s: %s the map, its mean %.3f (read %.3f)", core ? "core" : "compat",
+              k ? "at the edge of" : "beyond", map.mean, px[0]);
     }
     glUseProgram(0);
     test_fullscreen_free(vao, buf);
