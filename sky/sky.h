@@ -944,7 +944,10 @@ typedef struct sky_lighting {
                                   multiplies by this lands in the sky's range */
     float flash_color[3];      /* lightning's light on a surface facing the
                                   brightest flash now, klx (0 between flashes;
-                                  sky_get_lightning lists the strikes)        */
+                                  sky_get_lightning lists the strikes); for an
+                                  eye adapted to the night held to what shows
+                                  a white surface facing it as one display
+                                  white (the lit cloud shows at most two)    */
     float flash_direction[3];  /* toward it, unit (world frame)               */
     float fog_density;         /* per metre, for the host's own fog toward
                                   fog_color: Koschmieder's 3.912 / the

@@ -261,9 +261,15 @@ void sky_weather_light(sky_core *c)
     /* The deck lit from inside by lightning, in the flash's blue-white. An
      * eye adapted to the night sees a flash as a brilliant sky, not a white
      * page: its luminance is held to two display whites (exposure 1 is one),
-     * where the cloud's own grey still shows. */
+     * where the cloud's own grey still shows; and the flash's light on the
+     * host's scene to what lights a white surface facing it to one display
+     * white (luminance = illuminance / pi), below the lit cloud: the scene
+     * flashes into sight, not into a white page brighter than the sky. */
     float deck_kcd = f->flash_deck_kcd;
-    if (f->exposure > 0.0f && deck_kcd > 2.0f / f->exposure) deck_kcd = 2.0f / f->exposure;
+    if (f->exposure > 0.0f) {
+        if (deck_kcd > 2.0f / f->exposure) deck_kcd = 2.0f / f->exposure;
+        if (f->flash_klx > (float)SKY_PI / f->exposure) f->flash_klx = (float)SKY_PI / f->exposure;
+    }
     for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * sky_flash_tint[i];
     double lt = f->light_through, deck = sky_weather_deck_share(f);
     if (!(deck > 0.0)) return;

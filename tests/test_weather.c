@@ -634,6 +634,44 @@ TEST(weather_lightning_flashes)
     fixture_close(&f);
 }
 
+/* At night a flash's light on the host's scene is held as the lit cloud
+ * is: a white surface facing it shows at one display white (the cloud at
+ * up to two), where the physical 2 klx at a kilometre would show a white
+ * page dozens of whites over; by day it is the physical light (above). */
+TEST(weather_lightning_at_night_held)
+{
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
+    cfg.seed = 7;
+    fixture f;
+    if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "no sky");
+        return;
+    }
+    sky_params p = sky_default_params();
+    p.time = 0.95f;
+    sky_set_params(f.s, &p);
+    sky_weather storm = preset(SKY_WEATHER_STORM);
+    sky_set_weather(f.s, &storm, 0.0);
+    sky_lightning_strike s[8];
+    int n = 0;
+    sky_get_lightning(f.s, 0.0, 120.0, s, 8, &n);
+    CHECK(n > 0, "strikes in two minutes of a storm");
+    if (n > 0) {
+        sky_set_elapsed(f.s, s[0].time + 0.005);
+        sky_lighting l;
+        sky_get_lighting(f.s, &l);
+        double km = s[0].distance_m / 1000.0, physical = 2.0 / (km * km);
+        double white = luma(l.flash_color) / 3.14159265358979 * l.exposure;
+        NOTE("a strike %.1f km away: %.3g klx physically, a white surface facing it at %.3f display whites (%.0f unheld)",
+             km, physical, white, physical / 3.14159265358979 * l.exposure);
+        CHECK(physical / 3.14159265358979 * l.exposure > 2.0 && white > 0.99 && white < 1.01,
+              "the flash held to one display white on a white surface (%.3f)", white);
+    }
+    fixture_close(&f);
+}
+
 /* ---- cloud shadows ------------------------------------------------------------------- */
 
 static double shadowed(const unsigned char *px, int n)
