@@ -154,8 +154,10 @@ static const char *const fs =
     "  FRAG = vec4(c, 1.0);\n"
     "}\n";
 
-/* The eye stands 1.7 m above the ground at the origin. */
-static const float eye[3] = {0.0f, 1.7f, 0.0f};
+/* The eye stands 1.7 m above the ground at the origin (--eye M raises it:
+ * from a tower or an aircraft the clouds' shadows show across the plain,
+ * which from 1.7 m lie within a degree of the horizon beyond 100 m). */
+static const float eye_height_default = 1.7f;
 
 /* the glossy ball's centre */
 static const float ball[3] = {6.0f, 2.5f, 18.0f};
@@ -221,6 +223,7 @@ typedef struct world {
     GLuint prog, vbo, vao; /* vao: core profile only */
     int count;
     int frames;            /* drawn so far: which face of the sky to capture */
+    float eye[3];          /* the eye: over the origin, metres (a unit a metre) */
 } world;
 
 /* prologue, then the library's snippets (or NULL), then body */
@@ -242,9 +245,10 @@ static GLuint compile(const game_gl *gl, GLenum type, const char *prologue, cons
 }
 
 /* In the current context. Returns 0, or -1 after saying why. */
-static int world_create(world *w, sky_get_proc_address_fn loader, int core)
+static int world_create(world *w, sky_get_proc_address_fn loader, int core, float eye_height)
 {
     memset(w, 0, sizeof *w);
+    w->eye[1] = eye_height;
     game_gl *gl = &w->gl;
     if (load_gl(gl, loader, core)) return -1;
     static float verts[(6 + BOXES * 6 * 5 + 16 * 32 * 6) * 6];
@@ -310,7 +314,7 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     const float zn = 0.5f, zf = 45000.0f;
     proj[10] = (zf + zn) / (zn - zf);
     proj[14] = 2.0f * zf * zn / (zn - zf);
-    for (int r = 0; r < 3; r++) view[12 + r] -= eye[1] * view[4 + r]; /* -R * eye, eye = (0, y, 0) */
+    for (int r = 0; r < 3; r++) view[12 + r] -= w->eye[1] * view[4 + r]; /* -R * eye, eye = (0, y, 0) */
     for (int c = 0; c < 4; c++)
         for (int r = 0; r < 4; r++) {
             mvp[c * 4 + r] = 0;
@@ -319,7 +323,7 @@ static void draw_frame(world *w, sky *s, sky_cli *cli, int width, int height)
     gl->Enable(GL_DEPTH_TEST);
     gl->UseProgram(w->prog);
     gl->UniformMatrix4fv(gl->GetUniformLocation(w->prog, "mvp"), 1, GL_FALSE, mvp);
-    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "eye"), 1, eye);
+    gl->Uniform3fv(gl->GetUniformLocation(w->prog, "eye"), 1, w->eye);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_dir"), 1, l.sun_direction);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "sun_col"), 1, l.sun_color);
     gl->Uniform3fv(gl->GetUniformLocation(w->prog, "moon_dir"), 1, l.moon_direction);
@@ -398,7 +402,7 @@ static sky *make_sky(const sky_cli *cli, sky_get_proc_address_fn loader)
 }
 
 /* No display: the same frames, 1/30 s apart, into an OSMesa buffer. */
-static int headless(sky_cli *cli, const char *out)
+static int headless(sky_cli *cli, const char *out, float eye_height)
 {
     char err[512];
     sky_osmesa ctx;
@@ -409,7 +413,7 @@ static int headless(sky_cli *cli, const char *out)
     world w;
     sky *s = NULL;
     int status = 1;
-    if (!world_create(&w, sky_osmesa_loader(), ctx.is_core)) {
+    if (!world_create(&w, sky_osmesa_loader(), ctx.is_core, eye_height)) {
         s = make_sky(cli, sky_osmesa_loader());
         if (s) {
             int width = cli->width, height = cli->height;
@@ -457,7 +461,8 @@ static void usage(FILE *f)
             "                           the sky's six sliders, each 0..1 (time: 0 midnight, 0.5 noon)\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --date YYYY-MM-DDTHH:MM:SSZ --lat DEG --lon DEG --alt M   where and when\n"
-            "  --yaw DEG --pitch DEG --fov DEG   the eye's view (1.7 m above the ground)\n"
+            "  --yaw DEG --pitch DEG --fov DEG   the eye's view\n"
+            "  --eye M                  the eye's height above the ground, 0.5..20000 m (default 1.7)\n"
             "  --features LIST --atmosphere PATH --exposure STOPS --seconds S   the sky, as in sky-render\n"
             "  --weather NAME [--weather-to NAME --weather-seconds S] --seed N   the weather, as in\n"
             "                           sky-render (without them, the weather changes every minute)\n"
@@ -469,14 +474,34 @@ static void usage(FILE *f)
             "keys: Esc quits\n");
 }
 
+/* --eye M at argv[*i]: 1 taken (*i past its value), 0 not --eye, -1
+ * after saying what is wrong with the value. */
+static int take_eye(int *i, int argc, char **argv, float *eye_height)
+{
+    if (strcmp(argv[*i], "--eye")) return 0;
+    const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    char *end = NULL;
+    double m = val ? strtod(val, &end) : NAN;
+    if (!val || end == val || *end || !(m >= 0.5 && m <= 20000.0)) {
+        fprintf(stderr, "sky-game: --eye: expected a height of 0.5..20000 m, got '%s'\n", val ? val : "(nothing)");
+        return -1;
+    }
+    *eye_height = (float)m;
+    (*i)++;
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
-    /* --out is the game's own option: taken out before the shared parse */
+    /* --out and --eye are the game's own options: taken out before the
+     * shared parse */
     const char *out = NULL;
+    float eye_height = eye_height_default;
     char *args[64];
     int n = 0;
     for (int i = 0; i < argc && n < 64; i++) {
         int took = sky_cli_take_out(&i, argc, argv, "sky-game", &out);
+        if (!took) took = take_eye(&i, argc, argv, &eye_height);
         if (took < 0) return 2;
         if (took) continue;
         args[n++] = argv[i];
@@ -500,11 +525,11 @@ int main(int argc, char **argv)
     if (!out) out = cli.screenshot ? cli.screenshot : "sky-game.png";
     if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
         fprintf(stderr, "sky-game: no display found (DISPLAY is unset)\n");
-        return headless(&cli, out);
+        return headless(&cli, out, eye_height);
     }
     if (!glfwInit()) {
         fprintf(stderr, "sky-game: GLFW cannot open the display\n");
-        return headless(&cli, out);
+        return headless(&cli, out, eye_height);
     }
     int core = cli.gl != SKY_GL_COMPAT20;
     GLFWwindow *win = open_window(&cli, core);
@@ -516,7 +541,7 @@ int main(int argc, char **argv)
     }
     glfwMakeContextCurrent(win);
     world w;
-    if (world_create(&w, glfwGetProcAddress, core)) {
+    if (world_create(&w, glfwGetProcAddress, core, eye_height)) {
         glfwTerminate();
         return 1;
     }

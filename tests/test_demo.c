@@ -377,6 +377,54 @@ SLOW_TEST(game_options_are_its_own)
     image_free(&base);
 }
 
+/* sky-game's ground in the clouds' shadows: seen from 300 m up (--eye)
+ * under a cloudy sky they darken patches of it, which move on in a minute,
+ * where a clear sky lights the plain evenly; a height out of range is
+ * refused. */
+static double ground_spread(const image *im)
+{
+    /* the spread of the ground's luminance below the horizon band */
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (int y = im->h / 2; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) {
+            const float *p = im->px + 3 * (y * im->w + x);
+            double l = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            sum += l, sum2 += l * l, n++;
+        }
+    double mean = sum / n;
+    return sqrt(fmax(sum2 / n - mean * mean, 0.0));
+}
+
+SLOW_TEST(game_cloud_shadows_from_above)
+{
+    static const char *const view = "--time 0.45 --eye 300 --pitch -18";
+    char args[256];
+    image clear, cloudy, later;
+    snprintf(args, sizeof args, "%s --weather clear", view);
+    if (game_headless(args, &clear)) return;
+    snprintf(args, sizeof args, "%s --weather cloudy", view);
+    if (game_headless(args, &cloudy)) {
+        image_free(&clear);
+        return;
+    }
+    snprintf(args, sizeof args, "%s --weather cloudy --seconds 60", view);
+    if (!game_headless(args, &later)) {
+        double a = ground_spread(&clear), b = ground_spread(&cloudy), moved = mean_abs_diff(&cloudy, &later);
+        NOTE("the ground's spread of luminance: clear %.4f, cloudy %.4f; a minute on it changes by %.4f", a, b, moved);
+        CHECK(b > 3.0 * a && b > 0.02, "cloud shadows pattern the ground (%.4f against clear's %.4f)", b, a);
+        CHECK(moved > 2.0 / 255.0, "and move on (%.4f)", moved);
+        image_free(&later);
+    }
+    image_free(&clear);
+    image_free(&cloudy);
+    char path[512], cmd[1024], log[1024];
+    snprintf(cmd, sizeof cmd, "env -u DISPLAY %s --eye 0.1 --size 64x36 --out /dev/null 2>&1",
+             bin_path("sky-game", path, sizeof path));
+    int rc = run_command(cmd, log, sizeof log);
+    CHECK(rc == 2 && strstr(log, "--eye"), "--eye 0.1: exit %d (want 2): %s", rc, log);
+}
+
 /* Mean colour of a region (x0 <= x < x1, y0 <= y < y1). */
 static void region_mean(const image *im, int x0, int y0, int x1, int y1, double rgb[3])
 {

@@ -162,6 +162,11 @@ eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-dusk
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night.png --preset moonlit >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 3 --screenshot $out/game-night-moonless.png --preset starry >/dev/null
 eval $x build/bin/sky-game --size 640x360 --frames 1 --screenshot $out/game-storm.png --time 0.5 --weather storm >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 1 --screenshot $out/game-shadows.png --weather cloudy --eye 300 --pitch -18 >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 1 --screenshot $out/game-shadows-60.png --weather cloudy --eye 300 --pitch -18 \
+    --seconds 60 >/dev/null
+eval $x build/bin/sky-game --size 640x360 --frames 1 --screenshot $out/game-flash.png --time 0.95 --weather storm --yaw 133 \
+    --pitch 5 --seconds 11.21 >/dev/null
 # the engine examples (make examples builds them): 7:12 in the morning,
 # looking south
 if [ -x build/examples/sky-sdl2 ] && [ -x build/examples/sky-osg ] && [ -x build/examples/sky-irrlicht ]; then
