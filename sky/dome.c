@@ -459,10 +459,11 @@ static int dome_draw(sky_core *s, void *state)
     draw_hemisphere(s, st, 1);
     int draws = 1;
     /* the lower hemisphere: its own cheap program when the upper one
-     * carries more than the atmosphere, unless a weather's haze (in the
-     * clouds' code) lies over the ground too; none in the all-sky image */
+     * carries more than the atmosphere, unless a weather's haze or deck
+     * (in the clouds' code) lies over the ground too; none in the all-sky
+     * image */
     if (f->fisheye < 0.5f) {
-        if (ground->id && !(f->haze[0] > 0.0f)) {
+        if (ground->id && !(f->haze[0] > 0.0f) && !(f->deck > 0.0f)) {
             sky_program_apply(s, ground);
             draws++;
         }

@@ -250,6 +250,28 @@ void sky_weather_frame(sky_core *c)
 
 double sky_weather_deck_share(const sky_frame *f) { return f->deck_opacity * (1.0 - f->light_through); }
 
+/* sky_weather_light's dimming: where the deck covers the sky (its share
+ * of the light, deck) it passes lt of the light above, diffused. */
+static void dim_under_deck(sky_core *c, double lt, double deck)
+{
+    sky_frame *f = &c->frame;
+    /* the light that reaches the deck: the sky's and the sun's beam on the
+     * level, which the deck spreads over the sky below it */
+    double beam = fmax(sin(f->sun_altitude), 0.0) * sky_solar_eclipse_light_left(c);
+    static const double luma[3] = {0.2126, 0.7152, 0.0722};
+    double above = 0.0, fog = 0.0, ground = 0.0;
+    for (int i = 0; i < 3; i++) {
+        above += luma[i] * (f->ambient_rgb[i] + c->sun_irradiance_klx[i] * f->sun_transmittance[i] * beam);
+        fog += luma[i] * f->fog_rgb[i];
+        ground += luma[i] * f->ground_rgb[i];
+    }
+    for (int i = 0; i < 3; i++) {
+        f->ambient_rgb[i] = (float)((1.0 - deck) * f->ambient_rgb[i] + deck * lt * above);
+        f->fog_rgb[i] = (float)((1.0 - deck) * f->fog_rgb[i] + deck * lt * fog);
+        f->ground_rgb[i] = (float)((1.0 - deck) * f->ground_rgb[i] + deck * lt * ground);
+    }
+}
+
 /* (sky.c's compute_frame, after the layers: the deck's opacity is the
  * clouds layer's) Where a weather's deck covers the sky it passes
  * light_through of the light above, diffused: the sky's light on the
@@ -272,20 +294,14 @@ void sky_weather_light(sky_core *c)
     }
     for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * sky_flash_tint[i];
     double lt = f->light_through, deck = sky_weather_deck_share(f);
-    if (!(deck > 0.0)) return;
-    /* the light that reaches the deck: the sky's and the sun's beam on the
-     * level, which the deck spreads over the sky below it */
-    double beam = fmax(sin(f->sun_altitude), 0.0) * sky_solar_eclipse_light_left(c);
-    static const double luma[3] = {0.2126, 0.7152, 0.0722};
-    double above = 0.0, fog = 0.0, ground = 0.0;
-    for (int i = 0; i < 3; i++) {
-        above += luma[i] * (f->ambient_rgb[i] + c->sun_irradiance_klx[i] * f->sun_transmittance[i] * beam);
-        fog += luma[i] * f->fog_rgb[i];
-        ground += luma[i] * f->ground_rgb[i];
-    }
-    for (int i = 0; i < 3; i++) {
-        f->ambient_rgb[i] = (float)((1.0 - deck) * f->ambient_rgb[i] + deck * lt * above);
-        f->fog_rgb[i] = (float)((1.0 - deck) * f->fog_rgb[i] + deck * lt * fog);
-        f->ground_rgb[i] = (float)((1.0 - deck) * f->ground_rgb[i] + deck * lt * ground);
+    if (deck > 0.0) dim_under_deck(c, lt, deck);
+    /* Under a closed deck the horizon is its base seen far off: the deck's
+     * own light (the clouds' mean grey in their light, which the deck has
+     * dimmed already), where the clear sky's had shown as a bright band
+     * between deck and ground. */
+    if (f->deck > 0.0f && f->cloud_mean[0] > 0.0f) {
+        double grey = f->cloud_mean[1] / f->cloud_mean[0];
+        for (int i = 0; i < 3; i++)
+            f->fog_rgb[i] = (float)((1.0 - f->deck) * f->fog_rgb[i] + f->deck * grey * f->cloud_light[i]);
     }
 }

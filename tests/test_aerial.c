@@ -251,6 +251,26 @@ static void glsl_matches(sky_gl_profile profile, sky_weather_state weather)
     sky_params p = sky_default_params();
     p.time = 0.3f; /* a morning sun, some 20 degrees up */
     sky_set_params(f.s, &p);
+    sky_update(f.s, 0.0);
+    static const double els[3] = {0.5, 4.0, 25.0}, azs[4] = {0.0, 50.0, 100.0, 170.0};
+    static const float dists[GLSL_DISTS] = {30.0f, 400.0f, 2500.0f, 9000.0f, 30000.0f, 70000.0f, 4e5f};
+    sky_lighting l;
+    sky_get_lighting(f.s, &l);
+    /* the sun's azimuth in the horizon frame (Z-up world: horizon y is world z) */
+    double sun_az = atan2(l.sun_direction[0], l.sun_direction[1]) * 180.0 / M_PI;
+    /* The table's 8-bit steps are steps of the clear air's light, which a
+     * weather only scales down (its own term is exact in both): the floor
+     * of the light's tolerance is the clear air's brightest. */
+    double brightest = 0.0;
+    for (int i = 0; i < GLSL_DIRS; i++)
+        for (int k = 0; k < GLSL_DISTS; k++) {
+            double h[3];
+            horizon_dir(els[i / 4], sun_az + azs[i % 4], h);
+            float w[3] = {(float)h[0], (float)-h[2], (float)h[1]}; /* horizon -> Z-up world */
+            sky_aerial a;
+            sky_get_aerial_perspective(f.s, w, dists[k], &a);
+            for (int c = 0; c < 3; c++) brightest = fmax(brightest, a.inscatter[c]);
+        }
     if (weather) { /* its deck and haze over the table, in the shader and on the CPU alike */
         sky_weather w;
         sky_weather_preset(weather, &w);
@@ -276,14 +296,7 @@ static void glsl_matches(sky_gl_profile profile, sky_weather_state weather)
           "%s: after the bind the program is %d (host's %u), the unit 0x%x (host's 0x%x), unit 5 holds %d", name,
           now_prog, other, now_unit, GL_TEXTURE2, bound);
     glUseProgram(prog);
-    static const double els[3] = {0.5, 4.0, 25.0}, azs[4] = {0.0, 50.0, 100.0, 170.0};
-    static const float dists[GLSL_DISTS] = {30.0f, 400.0f, 2500.0f, 9000.0f, 30000.0f, 70000.0f, 4e5f};
-    sky_lighting l;
-    sky_get_lighting(f.s, &l);
-    /* the sun's azimuth in the horizon frame (Z-up world: horizon y is world z) */
-    double sun_az = atan2(l.sun_direction[0], l.sun_direction[1]) * 180.0 / M_PI;
     float cpu[GLSL_DIRS * GLSL_DISTS][6];
-    double brightest = 0.0;
     for (int i = 0; i < GLSL_DIRS; i++) {
         double h[3];
         horizon_dir(els[i / 4], sun_az + azs[i % 4], h);
@@ -299,7 +312,6 @@ static void glsl_matches(sky_gl_profile profile, sky_weather_state weather)
             for (int c = 0; c < 3; c++) {
                 cpu[x][c] = a.transmittance[c];
                 cpu[x][3 + c] = a.inscatter[c];
-                brightest = fmax(brightest, a.inscatter[c]);
             }
         }
     }

@@ -253,6 +253,8 @@ typedef struct shot {
     double saturation;   /* 8-bit: mean (max - min) / max above the horizon */
     double above[3], below[3]; /* 8-bit: mean colour (0..255) of the rows
                                   2-8 above and below the horizon's     */
+    double horizon_row;  /* 8-bit: the brightest row within 2 of the
+                            horizon's, its mean luminance (0..255)       */
     sky_lighting light;
 } shot;
 
@@ -315,6 +317,15 @@ static int shot_at(const sky_weather *w, float time, double yaw, double pitch, s
             for (int i = 0; i < 3; i++) {
                 out->above[i] = rows[0] ? band[0][i] / (rows[0] * W) : 0.0;
                 out->below[i] = rows[1] ? band[1][i] / (rows[1] * W) : 0.0;
+            }
+            for (int y = (int)hy - 2; y <= (int)hy + 2; y++) {
+                if (y < 0 || y >= H) continue;
+                double row = 0.0;
+                for (int x = 0; x < W; x++) {
+                    const unsigned char *q = px + 4 * ((H - 1 - y) * W + x);
+                    row += 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
+                }
+                out->horizon_row = fmax(out->horizon_row, row / W);
             }
         } else {
             const float *px = f.ctx.pixels;
@@ -436,6 +447,26 @@ TEST(weather_fog_swallows_the_horizon)
     CHECK(fabs(f.light.fog_density - 3.912 / (1000.0 * fog.visibility_km)) < 1e-6 &&
               fabs(c.light.fog_density - 3.912 / (1000.0 * clear.visibility_km)) < 1e-8,
           "fog_density = 3.912 / V (%g, %g per metre)", f.light.fog_density, c.light.fog_density);
+}
+
+/* A deck without haze (a host's own weather: overcast's deck, the clear
+ * state's range) closes the sky down to the horizon: no band of the clear
+ * sky's bright horizon between the deck and the ground. */
+TEST(weather_deck_closes_the_horizon)
+{
+    sky_weather deck = preset(SKY_WEATHER_OVERCAST);
+    deck.visibility_km = preset(SKY_WEATHER_CLEAR).visibility_km;
+    shot d;
+    if (shot_at(&deck, 0.5f, 180.0, 3.0, &d)) {
+        CHECK(0, "the shot rendered");
+        return;
+    }
+    double above = 0.2126 * d.above[0] + 0.7152 * d.above[1] + 0.0722 * d.above[2];
+    double below = 0.2126 * d.below[0] + 0.7152 * d.below[1] + 0.0722 * d.below[2];
+    NOTE("a deck without haze: the horizon's brightest row %.1f/255, the deck above %.1f, the ground below %.1f",
+         d.horizon_row, above, below);
+    CHECK(d.horizon_row <= fmax(above, below) + 2.0, "no bright band at the horizon (%.1f against %.1f and %.1f)",
+          d.horizon_row, above, below);
 }
 
 /* A 10-second change of weather seen at 30 frames a second: no frame

@@ -63,6 +63,14 @@ void main()
 #endif
     float cover = 0.0;
 #ifdef SKY_HAS_CLOUDS
+#ifdef SKY_HAS_WEATHER
+    /* behind a weather's deck no clear sky (nor star): where its layers
+     * thin out into the horizon, the air under it in the horizon's light,
+     * which the deck has dimmed (weather.c); below the horizon the ground
+     * as sky_ground has it (the gradient's vertices would carry the clear
+     * horizon's light down into it) */
+    L = mix(L, d.y < 0.0 ? sky_ground(d) : u_horizon, u_deck);
+#endif
     vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade, d);
     L = mix(L, c.rgb, c.a);
     cover = c.a;
