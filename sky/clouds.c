@@ -48,7 +48,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
 /* clouds.glsl in both stages: the dome finds its cloud coordinates and
  * sunset per vertex */
 static const sky_snippet clouds_snippet = {"SKY_HAS_CLOUDS", "clouds.glsl", cloud_uniforms,
-                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl", NULL};
+                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl", NULL, NULL};
 
 /* Drift of each layer in texture periods per second at speed 1. The two
  * primary layers differ by about 13 degrees and 20 % in speed (R-P 3.2), so
