@@ -132,8 +132,10 @@ static const struct {
 } feature_names[] = {{"clouds", SKY_CLOUDS},        {"sun", SKY_SUN},         {"moon", SKY_MOON},
                      {"stars", SKY_STARS},          {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
                      {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}, {"planets", SKY_PLANETS},
-                     {"airglow", SKY_AIRGLOW},      {"zodiacal", SKY_ZODIACAL}, {"weather", SKY_WEATHER}};
-#define FEATURE_NAMES "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal,weather"
+                     {"airglow", SKY_AIRGLOW},      {"zodiacal", SKY_ZODIACAL}, {"weather", SKY_WEATHER},
+                     {"rainbow", SKY_RAINBOW}};
+#define FEATURE_NAMES \
+    "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal,weather,rainbow"
 
 static int parse_features(const char *s, unsigned *out, char *err, size_t len)
 {
@@ -202,8 +204,8 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           the default), very-clean, hazy, polluted, hillaire-2020 (his paper's\n"
             "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
-            "                           solar-eclipse,planets,airglow,zodiacal,weather (or none); eclipse = the\n"
-            "                           lunar one\n"
+            "                           solar-eclipse,planets,airglow,zodiacal,weather,rainbow (or none); eclipse =\n"
+            "                           the lunar one\n"
             "  --gl auto|core|compat|es20\n"
             "                           GL profile (es20: OpenGL ES 2.0, headless through EGL)\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"

@@ -327,6 +327,15 @@ void sky_clouds_shadow(const sky_core *s, const void *state, double extent_m, in
         }
 }
 
+/* (layer.h) The clouds' base height: cfg.cloud_height_m at the height slider's
+ * middle, scaled as the slider scales the drawn clouds (clouds.c:
+ * 0.15 x 4^height texture periods per unit of the plane). */
+double sky_cloud_height_m(const sky_core *c)
+{
+    double base = c->cfg.cloud_height_m > 0.0f ? c->cfg.cloud_height_m : 1500.0;
+    return base * pow(4.0, c->params.height - 0.5);
+}
+
 /* The fade of detail a pixel cannot hold is judged in the viewport's
  * pixels: a step in the dome's image spans its divisor of them. */
 void sky_clouds_image_step(sky_core *s, int step_pixels)

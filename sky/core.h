@@ -415,5 +415,9 @@ void sky_weather_light(sky_core *c);
  * covers the sky: its opacity times what it does not let through (0
  * without one) */
 double sky_weather_deck_share(const sky_frame *f);
+/* lighting.c: the sun's beam at the observer, klx per channel (what
+ * sky_get_lighting reports as sun_color): through the air, the part of
+ * the disc above the horizon, a solar eclipse's share, a weather's deck. */
+void sky_sun_beam(const sky_core *c, float rgb[3]);
 
 #endif /* SKY_CORE_H */

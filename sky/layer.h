@@ -155,6 +155,10 @@ double sky_sun_illuminance_klx(const sky_core *s);
  * moonlight a host's scene receives (sky_get_lighting). */
 double sky_moon_drawn_scale(const sky_core *s);
 void sky_moon_lighting(const sky_core *s, float moon_color[3]);
+/* clouds.c: the clouds' base height, metres (cfg.cloud_height_m, 1500 by
+ * default, at the height slider's middle, scaled as the slider scales the
+ * drawn clouds): where their shadows fall, where the rain hangs from. */
+double sky_cloud_height_m(const sky_core *c);
 /* (The moon's light above the air, which the atmosphere and the clouds
  * scatter: moonlight.h.) */
 

@@ -193,10 +193,15 @@ typedef enum sky_feature {
     SKY_ZODIACAL      = 1u << 10, /* sunlight scattered by interplanetary
                                     dust (Leinert et al. 1998): the false
                                     dawn, the gegenschein                */
-    SKY_WEATHER       = 1u << 11 /* the weather's shading in the clouds'
+    SKY_WEATHER       = 1u << 11, /* the weather's shading in the clouds'
                                     shaders: the deck, the haze, lightning's
                                     flash (sky_set_weather needs it; it
                                     draws through SKY_CLOUDS). Since 0.6.0 */
+    SKY_RAINBOW       = 1u << 12 /* rainbows in a weather's rain in sunlight
+                                    (Airy's theory for its drops), a fogbow
+                                    in fog, a moon's bow; nothing otherwise.
+                                    Needs SKY_CLOUDS and SKY_WEATHER (the
+                                    rain is the weather's). Since 0.6.0   */
 } sky_feature;
 /* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
  * to fit an int. */
@@ -208,7 +213,7 @@ typedef enum sky_feature {
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
-     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER)
+     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER | SKY_RAINBOW)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */

@@ -68,8 +68,8 @@ typedef struct sky_snippet {
      * phenomenon adds in front of the sky and the clouds from horizon
      * direction d (a rainbow in the rain, a halo in the ice), kcd/m^2. A
      * program with such snippets gets sky_front_lights(d), their sum, and
-     * the define SKY_HAS_FRONT_LIGHTS (dome.frag adds it over the clouds,
-     * under the haze). NULL: not one. */
+     * the define SKY_HAS_FRONT_LIGHTS (dome.frag adds it over the clouds
+     * and the haze). NULL: not one. */
     const char *front_function;
 } sky_snippet;
 

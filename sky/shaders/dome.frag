@@ -74,17 +74,18 @@ void main()
     vec4 c = sky_clouds_at(v_cloud_layers, v_cloud_upper, v_cloud_shade, d);
     L = mix(L, c.rgb, c.a);
     cover = c.a;
-    /* the optics' light in front of sky and clouds (a rainbow in the
-     * rain, a halo in the ice: the optics variants of the dome, dome.c) */
-#ifdef SKY_HAS_FRONT_LIGHTS
-    L += sky_front_lights(d);
-#endif
     /* a weather's haze in front of sky, clouds and ground alike, its light
      * the horizon's (clouds.glsl; 0 without a weather) */
 #ifdef SKY_HAS_WEATHER
     float haze = sky_weather_haze(d);
     L = mix(L, u_horizon, haze);
     cover += (1.0 - cover) * haze;
+#endif
+    /* the optics' light in front of sky, clouds and haze (a rainbow in the
+     * rain, a fogbow in the fog itself, a halo in the ice: the optics
+     * variants of the dome, dome.c) */
+#ifdef SKY_HAS_FRONT_LIGHTS
+    L += sky_front_lights(d);
 #endif
 #endif
 #ifdef SKY_DOME_INTO_IMAGE
