@@ -143,6 +143,11 @@ int sky_config_check(const sky_config *cfg, unsigned *features, sky_atmosphere_p
                    "the clouds, in the weather's rain)");
         return -1;
     }
+    if ((*features & SKY_HALO) && !(*features & SKY_CLOUDS)) {
+        sky_format(err, err_len, "sky_create: SKY_HALO needs SKY_CLOUDS (the halos are drawn over the clouds, in "
+                   "their thin upper layer's ice)");
+        return -1;
+    }
     sky_atmosphere_params described = cfg->atmosphere_params;
     if (sky_atmosphere_is_zero(&described)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &described);
     char atm_err[160];

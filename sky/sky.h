@@ -197,11 +197,16 @@ typedef enum sky_feature {
                                     shaders: the deck, the haze, lightning's
                                     flash (sky_set_weather needs it; it
                                     draws through SKY_CLOUDS). Since 0.6.0 */
-    SKY_RAINBOW       = 1u << 12 /* rainbows in a weather's rain in sunlight
+    SKY_RAINBOW       = 1u << 12, /* rainbows in a weather's rain in sunlight
                                     (Airy's theory for its drops), a fogbow
                                     in fog, a moon's bow; nothing otherwise.
                                     Needs SKY_CLOUDS and SKY_WEATHER (the
                                     rain is the weather's). Since 0.6.0   */
+    SKY_HALO          = 1u << 13 /* the 22 and 46 degree halos and the
+                                    parhelia around the sun and the moon in
+                                    the thin upper layer's ice (cirrus);
+                                    nothing without it. Needs SKY_CLOUDS.
+                                    Since 0.6.0                          */
 } sky_feature;
 /* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
  * to fit an int. */
@@ -213,7 +218,8 @@ typedef enum sky_feature {
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
-     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER | SKY_RAINBOW)
+     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER | SKY_RAINBOW | \
+     SKY_HALO)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
