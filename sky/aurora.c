@@ -28,23 +28,26 @@
  * once, at a ground distance s where its height is h = R (r0 cos e /
  * (R cos(e + s / R)) - 1) (e the elevation, R the Earth's radius, r0 the
  * observer's radius). The green emits from a sharp lower edge at 95-110
- * km fading upward over 30 km, the red from 170-250 km fading upward over 70 km. The
- * column is longer where the ray crosses the sheet obliquely: by 1 /
- * (|dD/ds| cos e_local), D the ray's distance from the sheet across it,
- * at most 6.7 (seen face-on: 1).
+ * km fading upward over 30 km, the red from 170-250 km fading upward
+ * over 50 km. The column is longer where the ray crosses the sheet
+ * obliquely: by 1 / (|dD/ds| cos e_local), D the ray's distance from the
+ * sheet across it, at most 6.7 (seen face-on: 1).
  *
- * How bright. A curtain seen face-on has I(Kp) = 2 kR * 1.4^Kp in the
- * green line (15 kR at Kp 6: an IBC II-III aurora, "tens of kR" seen
- * obliquely) and 0.15 + 0.05 Kp of that in the red line, in rayleighs.
+ * How bright. A curtain seen face-on has I(Kp) = 3 kR * 1.45^Kp in the
+ * green line (28 kR at Kp 6: an IBC II-III aurora; up to 6.7 times that
+ * seen obliquely) and 0.03 + 0.01 Kp of that in the red line (0.09 at Kp
+ * 6: a normal aurora's 630 nm is a tenth or less of its 557.7), in
+ * rayleighs.
  * One rayleigh is 10^10 / (4 pi) photons s^-1 m^-2 sr^-1; a photon of
  * wavelength l carries h c / l (3.562e-19 J at 557.7 nm, 3.153e-19 at
  * 630), and a watt of it 683 V(l) lumens, the CIE 1931 photopic V (=
  * y-bar, CIE 015:2004's table: 0.9973 at 557.7 nm, interpolated, 0.2650
  * at 630). So 1 kR of the green is 1.93e-4 cd/m^2 and of the red 4.54e-5:
- * a Kp 6 curtain face-on is 3 mcd/m^2, some 15 times a dark zenith. Their
+ * a Kp 6 curtain face-on is 5.4 mcd/m^2, some 30 times a dark zenith
+ * (0.17 mcd/m^2). Their
  * colours are those lines' CIE 1931 x-bar, y-bar, z-bar through sRGB's
  * matrix, outside its gamut, the negative channels clipped to 0 (linear
- * sRGB per unit luminance: green 0.06, 1.38, 0; red 4.70, 0, 0).
+ * sRGB per unit luminance: green 0.27, 1.32, 0; red 4.70, 0, 0).
  *
  * When. It shows while the band is within 2000 km (poleward or
  * equatorward) of the observer, which is as far as the red tops stand
@@ -164,6 +167,7 @@ static void aurora_frame(sky_core *s, void *state)
 {
     aurora_state *st = state;
     memset(st, 0, sizeof *st);
+    s->frame.glows_key = 0.0f;
     double poleward[2];
     double lat_m = fabs(geomagnetic(&s->observer, poleward));
     double kp = sky_clampd(s->cfg.kp, 0.0, 9.0);
@@ -188,7 +192,7 @@ static void aurora_frame(sky_core *s, void *state)
     double g[3], r[3];
     line_colour(green_bar, g);
     line_colour(red_bar, r);
-    double kr = GREEN_KR_KP0 * pow(GREEN_GAIN_PER_KP, kp), red_share = 0.15 + 0.05 * kp;
+    double kr = GREEN_KR_KP0 * pow(GREEN_GAIN_PER_KP, kp), red_share = 0.03 + 0.01 * kp;
     double green_l = kr * 1000.0 * kcd_per_rayleigh(557.7, 0.9973);
     double red_l = red_share * kr * 1000.0 * kcd_per_rayleigh(630.0, 0.2650);
     /* a quarter of an 8-bit step at the exposure, seen as obliquely as it
@@ -198,6 +202,8 @@ static void aurora_frame(sky_core *s, void *state)
         st->green[i] = (float)(green_l * g[i]);
         st->red[i] = (float)(red_l * r[i]);
     }
+    /* the irradiance's cache follows the curtains (their zenith is 0) */
+    s->frame.glows_key = st->green[1] * 1e6f + st->oval[0] + st->axes[3] + st->oval[3] + st->red[3];
 }
 
 /* ---- aurora.glsl's sky_aurora, in C (float where the shader's hash
@@ -260,10 +266,10 @@ static void aurora_at(const sky_core *s, const void *state, const double d[3], d
         if (g <= 0.0 || local <= 0.02) continue;
         double h = EARTH_RADIUS_KM * (r0 * c / local - 1.0);
         double green = smoothstep(95.0, 110.0, h) * exp(-fmax(h - 110.0, 0.0) / 30.0);
-        double red = smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 70.0);
+        double red = smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 50.0);
         double oblique = 1.0 / fmax(fabs(cn - slope * ce) * local, 0.15);
         double envelope = 0.25 + 0.75 * smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + st->red[3]));
-        double rays = 0.55 + 0.45 * sin(east / 9.0 + 40.0 * h1 + st->axes[3]) * sin(east / 4.3 + 2.0 * st->axes[3]);
+        double rays = 0.55 + 0.45 * sin(east / 15.0 + 40.0 * h1 + st->axes[3]) * sin(east / 6.5 + 2.0 * st->axes[3]);
         double w = oval * oblique * envelope * rays * (0.4 + 0.6 * h2);
         for (int j = 0; j < 3; j++) rgb[j] += (st->green[j] * green + st->red[j] * red) * w;
     }

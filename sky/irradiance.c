@@ -121,7 +121,8 @@ void sky_atmosphere_key(const sky_core *s, double key[SKY_ATMOSPHERE_KEY])
     key[n++] = f->blend_weight;
     key[n++] = f->rl_geometry[0]; /* the observer's radius (physical paths) */
     key[n++] = s->observer.altitude_m;
-    _Static_assert(8 * 3 + 4 + 9 + 7 == SKY_ATMOSPHERE_KEY, "the key's length");
+    key[n++] = f->glows_key;
+    _Static_assert(8 * 3 + 4 + 9 + 8 == SKY_ATMOSPHERE_KEY, "the key's length");
 }
 
 const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *cache))[3]

@@ -58,10 +58,10 @@ vec3 sky_aurora(vec3 d)
         float local = cos(e + g / 6371.0);
         float h = 6371.0 * (u_aurora_axes.z * c / max(local, 0.02) - 1.0);
         float green = smoothstep(95.0, 110.0, h) * exp(-max(h - 110.0, 0.0) / 30.0);
-        float red = smoothstep(170.0, 250.0, h) * exp(-max(h - 250.0, 0.0) / 70.0);
+        float red = smoothstep(170.0, 250.0, h) * exp(-max(h - 250.0, 0.0) / 50.0);
         float oblique = 1.0 / max(abs(cn - slope * ce) * local, 0.15);
         float envelope = 0.25 + 0.75 * smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + ph));
-        float rays = 0.55 + 0.45 * sin(east / 9.0 + 40.0 * h1 + u_aurora_axes.w) * sin(east / 4.3 + 2.0 * u_aurora_axes.w);
+        float rays = 0.55 + 0.45 * sin(east / 15.0 + 40.0 * h1 + u_aurora_axes.w) * sin(east / 6.5 + 2.0 * u_aurora_axes.w);
         float w = (g > 0.0 && local > 0.02) ? oval * oblique * envelope * rays * (0.4 + 0.6 * h2) : 0.0;
         L += (u_aurora_green.rgb * green + u_aurora_red.rgb * red) * w;
     }
