@@ -208,20 +208,20 @@ static void aurora_frame(sky_core *s, void *state)
 
 /* ---- aurora.glsl's sky_aurora, in C (float where the shader's hash
  * wants the same rounding) ---------------------------------------------- */
-static double smoothstep(double a, double b, double x)
+static double aurora_smoothstep(double a, double b, double x)
 {
     double t = sky_clampd((x - a) / (b - a), 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
 }
 
-static double hash(float k, float seed)
+static double aurora_hash(float k, float seed)
 {
     float x = sinf(k * 12.9898f + seed) * 43758.5453f;
     return (double)(x - floorf(x));
 }
 
 /* the fold of curtain (hashes h1, h2) at east coordinate e, and its slope */
-static double fold(double e, double h1, double h2, double phase, double *slope)
+static double aurora_fold(double e, double h1, double h2, double phase, double *slope)
 {
     double a1 = e / 330.0 + 6.2832 * h1 + phase, a2 = e / 130.0 + 6.2832 * h2 - 2.0 * phase,
            a3 = e / 47.0 + 17.0 * h1 + 3.0 * phase;
@@ -231,7 +231,7 @@ static double fold(double e, double h1, double h2, double phase, double *slope)
 
 /* the ground distance (km) where a ray of elevation e (sine y, cosine c)
  * reaches height h km from radius ratio r0 */
-static double ground_at(double y, double c, double r0, double h)
+static double aurora_ground_at(double y, double c, double r0, double h)
 {
     double e = asin(sky_clampd(y, -1.0, 1.0));
     return EARTH_RADIUS_KM * (acos(sky_clampd(c * r0 * EARTH_RADIUS_KM / (EARTH_RADIUS_KM + h), -1.0, 1.0)) - e);
@@ -248,27 +248,27 @@ static void aurora_at(const sky_core *s, const void *state, const double d[3], d
     /* poleward and geomagnetic east (poleward turned clockwise seen from
      * above: north's east) components of the ray's horizontal direction */
     double cn = hx * st->axes[0] + hz * st->axes[1], ce = -hx * st->axes[1] + hz * st->axes[0];
-    double s_lo = ground_at(y, c, r0, 95.0), s_hi = ground_at(y, c, r0, 320.0);
+    double s_lo = aurora_ground_at(y, c, r0, 95.0), s_hi = aurora_ground_at(y, c, r0, 320.0);
     double n_lo = fmin(s_lo * cn, s_hi * cn) - FOLD_KM, nb = st->oval[0], np = st->oval[1], sp = st->oval[2];
     double k0 = fmax(floor((n_lo - nb) / sp - 0.8), 0.0);
     double cn_safe = cn < 0.0 ? fmin(cn, -0.03) : fmax(cn, 0.03);
     double e = asin(y);
     for (int i = 0; i < 4; i++) {
         double k = k0 + i;
-        double h1 = hash((float)k, st->green[3]), h2 = hash((float)k + 0.5f, st->green[3]);
+        double h1 = aurora_hash((float)k, st->green[3]), h2 = aurora_hash((float)k + 0.5f, st->green[3]);
         double nk = nb + (k + 0.5 + 0.3 * sin(6.2832 * h1 + st->oval[3])) * sp;
-        double oval = smoothstep(nb - 100.0, nb + 100.0, nk) * (1.0 - smoothstep(np - 200.0, np + 50.0, nk));
+        double oval = aurora_smoothstep(nb - 100.0, nb + 100.0, nk) * (1.0 - aurora_smoothstep(np - 200.0, np + 50.0, nk));
         double slope, g = nk / cn_safe;
-        for (int it = 0; it < 2; it++) g = (nk + fold(g * ce, h1, h2, st->red[3], &slope)) / cn_safe;
+        for (int it = 0; it < 2; it++) g = (nk + aurora_fold(g * ce, h1, h2, st->red[3], &slope)) / cn_safe;
         double east = g * ce;
-        fold(east, h1, h2, st->red[3], &slope);
+        aurora_fold(east, h1, h2, st->red[3], &slope);
         double local = cos(e + g / EARTH_RADIUS_KM);
         if (g <= 0.0 || local <= 0.02) continue;
         double h = EARTH_RADIUS_KM * (r0 * c / local - 1.0);
-        double green = smoothstep(95.0, 110.0, h) * exp(-fmax(h - 110.0, 0.0) / 30.0);
-        double red = smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 50.0);
+        double green = aurora_smoothstep(95.0, 110.0, h) * exp(-fmax(h - 110.0, 0.0) / 30.0);
+        double red = aurora_smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 50.0);
         double oblique = 1.0 / fmax(fabs(cn - slope * ce) * local, 0.15);
-        double envelope = 0.25 + 0.75 * smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + st->red[3]));
+        double envelope = 0.25 + 0.75 * aurora_smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + st->red[3]));
         double rays = 0.55 + 0.45 * sin(east / 15.0 + 40.0 * h1 + st->axes[3]) * sin(east / 6.5 + 2.0 * st->axes[3]);
         double w = oval * oblique * envelope * rays * (0.4 + 0.6 * h2);
         for (int j = 0; j < 3; j++) rgb[j] += (st->green[j] * green + st->red[j] * red) * w;
@@ -310,3 +310,17 @@ const sky_layer_class sky_aurora_layer = {
     .glow_zenith = aurora_zenith,
     .glow_at = aurora_at,
 };
+
+/* (in the amalgamation, one translation unit, its names end here) */
+#undef EARTH_RADIUS_KM
+#undef KM_PER_DEGREE
+#undef POLE_LAT_DEG
+#undef POLE_LON_DEG
+#undef POLEWARD_EDGE_KP0
+#undef POLEWARD_EDGE_PER_KP
+#undef CURTAIN_SPACING_KM
+#undef FOLD_KM
+#undef REACH_KM
+#undef GREEN_KR_KP0
+#undef GREEN_GAIN_PER_KP
+#undef OBLIQUITY_MAX

@@ -9,6 +9,7 @@
 #include "test.h"
 #include "cli.h"
 #include "sky_internal.h"
+#include "atmosphere/atmosphere.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -353,4 +354,70 @@ TEST(aurora_numerics_extremes)
     CHECK(bad == 0, "%d non-finite or negative values", bad);
     CHECK(shown > 0, "it shows somewhere among them");
     fixture_close(&f);
+}
+
+/* The CPU twin (glow_at, which the SH irradiance and the lighting read)
+ * against the rendered dome: the light the aurora adds in the centre
+ * pixel of a 0.5 degree view, over a grid of directions toward the
+ * curtains, through the air (sky_night_extinction). */
+TEST(aurora_cpu_twin_matches_the_dome)
+{
+    fixture with, without;
+    sky_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.output = SKY_OUTPUT_HDR;
+    cfg.kp = 6.0f;
+    cfg.features = BASE_FEATURES | SKY_AURORA;
+    if (fixture_open_sized(&with, 8, 8, 1, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        return;
+    }
+    cfg.features = BASE_FEATURES;
+    if (fixture_open_sized(&without, 8, 8, 1, SKY_GL_AUTO, &cfg)) {
+        CHECK(0, "fixture");
+        fixture_close(&with);
+        return;
+    }
+    sky_observer o = tromso();
+    sky_params p = sky_default_params();
+    p.cover = 0.0f;
+    fixture *both[2] = {&with, &without};
+    for (int i = 0; i < 2; i++) {
+        sky_set_params(both[i]->s, &p);
+        sky_set_observer(both[i]->s, &o);
+    }
+    const sky_layer_class *layer = NULL;
+    for (int row = 0; row < sky_layer_table_size; row++)
+        if (!strcmp(sky_layer_table[row]->name, "aurora")) layer = sky_layer_table[row];
+    const void *state = with.s->layer_state[sky_layer_index("aurora")];
+    double gpu_sum = 0.0, cpu_sum = 0.0;
+    int lit = 0;
+    for (int alt = 5; alt <= 85; alt += 10)
+        for (int az = -60; az <= 60; az += 15) {
+            double got[2];
+            float view[16], proj[16];
+            sky_cli_camera_at(az, alt, 0.5, 8, 8, view, proj);
+            for (int i = 0; i < 2; i++) {
+                sky_osmesa_make_current(&both[i]->ctx);
+                CHECK(sky_draw(both[i]->s, view, proj) >= 0, "draw: %s", sky_last_error(both[i]->s));
+                sky_osmesa_finish(&both[i]->ctx);
+                const float *px = (const float *)both[i]->ctx.pixels + 4 * (4 * 8 + 4);
+                got[i] = 0.2126 * px[0] + 0.7152 * px[1] + 0.0722 * px[2];
+            }
+            double el = alt * SKY_PI / 180.0, a = az * SKY_PI / 180.0;
+            double d[3] = {cos(el) * sin(a), sin(el), -cos(el) * cos(a)}, rgb[3], tr[3];
+            layer->glow_at(&with.s->core, state, d, rgb);
+            sky_night_extinction(&with.s->core, d, tr);
+            double cpu = 0.2126 * rgb[0] * tr[0] + 0.7152 * rgb[1] * tr[1] + 0.0722 * rgb[2] * tr[2];
+            gpu_sum += got[0] - got[1];
+            cpu_sum += cpu;
+            lit += cpu > 0.0;
+        }
+    double rel = fabs(gpu_sum - cpu_sum) / fmax(cpu_sum, 1e-30);
+    NOTE("%d of 117 directions lit; the dome adds %.4g, the CPU twin %.4g (%.2f %% apart)", lit, gpu_sum, cpu_sum,
+         100.0 * rel);
+    CHECK(lit > 10 && rel < 0.05, "the twin agrees with the dome within 5 %% (%.2f %%)", 100.0 * rel);
+    fixture_close(&without);
+    sky_osmesa_make_current(&with.ctx);
+    fixture_close(&with);
 }
