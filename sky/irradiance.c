@@ -121,8 +121,7 @@ void sky_atmosphere_key(const sky_core *s, double key[SKY_ATMOSPHERE_KEY])
     key[n++] = f->blend_weight;
     key[n++] = f->rl_geometry[0]; /* the observer's radius (physical paths) */
     key[n++] = s->observer.altitude_m;
-    key[n++] = f->glows_key;
-    _Static_assert(8 * 3 + 4 + 9 + 8 == SKY_ATMOSPHERE_KEY, "the key's length");
+    _Static_assert(8 * 3 + 4 + 9 + 7 == SKY_ATMOSPHERE_KEY, "the key's length");
 }
 
 const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *cache))[3]
@@ -137,7 +136,8 @@ const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *ca
     key[n++] = f->sunset;
     key[n++] = f->haze[0]; /* a weather's haze (its colour is fog_rgb's) */
     key[n++] = f->deck;
-    _Static_assert(SKY_ATMOSPHERE_KEY + 8 == SKY_IRRADIANCE_KEY, "the key's length");
+    key[n++] = f->glows_key; /* the aurora's curtains (aurora.c) */
+    _Static_assert(SKY_ATMOSPHERE_KEY + 9 == SKY_IRRADIANCE_KEY, "the key's length");
     if (!cache->valid || memcmp(key, cache->key, sizeof key) != 0) {
         sky_irradiance_project(s, cache->sh);
         memcpy(cache->key, key, sizeof key);

@@ -251,6 +251,16 @@ TEST(aurora_kp_validation)
     CHECK(sky_set_kp(f.s, -1.0f) == SKY_CLAMPED && f.s->core.cfg.kp == 0.0f, "-1 clamped to 0");
     CHECK(sky_set_kp(f.s, INFINITY) == SKY_CLAMPED && f.s->core.cfg.kp == 9.0f, "infinity clamped to 9");
     CHECK(sky_set_kp(f.s, 6.0f) == SKY_OK && f.s->core.cfg.kp == 6.0f, "6 set");
+    /* at run time: over Rome's night nothing at Kp 3, the oval in reach
+     * at Kp 9 (its curtains key the irradiance's cache) */
+    sky_observer rome = place(41.9, 12.5, 2024, 1, 11, 22);
+    sky_set_observer(f.s, &rome);
+    sky_set_kp(f.s, 3.0f);
+    float quiet = f.s->core.frame.glows_key;
+    sky_set_kp(f.s, 9.0f);
+    float storm = f.s->core.frame.glows_key;
+    CHECK(quiet == 0.0f && storm != 0.0f, "sky_set_kp takes effect at once (key %g at Kp 3, %g at Kp 9)",
+          (double)quiet, (double)storm);
     fixture_close(&f);
 }
 
