@@ -133,9 +133,9 @@ static const struct {
                      {"stars", SKY_STARS},          {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
                      {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}, {"planets", SKY_PLANETS},
                      {"airglow", SKY_AIRGLOW},      {"zodiacal", SKY_ZODIACAL}, {"weather", SKY_WEATHER},
-                     {"aurora", SKY_AURORA}};
+                     {"rainbow", SKY_RAINBOW},      {"aurora", SKY_AURORA}};
 #define FEATURE_NAMES \
-    "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal,weather,aurora"
+    "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal,weather,rainbow,aurora"
 
 static int parse_features(const char *s, unsigned *out, char *err, size_t len)
 {
@@ -204,8 +204,8 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           the default), very-clean, hazy, polluted, hillaire-2020 (his paper's\n"
             "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
-            "                           solar-eclipse,planets,airglow,zodiacal,weather,aurora (or none);\n"
-            "                           eclipse = the lunar one\n"
+            "                           solar-eclipse,planets,airglow,zodiacal,weather,rainbow,aurora (or\n"
+            "                           none); eclipse = the lunar one\n"
             "  --gl auto|core|compat|es20\n"
             "                           GL profile (es20: OpenGL ES 2.0, headless through EGL)\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"

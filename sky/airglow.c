@@ -42,7 +42,7 @@ static const sky_uniform_desc airglow_uniforms[] = {
     SKY_USL("u_airglow", SKY_U_F4, airglow_state, light, SKY_RGB),
 };
 static const sky_snippet airglow_snippet = {"SKY_HAS_AIRGLOW", "airglow.glsl", airglow_uniforms,
-                                            SKY_UNIFORM_COUNT(airglow_uniforms), NULL, "sky_airglow"};
+                                            SKY_UNIFORM_COUNT(airglow_uniforms), NULL, "sky_airglow", NULL};
 
 /* 0 at solar minimum .. 1 at maximum: cfg's, or the date's place in a
  * cycle of 11 years from the minimum of 2019.9. */

@@ -100,7 +100,7 @@ static const sky_uniform_desc aurora_uniforms[] = {
     SKY_USL("u_aurora_red", SKY_U_F4, aurora_state, red, SKY_RGB),
 };
 static const sky_snippet aurora_snippet = {"SKY_HAS_AURORA", "aurora.glsl", aurora_uniforms,
-                                           SKY_UNIFORM_COUNT(aurora_uniforms), NULL, "sky_aurora"};
+                                           SKY_UNIFORM_COUNT(aurora_uniforms), NULL, "sky_aurora", NULL};
 
 /* The oval's equatorward edge for a Kp (0..9, clamped), degrees. */
 static double equatorward_edge(double kp)

@@ -11,20 +11,11 @@
 
 enum { SHADOW_TEXTURE_SIZE = 64 };
 
-/* The clouds' base height: cfg.cloud_height_m at the height slider's
- * middle, scaled as the slider scales the drawn clouds (clouds.c:
- * 0.15 x 4^height texture periods per unit of the plane). */
-static double cloud_height(const sky_core *c)
-{
-    double base = c->cfg.cloud_height_m > 0.0f ? c->cfg.cloud_height_m : 1500.0;
-    return base * pow(4.0, c->params.height - 0.5);
-}
-
 static void shadow_pixels(sky *s, double extent_m, int w, int h, int first_row, int row_step, unsigned char *out)
 {
     const void *clouds = s->layer_state[SKY_LAYER_CLOUDS];
     if (clouds)
-        sky_clouds_shadow(&s->core, clouds, extent_m, w, h, cloud_height(&s->core), first_row, row_step, out);
+        sky_clouds_shadow(&s->core, clouds, extent_m, w, h, sky_cloud_height_m(&s->core), first_row, row_step, out);
     else
         memset(out, 255, (size_t)w * (size_t)h); /* no clouds drawn, none to cast */
 }
@@ -83,7 +74,7 @@ sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, s
      * sliders, the deck, the extent, or a clock set elsewhere. */
     const sky_frame *f = &c->frame;
     const float key[8] = {f->sun_dir[0], f->sun_dir[1], f->sun_dir[2], f->cover, f->density + 2.0f * f->deck,
-                          f->upper_cover, extent_m, (float)cloud_height(c)};
+                          f->upper_cover, extent_m, (float)sky_cloud_height_m(c)};
     /* (the sun by a tenth of a degree or more: its slow motion under a
      * running time slider moves a shadow a few metres a frame) */
     int full = !c->textures[SKY_TEX_CLOUD_SHADOW].id || memcmp(key + 3, s->shadow_key + 3, 5 * sizeof *key) != 0;
@@ -113,7 +104,7 @@ sky_result sky_get_cloud_shadow(sky *s, float metres_per_unit, float extent_m, s
     memset(last, 0, sizeof *last);
     last->texture = c->textures[SKY_TEX_CLOUD_SHADOW].id;
     last->size = N;
-    last->height_m = (float)cloud_height(c);
+    last->height_m = (float)sky_cloud_height_m(c);
     last->extent_m = extent_m;
     shadow_matrix(c, metres_per_unit, extent_m, last->matrix);
     unsigned sum = 0;

@@ -48,7 +48,7 @@ static const sky_uniform_desc cloud_uniforms[] = {
 /* clouds.glsl in both stages: the dome finds its cloud coordinates and
  * sunset per vertex */
 static const sky_snippet clouds_snippet = {"SKY_HAS_CLOUDS", "clouds.glsl", cloud_uniforms,
-                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl", NULL};
+                                        SKY_UNIFORM_COUNT(cloud_uniforms), "clouds.glsl", NULL, NULL};
 
 /* Drift of each layer in texture periods per second at speed 1. The two
  * primary layers differ by about 13 degrees and 20 % in speed (R-P 3.2), so
@@ -325,6 +325,15 @@ void sky_clouds_shadow(const sky_core *s, const void *state, double extent_m, in
             sun += (1.0 - sun) * f->deck;
             out[(size_t)j * (size_t)w + (size_t)i] = (unsigned char)(255.0 * sky_clampd(sun, 0.0, 1.0) + 0.5);
         }
+}
+
+/* (layer.h) The clouds' base height: cfg.cloud_height_m at the height slider's
+ * middle, scaled as the slider scales the drawn clouds (clouds.c:
+ * 0.15 x 4^height texture periods per unit of the plane). */
+double sky_cloud_height_m(const sky_core *c)
+{
+    double base = c->cfg.cloud_height_m > 0.0f ? c->cfg.cloud_height_m : 1500.0;
+    return base * pow(4.0, c->params.height - 0.5);
 }
 
 /* The fade of detail a pixel cannot hold is judged in the viewport's

@@ -139,6 +139,11 @@ int sky_config_check(const sky_config *cfg, unsigned *features, sky_atmosphere_p
         sky_format(err, err_len, "sky_create: SKY_LUNAR_ECLIPSE needs SKY_MOON (the eclipse is drawn on the moon)");
         return -1;
     }
+    if ((*features & SKY_RAINBOW) && (*features & (SKY_CLOUDS | SKY_WEATHER)) != (SKY_CLOUDS | SKY_WEATHER)) {
+        sky_format(err, err_len, "sky_create: SKY_RAINBOW needs SKY_CLOUDS and SKY_WEATHER (the bow is drawn over "
+                   "the clouds, in the weather's rain)");
+        return -1;
+    }
     sky_atmosphere_params described = cfg->atmosphere_params;
     if (sky_atmosphere_is_zero(&described)) sky_atmosphere_get_preset(SKY_ATMOSPHERE_PRESET_EARTH, &described);
     char atm_err[160];

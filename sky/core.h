@@ -391,8 +391,8 @@ typedef struct sky_core {
     double lut_ms;                /* table builds since the last draw          */
     int viewport[4];              /* the host's viewport at this sky_draw       */
     const struct sky_dome_snippets *dome_snippets; /* of the enabled layers (sky.c) */
-    int dome_front_shows, dome_night_shows; /* this draw: a layer of that dome role
-                                               is visible (sky.c)             */
+    int dome_front_shows, dome_night_shows, /* this draw: a layer of that dome */
+        dome_optics_shows;                  /* role is visible (sky.c)        */
 
     GLuint identity_program;      /* the first program built: a context where it
                                      is no program is not the sky's (sky.c)   */
@@ -418,5 +418,9 @@ void sky_weather_light(sky_core *c);
  * covers the sky: its opacity times what it does not let through (0
  * without one) */
 double sky_weather_deck_share(const sky_frame *f);
+/* lighting.c: the sun's beam at the observer, klx per channel (what
+ * sky_get_lighting reports as sun_color): through the air, the part of
+ * the disc above the horizon, a solar eclipse's share, a weather's deck. */
+void sky_sun_beam(const sky_core *c, float rgb[3]);
 
 #endif /* SKY_CORE_H */

@@ -80,6 +80,9 @@ typedef struct dome_state {
      * baseline quad in a frame drawn at every pixel. The night's keep it:
      * at night it is on. */
     sky_program day_photopic, ground_photopic;
+    /* with the optics' light over the front layers (a rainbow, a halo),
+     * for the frames where one shows */
+    sky_program day_optics, day_optics_photopic, night_optics;
     /* the image (dome_divisor > 0): its framebuffer, the quad that draws
      * it over the viewport, and the program that does */
     GLuint fbo, quad;
@@ -236,9 +239,9 @@ static void draw_hemisphere(sky_core *s, const dome_state *st, int upper)
 
 /* Drawn into the image, the dome writes the clouds' alpha beside the
  * colour. */
-static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL, NULL};
+static const sky_snippet into_image_snippet = {"SKY_DOME_INTO_IMAGE", NULL, NULL, 0, NULL, NULL, NULL};
 /* display.glsl's tone map without the scotopic shift */
-static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL, NULL};
+static const sky_snippet photopic_snippet = {"SKY_PHOTOPIC", NULL, NULL, 0, NULL, NULL, NULL};
 
 static int build(sky_core *s, sky_program *p, const sky_snippet *const *snippets, int n, int photopic, char *err,
                  size_t err_len)
@@ -277,7 +280,7 @@ int sky_dome_day_divisor_for(const sky_core *s)
 
 /* (The image's uniforms and the corner of a power-of-two image:
  * over_dome.c, which the layers drawn over the dome share.) */
-static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL, NULL};
+static const sky_snippet fisheye_circle_snippet = {"SKY_FISHEYE_CIRCLE", NULL, NULL, 0, NULL, NULL, NULL};
 
 /* The image for a viewport: 1/divisor of it on each axis, rounded up
  * (used), in a texture of that size, or without NPOT textures of the
@@ -339,6 +342,22 @@ static int build_dome_programs(sky_core *s, dome_state *st, const sky_dome_snipp
     return build(s, &st->night_clear, list, atmosphere + d->night_count, 0, err, err_len);
 }
 
+/* The optics' variants (a rainbow, a halo: their light lies over the
+ * front layers, which they need): the day's and the night's with them,
+ * for the frames where one shows; none without an optics layer. */
+static int build_optics_programs(sky_core *s, dome_state *st, const sky_dome_snippets *d, const sky_snippet **list,
+                                 char *err, size_t err_len)
+{
+    if (!d->optics_count || !d->front_count) return 0;
+    int n = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list);
+    for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
+    for (int i = 0; i < d->optics_count; i++) list[n++] = d->optics[i];
+    if (build_day(s, &st->day_optics, &st->day_optics_photopic, list, n, err, err_len)) return -1;
+    if (!d->night_count) return 0;
+    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+    return build(s, &st->night_optics, list, n, 0, err, err_len);
+}
+
 static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     dome_state *st = state;
@@ -347,12 +366,13 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     if (s->dome_divisor && create_image_path(s, st, err, err_len)) return -1;
     /* the atmosphere's, the front layers', the night layers' (and build's
      * own): as many as the enabled layers bring */
-    const sky_snippet **list = malloc(sizeof *list * (size_t)(SKY_ATMOSPHERE_SNIPPETS + d->front_count + d->night_count));
+    const sky_snippet **list = malloc(sizeof *list * (size_t)(SKY_ATMOSPHERE_SNIPPETS + d->front_count +
+                                                                  d->night_count + d->optics_count));
     if (!list) {
         sky_format(err, err_len, "out of memory");
         return -1;
     }
-    int rc = build_dome_programs(s, st, d, list, err, err_len);
+    int rc = build_dome_programs(s, st, d, list, err, err_len) || build_optics_programs(s, st, d, list, err, err_len);
     free(list);
     return rc;
 }
@@ -366,6 +386,9 @@ static void dome_destroy(sky_core *s, void *state)
     sky_program_destroy(s, &st->ground);
     sky_program_destroy(s, &st->day_photopic);
     sky_program_destroy(s, &st->ground_photopic);
+    sky_program_destroy(s, &st->day_optics);
+    sky_program_destroy(s, &st->day_optics_photopic);
+    sky_program_destroy(s, &st->night_optics);
     sky_program_destroy(s, &st->composite);
     sky_program_destroy(s, &st->composite_fisheye);
     const GLuint buffers[3] = {st->vertices, st->indices, st->quad};
@@ -436,6 +459,10 @@ static int dome_draw(sky_core *s, void *state)
     const sky_program *ground = photopic ? &st->ground_photopic : &st->ground;
     const sky_program *upper = night ? (clear ? &st->night_clear : &st->night)
                                      : clear ? ground : photopic ? &st->day_photopic : &st->day;
+    /* an optics layer shows: its variant, over the front layers it needs */
+    if (s->dome_optics_shows && !clear && st->day_optics.id)
+        upper = night ? (st->night_optics.id ? &st->night_optics : upper)
+                      : photopic ? &st->day_optics_photopic : &st->day_optics;
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
     moonlit_vertices(s, st);
     select_triangles(s, st);

@@ -46,12 +46,13 @@ static const sky_uniform_desc glow_uniforms[] = {
     SKY_USL("u_star_luminance", SKY_U_F1, flicker_state, star_luminance, 1u),
 };
 static const sky_snippet glow_snippet = {"SKY_HAS_FLICKER", "flicker.glsl", glow_uniforms,
-                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL, NULL};
+                                         SKY_UNIFORM_COUNT(glow_uniforms), NULL, NULL, NULL};
 static const sky_uniform_desc point_uniforms[] = {
     SKY_US("u_flicker_phase", SKY_U_F1, flicker_state, phase_uniform),
     SKY_US("u_point_max", SKY_U_F1, flicker_state, point_max),
 };
-static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms), NULL, NULL};
+static const sky_snippet point_snippet = {NULL, NULL, point_uniforms, SKY_UNIFORM_COUNT(point_uniforms),
+                                          NULL, NULL, NULL};
 
 /* Every star of every tile that falls inside the horizon circle. */
 static int upload_flicker_stars(sky_core *s, flicker_state *st, const unsigned char *tex, const unsigned char *galaxy,

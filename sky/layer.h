@@ -20,8 +20,11 @@ typedef enum sky_dome_role {
     SKY_DOME_FRONT, /* in front of everything behind it (clouds): compiled into
                        the dome and into every layer drawn over the dome, so
                        those hide behind it                                  */
-    SKY_DOME_NIGHT  /* the night backdrop (flicker stars, star map): only in
+    SKY_DOME_NIGHT, /* the night backdrop (flicker stars, star map): only in
                        the dome's night variants                              */
+    SKY_DOME_OPTICS /* light in front (a rainbow, a halo: the snippet's
+                       front_function): only in the dome's optics variants,
+                       drawn while one of them shows over the front layers  */
 } sky_dome_role;
 
 /* The stats index of a layer added after 0.5 (which has no sky_layer
@@ -77,8 +80,8 @@ typedef struct sky_layer_class {
  * state): the dome composes its programs from them, and each layer drawn
  * over the dome includes the front ones. As many as the table has rows. */
 typedef struct sky_dome_snippets {
-    const sky_snippet **front, **night;
-    int front_count, night_count;
+    const sky_snippet **front, **night, **optics;
+    int front_count, night_count, optics_count;
 } sky_dome_snippets;
 /* dome.c: the divisor of the dome's image for this context and output
  * (0: the dome is drawn directly), decided before any layer is created. */
@@ -152,6 +155,10 @@ double sky_sun_illuminance_klx(const sky_core *s);
  * moonlight a host's scene receives (sky_get_lighting). */
 double sky_moon_drawn_scale(const sky_core *s);
 void sky_moon_lighting(const sky_core *s, float moon_color[3]);
+/* clouds.c: the clouds' base height, metres (cfg.cloud_height_m, 1500 by
+ * default, at the height slider's middle, scaled as the slider scales the
+ * drawn clouds): where their shadows fall, where the rain hangs from. */
+double sky_cloud_height_m(const sky_core *c);
 /* (The moon's light above the air, which the atmosphere and the clouds
  * scatter: moonlight.h.) */
 

@@ -9,6 +9,29 @@
 #include <math.h>
 #include <string.h>
 
+void sky_sun_beam(const sky_core *c, float rgb[3])
+{
+    const sky_frame *f = &c->frame;
+    /* Solar illuminance above the atmosphere (sun.c: 128 klx at 1 au, what
+     * the drawn disc sums to), through the atmosphere, times the part of
+     * the disc not yet set */
+    float above = (float)sky_disc_above_horizon(f->sun_altitude, c->astro.sun_semidiameter);
+    /* and the share of its light a solar eclipse leaves */
+    above *= (float)sky_solar_eclipse_light_left(c);
+    float e0 = (float)sky_sun_illuminance_klx(c);
+    for (int i = 0; i < 3; i++) rgb[i] = e0 * f->sun_transmittance[i] * above;
+    /* a weather's deck (weather.c), which covers the sky alike, lets
+     * light_through of the light above pass, diffused: the beam keeps the
+     * square of that share (what passes unscattered is far less than what
+     * passes at all). The broken layers' shadows are the cloud shadow
+     * map's (sky_get_cloud_shadow), not this. Without a weather nothing
+     * changes. */
+    if (f->deck > 0.0f) {
+        float direct = 1.0f - f->deck * (1.0f - f->light_through * f->light_through);
+        for (int i = 0; i < 3; i++) rgb[i] *= direct;
+    }
+}
+
 sky_result sky_get_lighting(const sky *s, sky_lighting *out)
 {
     if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;
@@ -17,29 +40,12 @@ sky_result sky_get_lighting(const sky *s, sky_lighting *out)
     memset(out, 0, sizeof *out);
     sky_camera_to_world(c, f->sun_dir, out->sun_direction);
     out->sun_altitude_deg = (float)(f->sun_altitude * 180.0 / SKY_PI);
-    /* Solar illuminance above the atmosphere (sun.c: 128 klx at 1 au, what
-     * the drawn disc sums to), through the atmosphere, times the part of
-     * the disc not yet set */
-    float above = (float)sky_disc_above_horizon(f->sun_altitude, c->astro.sun_semidiameter);
-    /* and the share of its light a solar eclipse leaves */
-    above *= (float)sky_solar_eclipse_light_left(c);
-    float e0 = (float)sky_sun_illuminance_klx(c);
-    for (int i = 0; i < 3; i++) out->sun_color[i] = e0 * f->sun_transmittance[i] * above;
-    /* sky irradiance and horizon: the atmosphere path's (atmosphere.c) */
+    sky_sun_beam(c, out->sun_color);
+    /* sky irradiance and horizon: the atmosphere path's (atmosphere.c; the
+     * ambient and fog colours greyed by a weather's deck: weather.c) */
     for (int i = 0; i < 3; i++) {
         out->ambient_color[i] = f->ambient_rgb[i];
         out->fog_color[i] = f->fog_rgb[i];
-    }
-    /* a weather's deck (weather.c), which covers the sky alike, lets
-     * light_through of the light above pass, diffused: the beam keeps the
-     * square of that share (what passes unscattered is far less than what
-     * passes at all). The broken layers' shadows are the cloud shadow
-     * map's (sky_get_cloud_shadow), not this. The ambient and fog colours
-     * are the frame's, which sky_weather_light greyed. Without a weather
-     * nothing changes. */
-    if (f->deck > 0.0f) {
-        float direct = 1.0f - f->deck * (1.0f - f->light_through * f->light_through);
-        for (int i = 0; i < 3; i++) out->sun_color[i] *= direct;
     }
     out->daylight = f->daylight;
     out->exposure = f->exposure;

@@ -69,7 +69,7 @@ static const sky_uniform_desc moon_uniforms[] = {
     SKY_US("u_moon_radius_tan", SKY_U_F1, moon_state, drawn_radius_tan),
     SKY_US("u_moon_brighter", SKY_U_F1, moon_state, brighter),
 };
-static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL, NULL};
+static const sky_snippet moon_snippet = {NULL, NULL, moon_uniforms, SKY_UNIFORM_COUNT(moon_uniforms), NULL, NULL, NULL};
 
 static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_UT("u_eclipse_tex", SKY_TEX_ECLIPSE),
@@ -78,7 +78,7 @@ static const sky_uniform_desc eclipse_uniforms[] = {
     SKY_US("u_shadow", SKY_U_F4, moon_state, shadow),
 };
 static const sky_snippet eclipse_snippet = {"SKY_HAS_ECLIPSE", NULL, eclipse_uniforms,
-                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL, NULL};
+                                         SKY_UNIFORM_COUNT(eclipse_uniforms), NULL, NULL, NULL};
 
 /* Mueller's h(t) (sec. 3.2, fig. 5), our own fit of its four phenomena:
  * t in [0, 1/2] is the umbra (centre to edge), [1/2, 1] the penumbra.

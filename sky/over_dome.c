@@ -16,11 +16,12 @@ static const sky_uniform_desc image_uniforms[] = {
     SKY_UF("u_dome_texel", SKY_U_F2, dome_texel),
     SKY_UF("u_dome_scale", SKY_U_F2, dome_scale),
 };
-const sky_snippet sky_dome_image_snippet = {NULL, NULL, image_uniforms, SKY_UNIFORM_COUNT(image_uniforms), NULL, NULL};
+const sky_snippet sky_dome_image_snippet = {NULL, NULL, image_uniforms, SKY_UNIFORM_COUNT(image_uniforms),
+                                            NULL, NULL, NULL};
 const sky_snippet sky_dome_cover_snippet = {"SKY_HAS_DOME_COVER", "dome_cover.glsl", image_uniforms,
-                                            SKY_UNIFORM_COUNT(image_uniforms), NULL, NULL};
+                                            SKY_UNIFORM_COUNT(image_uniforms), NULL, NULL, NULL};
 /* without NPOT textures the image is the corner of a power of two */
-const sky_snippet sky_dome_corner_snippet = {"SKY_DOME_CORNER", NULL, NULL, 0, NULL, NULL};
+const sky_snippet sky_dome_corner_snippet = {"SKY_DOME_CORNER", NULL, NULL, 0, NULL, NULL, NULL};
 
 int sky_program_build_over_dome(sky_core *s, const sky_dome_snippets *dome, sky_program *p, const char *vert_main,
                                 const char *frag_main, const sky_snippet *const *own, int own_count, char *err,

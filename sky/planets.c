@@ -42,7 +42,8 @@ typedef struct planets_state {
 } planets_state;
 
 static const sky_uniform_desc planet_uniforms[] = {SKY_POINT_UNIFORMS(planets_state, points)};
-static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms), NULL, NULL};
+static const sky_snippet planets_snippet = {NULL, NULL, planet_uniforms, SKY_UNIFORM_COUNT(planet_uniforms),
+                                            NULL, NULL, NULL};
 
 static const size_t planet_bytes = sizeof(float) * SKY_ASTRO_PLANETS * PLANET_FLOATS;
 

@@ -127,8 +127,9 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     s->layer_stats = calloc(sky_layer_table_size, sizeof *s->layer_stats);
     d->front = calloc(sky_layer_table_size, sizeof *d->front);
     d->night = calloc(sky_layer_table_size, sizeof *d->night);
+    d->optics = calloc(sky_layer_table_size, sizeof *d->optics);
     c->glows = calloc(sky_layer_table_size, sizeof *c->glows);
-    if (!c->textures || !s->layer_state || !s->layer_stats || !d->front || !d->night || !c->glows) {
+    if (!c->textures || !s->layer_state || !s->layer_stats || !d->front || !d->night || !d->optics || !c->glows) {
         sky_format(err, err_len, "sky_create: out of memory");
         goto fail;
     }
@@ -143,6 +144,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         }
         if (L->dome_role == SKY_DOME_FRONT) d->front[d->front_count++] = L->dome_snippet;
         if (L->dome_role == SKY_DOME_NIGHT) d->night[d->night_count++] = L->dome_snippet;
+        if (L->dome_role == SKY_DOME_OPTICS) d->optics[d->optics_count++] = L->dome_snippet;
         if (L->glow_at) c->glows[c->glow_count++] = (sky_glow_source){L, state};
     }
 
@@ -190,6 +192,7 @@ void sky_destroy(sky *s)
     free(s->layer_stats);
     free(s->dome_snippets.front);
     free(s->dome_snippets.night);
+    free(s->dome_snippets.optics);
     sky_atmosphere_destroy(c);
     if (c->gl.glDeleteTextures) /* NULL when sky_gl_init failed early */
         for (int i = 0; i < c->texture_count; i++) sky_texture_destroy(c, (sky_texture_id)i);
@@ -363,13 +366,14 @@ static sky_result draw_frame(sky *s)
         if (L->view) L->view(c, state);
     }
     /* which of the dome's snippets show: the dome picks its variant */
-    c->dome_front_shows = c->dome_night_shows = 0;
+    c->dome_front_shows = c->dome_night_shows = c->dome_optics_shows = 0;
     FOR_EACH_LAYER(s, L, index, state) {
         if (L->dome_role == SKY_DOME_NONE) continue;
         int shows = L->visible(c, state);
         s->layer_stats[index].drawn = shows;
         if (L->dome_role == SKY_DOME_FRONT) c->dome_front_shows |= shows;
         if (L->dome_role == SKY_DOME_NIGHT) c->dome_night_shows |= shows;
+        if (L->dome_role == SKY_DOME_OPTICS) c->dome_optics_shows |= shows;
     }
     FOR_EACH_LAYER(s, L, index, state) {
         if (c->capture_without_sun && L->slot == SKY_LAYER_SUN) continue;

@@ -197,7 +197,12 @@ typedef enum sky_feature {
                                     shaders: the deck, the haze, lightning's
                                     flash (sky_set_weather needs it; it
                                     draws through SKY_CLOUDS). Since 0.6.0 */
-    /* (1u << 12 and 1u << 13 are kept for the rainbow and the halo) */
+    SKY_RAINBOW       = 1u << 12, /* rainbows in a weather's rain in sunlight
+                                    (Airy's theory for its drops), a fogbow
+                                    in fog, a moon's bow; nothing otherwise.
+                                    Needs SKY_CLOUDS and SKY_WEATHER (the
+                                    rain is the weather's). Since 0.6.0   */
+    /* (1u << 13 is kept for the halo) */
     SKY_AURORA        = 1u << 14 /* the aurora's green curtains with red
                                     tops, where the observer is under or
                                     near the auroral oval for cfg.kp
@@ -214,7 +219,7 @@ typedef enum sky_feature {
  * SKY_ERR_UNSUPPORTED from sky_create. */
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
-     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER | SKY_AURORA)
+     SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER | SKY_RAINBOW | SKY_AURORA)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */

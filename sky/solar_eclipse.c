@@ -9,7 +9,8 @@ static const sky_uniform_desc eclipse_sun_uniforms[] = {
     SKY_UL("u_eclipse_sun", SKY_U_F4, eclipse_sun, 1u << 2),
     SKY_UF("u_eclipse_moon_dir", SKY_U_F3, eclipse_moon_dir),
 };
-const sky_snippet sky_solar_eclipse_sun_snippet = {NULL, NULL, eclipse_sun_uniforms, SKY_UNIFORM_COUNT(eclipse_sun_uniforms), NULL, NULL};
+const sky_snippet sky_solar_eclipse_sun_snippet = {NULL, NULL, eclipse_sun_uniforms, SKY_UNIFORM_COUNT(eclipse_sun_uniforms),
+                                                   NULL, NULL, NULL};
 
 double sky_solar_eclipse_light_left(const sky_core *s)
 {

@@ -26,7 +26,7 @@ static const sky_uniform_desc starmap_uniforms[] = {
     SKY_USL("u_starmap_scale", SKY_U_F1, starmap_state, scale, 1u),
 };
 static const sky_snippet starmap_snippet = {"SKY_HAS_STARMAP", "starmap.glsl", starmap_uniforms,
-                                         SKY_UNIFORM_COUNT(starmap_uniforms), NULL, NULL};
+                                         SKY_UNIFORM_COUNT(starmap_uniforms), NULL, NULL, NULL};
 
 /* The map ships as an equirectangular image (u = right ascension / 2 pi,
  * v = 0.5 - declination / pi); the GPU gets it as a cube map, so a pixel

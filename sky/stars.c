@@ -55,7 +55,8 @@ typedef struct stars_state {
 } stars_state;
 
 static const sky_uniform_desc star_uniforms[] = {SKY_POINT_UNIFORMS(stars_state, points)};
-static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms), NULL, NULL};
+static const sky_snippet stars_snippet = {NULL, NULL, star_uniforms, SKY_UNIFORM_COUNT(star_uniforms),
+                                          NULL, NULL, NULL};
 
 /* A star's place in the buffer: its cell, brightest first within it. */
 typedef struct star_place {

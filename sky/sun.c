@@ -67,7 +67,7 @@ static const sky_uniform_desc sun_uniforms[] = {
     SKY_US("u_sun_true_dir", SKY_U_F3, sun_state, true_dir),
 };
 /* Uniform rows only: sun.frag is the program's main, not a snippet. */
-static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL, NULL};
+static const sky_snippet sun_snippet = {NULL, NULL, sun_uniforms, SKY_UNIFORM_COUNT(sun_uniforms), NULL, NULL, NULL};
 
 static int sun_create(sky_core *s, void *state, char *err, size_t err_len)
 {

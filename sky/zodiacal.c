@@ -73,7 +73,7 @@ static const sky_uniform_desc zodiacal_uniforms[] = {
     SKY_USL("u_zodiacal", SKY_U_F4, zodiacal_state, light, SKY_RGB),
 };
 static const sky_snippet zodiacal_snippet = {"SKY_HAS_ZODIACAL", "zodiacal.glsl", zodiacal_uniforms,
-                                             SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL, "sky_zodiacal"};
+                                             SKY_UNIFORM_COUNT(zodiacal_uniforms), NULL, "sky_zodiacal", NULL};
 
 /* The table at (longitude from the sun, latitude) in degrees, bilinear
  * over its rows and columns. */

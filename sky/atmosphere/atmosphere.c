@@ -26,7 +26,7 @@ static const sky_uniform_desc atmosphere_uniforms[] = {
 };
 /* in both stages: pure arithmetic, which a path evaluated per vertex needs */
 const sky_snippet sky_atmosphere_snippet = {"SKY_HAS_ATMOSPHERE", "atmosphere.glsl", atmosphere_uniforms,
-                                            SKY_UNIFORM_COUNT(atmosphere_uniforms), "atmosphere.glsl", NULL};
+                                            SKY_UNIFORM_COUNT(atmosphere_uniforms), "atmosphere.glsl", NULL, NULL};
 
 /* A physical path's sky in a few numbers: the mean luminance over the
  * upper hemisphere, the irradiance on an upward surface and the horizon's
@@ -54,7 +54,7 @@ static const sky_uniform_desc blend_uniforms[] = {
     SKY_UF("u_blend_weight", SKY_U_F1, blend_weight),
 };
 const sky_snippet sky_blend_snippet = {"SKY_HAS_BLEND", "blend.glsl", blend_uniforms,
-                                       SKY_UNIFORM_COUNT(blend_uniforms), NULL, NULL};
+                                       SKY_UNIFORM_COUNT(blend_uniforms), NULL, NULL, NULL};
 
 sky_atmosphere_path sky_blend_partner(sky_atmosphere_path requested)
 {

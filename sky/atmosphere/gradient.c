@@ -18,7 +18,7 @@ static const sky_uniform_desc gradient_uniforms[] = {
 };
 /* in both stages: the dome evaluates this path per vertex (dome.vert) */
 const sky_snippet sky_gradient_snippet = {"SKY_HAS_GRADIENT", "gradient.glsl", gradient_uniforms,
-                                          SKY_UNIFORM_COUNT(gradient_uniforms), "gradient.glsl", NULL};
+                                          SKY_UNIFORM_COUNT(gradient_uniforms), "gradient.glsl", NULL, NULL};
 
 void sky_gradient_vertex(const unsigned char *gradient, const float d[3], float rgb[3])
 {

@@ -68,12 +68,12 @@ static const sky_uniform_desc hillaire_uniforms[] = {
     SKY_UF("u_skyview_decode", SKY_U_F3, skyview_decode),
 };
 const sky_snippet sky_hillaire_snippet = {"SKY_HAS_HILLAIRE", "hillaire.glsl", hillaire_uniforms,
-                                          SKY_UNIFORM_COUNT(hillaire_uniforms), NULL, NULL};
+                                          SKY_UNIFORM_COUNT(hillaire_uniforms), NULL, NULL, NULL};
 /* The same for COMPAT20's 8-bit table: the decoding is compiled in only
  * there (a uniform branch would cost both sides on llvmpipe, twice the
  * float path's frame). */
 const sky_snippet sky_hillaire_encoded_snippet = {"SKY_HILLAIRE_ENCODED", "hillaire.glsl", hillaire_uniforms,
-                                                  SKY_UNIFORM_COUNT(hillaire_uniforms), NULL, NULL};
+                                                  SKY_UNIFORM_COUNT(hillaire_uniforms), NULL, NULL, NULL};
 
 /* COMPAT20: the next sky-view table, built a slice at a time into buffers
  * of its own (the ones the table shown last used). */
@@ -124,12 +124,13 @@ static const sky_uniform_desc build_uniforms[] = {
     SKY_UF("u_hl_chi_zonal", SKY_U_F2, hl_chi_zonal),
 };
 static const sky_snippet build_snippet = {NULL, "hillaire_build.glsl", build_uniforms,
-                                          SKY_UNIFORM_COUNT(build_uniforms), NULL, NULL};
+                                          SKY_UNIFORM_COUNT(build_uniforms), NULL, NULL, NULL};
 static const sky_uniform_desc order_uniforms[] = {
     SKY_UT("u_ms_order", SKY_TEX_MS_ORDER_PREV),
     SKY_UF("u_ms_pass", SKY_U_F4, ms_pass),
 };
-static const sky_snippet order_snippet = {NULL, NULL, order_uniforms, SKY_UNIFORM_COUNT(order_uniforms), NULL, NULL};
+static const sky_snippet order_snippet = {NULL, NULL, order_uniforms, SKY_UNIFORM_COUNT(order_uniforms),
+                                          NULL, NULL, NULL};
 static const sky_uniform_desc froxel_uniforms[] = {
     SKY_UF("u_froxel_clip_to_dir", SKY_U_M4, froxel_clip_to_dir),
     SKY_UF("u_froxel", SKY_U_F4, froxel),
@@ -137,7 +138,8 @@ static const sky_uniform_desc froxel_uniforms[] = {
     SKY_UF("u_froxel_weather", SKY_U_F2, froxel_weather),
     SKY_UF("u_froxel_haze", SKY_U_F3, fog_rgb),
 };
-static const sky_snippet froxel_snippet = {NULL, NULL, froxel_uniforms, SKY_UNIFORM_COUNT(froxel_uniforms), NULL, NULL};
+static const sky_snippet froxel_snippet = {NULL, NULL, froxel_uniforms, SKY_UNIFORM_COUNT(froxel_uniforms),
+                                           NULL, NULL, NULL};
 
 /* One full-screen pass of a build program into the w x h corner of a
  * texture. */

@@ -36,7 +36,7 @@ static const sky_uniform_desc preetham_uniforms[] = {
 /* (in the vertex stage too: R-P's stars take its transmittance per point,
  * flicker.vert) */
 const sky_snippet sky_preetham_snippet = {"SKY_HAS_PREETHAM", "preetham.glsl", preetham_uniforms,
-                                          SKY_UNIFORM_COUNT(preetham_uniforms), "preetham.glsl", NULL};
+                                          SKY_UNIFORM_COUNT(preetham_uniforms), "preetham.glsl", NULL, NULL};
 
 #define PREETHAM_TURBIDITY_MIN 2.0
 #define PREETHAM_TURBIDITY_MAX 10.0

@@ -52,7 +52,7 @@ static const sky_uniform_desc extinction_uniforms[] = {
 };
 /* both stages: the dome evaluates the analytic sky's integrals per vertex */
 const sky_snippet sky_extinction_snippet = {"SKY_HAS_EXTINCTION", "extinction.glsl", extinction_uniforms,
-                                            SKY_UNIFORM_COUNT(extinction_uniforms), "extinction.glsl", NULL};
+                                            SKY_UNIFORM_COUNT(extinction_uniforms), "extinction.glsl", NULL, NULL};
 static const sky_uniform_desc rayleigh_uniforms[] = {
     SKY_UF("u_mie_phase", SKY_U_F3, mie_phase),
     SKY_UF("u_rl_geometry", SKY_U_F4, rl_geometry),
@@ -61,7 +61,7 @@ static const sky_uniform_desc rayleigh_uniforms[] = {
     SKY_UF("u_rl_skylight", SKY_U_F3, rl_skylight),
 };
 const sky_snippet sky_rayleigh_snippet = {"SKY_HAS_RAYLEIGH", "rayleigh.glsl", rayleigh_uniforms,
-                                          SKY_UNIFORM_COUNT(rayleigh_uniforms), "rayleigh.glsl", NULL};
+                                          SKY_UNIFORM_COUNT(rayleigh_uniforms), "rayleigh.glsl", NULL, NULL};
 
 #define SLANT_DEPTH_MAX 1e4
 

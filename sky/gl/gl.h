@@ -64,6 +64,13 @@ typedef struct sky_snippet {
      * SKY_HAS_NIGHT_GLOWS (dome.frag dims the sum by the air): a new glow
      * touches no other shader. NULL: not one. */
     const char *glow_function;
+    /* A front light's GLSL function, vec3 NAME(vec3 d): light an optical
+     * phenomenon adds in front of the sky and the clouds from horizon
+     * direction d (a rainbow in the rain, a halo in the ice), kcd/m^2. A
+     * program with such snippets gets sky_front_lights(d), their sum, and
+     * the define SKY_HAS_FRONT_LIGHTS (dome.frag adds it over the clouds
+     * and the haze). NULL: not one. */
+    const char *front_function;
 } sky_snippet;
 
 /* A program and its uniform rows (as many as its snippets bring: no cap),

@@ -27,7 +27,7 @@ static const sky_uniform_desc common_uniforms[] = {
 };
 /* (display.glsl, the display stages hosts can include too, comes first) */
 const sky_snippet sky_common_snippet = {NULL, "common.glsl", common_uniforms,
-                                        SKY_UNIFORM_COUNT(common_uniforms), NULL, NULL};
+                                        SKY_UNIFORM_COUNT(common_uniforms), NULL, NULL, NULL};
 
 
 /* The version prologue: one GLSL source per stage serves every profile.
@@ -156,25 +156,29 @@ static int collect_uniforms(sky_core *s, sky_program *p, const sky_snippet *cons
     return 0;
 }
 
-/* Writes sky_night_glows(d), the sum of the snippets' glow functions in
- * their order, into out (len bytes; out NULL: nothing written), or ""
- * when no snippet is a glow. Returns the length of the whole text. */
-static size_t night_glows(const sky_snippet *const *snippets, int count, char *out, size_t len)
+/* Writes vec3 NAME(vec3 d), the sum of the snippets' functions of one
+ * kind (the glows': sky_night_glows; the front lights': sky_front_lights)
+ * in their order, into out (len bytes; out NULL: nothing written), or ""
+ * when no snippet has one. Returns the length of the whole text. */
+static size_t light_sum(const sky_snippet *const *snippets, int count, int front, char *out, size_t len)
 {
-    static const char head[] = "vec3 sky_night_glows(vec3 d)\n{\n    vec3 glow = vec3(0.0);\n";
-    static const char tail[] = "    return glow;\n}\n";
+    static const char tail[] = "    return sum;\n}\n";
+    const char *name = front ? "sky_front_lights" : "sky_night_glows";
     size_t need = 0;
     int any = 0;
-    for (int i = 0; i < count; i++)
-        if (snippets[i]->glow_function) need += strlen(snippets[i]->glow_function) + 20, any = 1;
-    need = any ? need + sizeof head + sizeof tail : 0;
+    for (int i = 0; i < count; i++) {
+        const char *f = front ? snippets[i]->front_function : snippets[i]->glow_function;
+        if (f) need += strlen(f) + 20, any = 1;
+    }
+    need = any ? need + strlen(name) + 64 + sizeof tail : 0;
     if (!out) return need;
     out[0] = '\0';
     if (!any) return 0;
-    size_t used = (size_t)snprintf(out, len, "%s", head);
-    for (int i = 0; i < count; i++)
-        if (snippets[i]->glow_function)
-            used += (size_t)snprintf(out + used, len - used, "    glow += %s(d);\n", snippets[i]->glow_function);
+    size_t used = (size_t)snprintf(out, len, "vec3 %s(vec3 d)\n{\n    vec3 sum = vec3(0.0);\n", name);
+    for (int i = 0; i < count; i++) {
+        const char *f = front ? snippets[i]->front_function : snippets[i]->glow_function;
+        if (f) used += (size_t)snprintf(out + used, len - used, "    sum += %s(d);\n", f);
+    }
     snprintf(out + used, len - used, "%s", tail);
     return need;
 }
@@ -185,11 +189,11 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     const sky_gl *gl = &s->gl;
     memset(p, 0, sizeof *p);
     /* prologue, feature defines, display and common code, snippets, main */
-    const char **parts = malloc(sizeof *parts * (size_t)(6 + snippet_count));
+    const char **parts = malloc(sizeof *parts * (size_t)(7 + snippet_count));
     /* the tone map (display.glsl), then the snippets' defines */
     static const char *const tone_maps[3] = {"", "#define SKY_TONE_MAP_FILMIC 1\n", "#define SKY_TONE_MAP_NEUTRAL 1\n"};
-    size_t defines_size = 128;
-    char *glows = NULL; /* sky_night_glows, if any snippet is a glow */
+    size_t defines_size = 192;
+    char *sums[2] = {NULL, NULL}; /* sky_night_glows, sky_front_lights: if any snippet has one */
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define) defines_size += strlen(snippets[i]->define) + 16;
     char *defines = malloc(defines_size);
@@ -204,15 +208,16 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
     for (int i = 0; i < snippet_count; i++)
         if (snippets[i]->define)
             used += (size_t)snprintf(defines + used, defines_size - used, "#define %s 1\n", snippets[i]->define);
-    size_t glows_len = night_glows(snippets, snippet_count, NULL, 0);
-    if (glows_len)
-        used += (size_t)snprintf(defines + used, defines_size - used, "#define SKY_HAS_NIGHT_GLOWS 1\n");
-    glows = malloc(glows_len + 1);
-    if (!glows) {
-        sky_format(err, err_len, "out of memory for a program's sources");
-        goto fail;
+    static const char *const sum_defines[2] = {"#define SKY_HAS_NIGHT_GLOWS 1\n", "#define SKY_HAS_FRONT_LIGHTS 1\n"};
+    for (int k = 0; k < 2; k++) {
+        size_t sum_len = light_sum(snippets, snippet_count, k, NULL, 0);
+        if (sum_len) used += (size_t)snprintf(defines + used, defines_size - used, "%s", sum_defines[k]);
+        if (!(sums[k] = malloc(sum_len + 1))) {
+            sky_format(err, err_len, "out of memory for a program's sources");
+            goto fail;
+        }
+        light_sum(snippets, snippet_count, k, sums[k], sum_len + 1);
     }
-    night_glows(snippets, snippet_count, glows, glows_len + 1);
     for (int stage = 0; stage < 2; stage++) {
         int n = 0;
         parts[n++] = prologue(s, stage);
@@ -223,17 +228,19 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
             const char *source = stage ? snippets[i]->source : snippets[i]->vertex_source;
             if (source && !(parts[n++] = blob_text(source, err, err_len))) goto fail;
         }
-        if (stage && glows[0]) parts[n++] = glows;
+        for (int k = 0; k < 2; k++)
+            if (stage && sums[k][0]) parts[n++] = sums[k];
         if (!(parts[n++] = blob_text(stage ? frag_main : vert_main, err, err_len))) goto fail;
         shaders[stage] = compile(s, stage ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER, parts, n, err, err_len);
         if (!shaders[stage]) goto fail;
     }
     free(parts);
     free(defines);
-    free(glows);
+    free(sums[0]);
+    free(sums[1]);
     parts = NULL;
     defines = NULL;
-    glows = NULL;
+    sums[0] = sums[1] = NULL;
     p->id = gl->glCreateProgram();
     gl->glAttachShader(p->id, shaders[0]);
     gl->glAttachShader(p->id, shaders[1]);
@@ -262,7 +269,8 @@ int sky_program_build(sky_core *s, sky_program *p, const char *vert_main, const 
 fail:
     free(parts);
     free(defines);
-    free(glows);
+    free(sums[0]);
+    free(sums[1]);
     for (int i = 0; i < 2; i++)
         if (shaders[i]) gl->glDeleteShader(shaders[i]);
     if (p->id) gl->glDeleteProgram(p->id);

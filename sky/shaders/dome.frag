@@ -86,6 +86,12 @@ void main()
     L = mix(L, u_horizon, haze);
     cover += (1.0 - cover) * haze;
 #endif
+    /* the optics' light in front of sky, clouds and haze (a rainbow in the
+     * rain, a fogbow in the fog itself, a halo in the ice: the optics
+     * variants of the dome, dome.c) */
+#ifdef SKY_HAS_FRONT_LIGHTS
+    L += sky_front_lights(d);
+#endif
 #endif
     /* (clouds in front take the aurora's share of the light with them) */
     brighter = mix(brighter, 1.0, cover);
