@@ -133,9 +133,10 @@ static const struct {
                      {"stars", SKY_STARS},          {"flicker", SKY_FLICKER_STARS}, {"starmap", SKY_STARMAP},
                      {"eclipse", SKY_LUNAR_ECLIPSE}, {"solar-eclipse", SKY_SOLAR_ECLIPSE}, {"planets", SKY_PLANETS},
                      {"airglow", SKY_AIRGLOW},      {"zodiacal", SKY_ZODIACAL}, {"weather", SKY_WEATHER},
-                     {"rainbow", SKY_RAINBOW}, {"halo", SKY_HALO}};
+                     {"rainbow", SKY_RAINBOW}, {"halo", SKY_HALO}, {"aurora", SKY_AURORA}};
 #define FEATURE_NAMES \
-    "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal,weather,rainbow,halo"
+    "clouds,sun,moon,flicker,stars,starmap,eclipse,solar-eclipse,planets,airglow,zodiacal,weather,rainbow,halo," \
+    "aurora"
 
 static int parse_features(const char *s, unsigned *out, char *err, size_t len)
 {
@@ -204,14 +205,15 @@ void sky_cli_usage(FILE *out, const char *prog, int is_demo)
             "                           the default), very-clean, hazy, polluted, hillaire-2020 (his paper's\n"
             "                           constants), mars\n"
             "  --features LIST          comma list of clouds,sun,moon,flicker,stars,starmap,eclipse,\n"
-            "                           solar-eclipse,planets,airglow,zodiacal,weather,rainbow,halo (or none);\n"
-            "                           eclipse = the lunar one\n"
+            "                           solar-eclipse,planets,airglow,zodiacal,weather,rainbow,halo,aurora\n"
+            "                           (or none); eclipse = the lunar one\n"
             "  --gl auto|core|compat|es20\n"
             "                           GL profile (es20: OpenGL ES 2.0, headless through EGL)\n"
             "  --preset noon|overcast|sunset|starry|moonlit|eclipse|solar-eclipse|minimal\n"
             "  --frames N               render N frames, 1/30 s apart\n"
             "  --moon-scale C           draw the moon C times its true size (0.5..50; default 2.5)\n"
             "  --bortle N               light pollution of Bortle class N (1 excellent dark site .. 9 inner city)\n"
+            "  --kp K                   the aurora's Kp index: 0 quiet .. 9 extreme storm (default 0)\n"
             "  --solar-activity A       the airglow's solar cycle: 0 minimum .. 1 maximum (default: the date's)\n"
             "  --exposure STOPS         on top of the automatic exposure (-10..10; the sun as through a filter: -8)\n"
             "  --exposure-range STOPS   how far dusk and night show darker than full adaptation (0.01..16; 3)\n"
@@ -407,6 +409,10 @@ int sky_cli_parse(sky_cli *cli, int argc, char **argv, int is_demo, char *err, s
             if (!parse_number(val, 1.0, 9.0, &v))
                 return fail(err, len, "--bortle: expected a Bortle class in 1..9, got '%s'", val ? val : "(nothing)");
             cli->bortle = (float)v;
+        } else if (!strcmp(opt, "--kp")) {
+            if (!parse_number(val, 0.0, 9.0, &v))
+                return fail(err, len, "--kp: expected a Kp index in 0..9, got '%s'", val ? val : "(nothing)");
+            cli->kp = (float)v;
         } else if (!strcmp(opt, "--solar-activity")) {
             if (!parse_number(val, 0.0, 1.0, &v))
                 return fail(err, len, "--solar-activity: expected 0 (minimum) .. 1 (maximum), got '%s'",
@@ -630,6 +636,7 @@ sky_config sky_cli_config(const sky_cli *cli, sky_get_proc_address_fn loader)
     cfg.atmosphere = cli->atmosphere;
     cfg.moon_scale = cli->moon_scale;
     cfg.bortle = cli->bortle;
+    cfg.kp = cli->kp;
     cfg.exposure_range = cli->exposure_range;
     cfg.seed = cli->seed;
     cfg.solar_activity_manual = cli->solar_activity_manual;

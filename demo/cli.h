@@ -24,6 +24,7 @@ typedef struct sky_cli {
     sky_atmosphere_path atmosphere;
     float moon_scale;       /* --moon-scale (0 = the library's default)  */
     float bortle;           /* --bortle (0 = no light pollution)         */
+    float kp;               /* --kp: the aurora's Kp index (0..9)        */
     int solar_activity_manual; /* --solar-activity given                 */
     float solar_activity;
     float exposure;         /* --exposure: stops on the automatic exposure */

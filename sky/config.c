@@ -60,6 +60,7 @@ static const config_rule rules[] = {
     INT(solar_activity_manual, 0, 1, 0, "0 = from the date, or 1"),
     FLOAT_WHEN(solar_activity, 0.0, 1.0, solar_activity_manual, "0 = minimum .. 1 = maximum"),
     FLOAT(bortle, 1.0, 9.0, 1, "0 = no light pollution, or 1..9"),
+    FLOAT(kp, 0.0, 9.0, 0, "the Kp index, 0..9"),
 };
 /* (the table's helpers end with it: in the amalgamation, one translation
  * unit, names this generic would reach every file after this one) */

@@ -154,6 +154,9 @@ typedef struct sky_frame {
                                 above the air, klx per channel (0 by day)   */
     unsigned moonlit_generation; /* bumped when their moonlit sky per unit of
                                 it changes (the dome's vertices follow)      */
+    float glows_key;         /* what of the night glows' light their zenith does
+                                not show (the aurora's Kp and clocks:
+                                aurora.c): a key of the irradiance's cache */
     float night_luminance;   /* kcd/m^2: the moonless or moonlit night sky's zenith
                                 (airglow, zodiacal light, the floor, light
                                 pollution): what the exposure adapts to     */

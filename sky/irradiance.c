@@ -136,7 +136,8 @@ const double (*sky_irradiance_cached(const sky_core *s, sky_irradiance_cache *ca
     key[n++] = f->sunset;
     key[n++] = f->haze[0]; /* a weather's haze (its colour is fog_rgb's) */
     key[n++] = f->deck;
-    _Static_assert(SKY_ATMOSPHERE_KEY + 8 == SKY_IRRADIANCE_KEY, "the key's length");
+    key[n++] = f->glows_key; /* the aurora's curtains (aurora.c) */
+    _Static_assert(SKY_ATMOSPHERE_KEY + 9 == SKY_IRRADIANCE_KEY, "the key's length");
     if (!cache->valid || memcmp(key, cache->key, sizeof key) != 0) {
         sky_irradiance_project(s, cache->sh);
         memcpy(cache->key, key, sizeof key);

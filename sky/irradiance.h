@@ -21,7 +21,7 @@ void sky_irradiance_project(const sky_core *s, double sh[SKY_SH_COUNT][3]);
  * frame's sun, the moon on the gradient, night floor, eclipse, ground and
  * horizon, the gradient's and the blend's scales, the observer, the world
  * frame, Hillaire's table in use and the clouds. */
-enum { SKY_ATMOSPHERE_KEY = 44, SKY_IRRADIANCE_KEY = SKY_ATMOSPHERE_KEY + 8 };
+enum { SKY_ATMOSPHERE_KEY = 44, SKY_IRRADIANCE_KEY = SKY_ATMOSPHERE_KEY + 9 };
 /* What the atmosphere's light around the observer depends on, as numbers
  * that change when it does (the aerial perspective table's key; the SH's
  * adds the clouds'). */

@@ -15,11 +15,11 @@
  * SKY_LAYER_NEXT, the next after SKY_LAYER_COUNT in this order. */
 extern const sky_layer_class sky_dome_layer, sky_clouds_layer, sky_flicker_layer, sky_starmap_layer,
     sky_airglow_layer, sky_zodiacal_layer, sky_stars_layer, sky_planets_layer, sky_moon_layer, sky_sun_layer,
-    sky_rainbow_layer, sky_halo_layer;
+    sky_rainbow_layer, sky_halo_layer, sky_aurora_layer;
 const sky_layer_class *const sky_layer_table[] = {
     &sky_dome_layer, &sky_clouds_layer, &sky_flicker_layer, &sky_starmap_layer,
     &sky_airglow_layer, &sky_zodiacal_layer, &sky_stars_layer, &sky_planets_layer,
-    &sky_moon_layer, &sky_sun_layer, &sky_rainbow_layer, &sky_halo_layer,
+    &sky_moon_layer, &sky_sun_layer, &sky_rainbow_layer, &sky_halo_layer, &sky_aurora_layer,
 };
 const int sky_layer_table_size = (int)(sizeof sky_layer_table / sizeof sky_layer_table[0]);
 

@@ -283,6 +283,17 @@ sky_result sky_set_exposure_bias(sky *s, float ev)
     return SKY_OK;
 }
 
+sky_result sky_set_kp(sky *s, float kp)
+{
+    if (!s) return SKY_ERR_INVALID_ARGUMENT;
+    if (isnan(kp)) return sky_fail(s, SKY_ERR_INVALID_ARGUMENT, "sky_set_kp: kp is NaN");
+    float c = sky_clampf(kp, 0.0f, 9.0f);
+    s->core.cfg.kp = c;
+    compute_frame(s);
+    if (c != kp) return sky_fail(s, SKY_CLAMPED, "sky_set_kp: %g clamped to %g (range 0..9)", (double)kp, (double)c);
+    return SKY_OK;
+}
+
 sky_result sky_update(sky *s, double dt)
 {
     if (!s) return SKY_ERR_INVALID_ARGUMENT;

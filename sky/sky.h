@@ -202,11 +202,16 @@ typedef enum sky_feature {
                                     in fog, a moon's bow; nothing otherwise.
                                     Needs SKY_CLOUDS and SKY_WEATHER (the
                                     rain is the weather's). Since 0.6.0   */
-    SKY_HALO          = 1u << 13 /* the 22 and 46 degree halos and the
+    SKY_HALO          = 1u << 13, /* the 22 and 46 degree halos and the
                                     parhelia around the sun and the moon in
                                     the thin upper layer's ice (cirrus);
                                     nothing without it. Needs SKY_CLOUDS.
                                     Since 0.6.0                          */
+    SKY_AURORA        = 1u << 14 /* the aurora's green curtains with red
+                                    tops, where the observer is under or
+                                    near the auroral oval for cfg.kp
+                                    (sky_set_kp); nothing elsewhere, by
+                                    day or behind clouds. Since 0.6.0 */
 } sky_feature;
 /* The empty sky. Bit 31, outside the enum: ISO C wants every enumerator
  * to fit an int. */
@@ -219,7 +224,7 @@ typedef enum sky_feature {
 #define SKY_FEATURES_AVAILABLE \
     (SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_FLICKER_STARS | SKY_STARS | SKY_STARMAP | SKY_LUNAR_ECLIPSE | \
      SKY_SOLAR_ECLIPSE | SKY_PLANETS | SKY_AIRGLOW | SKY_ZODIACAL | SKY_WEATHER | SKY_RAINBOW | \
-     SKY_HALO)
+     SKY_HALO | SKY_AURORA)
 
 typedef enum sky_atmosphere_path {
     SKY_ATMOSPHERE_DEFAULT = 0, /* = GRADIENT in this build                 */
@@ -507,6 +512,13 @@ typedef struct sky_config {
      * cloud shadows fall (sky_get_cloud_shadow). 0 = 1500; else 100..20000.
      * Since 0.6.0 */
     float cloud_height_m;
+    /* SKY_AURORA: the planetary K index, 0 (quiet) .. 9 (an extreme
+     * storm), fractions allowed: the auroral oval's equatorward edge
+     * follows NOAA SWPC's table, from 66.5 degrees geomagnetic latitude
+     * at 0 to 48.1 at 9 (docs/guide.md, "Aurora"), and the curtains
+     * brighten with it. 0 is Kp 0; sky_create rejects anything outside
+     * 0..9, NaN included. sky_set_kp changes it later. Since 0.6.0 */
+    float kp;
 } sky_config;
 
 /* Roden & Parberry's six sliders, each in 0..1 (values outside are clamped,
@@ -631,6 +643,17 @@ SKY_API sky_result sky_get_params(const sky *s, sky_params *p);
  * GL: none.
  * Since: 0.2.0 */
 SKY_API sky_result sky_set_exposure_bias(sky *s, float ev);
+
+/* sky_set_kp: the aurora's Kp index (sky_config.kp) from now on: the
+ * oval's place and the curtains' brightness. It recomputes the frame as
+ * sky_set_params does. Without SKY_AURORA it is kept and shows nothing.
+ * Errors: SKY_ERR_INVALID_ARGUMENT for s NULL (no message) or kp NaN:
+ * nothing changes. SKY_CLAMPED outside 0..9 (infinities included): set to
+ * the nearest end.
+ * Thread safety: the sky's thread.
+ * GL: none.
+ * Since: 0.6.0 */
+SKY_API sky_result sky_set_kp(sky *s, float kp);
 
 /* sky_update: advances the sky's running clocks by dt_seconds (the clouds'
  * drift at the speed slider's rate, the flicker stars' flicker, the stars'

@@ -272,7 +272,7 @@ TEST(api_lighting_and_stats)
     static const struct {
         const char *name;
         unsigned feature;
-    } later[] = {{"rainbow", SKY_RAINBOW}, {"halo", SKY_HALO}};
+    } later[] = {{"rainbow", SKY_RAINBOW}, {"halo", SKY_HALO}, {"aurora", SKY_AURORA}};
     enum { LATER = (int)(sizeof later / sizeof later[0]) };
     CHECK(sky_layer_count() == SKY_LAYER_COUNT + LATER, "sky_layer_count %d", sky_layer_count());
     size_t sum = 0;

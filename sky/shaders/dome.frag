@@ -58,8 +58,13 @@ void main()
     /* the night's glows above the air (the snippets with a glow function,
      * summed by sky_night_glows, which the program build writes), dimmed
      * by it per channel */
+    float brighter = 1.0; /* for the night's blue shift: the aurora's green */
 #ifdef SKY_HAS_NIGHT_GLOWS
-    L += sky_night_glows(d) * sky_night_extinction(d);
+    vec3 glow_t = sky_night_extinction(d);
+    L += sky_night_glows(d) * glow_t;
+#ifdef SKY_HAS_AURORA
+    brighter = sky_aurora_brighter(L, sky_aurora_seen * glow_t);
+#endif
 #endif
     float cover = 0.0;
 #ifdef SKY_HAS_CLOUDS
@@ -88,10 +93,12 @@ void main()
     L += sky_front_lights(d);
 #endif
 #endif
+    /* (clouds in front take the aurora's share of the light with them) */
+    brighter = mix(brighter, 1.0, cover);
 #ifdef SKY_DOME_INTO_IMAGE
     /* the image keeps the clouds' alpha for what is drawn over it */
-    SKY_FRAG_COLOR = sky_output(L, cover);
+    SKY_FRAG_COLOR = sky_output_seen(L, cover, brighter);
 #else
-    SKY_FRAG_COLOR = sky_output(L, 1.0);
+    SKY_FRAG_COLOR = sky_output_seen(L, 1.0, brighter);
 #endif
 }
