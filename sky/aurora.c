@@ -71,7 +71,7 @@
 #define POLEWARD_EDGE_KP0 74.0
 #define POLEWARD_EDGE_PER_KP 0.4
 #define CURTAIN_SPACING_KM 240.0
-#define FOLD_KM 60.0         /* the folds' amplitude (the three sines' sum) */
+#define FOLD_KM 60.0         /* the folds' amplitude (the two sines' sum) */
 #define REACH_KM 2000.0      /* the farthest band that shows */
 #define GREEN_KR_KP0 3.0
 #define GREEN_GAIN_PER_KP 1.45
@@ -220,13 +220,20 @@ static double aurora_hash(float k, float seed)
     return (double)(x - floorf(x));
 }
 
-/* the fold of curtain (hashes h1, h2) at east coordinate e, and its slope */
+/* the second hash of a curtain from its first (one sine a curtain) */
+static double aurora_hash2(double h1)
+{
+    float x = (float)h1 * 61.7f + 0.37f;
+    return (double)(x - floorf(x));
+}
+
+/* the fold of curtain (hashes h1, h2) at east coordinate e, and its
+ * slope (its long wave's: what turns the curtain toward the eye) */
 static double aurora_fold(double e, double h1, double h2, double phase, double *slope)
 {
-    double a1 = e / 330.0 + 6.2832 * h1 + phase, a2 = e / 130.0 + 6.2832 * h2 - 2.0 * phase,
-           a3 = e / 47.0 + 17.0 * h1 + 3.0 * phase;
-    *slope = FOLD_KM * (0.6 / 330.0 * cos(a1) + 0.3 / 130.0 * cos(a2) + 0.1 / 47.0 * cos(a3));
-    return FOLD_KM * (0.6 * sin(a1) + 0.3 * sin(a2) + 0.1 * sin(a3));
+    double a1 = e / 330.0 + 6.2832 * h1 + phase, a2 = e / 130.0 + 6.2832 * h2 - 2.0 * phase;
+    *slope = FOLD_KM * 0.65 / 330.0 * cos(a1);
+    return FOLD_KM * (0.65 * sin(a1) + 0.35 * sin(a2));
 }
 
 /* the ground distance (km) where a ray of elevation e (sine y, cosine c)
@@ -253,13 +260,16 @@ static void aurora_at(const sky_core *s, const void *state, const double d[3], d
     double k0 = fmax(floor((n_lo - nb) / sp - 0.8), 0.0);
     double cn_safe = cn < 0.0 ? fmin(cn, -0.03) : fmax(cn, 0.03);
     double e = asin(y);
-    for (int i = 0; i < 4; i++) {
+    /* (the sheets the ray crosses and the fold's steps: aurora.glsl's, whose
+     * cost they set: two sheets and one step keep a night with the aurora
+     * near the night presets' cost) */
+    for (int i = 0; i < 2; i++) {
         double k = k0 + i;
-        double h1 = aurora_hash((float)k, st->green[3]), h2 = aurora_hash((float)k + 0.5f, st->green[3]);
+        double h1 = aurora_hash((float)k, st->green[3]), h2 = aurora_hash2(h1);
         double nk = nb + (k + 0.5 + 0.3 * sin(6.2832 * h1 + st->oval[3])) * sp;
         double oval = aurora_smoothstep(nb - 100.0, nb + 100.0, nk) * (1.0 - aurora_smoothstep(np - 200.0, np + 50.0, nk));
         double slope, g = nk / cn_safe;
-        for (int it = 0; it < 2; it++) g = (nk + aurora_fold(g * ce, h1, h2, st->red[3], &slope)) / cn_safe;
+        g = (nk + aurora_fold(g * ce, h1, h2, st->red[3], &slope)) / cn_safe;
         double east = g * ce;
         aurora_fold(east, h1, h2, st->red[3], &slope);
         double local = cos(e + g / EARTH_RADIUS_KM);
@@ -267,7 +277,7 @@ static void aurora_at(const sky_core *s, const void *state, const double d[3], d
         double h = EARTH_RADIUS_KM * (r0 * c / local - 1.0);
         double green = aurora_smoothstep(95.0, 110.0, h) * exp(-fmax(h - 110.0, 0.0) / 30.0);
         double red = aurora_smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 50.0);
-        double oblique = 1.0 / fmax(fabs(cn - slope * ce) * local, 0.15);
+        double oblique = 1.0 / fmax(fabs(cn - slope * ce) * local, 1.0 / OBLIQUITY_MAX);
         double envelope = 0.25 + 0.75 * aurora_smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + st->red[3]));
         double rays = 0.55 + 0.45 * sin(east / 15.0 + 40.0 * h1 + st->axes[3]) * sin(east / 6.5 + 2.0 * st->axes[3]);
         double w = oval * oblique * envelope * rays * (0.4 + 0.6 * h2);

@@ -51,30 +51,29 @@
 typedef struct halo_state {
     int texture;       /* HALO_TEXELS x 1 RGBA8: sqrt(p / p_max), rho from the light */
     float scale;       /* p_max per steradian                                       */
-    float sun[4];      /* rgb: the sun's halos at the table's 1, kcd/m^2; a: sin h   */
-    float moon[4];     /* rgb: the moon's (grey); a: sin of its altitude            */
+    float halo[4];     /* rgb: the halos at the table's 1, kcd/m^2; a: 1 grey (the moon's) */
+    float light[4];    /* xyz: toward the light of the brighter halo (the sun or
+                          the moon); w: 1 / the cosine of its elevation            */
     float dogs[4];     /* rgb: the parhelia's distance in azimuth per channel
-                          (radians) for the sun; a: their strength over the halo's   */
-    float moon_dogs[4]; /* the same for the moon                                    */
-    float light_y;     /* the brighter halo's peak luminance (visible)             */
+                          (radians); a: their strength over the halo's              */
+    float light_y;     /* the halo's peak luminance (visible)                      */
 } halo_state;
 
 static const sky_uniform_desc halo_uniforms[] = {
     SKY_UTS("u_halo_tex", halo_state, texture),
-    SKY_USL("u_halo", SKY_U_F4, halo_state, sun, SKY_RGB),
-    SKY_USL("u_halo_moon", SKY_U_F4, halo_state, moon, SKY_RGB),
+    SKY_USL("u_halo", SKY_U_F4, halo_state, halo, SKY_RGB),
+    SKY_US("u_halo_light", SKY_U_F4, halo_state, light),
     SKY_US("u_halo_dogs", SKY_U_F4, halo_state, dogs),
-    SKY_US("u_halo_moon_dogs", SKY_U_F4, halo_state, moon_dogs),
 };
 static const sky_snippet halo_snippet = {"SKY_HAS_HALO", "halo.glsl", halo_uniforms,
                                          SKY_UNIFORM_COUNT(halo_uniforms), NULL, NULL, "sky_halo"};
 
 /* Ice's index at lambda_nm: 1.2999 + 2969 / l^2 (through Warren & Brandt's
  * 1.3185 at 400 nm and 1.3060 at 700; 1.3097 at 550). */
-static double ice_index(double l) { return 1.2999 + 2969.0 / (l * l); }
+static double halo_ice_index(double l) { return 1.2999 + 2969.0 / (l * l); }
 
 /* A prism's minimum deviation, radians. */
-static double minimum_deviation(double n, double apex)
+static double halo_minimum_deviation(double n, double apex)
 {
     return 2.0 * asin(sky_clampd(n * sin(0.5 * apex), -1.0, 1.0)) - apex;
 }
@@ -82,10 +81,10 @@ static double minimum_deviation(double n, double apex)
 /* The profile of randomly oriented prisms of apex A and index n past
  * their minimum deviation: per steradian of all the light through them,
  * by PROFILE_BIN_DEG bins, smoothed by the sun's disc. */
-static void random_prisms(double n, double apex, double *profile)
+static void halo_random_prisms(double n, double apex, double *profile)
 {
     enum { STEPS_I = 360, STEPS_B = 120 };
-    double dmin = minimum_deviation(n, apex), total = 0.0;
+    double dmin = halo_minimum_deviation(n, apex), total = 0.0;
     memset(profile, 0, sizeof(double) * PROFILE_BINS);
     for (int jb = 0; jb < STEPS_B; jb++) {
         double b = -0.5 * SKY_PI + (jb + 0.5) * SKY_PI / STEPS_B, cb = cos(b), sb = sin(b);
@@ -124,7 +123,7 @@ static void random_prisms(double n, double apex, double *profile)
 }
 
 /* The profile at delta radians past the minimum (0 before it). */
-static double profile_at(const double *profile, double delta)
+static double halo_profile_at(const double *profile, double delta)
 {
     double u = delta * 180.0 / SKY_PI / PROFILE_BIN_DEG - 0.5;
     if (u < -0.5 || u >= PROFILE_BINS - 1) return 0.0;
@@ -142,8 +141,8 @@ static int halo_create(sky_core *s, void *state, char *err, size_t err_len)
         return -1;
     }
     static const double apex[2] = {SKY_PI / 3.0, SKY_PI / 2.0}, share[2] = {HALO_SHARE_22, HALO_SHARE_46};
-    double n550 = ice_index(550.0);
-    for (int k = 0; k < 2; k++) random_prisms(n550, apex[k], profiles + k * PROFILE_BINS);
+    double n550 = halo_ice_index(550.0);
+    for (int k = 0; k < 2; k++) halo_random_prisms(n550, apex[k], profiles + k * PROFILE_BINS);
     /* each texel's spectrum through the matching functions, over the sun's */
     double sun_xyz[3] = {0.0, 0.0, 0.0}, sun_rgb[3];
     for (int w = 0; w < SKY_SPECTRUM_SAMPLES; w++) {
@@ -157,10 +156,10 @@ static int halo_create(sky_core *s, void *state, char *err, size_t err_len)
     for (int t = 0; t < HALO_TEXELS; t++) {
         double rho = t / (double)(HALO_TEXELS - 1) * HALO_RHO_MAX_DEG * SKY_PI / 180.0, xyz[3] = {0.0, 0.0, 0.0};
         for (int w = 0; w < SKY_SPECTRUM_SAMPLES; w++) {
-            double l = sky_spectrum_wavelength_nm(w), n = ice_index(l), e = sky_spectrum_solar_irradiance(l), cmf[3];
+            double l = sky_spectrum_wavelength_nm(w), n = halo_ice_index(l), e = sky_spectrum_solar_irradiance(l), cmf[3];
             double p = 0.0;
             for (int k = 0; k < 2; k++)
-                p += share[k] * profile_at(profiles + k * PROFILE_BINS, rho - minimum_deviation(n, apex[k]));
+                p += share[k] * halo_profile_at(profiles + k * PROFILE_BINS, rho - halo_minimum_deviation(n, apex[k]));
             sky_spectrum_cmf(l, cmf);
             for (int c = 0; c < 3; c++) xyz[c] += e * p * cmf[c];
         }
@@ -190,15 +189,15 @@ static int halo_create(sky_core *s, void *state, char *err, size_t err_len)
 /* The parhelia of a light at altitude h (radians): their distance in
  * azimuth per channel (650, 550 and 450 nm), and their strength, which
  * fades as the light climbs past 40 degrees and is gone by 61. */
-static void parhelia(double h, float out[4])
+static void halo_parhelia(double h, float out[4])
 {
     static const double channel_nm[3] = {650.0, 550.0, 450.0};
     double ch = cos(h), sh = sin(h);
     out[3] = 0.0f;
     for (int c = 0; c < 3; c++) {
-        double n = ice_index(channel_nm[c]), np = sqrt(n * n - sh * sh) / fmax(ch, 1e-6);
+        double n = halo_ice_index(channel_nm[c]), np = sqrt(n * n - sh * sh) / fmax(ch, 1e-6);
         if (np * 0.5 >= 1.0) return;
-        out[c] = (float)minimum_deviation(np, SKY_PI / 3.0);
+        out[c] = (float)halo_minimum_deviation(np, SKY_PI / 3.0);
     }
     out[3] = (float)(1.0 - sky_smoothstep(35.0, 60.0, h * 180.0 / SKY_PI));
 }
@@ -207,8 +206,10 @@ static void halo_frame(sky_core *s, void *state)
 {
     halo_state *st = state;
     const sky_frame *f = &s->frame;
-    memset(st->sun, 0, sizeof st->sun);
-    memset(st->moon, 0, sizeof st->moon);
+    memset(st->halo, 0, sizeof st->halo);
+    memset(st->dogs, 0, sizeof st->dogs);
+    st->light[0] = st->light[2] = 0.0f;
+    st->light[1] = st->light[3] = 1.0f;
     st->light_y = 0.0f;
     /* the thin upper layer's ice: the weather's, or the sliders' 0.35 of cover */
     double tau = HALO_ICE_DEPTH * sky_clampd(f->upper_cover, 0.0, 1.0) * (f->cover > 0.0f || s->weather.set);
@@ -217,15 +218,20 @@ static void halo_frame(sky_core *s, void *state)
     sky_sun_beam(s, beam);
     if (s->features & SKY_MOON) sky_moon_lighting(s, moon);
     double scale = tau * st->scale;
-    for (int i = 0; i < 3; i++) st->sun[i] = (float)(beam[i] * scale);
-    double moon_y = 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2];
-    for (int i = 0; i < 3; i++) st->moon[i] = (float)(moon_y * scale);
-    st->sun[3] = f->sun_dir[1];
-    st->moon[3] = f->moon_dir[1];
-    parhelia(asin(sky_clampd(f->sun_dir[1], -1.0, 1.0)), st->dogs);
-    parhelia(asin(sky_clampd(f->moon_dir[1], -1.0, 1.0)), st->moon_dogs);
-    double y_sun = 0.2126 * st->sun[0] + 0.7152 * st->sun[1] + 0.0722 * st->sun[2];
-    st->light_y = (float)fmax(f->sun_dir[1] > -0.01f ? y_sun : 0.0, f->moon_dir[1] > -0.01f ? moon_y * scale : 0.0);
+    /* the light of the brighter halo, above the horizon (the moon's: grey) */
+    double sun_y = f->sun_dir[1] > -0.01f ? 0.2126 * beam[0] + 0.7152 * beam[1] + 0.0722 * beam[2] : 0.0;
+    double moon_y = f->moon_dir[1] > -0.01f ? 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2] : 0.0;
+    int by_moon = moon_y > sun_y;
+    const float *dir = by_moon ? f->moon_dir : f->sun_dir;
+    for (int i = 0; i < 3; i++) {
+        st->halo[i] = (float)((by_moon ? moon_y : beam[i]) * scale);
+        st->light[i] = dir[i];
+    }
+    st->halo[3] = by_moon ? 1.0f : 0.0f;
+    double h = asin(sky_clampd(dir[1], -1.0, 1.0));
+    st->light[3] = (float)(1.0 / fmax(cos(h), 1e-3));
+    halo_parhelia(h, st->dogs);
+    st->light_y = (float)(fmax(sun_y, moon_y) * scale);
 }
 
 /* In the optics variant while a halo would add a quarter of an 8-bit step

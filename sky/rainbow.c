@@ -19,7 +19,7 @@
  * Fresnel power of the ray's two refractions and its reflections (the
  * mean of the two polarisations). The factor is the one whose mean over
  * Ai's fringes is geometric optics' two rays, a^2 x0 F / (sin Theta_R
- * sqrt(C eps)) (derived in the comment of airy_phase). Water's index by
+ * sqrt(C eps)) (derived in the comment of bow_airy_phase). Water's index by
  * wavelength: Bashkatov & Genina 2003 (Proc. SPIE 5068, 393), at 20 C.
  * Each value is averaged over the sun's disc (0.53 degrees), where the
  * fringes are finer than the disc over the fringes, and over the drops'
@@ -64,16 +64,17 @@
 typedef struct rainbow_state {
     int texture;       /* BOW_TEXELS x BOW_ROWS RGBA8: sqrt(p / p_max)   */
     float scale;       /* p_max, per steradian                          */
-    float sun[4];      /* rgb: the sun's bow at the table's 1, kcd/m^2; a: the drops' row (t) */
-    float moon[4];     /* rgb: the moon's (grey)                         */
+    float bow[4];      /* rgb: the bow at the table's 1, kcd/m^2; a: the drops' row (t) */
+    float light[4];    /* xyz: toward the bow's light (the sun or the moon,
+                          whichever makes the brighter bow); w: 1 grey      */
     float rain[2];     /* the sines of the rain's bottom and top in view  */
-    float light_y;     /* the brighter bow's luminance at its peak, kcd/m^2 (visible) */
+    float light_y;     /* the bow's luminance at its peak, kcd/m^2 (visible) */
 } rainbow_state;
 
 static const sky_uniform_desc rainbow_uniforms[] = {
     SKY_UTS("u_rainbow_tex", rainbow_state, texture),
-    SKY_USL("u_rainbow", SKY_U_F4, rainbow_state, sun, SKY_RGB),
-    SKY_USL("u_rainbow_moon", SKY_U_F4, rainbow_state, moon, SKY_RGB),
+    SKY_USL("u_rainbow", SKY_U_F4, rainbow_state, bow, SKY_RGB),
+    SKY_US("u_rainbow_light", SKY_U_F4, rainbow_state, light),
     SKY_US("u_rainbow_rain", SKY_U_F2, rainbow_state, rain),
 };
 static const sky_snippet rainbow_snippet = {"SKY_HAS_RAINBOW", "rainbow.glsl", rainbow_uniforms,
@@ -84,7 +85,7 @@ static const sky_snippet rainbow_snippet = {"SKY_HAS_RAINBOW", "rainbow.glsl", r
 /* Ai(x): its Maclaurin series inside |x| < 6 (terms up to some 1e4 there:
  * ten digits left), the asymptotic forms outside (Abramowitz & Stegun
  * 10.4.59 and 10.4.60, their first terms: within 1e-4 at |x| = 6). */
-static double airy_ai(double x)
+static double bow_airy_ai(double x)
 {
     if (x >= 6.0) {
         double zeta = 2.0 / 3.0 * x * sqrt(x);
@@ -109,7 +110,7 @@ static double airy_ai(double x)
 
 /* Water's refractive index at lambda_nm, 20 C (Bashkatov & Genina 2003:
  * 1.3199 + 6878 / l^2 - 1.132e9 / l^4 + 1.11e14 / l^6, l in nm). */
-static double water_index(double l)
+static double bow_water_index(double l)
 {
     double l2 = l * l;
     return 1.3199 + 6878.0 / l2 - 1.132e9 / (l2 * l2) + 1.11e14 / (l2 * l2 * l2);
@@ -123,7 +124,7 @@ typedef struct bow_ray {
     double rho_r, x0, c, fresnel, sin_theta;
 } bow_ray;
 
-static double deviation(double x, double n, int k)
+static double bow_deviation(double x, double n, int k)
 {
     double i = asin(sky_clampd(x, -1.0, 1.0)), r = asin(sky_clampd(x / n, -1.0, 1.0));
     return 2.0 * (i - r) + k * (SKY_PI - 2.0 * r);
@@ -135,8 +136,8 @@ static bow_ray bow_geometry(double n, int k)
     /* the stationary ray: cos^2 i = (n^2 - 1) / (k^2 + 2k) */
     double c2 = (n * n - 1.0) / (double)(k * k + 2 * k);
     b.x0 = sqrt(sky_clampd(1.0 - c2, 0.0, 1.0));
-    double d0 = deviation(b.x0, n, k), h = 1e-4;
-    b.c = 0.5 * fabs(deviation(b.x0 + h, n, k) - 2.0 * d0 + deviation(b.x0 - h, n, k)) / (h * h);
+    double d0 = bow_deviation(b.x0, n, k), h = 1e-4;
+    b.c = 0.5 * fabs(bow_deviation(b.x0 + h, n, k) - 2.0 * d0 + bow_deviation(b.x0 - h, n, k)) / (h * h);
     /* the deviation folded into a scattering angle; rho from the antisolar point */
     double theta = fmod(d0, 2.0 * SKY_PI);
     if (theta > SKY_PI) theta = 2.0 * SKY_PI - theta;
@@ -159,10 +160,10 @@ static bow_ray bow_geometry(double n, int k)
  * 1 / (2 pi sqrt(z)) over its fringes, with sqrt(z) = sqrt(eps) (ka)^(1/3)
  * c^(-1/6): their ratio is 2 pi a^2 x0 F (ka)^(1/3) c^(-2/3) / sin Theta_R. */
 /* Ai(x)^2 from the table (inside it) or the asymptotic forms */
-static double airy_ai2(const float *table, double x)
+static double bow_airy_ai2(const float *table, double x)
 {
     if (x <= AIRY_X0 || x >= AIRY_X1) {
-        double a = airy_ai(x);
+        double a = bow_airy_ai(x);
         return a * a;
     }
     double u = (x - AIRY_X0) / AIRY_STEP;
@@ -170,7 +171,7 @@ static double airy_ai2(const float *table, double x)
     return table[i] + (table[i + 1] - table[i]) * (u - i);
 }
 
-static double airy_phase(const float *ai2, const bow_ray *b, double ka, double eps)
+static double bow_airy_phase(const float *ai2, const bow_ray *b, double ka, double eps)
 {
     double zscale = pow(ka, 2.0 / 3.0) / cbrt(b->c);
     double factor = 2.0 * b->x0 * b->fresnel * cbrt(ka) / pow(b->c, 2.0 / 3.0) / b->sin_theta;
@@ -187,7 +188,7 @@ static double airy_phase(const float *ai2, const bow_ray *b, double ka, double e
     double sum = 0.0, weights = 0.0;
     for (int j = 0; j < DISC_SAMPLES; j++) {
         double u = -1.0 + (2.0 * j + 1.0) / DISC_SAMPLES, w = sqrt(1.0 - u * u);
-        sum += w * airy_ai2(ai2, -(eps + u * SUN_RADIUS_RAD) * zscale);
+        sum += w * bow_airy_ai2(ai2, -(eps + u * SUN_RADIUS_RAD) * zscale);
         weights += w;
     }
     return factor * sum / weights * (1.0 - to_mean) + mean * to_mean;
@@ -195,13 +196,13 @@ static double airy_phase(const float *ai2, const bow_ray *b, double ka, double e
 
 /* ---- the table ------------------------------------------------------------------- */
 
-static double row_radius_mm(int row)
+static double bow_row_radius_mm(int row)
 {
     return BOW_RADIUS_MIN_MM * pow(BOW_RADIUS_MAX_MM / BOW_RADIUS_MIN_MM, row / (double)(BOW_ROWS - 1));
 }
 
 /* The drops' row as a texture coordinate (linear between rows). */
-static float row_coordinate(double radius_mm)
+static float bow_row_coordinate(double radius_mm)
 {
     double t = log(sky_clampd(radius_mm, BOW_RADIUS_MIN_MM, BOW_RADIUS_MAX_MM) / BOW_RADIUS_MIN_MM) /
                log(BOW_RADIUS_MAX_MM / BOW_RADIUS_MIN_MM);
@@ -210,7 +211,7 @@ static float row_coordinate(double radius_mm)
 
 /* One row: the primary's and the secondary's light per steradian in each
  * channel over the sun's, at each rho. */
-static void table_row(const float *ai2, double radius_mm, float (*rgb)[3])
+static void bow_table_row(const float *ai2, double radius_mm, float (*rgb)[3])
 {
     enum { SIZES = 17 }; /* half to twice the row's radius, evenly in log */
     double size_factor[SIZES];
@@ -219,7 +220,7 @@ static void table_row(const float *ai2, double radius_mm, float (*rgb)[3])
     bow_ray bows[SKY_SPECTRUM_SAMPLES][2];
     double ka[SKY_SPECTRUM_SAMPLES][SIZES], e[SKY_SPECTRUM_SAMPLES], cmf[SKY_SPECTRUM_SAMPLES][3];
     for (int w = 0; w < SKY_SPECTRUM_SAMPLES; w++) {
-        double l = sky_spectrum_wavelength_nm(w), n = water_index(l);
+        double l = sky_spectrum_wavelength_nm(w), n = bow_water_index(l);
         for (int j = 0; j < SIZES; j++) ka[w][j] = 2.0 * SKY_PI * radius_mm * size_factor[j] * 1e6 / l;
         e[w] = sky_spectrum_solar_irradiance(l);
         sky_spectrum_cmf(l, cmf[w]);
@@ -236,8 +237,8 @@ static void table_row(const float *ai2, double radius_mm, float (*rgb)[3])
             double p = 0.0, weights = 0.0;
             for (int j = 0; j < SIZES; j++) {
                 double area = size_factor[j] * size_factor[j];
-                p += area * (airy_phase(ai2, &bows[w][0], ka[w][j], bows[w][0].rho_r - rho) +
-                             airy_phase(ai2, &bows[w][1], ka[w][j], rho - bows[w][1].rho_r));
+                p += area * (bow_airy_phase(ai2, &bows[w][0], ka[w][j], bows[w][0].rho_r - rho) +
+                             bow_airy_phase(ai2, &bows[w][1], ka[w][j], rho - bows[w][1].rho_r));
                 weights += area;
             }
             p /= weights;
@@ -260,11 +261,11 @@ static int rainbow_create(sky_core *s, void *state, char *err, size_t err_len)
         return -1;
     }
     for (int i = 0; i < AIRY_SAMPLES; i++) {
-        double a = airy_ai(AIRY_X0 + i * AIRY_STEP);
+        double a = bow_airy_ai(AIRY_X0 + i * AIRY_STEP);
         ai2[i] = (float)(a * a);
     }
     for (int row = 0; row < BOW_ROWS; row++) {
-        table_row(ai2, row_radius_mm(row), table[row]);
+        bow_table_row(ai2, bow_row_radius_mm(row), table[row]);
         for (int t = 0; t < BOW_TEXELS; t++)
             for (int k = 0; k < 3; k++) peak = fmaxf(peak, table[row][t][k]);
     }
@@ -291,8 +292,8 @@ static int rainbow_create(sky_core *s, void *state, char *err, size_t err_len)
 static void rainbow_frame(sky_core *s, void *state)
 {
     rainbow_state *st = state;
-    memset(st->sun, 0, sizeof st->sun);
-    memset(st->moon, 0, sizeof st->moon);
+    memset(st->bow, 0, sizeof st->bow);
+    memset(st->light, 0, sizeof st->light);
     st->rain[0] = st->rain[1] = 0.0f;
     st->light_y = 0.0f;
     if (!s->weather.set) return;
@@ -313,32 +314,35 @@ static void rainbow_frame(sky_core *s, void *state)
     sky_sun_beam(s, beam);
     if (s->features & SKY_MOON) sky_moon_lighting(s, moon);
     double scale = fill * st->scale;
-    for (int i = 0; i < 3; i++) st->sun[i] = (float)(beam[i] * scale);
-    /* the moon's bow: its light grey (to the eye, colourless at its level) */
-    double moon_y = 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2];
-    for (int i = 0; i < 3; i++) st->moon[i] = (float)(moon_y * scale);
-    st->sun[3] = row_coordinate(radius_mm);
+    /* the light of the brighter bow (the moon's: grey, to the eye
+     * colourless at its level), while its antisolar point is less than
+     * the secondary's 54 degrees below the horizon */
+    double reach = sin(54.0 * SKY_PI / 180.0);
+    double sun_y = s->frame.sun_dir[1] < reach ? 0.2126 * beam[0] + 0.7152 * beam[1] + 0.0722 * beam[2] : 0.0;
+    double moon_y = s->frame.moon_dir[1] < reach ? 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2] : 0.0;
+    int by_moon = moon_y > sun_y;
+    const float *dir = by_moon ? s->frame.moon_dir : s->frame.sun_dir;
+    for (int i = 0; i < 3; i++) {
+        st->bow[i] = (float)((by_moon ? moon_y : beam[i]) * scale);
+        st->light[i] = dir[i];
+    }
+    st->light[3] = by_moon ? 1.0f : 0.0f;
+    st->bow[3] = bow_row_coordinate(radius_mm);
     /* the rain: from the horizon (into the distance) to its top, the
      * clouds' base seen BOW_RAIN_DISTANCE_M away; fog all around */
     int fog = radius_mm <= BOW_FOG_RADIUS_MM;
     st->rain[0] = fog ? -1.0f : 0.0f;
     st->rain[1] = fog ? 1.1f : (float)sin(atan2(sky_cloud_height_m(s), BOW_RAIN_DISTANCE_M));
-    double y_sun = 0.2126 * st->sun[0] + 0.7152 * st->sun[1] + 0.0722 * st->sun[2];
-    st->light_y = (float)fmax(y_sun, moon_y * scale);
+    st->light_y = (float)(fmax(sun_y, moon_y) * scale);
 }
 
-/* In the optics variant while a bow would add a quarter of an 8-bit step
- * at its peak somewhere above the horizon: its light at the exposure, and
- * the point opposite its light less than the secondary's 54 degrees below
- * the horizon. */
+/* In the optics variant while the bow would add a quarter of an 8-bit
+ * step at its peak somewhere above the horizon (its light's antisolar
+ * point less than the secondary's 54 degrees below it: rainbow_frame) */
 static int rainbow_visible(const sky_core *s, const void *state)
 {
     const rainbow_state *st = state;
-    if (!(st->light_y * s->frame.exposure >= 1.0 / 1024.0)) return 0;
-    double reach = sin(54.0 * SKY_PI / 180.0);
-    int sun = st->sun[0] + st->sun[1] + st->sun[2] > 0.0f && s->frame.sun_dir[1] < reach;
-    int moon = st->moon[0] > 0.0f && s->frame.moon_dir[1] < reach;
-    return sun || moon;
+    return st->light_y * s->frame.exposure >= 1.0 / 1024.0;
 }
 
 const sky_layer_class sky_rainbow_layer = {

@@ -2289,13 +2289,29 @@ int main(int argc, char **argv)
                                                 "noon --dome-divisor 1 + scene over half, sky first",
                                                 "noon --dome-divisor 1 + scene over half, sky after"};
     /* the weather's states at noon, and the storm at a flash (seed 0's
-     * first strike, 11.20 s): a table of their own (a round holds at most
-     * MAX_SUBJECTS rows) */
-    static const char *const weather_rows[] = {"noon --weather clear", "noon --weather fair", "noon --weather cirrus",
-                                               "noon --weather cloudy", "noon --weather overcast",
-                                               "noon --weather rain", "noon --weather showers",
-                                               "noon --weather storm", "noon --weather fog", "noon --weather snow",
-                                               "noon --weather storm --seconds 11.21"};
+     * first strike, 11.20 s); the optics where they show (issue: Rainbows,
+     * halos and the aurora), each beside the same view without them: a
+     * rainbow after a shower and a fogbow (the sun 20 degrees up behind
+     * the viewer), a halo with parhelia in cirrus (the sun 29 degrees up,
+     * looking at it), the aurora over Tromso at Kp 6 on the starry
+     * preset's night layers. A table of their own (a round holds at most
+     * MAX_SUBJECTS rows). */
+#define BOW_VIEW " --time 0.3275 --yaw 288 --pitch 12"
+#define HALO_VIEW " --weather cirrus --time 0.3625 --yaw 118 --pitch 28"
+#define AURORA_VIEW " --date 2024-01-11T22:00:00Z --lat 69.65 --lon 18.96 --yaw 0 --pitch 20 --cover 0"
+#define AURORA_FEATURES " --features stars,planets,starmap,airglow,zodiacal,clouds,solar-eclipse"
+    static const char *const weather_rows[] = {
+        "noon --weather clear", "noon --weather fair", "noon --weather cirrus", "noon --weather cloudy",
+        "noon --weather overcast", "noon --weather rain", "noon --weather showers", "noon --weather storm",
+        "noon --weather fog", "noon --weather snow", "noon --weather storm --seconds 11.21",
+        "noon --weather showers" BOW_VIEW, "noon --weather showers --features clouds,sun,weather,rainbow" BOW_VIEW,
+        "noon --weather fog --features clouds,sun,weather,rainbow" BOW_VIEW, "noon" HALO_VIEW,
+        "noon --features clouds,sun,weather,halo" HALO_VIEW, "starry" AURORA_FEATURES AURORA_VIEW,
+        "starry" AURORA_FEATURES ",aurora --kp 6" AURORA_VIEW};
+#undef BOW_VIEW
+#undef HALO_VIEW
+#undef AURORA_VIEW
+#undef AURORA_FEATURES
     enum { WEATHER_ROWS = sizeof weather_rows / sizeof weather_rows[0] };
     static row wrows[MAX_PROFS * (WEATHER_ROWS + QUAD_KINDS - 1)];
     double base_w[MAX_PROFS] = {0};

@@ -38,28 +38,24 @@ vec3 sky_aurora(vec3 d)
     float k0 = max(floor((min(s_lo * cn, s_hi * cn) - 60.0 - nb) / sp - 0.8), 0.0);
     float cn_safe = cn < 0.0 ? min(cn, -0.03) : max(cn, 0.03);
     vec3 L = vec3(0.0);
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 2; i++) { /* two sheets (aurora.c's twin alike): the cost */
         float k = k0 + float(i);
-        float h1 = sky_aurora_hash(k), h2 = sky_aurora_hash(k + 0.5);
+        float h1 = sky_aurora_hash(k), h2 = fract(h1 * 61.7 + 0.37);
         float nk = nb + (k + 0.5 + 0.3 * sin(6.2832 * h1 + u_aurora_oval.w)) * sp;
         float oval = smoothstep(nb - 100.0, nb + 100.0, nk) * (1.0 - smoothstep(np - 200.0, np + 50.0, nk));
-        /* the ray's ground distance to the folded sheet: two steps of
+        /* the ray's ground distance to the folded sheet: one step of
          * g = (nk + fold(g ce)) / cn */
         float g = nk / cn_safe;
-        for (int it = 0; it < 2; it++) {
-            float x = g * ce;
-            g = (nk + 60.0 * (0.6 * sin(x / 330.0 + 6.2832 * h1 + ph) + 0.3 * sin(x / 130.0 + 6.2832 * h2 - 2.0 * ph) +
-                              0.1 * sin(x / 47.0 + 17.0 * h1 + 3.0 * ph))) / cn_safe;
-        }
+        g = (nk + 60.0 * (0.65 * sin(g * ce / 330.0 + 6.2832 * h1 + ph) +
+                          0.35 * sin(g * ce / 130.0 + 6.2832 * h2 - 2.0 * ph))) / cn_safe;
         float east = g * ce;
-        float slope = 60.0 * (0.6 / 330.0 * cos(east / 330.0 + 6.2832 * h1 + ph) +
-                              0.3 / 130.0 * cos(east / 130.0 + 6.2832 * h2 - 2.0 * ph) +
-                              0.1 / 47.0 * cos(east / 47.0 + 17.0 * h1 + 3.0 * ph));
+        /* the long wave's slope: what turns the curtain toward the eye */
+        float slope = 60.0 * 0.65 / 330.0 * cos(east / 330.0 + 6.2832 * h1 + ph);
         float local = cos(e + g / 6371.0);
         float h = 6371.0 * (u_aurora_axes.z * c / max(local, 0.02) - 1.0);
         float green = smoothstep(95.0, 110.0, h) * exp(-max(h - 110.0, 0.0) / 30.0);
         float red = smoothstep(170.0, 250.0, h) * exp(-max(h - 250.0, 0.0) / 50.0);
-        float oblique = 1.0 / max(abs(cn - slope * ce) * local, 0.15);
+        float oblique = 1.0 / max(abs(cn - slope * ce) * local, 0.15); /* aurora.c: OBLIQUITY_MAX */
         float envelope = 0.25 + 0.75 * smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + ph));
         float rays = 0.55 + 0.45 * sin(east / 15.0 + 40.0 * h1 + u_aurora_axes.w) * sin(east / 6.5 + 2.0 * u_aurora_axes.w);
         float w = (g > 0.0 && local > 0.02) ? oval * oblique * envelope * rays * (0.4 + 0.6 * h2) : 0.0;
