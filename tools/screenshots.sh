@@ -25,6 +25,11 @@ $r --size 640x400 --date 2023-10-15T04:40:00Z --lat 35 --lon 0 --features stars,
 for b in 1 4 8; do
     $r --size 960x540 --date 2024-08-10T21:30:00Z --lat 45 --lon 10 --features stars,starmap,planets,airglow,zodiacal --cover 0 --bortle $b --yaw 180 --pitch 35 --fov 60 --out $out/bortle-$b.png
 done
+# the rainbow, the fogbow and a halo with parhelia (issue #44): the sun 20
+# degrees up behind the viewer, showers and fog; the sun 29 up in cirrus
+$r --size 640x360 --time 0.3275 --weather showers --features clouds,sun,weather,rainbow --yaw 288 --pitch 12 --fov 70 --out $out/rainbow.png
+$r --size 640x360 --time 0.3275 --weather fog --features clouds,sun,weather,rainbow --yaw 288 --pitch 5 --fov 90 --out $out/fogbow.png
+$r --size 640x360 --time 0.3625 --weather cirrus --features clouds,sun,weather,halo --yaw 118 --pitch 28 --fov 80 --out $out/halo.png
 # the aurora (issue #44): Tromso on the moonless polar night of
 # 2024-01-11 at Kp 6, looking north
 $r --size 640x360 --features stars,starmap,airglow,aurora --kp 6 --date 2024-01-11T22:00:00Z --lat 69.65 --lon 18.96 --yaw 0 --pitch 20 --fov 90 --cover 0 --out $out/aurora.png
