@@ -392,7 +392,7 @@ typedef struct sky_core {
     int viewport[4];              /* the host's viewport at this sky_draw       */
     const struct sky_dome_snippets *dome_snippets; /* of the enabled layers (sky.c) */
     int dome_front_shows, dome_night_shows, /* this draw: a layer of that dome */
-        dome_optics_shows;                  /* role is visible (sky.c)        */
+        dome_optics_shows, dome_occasional_shows; /* role is visible (sky.c) */
 
     GLuint identity_program;      /* the first program built: a context where it
                                      is no program is not the sky's (sky.c)   */

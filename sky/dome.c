@@ -83,6 +83,9 @@ typedef struct dome_state {
     /* with the optics' light over the front layers (a rainbow, a halo),
      * for the frames where one shows */
     sky_program day_optics, day_optics_photopic, night_optics;
+    /* with the occasional night glows (the aurora), for the frames where
+     * one shows */
+    sky_program night_occasional, night_clear_occasional;
     /* the image (dome_divisor > 0): its framebuffer, the quad that draws
      * it over the viewport, and the program that does */
     GLuint fbo, quad;
@@ -358,6 +361,27 @@ static int build_optics_programs(sky_core *s, dome_state *st, const sky_dome_sni
     return build(s, &st->night_optics, list, n, 0, err, err_len);
 }
 
+/* The occasional night glows' variants (the aurora: most nights show
+ * none, and compiled into the night's program it costs even where it
+ * is dark): the night's with them, with and without the front layers,
+ * for the frames where one shows. */
+static int build_occasional_programs(sky_core *s, dome_state *st, const sky_dome_snippets *d,
+                                     const sky_snippet **list, char *err, size_t err_len)
+{
+    if (!d->occasional_count) return 0;
+    int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list);
+    int n = atmosphere;
+    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+    for (int i = 0; i < d->occasional_count; i++) list[n++] = d->occasional[i];
+    if (d->front_count && build(s, &st->night_clear_occasional, list, n, 0, err, err_len)) return -1;
+    /* the front layers before the night's */
+    n = atmosphere;
+    for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
+    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+    for (int i = 0; i < d->occasional_count; i++) list[n++] = d->occasional[i];
+    return build(s, &st->night_occasional, list, n, 0, err, err_len);
+}
+
 static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
 {
     dome_state *st = state;
@@ -367,12 +391,14 @@ static int dome_create(sky_core *s, void *state, char *err, size_t err_len)
     /* the atmosphere's, the front layers', the night layers' (and build's
      * own): as many as the enabled layers bring */
     const sky_snippet **list = malloc(sizeof *list * (size_t)(SKY_ATMOSPHERE_SNIPPETS + d->front_count +
-                                                                  d->night_count + d->optics_count));
+                                                                  d->night_count + d->optics_count +
+                                                                  d->occasional_count));
     if (!list) {
         sky_format(err, err_len, "out of memory");
         return -1;
     }
-    int rc = build_dome_programs(s, st, d, list, err, err_len) || build_optics_programs(s, st, d, list, err, err_len);
+    int rc = build_dome_programs(s, st, d, list, err, err_len) || build_optics_programs(s, st, d, list, err, err_len) ||
+             build_occasional_programs(s, st, d, list, err, err_len);
     free(list);
     return rc;
 }
@@ -389,6 +415,8 @@ static void dome_destroy(sky_core *s, void *state)
     sky_program_destroy(s, &st->day_optics);
     sky_program_destroy(s, &st->day_optics_photopic);
     sky_program_destroy(s, &st->night_optics);
+    sky_program_destroy(s, &st->night_occasional);
+    sky_program_destroy(s, &st->night_clear_occasional);
     sky_program_destroy(s, &st->composite);
     sky_program_destroy(s, &st->composite_fisheye);
     const GLuint buffers[3] = {st->vertices, st->indices, st->quad};
@@ -463,6 +491,12 @@ static int dome_draw(sky_core *s, void *state)
     if (s->dome_optics_shows && !clear && st->day_optics.id)
         upper = night ? (st->night_optics.id ? &st->night_optics : upper)
                       : photopic ? &st->day_optics_photopic : &st->day_optics;
+    /* an occasional night glow shows (the aurora): the night's variant
+     * with it (before a night's optics, which would need yet another) */
+    if (s->dome_occasional_shows && st->night_occasional.id) {
+        night = 1;
+        upper = clear && st->night_clear_occasional.id ? &st->night_clear_occasional : &st->night_occasional;
+    }
     sky_atmosphere_upload(s); /* a sky-view table rebuilt since the last draw */
     moonlit_vertices(s, st);
     select_triangles(s, st);

@@ -22,9 +22,12 @@ typedef enum sky_dome_role {
                        those hide behind it                                  */
     SKY_DOME_NIGHT, /* the night backdrop (flicker stars, star map): only in
                        the dome's night variants                              */
-    SKY_DOME_OPTICS /* light in front (a rainbow, a halo: the snippet's
+    SKY_DOME_OPTICS, /* light in front (a rainbow, a halo: the snippet's
                        front_function): only in the dome's optics variants,
                        drawn while one of them shows over the front layers  */
+    SKY_DOME_NIGHT_OCCASIONAL /* a night glow that seldom shows and costs when
+                       compiled in (the aurora): only in the night variants
+                       built with it, drawn while it shows                 */
 } sky_dome_role;
 
 /* The stats index of a layer added after 0.5 (which has no sky_layer
@@ -80,8 +83,8 @@ typedef struct sky_layer_class {
  * state): the dome composes its programs from them, and each layer drawn
  * over the dome includes the front ones. As many as the table has rows. */
 typedef struct sky_dome_snippets {
-    const sky_snippet **front, **night, **optics;
-    int front_count, night_count, optics_count;
+    const sky_snippet **front, **night, **optics, **occasional;
+    int front_count, night_count, optics_count, occasional_count;
 } sky_dome_snippets;
 /* dome.c: the divisor of the dome's image for this context and output
  * (0: the dome is drawn directly), decided before any layer is created. */

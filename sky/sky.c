@@ -128,8 +128,10 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
     d->front = calloc(sky_layer_table_size, sizeof *d->front);
     d->night = calloc(sky_layer_table_size, sizeof *d->night);
     d->optics = calloc(sky_layer_table_size, sizeof *d->optics);
+    d->occasional = calloc(sky_layer_table_size, sizeof *d->occasional);
     c->glows = calloc(sky_layer_table_size, sizeof *c->glows);
-    if (!c->textures || !s->layer_state || !s->layer_stats || !d->front || !d->night || !d->optics || !c->glows) {
+    if (!c->textures || !s->layer_state || !s->layer_stats || !d->front || !d->night || !d->optics ||
+        !d->occasional || !c->glows) {
         sky_format(err, err_len, "sky_create: out of memory");
         goto fail;
     }
@@ -145,6 +147,7 @@ sky *sky_create(const sky_config *cfg, char *err, size_t err_len)
         if (L->dome_role == SKY_DOME_FRONT) d->front[d->front_count++] = L->dome_snippet;
         if (L->dome_role == SKY_DOME_NIGHT) d->night[d->night_count++] = L->dome_snippet;
         if (L->dome_role == SKY_DOME_OPTICS) d->optics[d->optics_count++] = L->dome_snippet;
+        if (L->dome_role == SKY_DOME_NIGHT_OCCASIONAL) d->occasional[d->occasional_count++] = L->dome_snippet;
         if (L->glow_at) c->glows[c->glow_count++] = (sky_glow_source){L, state};
     }
 
@@ -193,6 +196,7 @@ void sky_destroy(sky *s)
     free(s->dome_snippets.front);
     free(s->dome_snippets.night);
     free(s->dome_snippets.optics);
+    free(s->dome_snippets.occasional);
     sky_atmosphere_destroy(c);
     if (c->gl.glDeleteTextures) /* NULL when sky_gl_init failed early */
         for (int i = 0; i < c->texture_count; i++) sky_texture_destroy(c, (sky_texture_id)i);
@@ -366,7 +370,7 @@ static sky_result draw_frame(sky *s)
         if (L->view) L->view(c, state);
     }
     /* which of the dome's snippets show: the dome picks its variant */
-    c->dome_front_shows = c->dome_night_shows = c->dome_optics_shows = 0;
+    c->dome_front_shows = c->dome_night_shows = c->dome_optics_shows = c->dome_occasional_shows = 0;
     FOR_EACH_LAYER(s, L, index, state) {
         if (L->dome_role == SKY_DOME_NONE) continue;
         int shows = L->visible(c, state);
@@ -374,6 +378,7 @@ static sky_result draw_frame(sky *s)
         if (L->dome_role == SKY_DOME_FRONT) c->dome_front_shows |= shows;
         if (L->dome_role == SKY_DOME_NIGHT) c->dome_night_shows |= shows;
         if (L->dome_role == SKY_DOME_OPTICS) c->dome_optics_shows |= shows;
+        if (L->dome_role == SKY_DOME_NIGHT_OCCASIONAL) c->dome_occasional_shows |= shows;
     }
     FOR_EACH_LAYER(s, L, index, state) {
         if (c->capture_without_sun && L->slot == SKY_LAYER_SUN) continue;
