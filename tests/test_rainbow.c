@@ -232,3 +232,54 @@ TEST(rainbow_none_where_none)
     CHECK(!s && strstr(err, "SKY_RAINBOW"), "SKY_RAINBOW alone refused: %s", err);
     sky_destroy(s);
 }
+
+/* A moon's bow: a full moon 37 degrees up in the west (2024-01-26 04:30
+ * UTC at 40 N, the sun 31 degrees down) over showers makes a faint bow in
+ * the east, grey: to the eye colourless at its level. */
+TEST(rainbow_moon_bow_grey)
+{
+    static float with[W * H * 3], without[W * H * 3];
+    for (int k = 0; k < 2; k++) {
+        sky_config cfg;
+        memset(&cfg, 0, sizeof cfg);
+        cfg.features = SKY_CLOUDS | SKY_SUN | SKY_MOON | SKY_WEATHER | (k ? 0 : SKY_RAINBOW);
+        cfg.output = SKY_OUTPUT_HDR;
+        fixture f;
+        if (fixture_open_sized(&f, W, H, 1, SKY_GL_AUTO, &cfg)) {
+            CHECK(0, "no sky");
+            return;
+        }
+        sky_observer o;
+        sky_get_observer(f.s, &o);
+        o.julian_day_utc = sky_julian_day(2024, 1, 26, 4, 30, 0.0);
+        o.latitude_deg = 40.0;
+        o.longitude_deg = 0.0;
+        o.time_from_params = 0;
+        sky_set_observer(f.s, &o);
+        sky_weather showers = preset(SKY_WEATHER_SHOWERS);
+        sky_set_weather(f.s, &showers, 0.0);
+        sky_set_elapsed(f.s, 2.0);
+        float view[16], proj[16];
+        sky_cli_camera_at(88.0, 10.0, 90.0, W, H, view, proj);
+        sky_draw(f.s, view, proj);
+        sky_osmesa_finish(&f.ctx);
+        const float *px = f.ctx.pixels;
+        float *out = k ? without : with;
+        for (int i = 0; i < W * H; i++)
+            for (int c = 0; c < 3; c++) out[3 * i + c] = px[4 * i + c];
+        fixture_close(&f);
+    }
+    double sum[3] = {0.0, 0.0, 0.0}, most = 0.0;
+    for (int i = 0; i < W * H; i++)
+        for (int c = 0; c < 3; c++) {
+            double d = with[3 * i + c] - without[3 * i + c];
+            sum[c] += d;
+            most = fmax(most, d);
+        }
+    double spread = (fmax(sum[0], fmax(sum[1], sum[2])) - fmin(sum[0], fmin(sum[1], sum[2]))) /
+                    fmax(fmax(sum[0], fmax(sum[1], sum[2])), 1e-30);
+    NOTE("the moon's bow: its brightest added pixel %.3g kcd/m^2, its channels' sums within %.2f %%", most,
+         100.0 * spread);
+    CHECK(most > 0.0 && spread < 0.02, "a grey moon's bow (%.3g kcd/m^2, channels within %.2f %%)", most,
+          100.0 * spread);
+}
