@@ -136,6 +136,19 @@ unsigned test_snippet_program(int core, const char *snippet, const char *body);
 void test_fullscreen_triangle(int core, unsigned *vao, unsigned *buf);
 void test_fullscreen_free(unsigned vao, unsigned buf);
 
+/* A named weather state's numbers (test_weather.c). */
+sky_weather weather_preset(sky_weather_state state);
+/* The optics' tests (test_rainbow.c, test_halo.c): an HDR frame (width x
+ * height x 3 floats, rows bottom first) of weather w at the time slider's
+ * time and latitude, from yaw and pitch with a 90-degree field, with the
+ * optics feature bit given (or 0) over clouds, sun and weather; *drawn
+ * (if asked): whether the layer named was drawn. 0, or -1 when no frame.
+ * optics_pixel_dir: a pixel's unit direction for such a camera. */
+int optics_frame(unsigned optics, const char *layer, const sky_weather *w, float time, double latitude, double yaw,
+                 double pitch, sky_gl_profile profile, int width, int height, float *rgb, sky_lighting *light,
+                 int *drawn);
+void optics_pixel_dir(const float view[16], const float proj[16], int width, int height, int x, int y, double d[3]);
+
 /* Path of a built program (SKY_BIN or build/bin). */
 /* A file's whole text (NUL-terminated; free it), or NULL; *len its size
  * when len is given. */

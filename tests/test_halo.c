@@ -18,47 +18,15 @@ enum { W = 480, H = 270, BINS = 240 }; /* bins of 0.25 degrees, 0..60 */
 #define BIN_DEG 0.25
 #define SUN_TIME 0.3625f /* the sun 29.2 degrees up at the equinox at 40 N, azimuth 118.1 */
 
-/* An HDR frame of a weather with or without the halos (fov 90). */
+/* An HDR frame of a weather with or without the halos (test_rainbow.c's
+ * optics_frame, at 40 N). */
 static int frame(sky_weather_state state, double yaw, double pitch, int halo, sky_gl_profile profile, float *rgb,
                  sky_lighting *light, int *drawn)
 {
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER | (halo ? SKY_HALO : 0);
-    cfg.output = SKY_OUTPUT_HDR;
-    fixture f;
-    if (fixture_open_sized(&f, W, H, 1, profile, &cfg)) return -1;
-    sky_params p = sky_default_params();
-    p.time = SUN_TIME;
-    sky_set_params(f.s, &p);
     sky_weather w;
     sky_weather_preset(state, &w);
-    sky_set_weather(f.s, &w, 0.0);
-    sky_set_elapsed(f.s, 2.0);
-    float view[16], proj[16];
-    sky_cli_camera_at(yaw, pitch, 90.0, W, H, view, proj);
-    int rc = sky_draw(f.s, view, proj) == SKY_OK ? 0 : -1;
-    sky_osmesa_finish(&f.ctx);
-    const float *px = f.ctx.pixels;
-    for (int i = 0; i < W * H; i++)
-        for (int c = 0; c < 3; c++) rgb[3 * i + c] = px[4 * i + c];
-    if (light) sky_get_lighting(f.s, light);
-    if (drawn) {
-        int index = sky_layer_index("halo");
-        sky_layer_stats ls;
-        *drawn = index >= 0 && sky_get_layer_stats(f.s, index, &ls) == SKY_OK && ls.drawn;
-    }
-    fixture_close(&f);
-    return rc;
-}
-
-/* Pixel (x, y) (rows bottom first)'s direction, unit. */
-static void pixel_dir(const float view[16], const float proj[16], int x, int y, double d[3])
-{
-    double e[3] = {((x + 0.5) / W * 2.0 - 1.0) / proj[0], ((y + 0.5) / H * 2.0 - 1.0) / proj[5], -1.0};
-    for (int r = 0; r < 3; r++) d[r] = view[r * 4] * e[0] + view[r * 4 + 1] * e[1] + view[r * 4 + 2] * e[2];
-    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int r = 0; r < 3; r++) d[r] /= len;
+    return optics_frame(halo ? SKY_HALO : 0, "halo", &w, SUN_TIME, 40.0, yaw, pitch, profile, W, H, rgb, light,
+                        drawn);
 }
 
 static void halo_checks(sky_gl_profile gl, const char *name)
@@ -86,7 +54,7 @@ static void halo_checks(sky_gl_profile gl, const char *name)
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             double d[3];
-            pixel_dir(view, proj, x, y, d);
+            optics_pixel_dir(view, proj, W, H, x, y, d);
             const float *a = with + 3 * (y * W + x), *b = without + 3 * (y * W + x);
             double added[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
             double luma = 0.2126 * added[0] + 0.7152 * added[1] + 0.0722 * added[2];

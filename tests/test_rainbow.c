@@ -23,26 +23,21 @@ enum { W = 480, H = 270, BINS = 280 }; /* bins of 0.25 degrees, 0..70 */
  * 0.3275 is 20.3 degrees; its azimuth 108.3) */
 #define SUN_TIME 0.3275f
 
-static sky_weather preset(sky_weather_state state)
-{
-    sky_weather w;
-    memset(&w, 0, sizeof w);
-    sky_weather_preset(state, &w);
-    return w;
-}
 
-/* An HDR frame of a weather at the time slider's time, looking from yaw
- * and pitch with a 90-degree field, with or without the rainbow. rgb: W x
- * H x 3 floats. Returns the sun's direction in light (world = horizon). */
-static int frame_at(const sky_weather *w, float time, double latitude, double yaw, double pitch, int rainbow,
-                    sky_gl_profile profile, float *rgb, sky_lighting *light, int *drawn)
+/* (test.h) An HDR frame of a weather at the time slider's time and a
+ * latitude, looking from yaw and pitch with a 90-degree field, with the
+ * optics feature bit given or without any (0); *drawn: whether the layer
+ * named was drawn. */
+int optics_frame(unsigned optics, const char *layer, const sky_weather *w, float time, double latitude, double yaw,
+                 double pitch, sky_gl_profile profile, int width, int height, float *rgb, sky_lighting *light,
+                 int *drawn)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER | (rainbow ? SKY_RAINBOW : 0);
+    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER | optics;
     cfg.output = SKY_OUTPUT_HDR;
     fixture f;
-    if (fixture_open_sized(&f, W, H, 1, profile, &cfg)) return -1;
+    if (fixture_open_sized(&f, width, height, 1, profile, &cfg)) return -1;
     sky_params p = sky_default_params();
     p.time = time;
     sky_set_params(f.s, &p);
@@ -53,20 +48,36 @@ static int frame_at(const sky_weather *w, float time, double latitude, double ya
     sky_set_weather(f.s, w, 0.0);
     sky_set_elapsed(f.s, 2.0);
     float view[16], proj[16];
-    sky_cli_camera_at(yaw, pitch, 90.0, W, H, view, proj);
+    sky_cli_camera_at(yaw, pitch, 90.0, width, height, view, proj);
     int rc = sky_draw(f.s, view, proj) == SKY_OK ? 0 : -1;
     sky_osmesa_finish(&f.ctx);
     const float *px = f.ctx.pixels;
-    for (int i = 0; i < W * H; i++)
+    for (int i = 0; i < width * height; i++)
         for (int c = 0; c < 3; c++) rgb[3 * i + c] = px[4 * i + c];
     if (light) sky_get_lighting(f.s, light);
     if (drawn) {
-        int index = sky_layer_index("rainbow");
+        int index = sky_layer_index(layer);
         sky_layer_stats ls;
         *drawn = index >= 0 && sky_get_layer_stats(f.s, index, &ls) == SKY_OK && ls.drawn;
     }
     fixture_close(&f);
     return rc;
+}
+
+/* (test.h) Pixel (x, y)'s direction (rows bottom first), unit. */
+void optics_pixel_dir(const float view[16], const float proj[16], int width, int height, int x, int y, double d[3])
+{
+    double e[3] = {((x + 0.5) / width * 2.0 - 1.0) / proj[0], ((y + 0.5) / height * 2.0 - 1.0) / proj[5], -1.0};
+    for (int r = 0; r < 3; r++) d[r] = view[r * 4] * e[0] + view[r * 4 + 1] * e[1] + view[r * 4 + 2] * e[2];
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int r = 0; r < 3; r++) d[r] /= len;
+}
+
+static int frame_at(const sky_weather *w, float time, double latitude, double yaw, double pitch, int rainbow,
+                    sky_gl_profile profile, float *rgb, sky_lighting *light, int *drawn)
+{
+    return optics_frame(rainbow ? SKY_RAINBOW : 0, "rainbow", w, time, latitude, yaw, pitch, profile, W, H, rgb,
+                        light, drawn);
 }
 
 /* at the default place, 40 N */
@@ -92,12 +103,10 @@ static void bin_added(const float *with, const float *without, const sky_lightin
     sky_cli_camera_at(yaw, pitch, 90.0, W, H, view, proj);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            /* rows bottom first (GL) */
-            double e[3] = {((x + 0.5) / W * 2.0 - 1.0) / proj[0], ((y + 0.5) / H * 2.0 - 1.0) / proj[5], -1.0}, d[3];
-            for (int r = 0; r < 3; r++) d[r] = view[r * 4] * e[0] + view[r * 4 + 1] * e[1] + view[r * 4 + 2] * e[2];
-            double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), up = d[1] / len;
-            if (up < sin(2.0 * M_PI / 180.0) || up > sin(18.0 * M_PI / 180.0)) continue;
-            double c = -(d[0] * l->sun_direction[0] + d[1] * l->sun_direction[1] + d[2] * l->sun_direction[2]) / len;
+            double d[3];
+            optics_pixel_dir(view, proj, W, H, x, y, d);
+            if (d[1] < sin(2.0 * M_PI / 180.0) || d[1] > sin(18.0 * M_PI / 180.0)) continue;
+            double c = -(d[0] * l->sun_direction[0] + d[1] * l->sun_direction[1] + d[2] * l->sun_direction[2]);
             double rho = acos(c < -1.0 ? -1.0 : c > 1.0 ? 1.0 : c) * 180.0 / M_PI;
             int b = (int)(rho / BIN_DEG);
             if (b < 0 || b >= BINS) continue;
@@ -128,7 +137,7 @@ static double luma_of(const profile *p, int b)
 static void bow_checks(sky_gl_profile gl, const char *name)
 {
     static float with[W * H * 3], without[W * H * 3];
-    sky_weather showers = preset(SKY_WEATHER_SHOWERS);
+    sky_weather showers = weather_preset(SKY_WEATHER_SHOWERS);
     sky_lighting l;
     /* facing the antisolar point's azimuth, the bow's sides in view */
     double yaw = 108.3 + 180.0, pitch = 10.0;
@@ -167,7 +176,7 @@ TEST(rainbow_bows_compat) { bow_checks(SKY_GL_COMPAT20, "compat"); }
 TEST(rainbow_fogbow_broad_and_white)
 {
     static float with[W * H * 3], without[W * H * 3];
-    sky_weather fog = preset(SKY_WEATHER_FOG);
+    sky_weather fog = weather_preset(SKY_WEATHER_FOG);
     sky_lighting l;
     double yaw = 108.3 + 180.0, pitch = 10.0;
     if (frame(&fog, SUN_TIME, yaw, pitch, 1, SKY_GL_AUTO, with, &l, NULL) ||
@@ -210,7 +219,7 @@ TEST(rainbow_none_where_none)
     } cases[3] = {{SKY_WEATHER_CLEAR, SUN_TIME, 40.0, "clear"}, {SKY_WEATHER_SNOW, SUN_TIME, 40.0, "snow"},
                   {SKY_WEATHER_SHOWERS, 0.5f, 10.0, "showers at noon at 10 N (the sun 80 degrees up)"}};
     for (int k = 0; k < 3; k++) {
-        sky_weather w = preset(cases[k].state);
+        sky_weather w = weather_preset(cases[k].state);
         int drawn = 1;
         if (frame_at(&w, cases[k].time, cases[k].latitude, 180.0, 10.0, 1, SKY_GL_AUTO, with, NULL, &drawn) ||
             frame_at(&w, cases[k].time, cases[k].latitude, 180.0, 10.0, 0, SKY_GL_AUTO, without, NULL, NULL)) {
@@ -256,7 +265,7 @@ TEST(rainbow_moon_bow_grey)
         o.longitude_deg = 0.0;
         o.time_from_params = 0;
         sky_set_observer(f.s, &o);
-        sky_weather showers = preset(SKY_WEATHER_SHOWERS);
+        sky_weather showers = weather_preset(SKY_WEATHER_SHOWERS);
         sky_set_weather(f.s, &showers, 0.0);
         sky_set_elapsed(f.s, 2.0);
         float view[16], proj[16];

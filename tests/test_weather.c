@@ -16,7 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static sky_weather preset(sky_weather_state state)
+/* (test.h) a named state's numbers */
+sky_weather weather_preset(sky_weather_state state)
 {
     sky_weather w;
     memset(&w, 0, sizeof w);
@@ -64,11 +65,11 @@ TEST(weather_states_named_and_in_range)
               sky_weather_from_name(NULL) == -1,
           "unknown names and states");
     /* the orderings: fog closes the range, a storm has lightning */
-    CHECK(preset(SKY_WEATHER_FOG).visibility_km <= 1.0f, "fog: visibility <= 1 km");
-    CHECK(preset(SKY_WEATHER_STORM).lightning_per_minute > 0 && preset(SKY_WEATHER_RAIN).lightning_per_minute == 0,
+    CHECK(weather_preset(SKY_WEATHER_FOG).visibility_km <= 1.0f, "fog: visibility <= 1 km");
+    CHECK(weather_preset(SKY_WEATHER_STORM).lightning_per_minute > 0 && weather_preset(SKY_WEATHER_RAIN).lightning_per_minute == 0,
           "only the storm has lightning");
-    CHECK(preset(SKY_WEATHER_SNOW).precipitation_kind == SKY_PRECIPITATION_SNOW, "snow falls as snow");
-    CHECK(preset(SKY_WEATHER_CIRRUS).upper > 0.5f && preset(SKY_WEATHER_CIRRUS).cover < 0.2f,
+    CHECK(weather_preset(SKY_WEATHER_SNOW).precipitation_kind == SKY_PRECIPITATION_SNOW, "snow falls as snow");
+    CHECK(weather_preset(SKY_WEATHER_CIRRUS).upper > 0.5f && weather_preset(SKY_WEATHER_CIRRUS).cover < 0.2f,
           "cirrus: the thin high layer, little else");
 }
 
@@ -76,7 +77,7 @@ TEST(weather_set_rejects_and_clamps)
 {
     fixture f;
     if (open_sky(&f)) return;
-    sky_weather storm = preset(SKY_WEATHER_STORM), before, after, bad;
+    sky_weather storm = weather_preset(SKY_WEATHER_STORM), before, after, bad;
     CHECK(sky_set_weather(NULL, &storm, 0) == SKY_ERR_INVALID_ARGUMENT, "NULL sky");
     sky_get_weather(f.s, &before, NULL);
     CHECK(sky_set_weather(f.s, NULL, 0) == SKY_ERR_INVALID_ARGUMENT, "NULL target");
@@ -130,7 +131,7 @@ TEST(weather_owns_cover_and_density)
     sky_weather w;
     sky_get_weather(f.s, &w, NULL);
     CHECK(w.cover == 0.3f && w.density == 0.6f && w.light_through == 1.0f, "without a weather: the sliders' clouds");
-    sky_weather overcast = preset(SKY_WEATHER_OVERCAST);
+    sky_weather overcast = weather_preset(SKY_WEATHER_OVERCAST);
     CHECK(sky_set_weather(f.s, &overcast, 0.0) == SKY_OK, "set: %s", sky_last_error(f.s));
     p.cover = 0.1f;
     p.density = 0.1f;
@@ -150,7 +151,7 @@ TEST(weather_transition_follows_the_clock)
 {
     fixture a, b;
     if (open_two_skies(&a, &b)) return;
-    sky_weather fair = preset(SKY_WEATHER_FAIR), storm = preset(SKY_WEATHER_STORM);
+    sky_weather fair = weather_preset(SKY_WEATHER_FAIR), storm = weather_preset(SKY_WEATHER_STORM);
     fair.wind_from_deg = 350.0f;
     storm.wind_from_deg = 20.0f; /* the shorter way round is through north */
     sky *skies[2] = {a.s, b.s};
@@ -356,8 +357,8 @@ static int noon_shot(const sky_weather *w, double pitch, shot *out) { return sho
 
 TEST(weather_overcast_and_storm_at_noon)
 {
-    sky_weather clear = preset(SKY_WEATHER_CLEAR), overcast = preset(SKY_WEATHER_OVERCAST),
-                storm = preset(SKY_WEATHER_STORM);
+    sky_weather clear = weather_preset(SKY_WEATHER_CLEAR), overcast = weather_preset(SKY_WEATHER_OVERCAST),
+                storm = weather_preset(SKY_WEATHER_STORM);
     shot c, o, s, sun;
     if (noon_shot(&clear, 20.0, &c) || noon_shot(&overcast, 20.0, &o) || noon_shot(&storm, 20.0, &s) ||
         noon_shot(&overcast, 50.0, &sun)) {
@@ -390,8 +391,8 @@ TEST(weather_overcast_and_storm_at_noon)
 TEST(weather_rain_and_snow_light)
 {
     shot o, r, sn;
-    sky_weather overcast = preset(SKY_WEATHER_OVERCAST), rain = preset(SKY_WEATHER_RAIN),
-                snow = preset(SKY_WEATHER_SNOW);
+    sky_weather overcast = weather_preset(SKY_WEATHER_OVERCAST), rain = weather_preset(SKY_WEATHER_RAIN),
+                snow = weather_preset(SKY_WEATHER_SNOW);
     if (noon_shot(&overcast, 20.0, &o) || noon_shot(&rain, 20.0, &r) || noon_shot(&snow, 20.0, &sn)) {
         CHECK(0, "the shots rendered");
         return;
@@ -413,7 +414,7 @@ TEST(weather_rain_and_snow_light)
  * darker than the clear dusk, never re-brightened. */
 TEST(weather_storm_at_dusk_stays_dark)
 {
-    sky_weather clear = preset(SKY_WEATHER_CLEAR), storm = preset(SKY_WEATHER_STORM);
+    sky_weather clear = weather_preset(SKY_WEATHER_CLEAR), storm = weather_preset(SKY_WEATHER_STORM);
     shot c, s;
     if (shot_at(&clear, 0.73631f, 267.0, 10.0, &c) || shot_at(&storm, 0.73631f, 267.0, 10.0, &s)) {
         CHECK(0, "the shots rendered");
@@ -430,7 +431,7 @@ TEST(weather_storm_at_dusk_stays_dark)
  * ground differ; the host's fog density is Koschmieder's for the range. */
 TEST(weather_fog_swallows_the_horizon)
 {
-    sky_weather clear = preset(SKY_WEATHER_CLEAR), fog = preset(SKY_WEATHER_FOG);
+    sky_weather clear = weather_preset(SKY_WEATHER_CLEAR), fog = weather_preset(SKY_WEATHER_FOG);
     shot c, f;
     if (noon_shot(&clear, 0.0, &c) || noon_shot(&fog, 0.0, &f)) {
         CHECK(0, "the shots rendered");
@@ -454,8 +455,8 @@ TEST(weather_fog_swallows_the_horizon)
  * sky's bright horizon between the deck and the ground. */
 TEST(weather_deck_closes_the_horizon)
 {
-    sky_weather deck = preset(SKY_WEATHER_OVERCAST);
-    deck.visibility_km = preset(SKY_WEATHER_CLEAR).visibility_km;
+    sky_weather deck = weather_preset(SKY_WEATHER_OVERCAST);
+    deck.visibility_km = weather_preset(SKY_WEATHER_CLEAR).visibility_km;
     shot d;
     if (shot_at(&deck, 0.5f, 180.0, 3.0, &d)) {
         CHECK(0, "the shot rendered");
@@ -485,7 +486,7 @@ SLOW_TEST(weather_transition_free_of_jumps)
     sky_params p = sky_default_params();
     p.time = 0.5f;
     sky_set_params(f.s, &p);
-    sky_weather fair = preset(SKY_WEATHER_FAIR), overcast = preset(SKY_WEATHER_OVERCAST);
+    sky_weather fair = weather_preset(SKY_WEATHER_FAIR), overcast = weather_preset(SKY_WEATHER_OVERCAST);
     sky_set_weather(f.s, &fair, 0.0);
     sky_set_weather(f.s, &overcast, 10.0);
     float view[16], proj[16];
@@ -553,7 +554,7 @@ TEST(weather_lightning_follows_the_seed)
 {
     enum { MAX = 200 };
     static sky_lightning_strike a[MAX], b[MAX], c[MAX];
-    sky_weather storm = preset(SKY_WEATHER_STORM), rain = preset(SKY_WEATHER_RAIN);
+    sky_weather storm = weather_preset(SKY_WEATHER_STORM), rain = weather_preset(SKY_WEATHER_RAIN);
     int na = strikes_of(7, &storm, 0.0, 600.0, a, MAX), nb = strikes_of(7, &storm, 0.0, 600.0, b, MAX),
         nc = strikes_of(8, &storm, 0.0, 600.0, c, MAX);
     double expected = storm.lightning_per_minute * 10.0;
@@ -606,22 +607,30 @@ TEST(weather_lightning_rejects_bad_windows)
 
 /* A flash lights the deck and the host's scene for a fraction of a second,
  * from the strike's direction, flickering with its strokes. */
-TEST(weather_lightning_flashes)
+/* A storm of seed 7 at the time slider's time in a W x H context; -1
+ * after a failed CHECK. */
+static int open_storm(fixture *f, float time)
 {
     sky_config cfg;
     memset(&cfg, 0, sizeof cfg);
     cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
     cfg.seed = 7;
-    fixture f;
-    if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
+    if (fixture_open_sized(f, W, H, 0, SKY_GL_AUTO, &cfg)) {
         CHECK(0, "no sky");
-        return;
+        return -1;
     }
     sky_params p = sky_default_params();
-    p.time = 0.5f;
-    sky_set_params(f.s, &p);
-    sky_weather storm = preset(SKY_WEATHER_STORM);
-    sky_set_weather(f.s, &storm, 0.0);
+    p.time = time;
+    sky_set_params(f->s, &p);
+    sky_weather storm = weather_preset(SKY_WEATHER_STORM);
+    sky_set_weather(f->s, &storm, 0.0);
+    return 0;
+}
+
+TEST(weather_lightning_flashes)
+{
+    fixture f;
+    if (open_storm(&f, 0.5f)) return;
     sky_lightning_strike s[64];
     int n = 0;
     sky_get_lightning(f.s, 0.0, 600.0, s, 64, &n);
@@ -671,20 +680,8 @@ TEST(weather_lightning_flashes)
  * page dozens of whites over; by day it is the physical light (above). */
 TEST(weather_lightning_at_night_held)
 {
-    sky_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.features = SKY_CLOUDS | SKY_SUN | SKY_WEATHER;
-    cfg.seed = 7;
     fixture f;
-    if (fixture_open_sized(&f, W, H, 0, SKY_GL_AUTO, &cfg)) {
-        CHECK(0, "no sky");
-        return;
-    }
-    sky_params p = sky_default_params();
-    p.time = 0.95f;
-    sky_set_params(f.s, &p);
-    sky_weather storm = preset(SKY_WEATHER_STORM);
-    sky_set_weather(f.s, &storm, 0.0);
+    if (open_storm(&f, 0.95f)) return;
     sky_lightning_strike s[8];
     int n = 0;
     sky_get_lightning(f.s, 0.0, 120.0, s, 8, &n);
@@ -943,7 +940,7 @@ TEST(weather_in_the_irradiance_and_capture)
         sky_params p = sky_default_params();
         p.time = 0.5f;
         sky_set_params(f.s, &p);
-        sky_weather w = preset(states[k]);
+        sky_weather w = weather_preset(states[k]);
         sky_set_weather(f.s, &w, 0.0);
         sky_irradiance_sh sh;
         float up[3] = {0.0f, 1.0f, 0.0f}, e[3];
