@@ -29,7 +29,8 @@
  *   smoothed by the sun's disc and the plates' wobble (a degree).
  *
  * The light: E_beam tau p, tau = 0.15 times the thin layer's cover (a
- * thin cirrus's optical depth; the cirrus state's 0.9 cover: 0.14).
+ * thin cirrus's optical depth; the cirrus state's thin layer, over the
+ * sliders' most, and the sliders' 0.35 of cover at cover 1: 0.15).
  */
 #include "layer.h"
 #include "atmosphere/spectrum.h"
