@@ -17,7 +17,7 @@
  * a model choice near the nightside boundary of Feldstein's ovals: 74
  * degrees at Kp 0, 0.4 lower a step. The curtains are east-west (along
  * geomagnetic east) lines across that band, one every CURTAIN_SPACING_KM
- * poleward of the edge, each wandering about its place, folded by three
+ * poleward of the edge, each wandering about its place, folded by two
  * sines along its length, with a slow envelope and fine rays: their
  * phases from cfg.seed (SplitMix64) and the running clock (wrapped to
  * whole turns here, in double, so the shader's phases stay small). The
@@ -112,14 +112,11 @@ static double equatorward_edge(double kp)
     return equatorward_edge_deg[i] * (1.0 - f) + equatorward_edge_deg[i + 1] * f;
 }
 
-/* SplitMix64's finaliser (as lightning.c): a number in [0, 1) from the
- * seed and a key. */
+/* A number in [0, 1) from the seed and a key (SplitMix64's finaliser, as
+ * lightning's). */
 static double seed_uniform(unsigned seed, uint64_t key)
 {
-    uint64_t z = (uint64_t)seed * 0x9e3779b97f4a7c15ull ^ (key + 0x632be59bd9b4e019ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
+    uint64_t z = sky_mix64((uint64_t)seed * 0x9e3779b97f4a7c15ull ^ (key + 0x632be59bd9b4e019ull));
     return (double)(z >> 11) * (1.0 / 9007199254740992.0);
 }
 
@@ -208,12 +205,6 @@ static void aurora_frame(sky_core *s, void *state)
 
 /* ---- aurora.glsl's sky_aurora, in C (float where the shader's hash
  * wants the same rounding) ---------------------------------------------- */
-static double aurora_smoothstep(double a, double b, double x)
-{
-    double t = sky_clampd((x - a) / (b - a), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 static double aurora_hash(float k, float seed)
 {
     float x = sinf(k * 12.9898f + seed) * 43758.5453f;
@@ -267,7 +258,7 @@ static void aurora_at(const sky_core *s, const void *state, const double d[3], d
         double k = k0 + i;
         double h1 = aurora_hash((float)k, st->green[3]), h2 = aurora_hash2(h1);
         double nk = nb + (k + 0.5 + 0.3 * sin(6.2832 * h1 + st->oval[3])) * sp;
-        double oval = aurora_smoothstep(nb - 100.0, nb + 100.0, nk) * (1.0 - aurora_smoothstep(np - 200.0, np + 50.0, nk));
+        double oval = sky_smoothstep(nb - 100.0, nb + 100.0, nk) * (1.0 - sky_smoothstep(np - 200.0, np + 50.0, nk));
         double slope, g = nk / cn_safe;
         g = (nk + aurora_fold(g * ce, h1, h2, st->red[3], &slope)) / cn_safe;
         double east = g * ce;
@@ -275,10 +266,10 @@ static void aurora_at(const sky_core *s, const void *state, const double d[3], d
         double local = cos(e + g / EARTH_RADIUS_KM);
         if (g <= 0.0 || local <= 0.02) continue;
         double h = EARTH_RADIUS_KM * (r0 * c / local - 1.0);
-        double green = aurora_smoothstep(95.0, 110.0, h) * exp(-fmax(h - 110.0, 0.0) / 30.0);
-        double red = aurora_smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 50.0);
+        double green = sky_smoothstep(95.0, 110.0, h) * exp(-fmax(h - 110.0, 0.0) / 30.0);
+        double red = sky_smoothstep(170.0, 250.0, h) * exp(-fmax(h - 250.0, 0.0) / 50.0);
         double oblique = 1.0 / fmax(fabs(cn - slope * ce) * local, 1.0 / OBLIQUITY_MAX);
-        double envelope = 0.25 + 0.75 * aurora_smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + st->red[3]));
+        double envelope = 0.25 + 0.75 * sky_smoothstep(-0.3, 0.8, sin(east / 700.0 + 6.2832 * h2 + st->red[3]));
         double rays = 0.55 + 0.45 * sin(east / 15.0 + 40.0 * h1 + st->axes[3]) * sin(east / 6.5 + 2.0 * st->axes[3]);
         double w = oval * oblique * envelope * rays * (0.4 + 0.6 * h2);
         for (int j = 0; j < 3; j++) rgb[j] += (st->green[j] * green + st->red[j] * red) * w;

@@ -308,6 +308,9 @@ void sky_weather_wind_integral(const sky_weather_clock *c, double t0, double t1,
 /* Where a wind comes from, degrees clockwise from north, whose texture
  * offsets move along (vx, vy) (the inverse of the direction above). */
 float sky_weather_wind_from(double vx, double vy);
+/* lightning.c: SplitMix64's finaliser, for the hashes of cfg.seed's
+ * random events (lightning, the aurora's curtains). */
+uint64_t sky_mix64(uint64_t z);
 /* Lightning's blue-white (weather.c): the deck's tint; the host's flash
  * light is it scaled to a luminance of one (lighting.c). */
 extern const float sky_flash_tint[3];

@@ -215,24 +215,16 @@ static void halo_frame(sky_core *s, void *state)
     /* the thin upper layer's ice: the weather's, or the sliders' 0.35 of cover */
     double tau = HALO_ICE_DEPTH * sky_clampd(f->upper_cover, 0.0, 1.0) * (f->cover > 0.0f || s->weather.set);
     if (!(tau > 0.0)) return;
-    float beam[3], moon[3] = {0.0f, 0.0f, 0.0f};
-    sky_sun_beam(s, beam);
-    if (s->features & SKY_MOON) sky_moon_lighting(s, moon);
+    /* the light of the brighter halo, above the horizon */
     double scale = tau * st->scale;
-    /* the light of the brighter halo, above the horizon (the moon's: grey) */
-    double sun_y = f->sun_dir[1] > -0.01f ? 0.2126 * beam[0] + 0.7152 * beam[1] + 0.0722 * beam[2] : 0.0;
-    double moon_y = f->moon_dir[1] > -0.01f ? 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2] : 0.0;
-    int by_moon = moon_y > sun_y;
-    const float *dir = by_moon ? f->moon_dir : f->sun_dir;
-    for (int i = 0; i < 3; i++) {
-        st->halo[i] = (float)((by_moon ? moon_y : beam[i]) * scale);
-        st->light[i] = dir[i];
-    }
+    int by_moon;
+    double y = sky_optics_light(s, f->sun_dir[1] > -0.01f, f->moon_dir[1] > -0.01f, st->halo, st->light, &by_moon);
+    for (int i = 0; i < 3; i++) st->halo[i] = (float)(st->halo[i] * scale);
     st->halo[3] = by_moon ? 1.0f : 0.0f;
-    double h = asin(sky_clampd(dir[1], -1.0, 1.0));
+    double h = asin(sky_clampd(st->light[1], -1.0, 1.0));
     st->light[3] = (float)(1.0 / fmax(cos(h), 1e-3));
     halo_parhelia(h, st->dogs);
-    st->light_y = (float)(fmax(sun_y, moon_y) * scale);
+    st->light_y = (float)(y * scale);
 }
 
 /* In the optics variant while a halo would add a quarter of an 8-bit step

@@ -162,6 +162,13 @@ void sky_moon_lighting(const sky_core *s, float moon_color[3]);
  * default, at the height slider's middle, scaled as the slider scales the
  * drawn clouds): where their shadows fall, where the rain hangs from. */
 double sky_cloud_height_m(const sky_core *c);
+/* lighting.c: the light an optical phenomenon (a bow, a halo) is seen by:
+ * the sun's beam or the moon's light (with SKY_MOON), whichever is the
+ * brighter of those allowed, klx per channel in rgb (the moon's grey: to
+ * the eye colourless at its level) and toward it in dir; *by_moon 1 for
+ * the moon. Returns its luminance (0: neither). */
+double sky_optics_light(const sky_core *c, int sun_allowed, int moon_allowed, float rgb[3], float dir[3],
+                        int *by_moon);
 /* (The moon's light above the air, which the atmosphere and the clouds
  * scatter: moonlight.h.) */
 

@@ -32,6 +32,24 @@ void sky_sun_beam(const sky_core *c, float rgb[3])
     }
 }
 
+double sky_optics_light(const sky_core *c, int sun_allowed, int moon_allowed, float rgb[3], float dir[3],
+                        int *by_moon)
+{
+    const sky_frame *f = &c->frame;
+    float beam[3], moon[3] = {0.0f, 0.0f, 0.0f};
+    sky_sun_beam(c, beam);
+    if (c->features & SKY_MOON) sky_moon_lighting(c, moon);
+    double sun_y = sun_allowed ? 0.2126 * beam[0] + 0.7152 * beam[1] + 0.0722 * beam[2] : 0.0;
+    double moon_y = moon_allowed ? 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2] : 0.0;
+    *by_moon = moon_y > sun_y;
+    const float *d = *by_moon ? f->moon_dir : f->sun_dir;
+    for (int i = 0; i < 3; i++) {
+        rgb[i] = *by_moon ? (float)moon_y : beam[i];
+        dir[i] = d[i];
+    }
+    return fmax(sun_y, moon_y);
+}
+
 sky_result sky_get_lighting(const sky *s, sky_lighting *out)
 {
     if (!s || !out) return SKY_ERR_INVALID_ARGUMENT;

@@ -23,9 +23,9 @@
 #include <stdint.h>
 #include <string.h>
 
-/* SplitMix64's finaliser (Steele, Lea & Flood 2014): a well-mixed 64-bit
- * hash of (seed, slot, strike, draw). */
-static uint64_t mix64(uint64_t z)
+/* (core.h) SplitMix64's finaliser (Steele, Lea & Flood 2014): a
+ * well-mixed 64-bit hash. */
+uint64_t sky_mix64(uint64_t z)
 {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
@@ -35,8 +35,8 @@ static uint64_t mix64(uint64_t z)
 /* A uniform number in [0, 1) from the four keys. */
 static double uniform(unsigned seed, int64_t slot, int strike, int draw)
 {
-    uint64_t h = mix64((uint64_t)seed * 0x9e3779b97f4a7c15ull ^ mix64((uint64_t)slot + 0x632be59bd9b4e019ull));
-    h = mix64(h ^ ((uint64_t)(unsigned)strike << 32 | (uint64_t)(unsigned)draw));
+    uint64_t h = sky_mix64((uint64_t)seed * 0x9e3779b97f4a7c15ull ^ sky_mix64((uint64_t)slot + 0x632be59bd9b4e019ull));
+    h = sky_mix64(h ^ ((uint64_t)(unsigned)strike << 32 | (uint64_t)(unsigned)draw));
     return (double)(h >> 11) * (1.0 / 9007199254740992.0);
 }
 

@@ -301,39 +301,31 @@ static void rainbow_frame(sky_core *s, void *state)
     sky_weather_at(&s->weather, s->running, &w);
     /* rain's drops, or fog's: what the bow is seen in, and how much of the view it fills */
     double radius_mm, fill;
+    int fog = 0;
     if (w.precipitation_kind == SKY_PRECIPITATION_RAIN && w.precipitation > 0.0f) {
         radius_mm = 0.5 * w.drop_size_mm;
         fill = 1.0 - exp(-BOW_RAIN_DEPTH * w.precipitation);
     } else if (w.visibility_km < BOW_FOG_RANGE_KM) {
         radius_mm = BOW_FOG_RADIUS_MM;
         fill = 1.0 - w.visibility_km / BOW_FOG_RANGE_KM;
+        fog = 1;
     } else {
         return;
     }
-    float beam[3], moon[3] = {0.0f, 0.0f, 0.0f};
-    sky_sun_beam(s, beam);
-    if (s->features & SKY_MOON) sky_moon_lighting(s, moon);
-    double scale = fill * st->scale;
-    /* the light of the brighter bow (the moon's: grey, to the eye
-     * colourless at its level), while its antisolar point is less than
-     * the secondary's 54 degrees below the horizon */
-    double reach = sin(54.0 * SKY_PI / 180.0);
-    double sun_y = s->frame.sun_dir[1] < reach ? 0.2126 * beam[0] + 0.7152 * beam[1] + 0.0722 * beam[2] : 0.0;
-    double moon_y = s->frame.moon_dir[1] < reach ? 0.2126 * moon[0] + 0.7152 * moon[1] + 0.0722 * moon[2] : 0.0;
-    int by_moon = moon_y > sun_y;
-    const float *dir = by_moon ? s->frame.moon_dir : s->frame.sun_dir;
-    for (int i = 0; i < 3; i++) {
-        st->bow[i] = (float)((by_moon ? moon_y : beam[i]) * scale);
-        st->light[i] = dir[i];
-    }
+    /* the light of the brighter bow, while the point opposite it is less
+     * than the secondary's 54 degrees below the horizon */
+    double reach = sin(54.0 * SKY_PI / 180.0), scale = fill * st->scale;
+    int by_moon;
+    double y = sky_optics_light(s, s->frame.sun_dir[1] < reach, s->frame.moon_dir[1] < reach, st->bow, st->light,
+                                &by_moon);
+    for (int i = 0; i < 3; i++) st->bow[i] = (float)(st->bow[i] * scale);
     st->light[3] = by_moon ? 1.0f : 0.0f;
     st->bow[3] = bow_row_coordinate(radius_mm);
     /* the rain: from the horizon (into the distance) to its top, the
      * clouds' base seen BOW_RAIN_DISTANCE_M away; fog all around */
-    int fog = radius_mm <= BOW_FOG_RADIUS_MM;
     st->rain[0] = fog ? -1.0f : 0.0f;
     st->rain[1] = fog ? 1.1f : (float)sin(atan2(sky_cloud_height_m(s), BOW_RAIN_DISTANCE_M));
-    st->light_y = (float)(fmax(sun_y, moon_y) * scale);
+    st->light_y = (float)(y * scale);
 }
 
 /* In the optics variant while the bow would add a quarter of an 8-bit
