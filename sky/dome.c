@@ -321,6 +321,13 @@ static int create_image_path(sky_core *s, dome_state *st, char *err, size_t err_
     return st->fbo ? 0 : -1;
 }
 
+/* Appends count snippets to list's first n; the new length. */
+static int append(const sky_snippet **list, int n, const sky_snippet *const *add, int count)
+{
+    for (int i = 0; i < count; i++) list[n++] = add[i];
+    return n;
+}
+
 /* The dome's variants: the day's (with and without the scotopic shift),
  * the ground's, the night's and the night's without the front layers,
  * composed in list (room for all the snippets). */
@@ -328,21 +335,20 @@ static int build_dome_programs(sky_core *s, dome_state *st, const sky_dome_snipp
                                char *err, size_t err_len)
 {
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list), n = atmosphere;
-    for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
+    n = append(list, n, d->front, d->front_count);
     if (build_day(s, &st->day, &st->day_photopic, list, n, err, err_len)) return -1;
     /* Below the horizon there are no clouds and no stars: the lower
      * hemisphere gets the atmosphere alone (the host's terrain usually
      * covers it; what shows in a gap is the horizon haze). */
     if (d->front_count && build_day(s, &st->ground, &st->ground_photopic, list, atmosphere, err, err_len)) return -1;
     if (!d->night_count) return 0;
-    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+    n = append(list, n, d->night, d->night_count);
     if (build(s, &st->night, list, n, 0, err, err_len)) return -1;
     /* and the night without the front layers, when none shows (by day the
      * atmosphere-only program serves): the night layers moved down over
      * the front ones */
     if (!d->front_count) return 0;
-    for (int i = 0; i < d->night_count; i++) list[atmosphere + i] = d->night[i];
-    return build(s, &st->night_clear, list, atmosphere + d->night_count, 0, err, err_len);
+    return build(s, &st->night_clear, list, append(list, atmosphere, d->night, d->night_count), 0, err, err_len);
 }
 
 /* The optics' variants (a rainbow, a halo: their light lies over the
@@ -353,11 +359,11 @@ static int build_optics_programs(sky_core *s, dome_state *st, const sky_dome_sni
 {
     if (!d->optics_count || !d->front_count) return 0;
     int n = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list);
-    for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
-    for (int i = 0; i < d->optics_count; i++) list[n++] = d->optics[i];
+    n = append(list, n, d->front, d->front_count);
+    n = append(list, n, d->optics, d->optics_count);
     if (build_day(s, &st->day_optics, &st->day_optics_photopic, list, n, err, err_len)) return -1;
     if (!d->night_count) return 0;
-    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
+    n = append(list, n, d->night, d->night_count);
     return build(s, &st->night_optics, list, n, 0, err, err_len);
 }
 
@@ -371,14 +377,14 @@ static int build_occasional_programs(sky_core *s, dome_state *st, const sky_dome
     if (!d->occasional_count) return 0;
     int atmosphere = sky_atmosphere_snippets(s->atmosphere, s->cfg.blend_partner, s->profile != SKY_GL_CORE33, list);
     int n = atmosphere;
-    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
-    for (int i = 0; i < d->occasional_count; i++) list[n++] = d->occasional[i];
+    n = append(list, n, d->night, d->night_count);
+    n = append(list, n, d->occasional, d->occasional_count);
     if (d->front_count && build(s, &st->night_clear_occasional, list, n, 0, err, err_len)) return -1;
     /* the front layers before the night's */
     n = atmosphere;
-    for (int i = 0; i < d->front_count; i++) list[n++] = d->front[i];
-    for (int i = 0; i < d->night_count; i++) list[n++] = d->night[i];
-    for (int i = 0; i < d->occasional_count; i++) list[n++] = d->occasional[i];
+    n = append(list, n, d->front, d->front_count);
+    n = append(list, n, d->night, d->night_count);
+    n = append(list, n, d->occasional, d->occasional_count);
     return build(s, &st->night_occasional, list, n, 0, err, err_len);
 }
 

@@ -202,16 +202,16 @@ sky_result sky_cloud_shadow_bind(sky *s, unsigned program, int texture_unit)
     if (!s) return SKY_ERR_INVALID_ARGUMENT;
     sky_result rc = host_program_check(s, program, "sky_cloud_shadow_bind");
     if (rc != SKY_OK || (rc = host_unit_check(s, texture_unit, "sky_cloud_shadow_bind")) != SKY_OK) return rc;
-    sky_cloud_shadow map;
-    if (!s->shadow_last.texture && (rc = sky_get_cloud_shadow(s, 1.0f, 10000.0f, &map)) != SKY_OK) return rc;
-    map = s->shadow_last;
-    const float *m = map.matrix;
+    sky_cloud_shadow made;
+    if (!s->shadow_last.texture && (rc = sky_get_cloud_shadow(s, 1.0f, 10000.0f, &made)) != SKY_OK) return rc;
+    const sky_cloud_shadow *map = &s->shadow_last;
+    const float *m = map->matrix;
     const sky_gl_host_uniform u[] = {
         {"sky_cloud_shadow_map", 0, {0}, texture_unit},
         {"sky_cloud_shadow_s", 4, {m[0], m[4], m[8], m[12]}, 0},
         {"sky_cloud_shadow_t", 4, {m[1], m[5], m[9], m[13]}, 0},
-        {"sky_cloud_shadow_far", 1, {map.mean}, 0},
+        {"sky_cloud_shadow_far", 1, {map->mean}, 0},
     };
-    sky_gl_host_uniforms(&s->core, program, u, (int)(sizeof u / sizeof u[0]), texture_unit, map.texture);
+    sky_gl_host_uniforms(&s->core, program, u, (int)(sizeof u / sizeof u[0]), texture_unit, map->texture);
     return SKY_OK;
 }

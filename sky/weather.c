@@ -251,10 +251,12 @@ void sky_weather_frame(sky_core *c)
 double sky_weather_deck_share(const sky_frame *f) { return f->deck_opacity * (1.0 - f->light_through); }
 
 /* sky_weather_light's dimming: where the deck covers the sky (its share
- * of the light, deck) it passes lt of the light above, diffused. */
-static void dim_under_deck(sky_core *c, double lt, double deck)
+ * of the light) it passes light_through of the light above, diffused. */
+static void dim_under_deck(sky_core *c)
 {
     sky_frame *f = &c->frame;
+    double lt = f->light_through, deck = sky_weather_deck_share(f);
+    if (!(deck > 0.0)) return;
     /* the light that reaches the deck: the sky's and the sun's beam on the
      * level, which the deck spreads over the sky below it */
     double beam = fmax(sin(f->sun_altitude), 0.0) * sky_solar_eclipse_light_left(c);
@@ -293,8 +295,7 @@ void sky_weather_light(sky_core *c)
         if (f->flash_klx > (float)SKY_PI / f->exposure) f->flash_klx = (float)SKY_PI / f->exposure;
     }
     for (int i = 0; i < 3; i++) f->flash_light[i] = deck_kcd * sky_flash_tint[i];
-    double lt = f->light_through, deck = sky_weather_deck_share(f);
-    if (deck > 0.0) dim_under_deck(c, lt, deck);
+    dim_under_deck(c);
     /* Under a closed deck the horizon is its base seen far off: the deck's
      * own light (the clouds' mean grey in their light, which the deck has
      * dimmed already), where the clear sky's had shown as a bright band
